@@ -1,0 +1,77 @@
+#include "core/body.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contact2d {
+
+MassProperties compound_mass_properties(const std::vector<BoxPart>& parts) {
+  MassProperties props;
+  for (const BoxPart& part : parts) {
+    props.mass += part.mass;
+    props.com += part.mass * Vec2(part.x, part.y);
+  }
+  if (props.mass <= 0.0) return props;
+  props.com /= props.mass;
+  for (const BoxPart& part : parts) {
+    const double own = part.mass * (part.width * part.width + part.height * part.height) / 12.0;
+    const double shift = part.mass * (Vec2(part.x, part.y) - props.com).squaredNorm();
+    props.inertia += own + shift;
+  }
+  return props;
+}
+
+RigidBody make_point_mass(double mass, double half_height) {
+  RigidBody body;
+  body.mass = mass;
+  body.inertia = 0.0;
+  body.rotates = false;
+  body.points = {Vec2(0.0, -half_height)};
+  return body;
+}
+
+RigidBody make_compound(const std::vector<BoxPart>& parts) {
+  const MassProperties props = compound_mass_properties(parts);
+  RigidBody body;
+  body.mass = props.mass;
+  body.inertia = props.inertia;
+  body.com_offset = props.com;
+  for (const BoxPart& part : parts) {
+    const double hx = 0.5 * part.width;
+    const double hy = 0.5 * part.height;
+    const Vec2 centre = Vec2(part.x, part.y) - props.com;
+    for (const Vec2& corner : {Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(hx, hy), Vec2(-hx, hy)}) {
+      body.points.push_back(centre + corner);
+    }
+  }
+  return body;
+}
+
+RigidBody make_box(double mass, double width, double height) {
+  return make_compound({BoxPart{width, height, 0.0, 0.0, mass}});
+}
+
+RigidBody make_circle(double mass, double radius) {
+  RigidBody body;
+  body.mass = mass;
+  body.inertia = 0.5 * mass * radius * radius;
+  body.points_rotate = false;
+  body.roll_radius = radius;
+  body.points = {Vec2(0.0, -radius)};
+  return body;
+}
+
+double body_extent(const RigidBody& body) {
+  double extent = 0.0;
+  for (const Vec2& r : body.points) extent = std::max(extent, r.norm());
+  return extent;
+}
+
+double min_effective_mass(const RigidBody& body) {
+  // A circle's point stays below the centre: the normal has no lever arm.
+  if (!body.rotates || !body.points_rotate || body.inertia <= 0.0) return body.mass;
+  const double r = body_extent(body);
+  return 1.0 / (1.0 / body.mass + r * r / body.inertia);
+}
+
+}  // namespace contact2d

@@ -1,0 +1,113 @@
+#include "core/divergence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace contact2d {
+
+ContactStiffness contact_stiffness(const Model& model) {
+  ContactStiffness cs;
+  cs.m_eff = min_effective_mass(model.body);
+  if (model.contact.k > 0.0) {
+    cs.omega = std::sqrt(model.contact.k / cs.m_eff);
+    cs.zeta = model.contact.c / (2.0 * std::sqrt(model.contact.k * cs.m_eff));
+  }
+  return cs;
+}
+
+DivergenceMonitor::DivergenceMonitor(const Model& model, const State& initial) : model_(&model) {
+  const RigidBody& body = model.body;
+  const double mg = body.mass * model.gravity;
+  // Height of the lowest contact point above the ground.
+  double lowest = std::numeric_limits<double>::infinity();
+  const double ct = body.points_rotate ? std::cos(initial.q.z()) : 1.0;
+  const double st = body.points_rotate ? std::sin(initial.q.z()) : 0.0;
+  for (const Vec2& r : body.points) lowest = std::min(lowest, initial.q.y() + st * r.x() + ct * r.y());
+  const double h0 = std::isfinite(lowest) ? std::max(0.0, lowest) : 0.0;
+  const double kinetic = 0.5 * body.mass * initial.v.head<2>().squaredNorm() +
+                         0.5 * body.inertia * initial.v.z() * initial.v.z();
+  initial_energy_ = energy(model, initial);
+  const double spring = initial_energy_ - kinetic - mg * initial.q.y();
+  available_ = kinetic + mg * (h0 + body_extent(body)) + spring;
+  // A body with no weight and no motion still gets a tiny positive scale.
+  available_ = std::max(available_, 1e-12 * std::max(1.0, body.mass));
+  const double k = model.contact.k;
+  max_depth_ = k > 0.0 ? 2.0 * (mg + std::sqrt(mg * mg + 2.0 * k * available_)) / k
+                       : std::numeric_limits<double>::infinity();
+}
+
+std::optional<Divergence> DivergenceMonitor::check(const State& s, double t,
+                                                   double applied_work) const {
+  if (!s.q.allFinite() || !s.v.allFinite()) {
+    return Divergence{DivergenceKind::NonFinite, t, std::numeric_limits<double>::quiet_NaN(), 0.0};
+  }
+  const double gain = energy(*model_, s) - initial_energy_;
+  const double allowed = available_ + std::abs(applied_work);
+  if (gain > allowed) return Divergence{DivergenceKind::EnergyGain, t, gain, allowed};
+  const double depth = max_penetration(*model_, s.q);
+  if (depth > max_depth_) return Divergence{DivergenceKind::Penetration, t, depth, max_depth_};
+  return std::nullopt;
+}
+
+namespace {
+
+std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, fmt, a, b, c);
+  return buffer;
+}
+
+}  // namespace
+
+std::string describe(const Divergence& d, const Scene& scene) {
+  const Model model = make_model(scene);
+  const ContactStiffness cs = contact_stiffness(model);
+  const Integrator integrator = scene.sim.integrator;
+  const double dt = scene.sim.dt;
+  std::string what;
+  switch (d.kind) {
+    case DivergenceKind::NonFinite: what = "the state became non-finite"; break;
+    case DivergenceKind::EnergyGain:
+      what = format("the energy rose by %.3g J, more than the %.3g J the system ever held", d.value,
+                    d.limit);
+      break;
+    case DivergenceKind::Penetration:
+      what = format("a contact point sank %.3g m into the ground, beyond the %.3g m any "
+                    "energy in the scene can explain",
+                    d.value, d.limit);
+      break;
+    case DivergenceKind::NewtonFailed:
+      what = "implicit Euler's Newton iteration did not converge even at dt/64";
+      break;
+  }
+  std::string message = "simulation diverged at t = " + format("%.6g", d.time) + " s in scene " +
+                        std::string(shape_name(scene.shape)) + " (" +
+                        std::string(integrator_name(integrator)) + ", dt = " + format("%g", dt) +
+                        "): " + what + ". ";
+
+  const double omega_dt = cs.omega * dt;
+  const double limit = stability_limit(integrator, cs.zeta);
+  // Friction linearised at Fn ≈ m·g: a viscous rate μ·g·α (per unit mass).
+  const double friction_rate_dt = scene.contact.mu * scene.sim.gravity * scene.contact.alpha * dt;
+  if (omega_dt > limit) {
+    const double safe_dt = 0.5 * limit / cs.omega;
+    message += "Likely cause: ω·Δt = " + format("%.3g", omega_dt) + " exceeds the " +
+               std::string(integrator_title(integrator)) + " limit " + format("%.3g", limit) +
+               format(" (ω = √(k/m_eff) = %.4g rad/s, ζ = %.3g). ", cs.omega, cs.zeta) +
+               "Try --dt " + format("%.2g", safe_dt) + " or --integrator implicit_euler.";
+  } else if (friction_rate_dt > 1.0 && integrator != Integrator::ImplicitEuler) {
+    message += "Likely cause: stiff friction, μ·g·α·Δt = " + format("%.3g", friction_rate_dt) +
+               " (explicit methods need it well below 2). Try a smaller --dt, a smaller "
+               "contact.alpha, or --integrator implicit_euler.";
+  } else {
+    message += "ω·Δt = " + format("%.3g", omega_dt) + " is within the " +
+               std::string(integrator_title(integrator)) + " limit " + format("%.3g", limit) +
+               " for one contact; several contacts at once or a fast impact stiffen it. Try a "
+               "smaller --dt or --integrator implicit_euler.";
+  }
+  return message;
+}
+
+}  // namespace contact2d

@@ -1,0 +1,66 @@
+// Divergence rule: when a run stops being physics.
+//
+// Contact, damping and friction only remove energy, and gravity is
+// conservative, so without applied forces the mechanical energy E (kinetic +
+// gravitational + contact-spring, see energy()) never rises above E(0). The
+// energy a run can ever have available is
+//   E_avail = E(0)_kinetic + m·g·(h0 + L) + E(0)_spring
+// with h0 the height of the lowest contact point above the ground (≥ 0) and L
+// the body's extent (turning over can lower the COM by at most L).
+// A step is divergent when
+//   1. any component of the state is not finite, or
+//   2. E(t) − E(0) > E_avail + |W_applied|: the run gained more energy than the
+//      whole system ever held, or
+//   3. the deepest penetration exceeds 2·d_max, where d_max solves
+//      ½·k·d² = E_avail + m·g·d (all available energy and gravity's work in one
+//      spring), i.e. d_max = (m·g + √((m·g)² + 2·k·E_avail))/k, or
+//   4. implicit Euler's Newton iteration failed even after step splitting.
+// Rules 2 and 3 leave a factor of two or more above anything physical, so a
+// stable run never trips them and an unstable one does within a few steps.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "core/scene.hpp"
+
+namespace contact2d {
+
+enum class DivergenceKind { NonFinite, EnergyGain, Penetration, NewtonFailed };
+
+struct Divergence {
+  DivergenceKind kind = DivergenceKind::NonFinite;
+  double time = 0.0;
+  double value = 0.0;  // energy gain (J) or penetration (m) that tripped the rule
+  double limit = 0.0;  // the bound it exceeded
+};
+
+// Linear-regime numbers of the contact at the scene's parameters.
+struct ContactStiffness {
+  double m_eff = 0.0;  // smallest effective mass of one contact point, kg
+  double omega = 0.0;  // √(k/m_eff), rad/s
+  double zeta = 0.0;   // c/(2√(k·m_eff))
+};
+ContactStiffness contact_stiffness(const Model& model);
+
+class DivergenceMonitor {
+ public:
+  DivergenceMonitor(const Model& model, const State& initial);
+  // Checks a state after a step ending at time t; applied_work is the work
+  // done by Model::applied so far (0 without a player).
+  std::optional<Divergence> check(const State& s, double t, double applied_work = 0.0) const;
+  double available_energy() const { return available_; }
+
+ private:
+  const Model* model_;
+  double initial_energy_ = 0.0;
+  double available_ = 0.0;
+  double max_depth_ = 0.0;
+};
+
+// One-paragraph diagnosis: what happened, when, the likely cause in terms of
+// ω·Δt against the integrator's limit (and friction stiffness μ·g·α·Δt), and
+// what to try.
+std::string describe(const Divergence& d, const Scene& scene);
+
+}  // namespace contact2d

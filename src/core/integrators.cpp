@@ -1,0 +1,175 @@
+#include "core/integrators.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+
+namespace contact2d {
+
+std::string_view integrator_name(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::ExplicitEuler: return "explicit_euler";
+    case Integrator::SemiImplicitEuler: return "semi_implicit_euler";
+    case Integrator::ImplicitEuler: return "implicit_euler";
+    case Integrator::RK4: return "rk4";
+  }
+  return "?";
+}
+
+std::string_view integrator_title(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::ExplicitEuler: return "explicit Euler";
+    case Integrator::SemiImplicitEuler: return "semi-implicit Euler";
+    case Integrator::ImplicitEuler: return "implicit Euler";
+    case Integrator::RK4: return "RK4";
+  }
+  return "?";
+}
+
+std::optional<Integrator> parse_integrator(std::string_view name) {
+  for (Integrator integrator : kAllIntegrators) {
+    if (integrator_name(integrator) == name) return integrator;
+  }
+  return std::nullopt;
+}
+
+namespace {
+
+constexpr int kNewtonMaxIterations = 30;
+constexpr int kMaxSplitDepth = 6;
+constexpr double kNewtonTolerance = 1e-10;
+
+void explicit_euler(const Model& model, double dt, State& s) {
+  const Vec3 a = acceleration(model, s.q, s.v);
+  s.q += dt * s.v;
+  s.v += dt * a;
+}
+
+void semi_implicit_euler(const Model& model, double dt, State& s) {
+  s.v += dt * acceleration(model, s.q, s.v);
+  s.q += dt * s.v;
+}
+
+void rk4(const Model& model, double dt, State& s) {
+  const Vec3 q0 = s.q;
+  const Vec3 v0 = s.v;
+  const Vec3 k1q = v0;
+  const Vec3 k1v = acceleration(model, q0, v0);
+  const Vec3 k2q = v0 + 0.5 * dt * k1v;
+  const Vec3 k2v = acceleration(model, q0 + 0.5 * dt * k1q, k2q);
+  const Vec3 k3q = v0 + 0.5 * dt * k2v;
+  const Vec3 k3v = acceleration(model, q0 + 0.5 * dt * k2q, k3q);
+  const Vec3 k4q = v0 + dt * k3v;
+  const Vec3 k4v = acceleration(model, q0 + dt * k3q, k4q);
+  s.q = q0 + dt / 6.0 * (k1q + 2.0 * k2q + 2.0 * k3q + k4q);
+  s.v = v0 + dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+}
+
+// G(v') = v' − v − Δt·a(q + Δt·v', v')
+Vec3 implicit_residual(const Model& model, double dt, const State& s, const Vec3& v_next) {
+  return v_next - s.v - dt * acceleration(model, s.q + dt * v_next, v_next);
+}
+
+bool implicit_euler_newton(const Model& model, double dt, State& s) {
+  Vec3 v_next = s.v + dt * acceleration(model, s.q, s.v);  // semi-implicit predictor
+  Vec3 g = implicit_residual(model, dt, s, v_next);
+  for (int iteration = 0; iteration < kNewtonMaxIterations; ++iteration) {
+    Eigen::Matrix3d jacobian;
+    for (int j = 0; j < 3; ++j) {
+      const double h = 1e-7 * std::max(1.0, std::abs(v_next[j]));
+      Vec3 probe = v_next;
+      probe[j] += h;
+      jacobian.col(j) = (implicit_residual(model, dt, s, probe) - g) / h;
+    }
+    const Vec3 delta = jacobian.partialPivLu().solve(-g);
+    if (!delta.allFinite()) return false;
+    // Backtracking: accept the first fraction of the step that lowers |G|∞.
+    double fraction = 1.0;
+    Vec3 trial = v_next + delta;
+    Vec3 g_trial = implicit_residual(model, dt, s, trial);
+    while (g_trial.lpNorm<Eigen::Infinity>() > g.lpNorm<Eigen::Infinity>() && fraction > 1e-3) {
+      fraction *= 0.5;
+      trial = v_next + fraction * delta;
+      g_trial = implicit_residual(model, dt, s, trial);
+    }
+    v_next = trial;
+    g = g_trial;
+    if ((fraction * delta).lpNorm<Eigen::Infinity>() <=
+        kNewtonTolerance * (1.0 + v_next.lpNorm<Eigen::Infinity>())) {
+      s.q += dt * v_next;
+      s.v = v_next;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool implicit_euler(const Model& model, double dt, State& s, int depth) {
+  State trial = s;
+  if (implicit_euler_newton(model, dt, trial)) {
+    s = trial;
+    return true;
+  }
+  if (depth >= kMaxSplitDepth) return false;
+  return implicit_euler(model, 0.5 * dt, s, depth + 1) &&
+         implicit_euler(model, 0.5 * dt, s, depth + 1);
+}
+
+// Largest h·|λ| such that |R(h·λ)| ≤ 1 for both roots λ of s² + 2ζs + 1
+// (ω = 1), where R is the amplification polynomial of a one-stage-per-step
+// method applied to y' = λy. Bisection on h; the stable set is an interval
+// from 0 for the methods used here.
+template <typename Amplification>
+double scalar_stability_limit(double zeta, Amplification amplification) {
+  using C = std::complex<double>;
+  const C disc = std::sqrt(C(zeta * zeta - 1.0, 0.0));
+  const C roots[2] = {-zeta + disc, -zeta - disc};
+  auto stable = [&](double h) {
+    for (const C& lambda : roots) {
+      if (std::abs(amplification(h * lambda)) > 1.0 + 1e-12) return false;
+    }
+    return true;
+  };
+  double lo = 0.0, hi = 10.0;
+  if (stable(hi)) return hi;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (stable(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+}  // namespace
+
+StepStatus step(const Model& model, Integrator integrator, double dt, State& state) {
+  switch (integrator) {
+    case Integrator::ExplicitEuler: explicit_euler(model, dt, state); break;
+    case Integrator::SemiImplicitEuler: semi_implicit_euler(model, dt, state); break;
+    case Integrator::RK4: rk4(model, dt, state); break;
+    case Integrator::ImplicitEuler:
+      if (!implicit_euler(model, dt, state, 0)) return StepStatus::NewtonFailed;
+      break;
+  }
+  return StepStatus::Ok;
+}
+
+double stability_limit(Integrator integrator, double zeta) {
+  using C = std::complex<double>;
+  switch (integrator) {
+    case Integrator::ImplicitEuler: return std::numeric_limits<double>::infinity();
+    case Integrator::SemiImplicitEuler: {
+      const double jury = 2.0 * (std::sqrt(1.0 + zeta * zeta) - zeta);
+      return zeta > 0.0 ? std::min(1.0 / zeta, jury) : jury;
+    }
+    case Integrator::ExplicitEuler:
+      return scalar_stability_limit(zeta, [](C z) { return 1.0 + z; });
+    case Integrator::RK4:
+      return scalar_stability_limit(
+          zeta, [](C z) { return 1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0))); });
+  }
+  return 0.0;
+}
+
+}  // namespace contact2d

@@ -1,0 +1,142 @@
+#include "core/scene.hpp"
+
+#include <cmath>
+
+namespace contact2d {
+
+std::string_view shape_name(Shape shape) {
+  switch (shape) {
+    case Shape::PointMass: return "point_mass";
+    case Shape::Box: return "box";
+    case Shape::TShape: return "tshape";
+    case Shape::Circle: return "circle";
+  }
+  return "?";
+}
+
+std::optional<Shape> parse_shape(std::string_view name) {
+  for (Shape shape : {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle}) {
+    if (shape_name(shape) == name) return shape;
+  }
+  return std::nullopt;
+}
+
+std::vector<BoxPart> default_tshape_parts() {
+  return {BoxPart{0.6, 0.1, 0.0, 0.25, 0.6}, BoxPart{0.1, 0.4, 0.0, 0.0, 0.4}};
+}
+
+Scene default_scene(Shape shape) {
+  Scene scene;
+  scene.shape = shape;
+  scene.initial.q = Vec3(0.0, 1.0, 0.0);
+  if (shape == Shape::TShape) scene.parts = default_tshape_parts();
+  if (shape == Shape::Circle) {
+    scene.initial.q = Vec3(0.0, scene.radius, 0.0);
+  }
+  return scene;
+}
+
+namespace {
+
+// Range rules as small predicates so every message has the same form.
+std::optional<ValidationError> require(bool ok, double value, std::string key, std::string range) {
+  if (ok) return std::nullopt;
+  return ValidationError{std::move(key), std::move(range), value};
+}
+
+bool positive(double x) { return std::isfinite(x) && x > 0.0; }
+bool non_negative(double x) { return std::isfinite(x) && x >= 0.0; }
+bool bounded(double x, double limit) { return std::isfinite(x) && std::abs(x) <= limit; }
+
+}  // namespace
+
+std::optional<ValidationError> validate(const Scene& s) {
+  constexpr double kMaxCoord = 1e6;
+  const std::optional<ValidationError> checks[] = {
+      require(positive(s.mass) && s.mass <= 1e9, s.mass, "body.mass", "must be in (0, 1e9] kg"),
+      require(non_negative(s.half_height) && s.half_height <= 1e3, s.half_height, "body.half_height",
+              "must be in [0, 1e3] m"),
+      require(positive(s.width) && s.width <= 1e3, s.width, "body.width", "must be in (0, 1e3] m"),
+      require(positive(s.height) && s.height <= 1e3, s.height, "body.height", "must be in (0, 1e3] m"),
+      require(positive(s.radius) && s.radius <= 1e3, s.radius, "body.radius", "must be in (0, 1e3] m"),
+      require(non_negative(s.contact.k) && s.contact.k <= 1e12, s.contact.k, "contact.k",
+              "must be in [0, 1e12] N/m"),
+      require(non_negative(s.contact.c) && s.contact.c <= 1e9, s.contact.c, "contact.c",
+              "must be in [0, 1e9] N·s/m"),
+      require(non_negative(s.contact.mu) && s.contact.mu <= 100, s.contact.mu, "contact.mu", "must be in [0, 100]"),
+      require(positive(s.contact.alpha) && s.contact.alpha <= 1e9, s.contact.alpha, "contact.alpha",
+              "must be in (0, 1e9] s/m"),
+      require(non_negative(s.contact.mu_roll) && s.contact.mu_roll <= 10, s.contact.mu_roll, "contact.mu_roll",
+              "must be in [0, 10] m"),
+      require(non_negative(s.contact.mu_torsion) && s.contact.mu_torsion <= 10, s.contact.mu_torsion,
+              "contact.mu_torsion", "must be in [0, 10] m"),
+      require(bounded(s.initial.q.x(), kMaxCoord), s.initial.q.x(), "initial.x", "must be finite, |x| <= 1e6 m"),
+      require(bounded(s.initial.q.y(), kMaxCoord), s.initial.q.y(), "initial.y", "must be finite, |y| <= 1e6 m"),
+      require(bounded(s.initial.q.z(), 1e3), s.initial.q.z(), "initial.theta", "must be finite, |theta| <= 1e3 rad"),
+      require(bounded(s.initial.v.x(), kMaxCoord), s.initial.v.x(), "initial.vx", "must be finite, |vx| <= 1e6 m/s"),
+      require(bounded(s.initial.v.y(), kMaxCoord), s.initial.v.y(), "initial.vy", "must be finite, |vy| <= 1e6 m/s"),
+      require(bounded(s.initial.v.z(), 1e6), s.initial.v.z(), "initial.omega",
+              "must be finite, |omega| <= 1e6 rad/s"),
+      require(s.shape != Shape::PointMass || (s.initial.q.z() == 0.0 && s.initial.v.z() == 0.0), s.initial.q.z(),
+              "initial.theta", "must be 0 with omega = 0 for a point_mass (it does not rotate)"),
+      require(positive(s.sim.duration) && s.sim.duration <= 1e5, s.sim.duration, "sim.duration",
+              "must be in (0, 1e5] s"),
+      require(positive(s.sim.dt) && s.sim.dt <= s.sim.duration, s.sim.dt, "sim.dt",
+              "must be in (0, sim.duration] s"),
+      require(positive(s.sim.output_dt), s.sim.output_dt, "sim.output_dt", "must be > 0 s"),
+      require(s.sim.duration / s.sim.dt <= 1e9, s.sim.dt, "sim.dt",
+              "must be >= sim.duration / 1e9 (at most 1e9 steps)"),
+      require(non_negative(s.sim.gravity) && s.sim.gravity <= 1e4, s.sim.gravity, "sim.gravity",
+              "must be in [0, 1e4] m/s²"),
+  };
+  for (const auto& check : checks) {
+    if (check) return check;
+  }
+  if (s.shape == Shape::TShape) {
+    if (s.parts.empty()) return ValidationError{"body.parts", "must list at least one part"};
+    for (size_t i = 0; i < s.parts.size(); ++i) {
+      const BoxPart& p = s.parts[i];
+      const std::string key = "body.parts[" + std::to_string(i) + "].";
+      const std::optional<ValidationError> part_checks[] = {
+          require(positive(p.width) && p.width <= 1e3, p.width, key + "width", "must be in (0, 1e3] m"),
+          require(positive(p.height) && p.height <= 1e3, p.height, key + "height", "must be in (0, 1e3] m"),
+          require(positive(p.mass) && p.mass <= 1e9, p.mass, key + "mass", "must be in (0, 1e9] kg"),
+          require(bounded(p.x, 1e3), p.x, key + "x", "must be finite, |x| <= 1e3 m"),
+          require(bounded(p.y, 1e3), p.y, key + "y", "must be finite, |y| <= 1e3 m"),
+      };
+      for (const auto& check : part_checks) {
+        if (check) return check;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+RigidBody make_body(const Scene& s) {
+  switch (s.shape) {
+    case Shape::PointMass: return make_point_mass(s.mass, s.half_height);
+    case Shape::Box: return make_box(s.mass, s.width, s.height);
+    case Shape::TShape: return make_compound(s.parts.empty() ? default_tshape_parts() : s.parts);
+    case Shape::Circle: return make_circle(s.mass, s.radius);
+  }
+  return {};
+}
+
+Model make_model(const Scene& s) {
+  Model model;
+  model.body = make_body(s);
+  model.contact = s.contact;
+  model.gravity = s.sim.gravity;
+  return model;
+}
+
+long long step_count(const SimParams& sim) {
+  return static_cast<long long>(std::llround(sim.duration / sim.dt));
+}
+
+long long sample_stride(const SimParams& sim) {
+  const long long stride = std::llround(sim.output_dt / sim.dt);
+  return stride < 1 ? 1 : stride;
+}
+
+}  // namespace contact2d

@@ -1,0 +1,287 @@
+#include "io/scene_file.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+namespace contact2d {
+namespace {
+
+std::string format_value(double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+// Reads keys out of one TOML table, remembering which were used so that the
+// rest can be reported as unknown.
+class TableReader {
+ public:
+  TableReader(const toml::table* table, std::string prefix, std::string origin)
+      : table_(table), prefix_(std::move(prefix)), origin_(std::move(origin)) {}
+
+  void number(const char* key, double& out) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    if (const auto* f = node->as_floating_point()) {
+      out = f->get();
+    } else if (const auto* i = node->as_integer()) {
+      out = static_cast<double>(i->get());
+    } else {
+      fail(key, "must be a number, got " + type_name(*node));
+    }
+    if (!std::isfinite(out)) fail(key, "must be a finite number, got " + format_value(out));
+  }
+
+  void string(const char* key, std::string& out) {
+    const toml::node* node = find(key);
+    if (!node) return;
+    if (const auto* s = node->as_string()) {
+      out = s->get();
+    } else {
+      fail(key, "must be a string, got " + type_name(*node));
+    }
+  }
+
+  const toml::array* array(const char* key) {
+    const toml::node* node = find(key);
+    if (!node) return nullptr;
+    if (!node->is_array()) fail(key, "must be an array, got " + type_name(*node));
+    return node->as_array();
+  }
+
+  void mark_used(const char* key) { used_.insert(key); }
+
+  // Every key not read so far is unknown.
+  void reject_unknown(const std::string& allowed) const {
+    if (!table_) return;
+    for (const auto& [key, node] : *table_) {
+      if (!used_.count(std::string(key.str()))) {
+        throw InputError(origin_ + ": unknown key '" + prefix_ + std::string(key.str()) +
+                         "' (allowed here: " + allowed + ")");
+      }
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& why) const {
+    throw InputError(origin_ + ": " + prefix_ + key + " " + why);
+  }
+
+ private:
+  const toml::node* find(const char* key) {
+    if (!table_) return nullptr;
+    used_.insert(key);
+    return table_->get(key);
+  }
+
+  static std::string type_name(const toml::node& node) {
+    switch (node.type()) {
+      case toml::node_type::string: return "a string";
+      case toml::node_type::integer: return "an integer";
+      case toml::node_type::floating_point: return "a number";
+      case toml::node_type::boolean: return "a boolean";
+      case toml::node_type::array: return "an array";
+      case toml::node_type::table: return "a table";
+      default: return "a date or time";
+    }
+  }
+
+  const toml::table* table_;
+  std::string prefix_;
+  std::string origin_;
+  std::set<std::string> used_;
+};
+
+const toml::table* subtable(const toml::table& root, const char* name, const std::string& origin) {
+  const toml::node* node = root.get(name);
+  if (!node) return nullptr;
+  if (!node->is_table()) throw InputError(origin + ": [" + name + "] must be a table");
+  return node->as_table();
+}
+
+void read_body(const toml::table* table, Scene& scene, const std::string& origin) {
+  TableReader body(table, "body.", origin);
+  switch (scene.shape) {
+    case Shape::PointMass:
+      body.number("mass", scene.mass);
+      body.number("half_height", scene.half_height);
+      body.reject_unknown("mass, half_height");
+      return;
+    case Shape::Box:
+      body.number("mass", scene.mass);
+      body.number("width", scene.width);
+      body.number("height", scene.height);
+      body.reject_unknown("mass, width, height");
+      return;
+    case Shape::Circle:
+      body.number("mass", scene.mass);
+      body.number("radius", scene.radius);
+      body.reject_unknown("mass, radius");
+      return;
+    case Shape::TShape:
+      break;
+  }
+  const toml::array* parts = body.array("parts");
+  body.reject_unknown("parts (a tshape's mass comes from its parts)");
+  if (!parts) return;  // the default T
+  scene.parts.clear();
+  for (size_t i = 0; i < parts->size(); ++i) {
+    const std::string prefix = "body.parts[" + std::to_string(i) + "].";
+    const toml::table* part_table = (*parts)[i].as_table();
+    if (!part_table) throw InputError(origin + ": " + prefix.substr(0, prefix.size() - 1) +
+                                      " must be a table { width, height, x, y, mass }");
+    TableReader part(part_table, prefix, origin);
+    BoxPart p{0.0, 0.0, 0.0, 0.0, 0.0};
+    part.number("width", p.width);
+    part.number("height", p.height);
+    part.number("x", p.x);
+    part.number("y", p.y);
+    part.number("mass", p.mass);
+    part.reject_unknown("width, height, x, y, mass");
+    if (!part_table->contains("width") || !part_table->contains("height") ||
+        !part_table->contains("mass")) {
+      throw InputError(origin + ": " + prefix + "width, height and mass are required in every part");
+    }
+    scene.parts.push_back(p);
+  }
+}
+
+void read_contact(const toml::table* table, Scene& scene, const std::string& origin) {
+  TableReader contact(table, "contact.", origin);
+  ContactParams& p = scene.contact;
+  contact.number("k", p.k);
+  contact.number("c", p.c);
+  contact.number("mu", p.mu);
+  contact.number("alpha", p.alpha);
+  contact.number("mu_roll", p.mu_roll);
+  contact.number("mu_torsion", p.mu_torsion);
+  std::string damping = p.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt";
+  contact.string("damping", damping);
+  contact.reject_unknown("k, c, mu, alpha, mu_roll, mu_torsion, damping");
+  if (damping == "compression") {
+    p.damping = DampingLaw::Compression;
+  } else if (damping == "kelvin_voigt") {
+    p.damping = DampingLaw::KelvinVoigt;
+  } else {
+    contact.fail("damping", "= \"" + damping + "\" is not a damping law: use \"compression\" or \"kelvin_voigt\"");
+  }
+}
+
+void read_initial(const toml::table* table, Scene& scene, const std::string& origin) {
+  TableReader initial(table, "initial.", origin);
+  initial.number("x", scene.initial.q.x());
+  initial.number("y", scene.initial.q.y());
+  initial.number("theta", scene.initial.q.z());
+  initial.number("vx", scene.initial.v.x());
+  initial.number("vy", scene.initial.v.y());
+  initial.number("omega", scene.initial.v.z());
+  initial.reject_unknown("x, y, theta, vx, vy, omega");
+}
+
+void read_sim(const toml::table* table, Scene& scene, const std::string& origin) {
+  TableReader sim(table, "sim.", origin);
+  sim.number("dt", scene.sim.dt);
+  sim.number("duration", scene.sim.duration);
+  sim.number("output_dt", scene.sim.output_dt);
+  sim.number("gravity", scene.sim.gravity);
+  std::string integrator(integrator_name(scene.sim.integrator));
+  sim.string("integrator", integrator);
+  sim.reject_unknown("dt, duration, output_dt, integrator, gravity");
+  const auto parsed = parse_integrator(integrator);
+  if (!parsed) {
+    sim.fail("integrator", "= \"" + integrator +
+                               "\" is not an integrator: use explicit_euler, semi_implicit_euler, "
+                               "implicit_euler or rk4");
+  }
+  scene.sim.integrator = *parsed;
+}
+
+// Inserts "a.b=value" into the document, creating tables as needed.
+void apply_override(toml::table& root, const Override& o, const std::string& origin) {
+  toml::table* table = &root;
+  std::string_view path = o.key;
+  size_t dot;
+  while ((dot = path.find('.')) != std::string_view::npos) {
+    const std::string part(path.substr(0, dot));
+    toml::node* node = table->get(part);
+    if (!node) {
+      table->insert(part, toml::table{});
+      node = table->get(part);
+    }
+    if (!node->is_table()) throw InputError(origin + ": --set " + o.key + ": '" + part + "' is not a table");
+    table = node->as_table();
+    path.remove_prefix(dot + 1);
+  }
+  const std::string leaf(path);
+  // Read the value as TOML; a bare word that is not TOML is a string.
+  toml::table value_doc;
+  try {
+    value_doc = toml::parse("v = " + o.value);
+  } catch (const toml::parse_error&) {
+    value_doc = toml::table{{"v", o.value}};
+  }
+  table->insert_or_assign(leaf, *value_doc.get("v"));
+}
+
+}  // namespace
+
+Override parse_override(const std::string& assignment) {
+  const size_t eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == assignment.size()) {
+    throw InputError("--set " + assignment + ": expected key=value, e.g. contact.k=1e6");
+  }
+  return {assignment.substr(0, eq), assignment.substr(eq + 1)};
+}
+
+Scene parse_scene(const std::string& toml_text, const std::string& origin,
+                  const std::vector<Override>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, origin);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << origin << ":" << e.source().begin.line << ":" << e.source().begin.column
+          << ": malformed TOML: " << e.description();
+    throw InputError(where.str());
+  }
+  for (const Override& o : overrides) apply_override(root, o, origin);
+
+  TableReader top(&root, "", origin);
+  std::string shape_text;
+  top.string("scene", shape_text);
+  if (!root.contains("scene")) {
+    throw InputError(origin + ": missing key 'scene' (one of point_mass, box, tshape, circle)");
+  }
+  const auto shape = parse_shape(shape_text);
+  if (!shape) {
+    top.fail("scene", "= \"" + shape_text + "\" is not a scene: use point_mass, box, tshape or circle");
+  }
+  Scene scene = default_scene(*shape);
+  read_body(subtable(root, "body", origin), scene, origin);
+  read_contact(subtable(root, "contact", origin), scene, origin);
+  read_initial(subtable(root, "initial", origin), scene, origin);
+  read_sim(subtable(root, "sim", origin), scene, origin);
+  // Tables were read by the helpers above; mark them used.
+  for (const char* name : {"body", "contact", "initial", "sim"}) top.mark_used(name);
+  top.reject_unknown("scene, [body], [contact], [initial], [sim]");
+
+  if (const auto error = validate(scene)) {
+    throw InputError(origin + ": " + error->key + " = " + format_value(error->value) + " is out of range: " +
+                     error->range);
+  }
+  return scene;
+}
+
+Scene load_scene(const std::string& path, const std::vector<Override>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot read scene file (missing or unreadable)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": cannot read scene file (read error)");
+  return parse_scene(text.str(), path, overrides);
+}
+
+}  // namespace contact2d

@@ -1,0 +1,34 @@
+// Scene files (TOML, SPEC §6) and command-line overrides.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace contact2d {
+
+// Bad input: the message is one line naming the file, the key and the
+// allowed range. The CLI prints it and exits with status 2.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// "key=value" assignments applied on top of the file, e.g. "contact.k=1e6" or
+// "sim.integrator=rk4". The value is read as a TOML value (a bare word is a
+// string), so overrides pass the same type and range checks as the file.
+struct Override {
+  std::string key;
+  std::string value;
+};
+Override parse_override(const std::string& assignment);  // throws InputError
+
+// Reads, applies the overrides, checks keys, types and ranges. Throws InputError.
+Scene load_scene(const std::string& path, const std::vector<Override>& overrides = {});
+
+// Same, from TOML text; `origin` names the source in messages.
+Scene parse_scene(const std::string& toml_text, const std::string& origin,
+                  const std::vector<Override>& overrides = {});
+
+}  // namespace contact2d

@@ -1,0 +1,3 @@
+#include <gtest/gtest.h>
+#include "core/simulate.hpp"
+TEST(Placeholder, Builds) { SUCCEED(); }
