@@ -1,0 +1,51 @@
+// Pieces shared by the contact2d subcommands.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/simulate.hpp"
+
+namespace contact2d::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitBadInput = 2;
+constexpr int kExitDiverged = 3;
+
+// The scene argument and the overrides every scene-running command accepts.
+struct SceneOptions {
+  std::string path;
+  std::string integrator;
+  std::optional<double> dt;
+  std::optional<double> duration;
+  std::vector<std::string> sets;
+
+  void add_to(CLI::App& cmd);
+  Scene load() const;  // throws InputError
+};
+
+std::string format_number(double v, int digits = 6);
+
+// A run of one engine: the sampled trajectory, wall-clock time of the
+// stepping alone, and anything the engine warned about.
+struct EngineRun {
+  Trajectory trajectory;
+  double seconds = 0.0;
+  std::vector<std::string> warnings;
+};
+
+EngineRun run_reference(const Scene& scene);
+
+// A subcommand: adds itself to the app and returns the action to run if it
+// was chosen. The action returns the exit status.
+using Action = std::function<int()>;
+struct Command {
+  CLI::App* app = nullptr;
+  Action action;
+};
+
+Command add_simulate(CLI::App& app);
+
+}  // namespace contact2d::cli
