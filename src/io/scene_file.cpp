@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -33,7 +34,7 @@ class TableReader {
     } else {
       fail(key, "must be a number, got " + type_name(*node));
     }
-    if (!std::isfinite(out)) fail(key, "must be a finite number, got " + format_value(out));
+    // Non-finite values pass through to validate(), whose message names the range.
   }
 
   void string(const char* key, std::string& out) {
@@ -276,6 +277,10 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
 }
 
 Scene load_scene(const std::string& path, const std::vector<Override>& overrides) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(path + ": cannot read scene file (it is a directory)");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read scene file (missing or unreadable)");
   std::ostringstream text;
