@@ -33,9 +33,14 @@ DivergenceMonitor::DivergenceMonitor(const Model& model, const State& initial) :
   available_ = kinetic + mg * (h0 + body_extent(body)) + spring;
   // A body with no weight and no motion still gets a tiny positive scale.
   available_ = std::max(available_, 1e-12 * std::max(1.0, body.mass));
-  const double k = model.contact.k;
-  max_depth_ = k > 0.0 ? 2.0 * (mg + std::sqrt(mg * mg + 2.0 * k * available_)) / k
-                       : std::numeric_limits<double>::infinity();
+  max_depth_ = depth_limit(available_);
+}
+
+double DivergenceMonitor::depth_limit(double energy) const {
+  const double mg = model_->body.mass * model_->gravity;
+  const double k = model_->contact.k;
+  return k > 0.0 ? 2.0 * (mg + std::sqrt(mg * mg + 2.0 * k * energy)) / k
+                 : std::numeric_limits<double>::infinity();
 }
 
 std::optional<Divergence> DivergenceMonitor::check(const State& s, double t,
@@ -47,7 +52,9 @@ std::optional<Divergence> DivergenceMonitor::check(const State& s, double t,
   const double allowed = available_ + std::abs(applied_work);
   if (gain > allowed) return Divergence{DivergenceKind::EnergyGain, t, gain, allowed};
   const double depth = max_penetration(*model_, s.q);
-  if (depth > max_depth_) return Divergence{DivergenceKind::Penetration, t, depth, max_depth_};
+  // Work put in by applied forces can end up in one spring too.
+  const double depth_allowed = applied_work == 0.0 ? max_depth_ : depth_limit(allowed);
+  if (depth > depth_allowed) return Divergence{DivergenceKind::Penetration, t, depth, depth_allowed};
   return std::nullopt;
 }
 

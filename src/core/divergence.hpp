@@ -12,8 +12,9 @@
 //   2. E(t) − E(0) > E_avail + |W_applied|: the run gained more energy than the
 //      whole system ever held, or
 //   3. the deepest penetration exceeds 2·d_max, where d_max solves
-//      ½·k·d² = E_avail + m·g·d (all available energy and gravity's work in one
-//      spring), i.e. d_max = (m·g + √((m·g)² + 2·k·E_avail))/k, or
+//      ½·k·d² = E_avail + |W_applied| + m·g·d (all available energy, the
+//      applied forces' work and gravity's work in one spring), i.e.
+//      d_max = (m·g + √((m·g)² + 2·k·(E_avail + |W_applied|)))/k, or
 //   4. implicit Euler's Newton iteration failed even after step splitting.
 // Rules 2 and 3 leave a factor of two or more above anything physical, so a
 // stable run never trips them and an unstable one does within a few steps.
@@ -52,6 +53,7 @@ class DivergenceMonitor {
   double available_energy() const { return available_; }
 
  private:
+  double depth_limit(double energy) const;  // 2·d_max for that much energy
   const Model* model_;
   double initial_energy_ = 0.0;
   double available_ = 0.0;

@@ -1,5 +1,6 @@
 #include "core/dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace contact2d {
@@ -43,6 +44,7 @@ Vec3 acceleration(const Model& model, const Vec3& q, const Vec3& v) {
       torque -= law.mu_roll * fn * std::tanh(law.alpha * body.roll_radius * v.z());
     }
   }
+  if (!model.obstacles.empty()) add_obstacle_forces(model.obstacles, body, law, q, v, force, torque);
 
   const double alpha = (body.rotates && body.inertia > 0.0) ? torque / body.inertia : 0.0;
   return {force.x() / body.mass, force.y() / body.mass, alpha};
@@ -54,6 +56,9 @@ double max_penetration(const Model& model, const Vec3& q) {
   for (const Vec2& local : model.body.points) {
     const double depth = -(q.y() + rotate(local).y());
     if (depth > deepest) deepest = depth;
+  }
+  if (!model.obstacles.empty()) {
+    deepest = std::max(deepest, obstacle_max_penetration(model.obstacles, model.body, q));
   }
   return deepest;
 }
@@ -67,6 +72,7 @@ double energy(const Model& model, const State& s) {
     const double depth = -(s.q.y() + rotate(local).y());
     if (depth > 0.0) e += 0.5 * model.contact.k * depth * depth;
   }
+  if (!model.obstacles.empty()) e += obstacle_spring_energy(model.obstacles, body, model.contact.k, s.q);
   return e;
 }
 

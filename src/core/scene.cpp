@@ -48,6 +48,41 @@ bool positive(double x) { return std::isfinite(x) && x > 0.0; }
 bool non_negative(double x) { return std::isfinite(x) && x >= 0.0; }
 bool bounded(double x, double limit) { return std::isfinite(x) && std::abs(x) <= limit; }
 
+// Obstacles are stored as corners (box) or ends (segment); the messages name
+// the scene file's keys: a box's x, y (centre), width, height; a segment's
+// x1, y1, x2, y2, radius.
+std::optional<ValidationError> validate_obstacle(const Obstacle& o, const std::string& name) {
+  constexpr double kMaxCoord = 1e6;
+  const std::string key = name + ".";
+  if (o.shape == ObstacleShape::Box) {
+    const Vec2 centre = 0.5 * (o.a + o.b);
+    const Vec2 size = o.b - o.a;
+    const std::optional<ValidationError> checks[] = {
+        require(bounded(centre.x(), kMaxCoord), centre.x(), key + "x", "must be finite, |x| <= 1e6 m"),
+        require(bounded(centre.y(), kMaxCoord), centre.y(), key + "y", "must be finite, |y| <= 1e6 m"),
+        require(positive(size.x()) && size.x() <= 1e6, size.x(), key + "width", "must be in (0, 1e6] m"),
+        require(positive(size.y()) && size.y() <= 1e6, size.y(), key + "height", "must be in (0, 1e6] m"),
+    };
+    for (const auto& check : checks) {
+      if (check) return check;
+    }
+    return std::nullopt;
+  }
+  const std::optional<ValidationError> checks[] = {
+      require(bounded(o.a.x(), kMaxCoord), o.a.x(), key + "x1", "must be finite, |x1| <= 1e6 m"),
+      require(bounded(o.a.y(), kMaxCoord), o.a.y(), key + "y1", "must be finite, |y1| <= 1e6 m"),
+      require(bounded(o.b.x(), kMaxCoord), o.b.x(), key + "x2", "must be finite, |x2| <= 1e6 m"),
+      require(bounded(o.b.y(), kMaxCoord), o.b.y(), key + "y2", "must be finite, |y2| <= 1e6 m"),
+      require(non_negative(o.radius) && o.radius <= 1e3, o.radius, key + "radius", "must be in [0, 1e3] m"),
+      require(o.radius > 0.0 || o.a != o.b, o.radius, key + "radius",
+              "must be > 0 when the two ends coincide (a segment of no length and no thickness)"),
+  };
+  for (const auto& check : checks) {
+    if (check) return check;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<ValidationError> validate(const Scene& s) {
@@ -109,6 +144,9 @@ std::optional<ValidationError> validate(const Scene& s) {
       }
     }
   }
+  for (size_t i = 0; i < s.obstacles.size(); ++i) {
+    if (auto error = validate_obstacle(s.obstacles[i], "obstacle[" + std::to_string(i) + "]")) return error;
+  }
   return std::nullopt;
 }
 
@@ -127,6 +165,7 @@ Model make_model(const Scene& s) {
   model.body = make_body(s);
   model.contact = s.contact;
   model.gravity = s.sim.gravity;
+  model.obstacles = s.obstacles;
   return model;
 }
 

@@ -35,6 +35,7 @@ struct Scene {
   double radius = 0.1;        // circle
   std::vector<BoxPart> parts;  // tshape; empty = the default T
   ContactParams contact;
+  std::vector<Obstacle> obstacles;  // static geometry, same contact law as the ground
   State initial;
   SimParams sim;
 };

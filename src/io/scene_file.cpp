@@ -200,6 +200,66 @@ void read_sim(const toml::table* table, Scene& scene, const std::string& origin)
   scene.sim.integrator = *parsed;
 }
 
+// [[obstacle]]: an array of tables, each a box { x, y, width, height } (centre
+// and size) or a segment { x1, y1, x2, y2, radius } chosen by `type`.
+void read_obstacles(const toml::table& root, Scene& scene, const std::string& origin) {
+  const toml::node* node = root.get("obstacle");
+  if (!node) return;
+  const toml::array* list = node->as_array();
+  if (!list) throw InputError(origin + ": obstacle must be an array of tables ([[obstacle]])");
+  scene.obstacles.clear();
+  for (size_t i = 0; i < list->size(); ++i) {
+    const std::string name = "obstacle[" + std::to_string(i) + "]";
+    const toml::table* table = (*list)[i].as_table();
+    if (!table) throw InputError(origin + ": " + name + " must be a table ([[obstacle]] with type = \"box\" or \"segment\")");
+    TableReader reader(table, name + ".", origin);
+    std::string type;
+    reader.string("type", type);
+    auto require_keys = [&](std::initializer_list<const char*> keys) {
+      for (const char* key : keys) {
+        if (!table->contains(key)) reader.fail(key, "is required for an obstacle of type \"" + type + "\"");
+      }
+    };
+    if (type == "box") {
+      double x = 0.0, y = 0.0, width = 0.0, height = 0.0;
+      reader.number("x", x);
+      reader.number("y", y);
+      reader.number("width", width);
+      reader.number("height", height);
+      reader.reject_unknown("type, x, y, width, height");
+      require_keys({"x", "y", "width", "height"});
+      // validate() sees the corners; check the keys as written, so that an
+      // infinite width is reported as the width and not as a centre of NaN.
+      auto check = [&](const char* key, double value, bool ok, const char* range) {
+        if (!ok) {
+          throw InputError(origin + ": " + name + "." + key + " = " + format_value(value) +
+                           " is out of range: " + range);
+        }
+      };
+      check("x", x, std::isfinite(x) && std::abs(x) <= 1e6, "must be finite, |x| <= 1e6 m");
+      check("y", y, std::isfinite(y) && std::abs(y) <= 1e6, "must be finite, |y| <= 1e6 m");
+      check("width", width, width > 0.0 && width <= 1e6, "must be in (0, 1e6] m");
+      check("height", height, height > 0.0 && height <= 1e6, "must be in (0, 1e6] m");
+      scene.obstacles.push_back(make_box_obstacle(x, y, width, height));
+    } else if (type == "segment") {
+      Vec2 a = Vec2::Zero(), b = Vec2::Zero();
+      double radius = 0.0;
+      reader.number("x1", a.x());
+      reader.number("y1", a.y());
+      reader.number("x2", b.x());
+      reader.number("y2", b.y());
+      reader.number("radius", radius);
+      reader.reject_unknown("type, x1, y1, x2, y2, radius");
+      require_keys({"x1", "y1", "x2", "y2"});
+      scene.obstacles.push_back(make_segment_obstacle(a, b, radius));
+    } else if (!table->contains("type")) {
+      reader.fail("type", "is required: \"box\" (x, y, width, height) or \"segment\" (x1, y1, x2, y2, radius)");
+    } else {
+      reader.fail("type", "= \"" + type + "\" is not an obstacle type: use \"box\" or \"segment\"");
+    }
+  }
+}
+
 // Inserts "a.b=value" into the document, creating tables as needed.
 void apply_override(toml::table& root, const Override& o, const std::string& origin) {
   toml::table* table = &root;
@@ -265,9 +325,13 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   read_contact(subtable(root, "contact", origin), scene, origin);
   read_initial(subtable(root, "initial", origin), scene, origin);
   read_sim(subtable(root, "sim", origin), scene, origin);
+  read_obstacles(root, scene, origin);
+  // [game] belongs to `contact2d play`, which reads and checks it; a scene
+  // that has one still simulates (the rules do not change the physics).
+  if (root.contains("game")) subtable(root, "game", origin);
   // Tables were read by the helpers above; mark them used.
-  for (const char* name : {"body", "contact", "initial", "sim"}) top.mark_used(name);
-  top.reject_unknown("scene, [body], [contact], [initial], [sim]");
+  for (const char* name : {"body", "contact", "initial", "sim", "obstacle", "game"}) top.mark_used(name);
+  top.reject_unknown("scene, [body], [contact], [initial], [sim], [[obstacle]], [game]");
 
   if (const auto error = validate(scene)) {
     throw InputError(origin + ": " + error->key + " = " + format_value(error->value) + " is out of range: " +

@@ -1,0 +1,186 @@
+#include "core/obstacles.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contact2d {
+
+Obstacle make_box_obstacle(double x, double y, double width, double height) {
+  Obstacle o;
+  o.shape = ObstacleShape::Box;
+  o.a = Vec2(x - 0.5 * width, y - 0.5 * height);
+  o.b = Vec2(x + 0.5 * width, y + 0.5 * height);
+  return o;
+}
+
+Obstacle make_segment_obstacle(const Vec2& a, const Vec2& b, double radius) {
+  Obstacle o;
+  o.shape = ObstacleShape::Segment;
+  o.a = a;
+  o.b = b;
+  o.radius = radius;
+  return o;
+}
+
+std::string_view obstacle_shape_name(ObstacleShape shape) {
+  return shape == ObstacleShape::Box ? "box" : "segment";
+}
+
+namespace {
+
+// Nearest face of a box to a point inside it: distance and outward normal.
+// Ties go to the first face in the order top, bottom, left, right, so a
+// point exactly at the centre of a square is pushed up.
+void nearest_face(const Obstacle& box, const Vec2& c, double& distance, Vec2& normal) {
+  distance = box.b.y() - c.y();
+  normal = Vec2(0.0, 1.0);
+  const double bottom = c.y() - box.a.y();
+  if (bottom < distance) {
+    distance = bottom;
+    normal = Vec2(0.0, -1.0);
+  }
+  const double left = c.x() - box.a.x();
+  if (left < distance) {
+    distance = left;
+    normal = Vec2(-1.0, 0.0);
+  }
+  const double right = box.b.x() - c.x();
+  if (right < distance) {
+    distance = right;
+    normal = Vec2(1.0, 0.0);
+  }
+}
+
+// Closest point of the segment a–b to c.
+Vec2 closest_on_segment(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  if (len2 <= 0.0) return a;
+  const double s = std::clamp((c - a).dot(ab) / len2, 0.0, 1.0);
+  return a + s * ab;
+}
+
+// Unit vector from q to c; when they coincide, the segment's left normal
+// (or +y for a point-like segment), so the push-out direction stays defined.
+Vec2 away_from(const Vec2& c, const Vec2& q, const Obstacle& segment, double& distance) {
+  const Vec2 delta = c - q;
+  distance = delta.norm();
+  if (distance > 0.0) return delta / distance;
+  const Vec2 ab = segment.b - segment.a;
+  const double len = ab.norm();
+  return len > 0.0 ? Vec2(-ab.y() / len, ab.x() / len) : Vec2(0.0, 1.0);
+}
+
+bool inside_box(const Obstacle& box, const Vec2& c) {
+  return c.x() > box.a.x() && c.x() < box.b.x() && c.y() > box.a.y() && c.y() < box.b.y();
+}
+
+// Calls visit(contact) for every contact of the body with the obstacles.
+template <typename Visit>
+void for_each_contact(const std::vector<Obstacle>& obstacles, const RigidBody& body, const Vec3& q,
+                      Visit&& visit) {
+  const Vec2 p(q.x(), q.y());
+  ObstacleContact contact;
+  if (body.roll_radius > 0.0) {
+    for (const Obstacle& o : obstacles) {
+      if (disc_contact(o, p, body.roll_radius, contact)) visit(contact);
+    }
+    return;
+  }
+  const double ct = body.points_rotate ? std::cos(q.z()) : 1.0;
+  const double st = body.points_rotate ? std::sin(q.z()) : 0.0;
+  for (const Vec2& local : body.points) {
+    const Vec2 r(ct * local.x() - st * local.y(), st * local.x() + ct * local.y());
+    const Vec2 c = p + r;
+    for (const Obstacle& o : obstacles) {
+      if (point_contact(o, c, contact)) {
+        contact.r = r;
+        visit(contact);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+bool disc_contact(const Obstacle& o, const Vec2& centre, double radius, ObstacleContact& out) {
+  if (o.shape == ObstacleShape::Box) {
+    const Vec2 q(std::clamp(centre.x(), o.a.x(), o.b.x()), std::clamp(centre.y(), o.a.y(), o.b.y()));
+    const Vec2 delta = centre - q;
+    const double d2 = delta.squaredNorm();
+    if (d2 >= radius * radius) return false;
+    if (d2 > 0.0) {
+      const double distance = std::sqrt(d2);
+      out.depth = radius - distance;
+      out.normal = delta / distance;
+    } else {  // centre inside (or on) the box
+      double face = 0.0;
+      nearest_face(o, centre, face, out.normal);
+      out.depth = radius + face;
+    }
+  } else {
+    const Vec2 q = closest_on_segment(o.a, o.b, centre);
+    double distance = 0.0;
+    const Vec2 n = away_from(centre, q, o, distance);
+    const double depth = radius + o.radius - distance;
+    if (depth <= 0.0) return false;
+    out.depth = depth;
+    out.normal = n;
+  }
+  out.r = -radius * out.normal;
+  return true;
+}
+
+bool point_contact(const Obstacle& o, const Vec2& c, ObstacleContact& out) {
+  if (o.shape == ObstacleShape::Box) {
+    if (!inside_box(o, c)) return false;
+    nearest_face(o, c, out.depth, out.normal);
+    return out.depth > 0.0;
+  }
+  const Vec2 q = closest_on_segment(o.a, o.b, c);
+  double distance = 0.0;
+  const Vec2 n = away_from(c, q, o, distance);
+  const double depth = o.radius - distance;
+  if (depth <= 0.0) return false;
+  out.depth = depth;
+  out.normal = n;
+  return true;
+}
+
+void add_obstacle_forces(const std::vector<Obstacle>& obstacles, const RigidBody& body,
+                         const ContactParams& law, const Vec3& q, const Vec3& v, Vec2& force,
+                         double& torque) {
+  if (obstacles.empty()) return;
+  const bool rolling = body.roll_radius > 0.0 && law.mu_roll > 0.0;
+  for_each_contact(obstacles, body, q, [&](const ObstacleContact& contact) {
+    const Vec2& n = contact.normal;
+    const Vec2& r = contact.r;
+    const Vec2 t(n.y(), -n.x());
+    const double omega = body.rotates ? v.z() : 0.0;
+    const Vec2 vc(v.x() - omega * r.y(), v.y() + omega * r.x());
+    const double fn = normal_force(law, contact.depth, vc.dot(n));
+    const double ft = -law.mu * fn * std::tanh(law.alpha * vc.dot(t));
+    const Vec2 f = fn * n + ft * t;
+    force += f;
+    torque += r.x() * f.y() - r.y() * f.x();
+    if (rolling) torque -= law.mu_roll * fn * std::tanh(law.alpha * body.roll_radius * v.z());
+  });
+}
+
+double obstacle_max_penetration(const std::vector<Obstacle>& obstacles, const RigidBody& body,
+                                const Vec3& q) {
+  double deepest = 0.0;
+  for_each_contact(obstacles, body, q,
+                   [&](const ObstacleContact& contact) { deepest = std::max(deepest, contact.depth); });
+  return deepest;
+}
+
+double obstacle_spring_energy(const std::vector<Obstacle>& obstacles, const RigidBody& body,
+                              double k, const Vec3& q) {
+  double e = 0.0;
+  for_each_contact(obstacles, body, q,
+                   [&](const ObstacleContact& contact) { e += 0.5 * k * contact.depth * contact.depth; });
+  return e;
+}
+
+}  // namespace contact2d

@@ -1,0 +1,406 @@
+// Static obstacles (core/obstacles.hpp): the ground's contact law along the
+// obstacle's normal. Each test has a closed form or an exact equivalence with
+// the ground, and its tolerance says where it comes from.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/divergence.hpp"
+#include "core/integrators.hpp"
+#include "core/obstacles.hpp"
+#include "core/scene.hpp"
+#include "core/simulate.hpp"
+#include "io/scene_file.hpp"
+
+namespace contact2d {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A critically damped Kelvin–Voigt contact (as in tests/test_static.cpp):
+// the body settles within a few 1/ω = 10 ms of its 2 s run.
+Scene resting_scene(Shape shape, Integrator integrator) {
+  Scene scene = default_scene(shape);
+  scene.contact.k = 1e4;
+  scene.contact.c = 2.0 * std::sqrt(scene.contact.k * scene.mass);
+  scene.contact.damping = DampingLaw::KelvinVoigt;
+  scene.sim.integrator = integrator;
+  scene.sim.duration = 2.0;
+  scene.sim.dt = 1e-4;
+  return scene;
+}
+
+State final_state(const Scene& scene) {
+  const Trajectory trajectory = simulate(scene);
+  EXPECT_FALSE(trajectory.divergence);
+  return trajectory.samples.back().state;
+}
+
+// ---------------------------------------------------------------------------
+// Resting on an obstacle: the spring carries the weight, d = m·g/k, exactly
+// as on the ground. At rest a = 0 is a fixed point of every integrator, so
+// the only error is the e^(−ω·t) transient after 2 s (ω = 100 rad/s, < 1e-80)
+// plus rounding: tolerance 1e-9·d, as in tests/test_static.cpp.
+
+class RestOnObstacle : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(RestOnObstacle, BallOnBoxSinksByWeightOverStiffness) {
+  Scene scene = resting_scene(Shape::Circle, GetParam());
+  scene.contact.mu = 0.5;
+  scene.contact.mu_roll = 0.01;
+  const double top = 0.5;
+  scene.obstacles = {make_box_obstacle(0.0, 0.5 * top, 1.0, top)};  // a table standing on the ground
+  scene.initial.q = Vec3(0.1, top + scene.radius + 0.02, 0.0);       // dropped from 2 cm
+  const double d = scene.mass * scene.sim.gravity / scene.contact.k;
+  const State s = final_state(scene);
+  EXPECT_NEAR(top + scene.radius - s.q.y(), d, 1e-9 * d);
+  EXPECT_NEAR(s.q.x(), 0.1, 1e-12) << "a vertical drop on a flat top has no sideways force";
+}
+
+TEST_P(RestOnObstacle, BallOnSegmentSinksByWeightOverStiffness) {
+  Scene scene = resting_scene(Shape::Circle, GetParam());
+  const double radius = 0.05, height = 0.4;  // a horizontal bar of thickness 0.1 at y = 0.4
+  scene.obstacles = {make_segment_obstacle(Vec2(-1.0, height), Vec2(1.0, height), radius)};
+  scene.initial.q = Vec3(0.3, height + radius + scene.radius, 0.0);
+  const double d = scene.mass * scene.sim.gravity / scene.contact.k;
+  const State s = final_state(scene);
+  EXPECT_NEAR(height + radius + scene.radius - s.q.y(), d, 1e-9 * d);
+}
+
+TEST_P(RestOnObstacle, FlatBoxOnBoxSinksByHalfTheWeightPerCorner) {
+  // A body with contact points (not a disc): its two bottom corners sit on
+  // the obstacle's top face.
+  Scene scene = resting_scene(Shape::Box, GetParam());
+  const double top = 0.3;
+  scene.obstacles = {make_box_obstacle(0.0, 0.0, 2.0, 2.0 * top)};
+  scene.initial.q = Vec3(0.0, top + 0.5 * scene.height, 0.0);
+  const double d = scene.mass * scene.sim.gravity / (2.0 * scene.contact.k);
+  const State s = final_state(scene);
+  EXPECT_NEAR(top + 0.5 * scene.height - s.q.y(), d, 1e-9 * d);
+  EXPECT_NEAR(s.q.z(), 0.0, 1e-12);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllIntegrators, RestOnObstacle, ::testing::ValuesIn(kAllIntegrators),
+                         [](const auto& info) { return std::string(integrator_name(info.param)); });
+
+// ---------------------------------------------------------------------------
+// Rebound from a wall, without gravity: the same closed forms as the ground
+// (tests/test_rebound.cpp derives them):
+//   compression  e = exp(−ζ·φ/√(1−ζ²)),  φ = atan(√(1−ζ²)/ζ)
+//   Kelvin–Voigt e = e^(−ζω t_e)·|cos(ω_d t_e) − ζ/√(1−ζ²)·sin(ω_d t_e)|,
+//                ω_d·t_e = π − atan2(2ζ√(1−ζ²), 1−2ζ²)
+// The ball starts 1e-12 m into the wall so the first evaluation sees the
+// contact (changes e by ~ω·1e-12/v0 = 1e-10). RK4 at ω·Δt = 1e-3: the
+// damper's kink inside one step gives the 2·(ω·Δt)²·ζ = 2e-6·ζ tolerance of
+// tests/test_rebound.cpp.
+
+double compression_restitution(double zeta) {
+  const double s = std::sqrt(1.0 - zeta * zeta);
+  return std::exp(-zeta * std::atan(s / zeta) / s);
+}
+
+double kelvin_voigt_restitution(double zeta) {
+  const double s = std::sqrt(1.0 - zeta * zeta);
+  const double phase = kPi - std::atan2(2.0 * zeta * s, 1.0 - 2.0 * zeta * zeta);
+  return std::exp(-zeta * phase / s) * std::abs(std::cos(phase) - zeta / s * std::sin(phase));
+}
+
+Scene wall_scene(DampingLaw law, double zeta) {
+  Scene scene = default_scene(Shape::Circle);
+  scene.mass = 1.0;
+  scene.radius = 0.1;
+  scene.contact.k = 1e4;
+  scene.contact.c = zeta * 2.0 * std::sqrt(scene.mass * scene.contact.k);
+  scene.contact.mu = 0.0;
+  scene.contact.damping = law;
+  scene.sim.gravity = 0.0;
+  scene.sim.integrator = Integrator::RK4;
+  scene.sim.dt = 1e-5;        // ω·Δt = 1e-3
+  scene.sim.duration = 0.05;  // contact lasts < π/ω_d ≈ 0.04 s for ζ ≤ 0.7
+  return scene;
+}
+
+struct ReboundCase {
+  DampingLaw law;
+  double zeta;
+};
+
+class WallRebound : public ::testing::TestWithParam<ReboundCase> {};
+
+TEST_P(WallRebound, BallOffABoxWallMatchesClosedForm) {
+  const auto [law, zeta] = GetParam();
+  Scene scene = wall_scene(law, zeta);
+  const double wall = 0.5, v0 = 1.0;
+  scene.obstacles = {make_box_obstacle(wall + 0.5, 1.0, 1.0, 20.0)};  // face at x = 0.5
+  scene.initial.q = Vec3(wall - scene.radius + 1e-12, 1.0, 0.0);
+  scene.initial.v = Vec3(v0, 0.0, 0.0);
+  const State end = final_state(scene);
+  const double expected = law == DampingLaw::Compression ? compression_restitution(zeta)
+                                                         : kelvin_voigt_restitution(zeta);
+  EXPECT_LT(end.q.x(), wall - scene.radius) << "still in contact at the end";
+  EXPECT_NEAR(-end.v.x() / v0, expected, 2e-6 * zeta * expected);
+  EXPECT_DOUBLE_EQ(end.v.y(), 0.0);
+}
+
+TEST_P(WallRebound, BallOffASlantedSegmentReflectsTheNormalComponent) {
+  // A frictionless 30° slope (a thin segment): the velocity along the slope
+  // is untouched and the normal component comes back scaled by e.
+  const auto [law, zeta] = GetParam();
+  Scene scene = wall_scene(law, zeta);
+  const double slope = kPi / 6.0;
+  const Vec2 along(std::cos(slope), std::sin(slope));
+  const Vec2 n(-along.y(), along.x());  // the segment's upper normal
+  const double thickness = 0.02;
+  scene.obstacles = {make_segment_obstacle(-2.0 * along, 2.0 * along, thickness)};
+  const Vec2 start = (scene.radius + thickness - 1e-12) * n;  // touching above the origin
+  const Vec2 v0 = 0.8 * along - 1.0 * n;                      // 1 m/s into it, 0.8 m/s along
+  scene.initial.q = Vec3(start.x(), start.y(), 0.0);
+  scene.initial.v = Vec3(v0.x(), v0.y(), 0.0);
+  const State end = final_state(scene);
+  const Vec2 v(end.v.x(), end.v.y());
+  const double expected = law == DampingLaw::Compression ? compression_restitution(zeta)
+                                                         : kelvin_voigt_restitution(zeta);
+  EXPECT_NEAR(v.dot(n), expected, 2e-6 * zeta * expected);
+  EXPECT_NEAR(v.dot(along), 0.8, 1e-12);
+  EXPECT_NEAR(end.v.z(), 0.0, 1e-12) << "no friction, no spin";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Laws, WallRebound,
+    ::testing::Values(ReboundCase{DampingLaw::Compression, 0.05}, ReboundCase{DampingLaw::Compression, 0.3},
+                      ReboundCase{DampingLaw::KelvinVoigt, 0.05}, ReboundCase{DampingLaw::KelvinVoigt, 0.3}),
+    [](const auto& info) {
+      return std::string(info.param.law == DampingLaw::Compression ? "compression" : "kelvin_voigt") +
+             "_zeta" + std::to_string(static_cast<int>(std::lround(info.param.zeta * 100)));
+    });
+
+// ---------------------------------------------------------------------------
+// Sliding and rolling on a box top is the ground's problem shifted up: the
+// disc's closest point on a flat top face is the point below the centre, so
+// the two runs agree to rounding (the depth is computed as R − (y − top)
+// instead of R − y: a few ulps of 0.5 m per step, accumulated over 20 000
+// steps stays below 1e-9 m).
+TEST(ObstacleFriction, RollingOnABoxTopMatchesRollingOnTheGround) {
+  Scene ground = default_scene(Shape::Circle);
+  ground.contact.mu = 0.5;
+  ground.contact.mu_roll = 0.01;
+  ground.initial.q = Vec3(0.0, ground.radius - 1e-3, 0.0);
+  ground.initial.v = Vec3(2.0, 0.0, 5.0);  // slides first (ω ≠ −v/R), then rolls
+  ground.sim.duration = 2.0;
+  Scene table = ground;
+  const double top = 0.5;
+  table.obstacles = {make_box_obstacle(0.0, 0.5 * top, 100.0, top)};
+  table.initial.q.y() += top;
+  const State a = final_state(ground);
+  const State b = final_state(table);
+  EXPECT_NEAR(b.q.x(), a.q.x(), 1e-9);
+  EXPECT_NEAR(b.q.y() - top, a.q.y(), 1e-9);
+  EXPECT_NEAR(b.q.z(), a.q.z(), 1e-8);
+  EXPECT_NEAR(b.v.x(), a.v.x(), 1e-9);
+  EXPECT_NEAR(b.v.z(), a.v.z(), 1e-8);
+  EXPECT_GT(a.q.x(), 1.0) << "the ball must actually travel for the comparison to mean anything";
+}
+
+// ---------------------------------------------------------------------------
+// Geometry of one contact, checked against a hand computation.
+TEST(ObstacleGeometry, DiscAtABoxCornerIsPushedRadially) {
+  const Obstacle box = make_box_obstacle(0.0, 0.0, 2.0, 2.0);  // corner at (1, 1)
+  ObstacleContact contact;
+  ASSERT_TRUE(disc_contact(box, Vec2(1.06, 1.08), 0.11, contact));  // 0.1 from the corner
+  EXPECT_NEAR(contact.depth, 0.01, 1e-15);
+  EXPECT_NEAR(contact.normal.x(), 0.6, 1e-15);
+  EXPECT_NEAR(contact.normal.y(), 0.8, 1e-15);
+  EXPECT_NEAR(contact.r.x(), -0.066, 1e-15);
+  EXPECT_NEAR(contact.r.y(), -0.088, 1e-15);
+  EXPECT_FALSE(disc_contact(box, Vec2(1.06, 1.08), 0.1 - 1e-12, contact));
+}
+
+TEST(ObstacleGeometry, DepthIsContinuousAsTheCentreCrossesTheFace) {
+  const Obstacle box = make_box_obstacle(0.0, 0.0, 2.0, 2.0);  // top face y = 1
+  ObstacleContact above, below;
+  const double eps = 1e-6, radius = 0.1;
+  ASSERT_TRUE(disc_contact(box, Vec2(0.3, 1.0 + eps), radius, above));
+  ASSERT_TRUE(disc_contact(box, Vec2(0.3, 1.0 - eps), radius, below));
+  EXPECT_NEAR(above.depth, radius - eps, 1e-15);
+  EXPECT_NEAR(below.depth, radius + eps, 1e-15);
+  EXPECT_EQ(above.normal, below.normal);
+}
+
+TEST(ObstacleGeometry, ForceAndTorqueOfOneContactFollowTheLaw) {
+  // A disc pressed into the corner region, moving: normal force along n with
+  // the damper on the normal velocity, friction along t = (n_y, −n_x), torque
+  // r × F plus rolling resistance.
+  RigidBody ball = make_circle(0.5, 0.11);
+  ContactParams law;
+  law.k = 1e4;
+  law.c = 30.0;
+  law.mu = 0.4;
+  law.alpha = 50.0;
+  law.mu_roll = 0.02;
+  const std::vector<Obstacle> obstacles = {make_box_obstacle(0.0, 0.0, 2.0, 2.0)};
+  const Vec3 q(1.06, 1.08, 0.7);
+  const Vec3 v(-0.3, -0.2, 4.0);
+  Vec2 force = Vec2::Zero();
+  double torque = 0.0;
+  add_obstacle_forces(obstacles, ball, law, q, v, force, torque);
+
+  const Vec2 n(0.6, 0.8), t(0.8, -0.6), r = -0.11 * n;
+  const Vec2 vc(v.x() - v.z() * r.y(), v.y() + v.z() * r.x());
+  const double fn = law.k * 0.01 + law.c * std::max(0.0, -vc.dot(n));
+  const double ft = -law.mu * fn * std::tanh(law.alpha * vc.dot(t));
+  const Vec2 f = fn * n + ft * t;
+  const double tau = r.x() * f.y() - r.y() * f.x() - law.mu_roll * fn * std::tanh(law.alpha * 0.11 * v.z());
+  EXPECT_NEAR(force.x(), f.x(), 1e-12 * fn);
+  EXPECT_NEAR(force.y(), f.y(), 1e-12 * fn);
+  EXPECT_NEAR(torque, tau, 1e-12 * fn);
+  EXPECT_GT(fn, 100.0) << "the case must have a real contact force";
+}
+
+TEST(ObstacleGeometry, PointInsideABoxLeavesThroughTheNearestFace) {
+  const Obstacle box = make_box_obstacle(0.0, 0.0, 2.0, 1.0);  // x in [-1, 1], y in [-0.5, 0.5]
+  ObstacleContact contact;
+  ASSERT_TRUE(point_contact(box, Vec2(0.95, 0.1), contact));
+  EXPECT_NEAR(contact.depth, 0.05, 1e-15);
+  EXPECT_EQ(contact.normal, Vec2(1.0, 0.0));
+  ASSERT_TRUE(point_contact(box, Vec2(-0.2, -0.45), contact));
+  EXPECT_NEAR(contact.depth, 0.05, 1e-15);
+  EXPECT_EQ(contact.normal, Vec2(0.0, -1.0));
+  EXPECT_FALSE(point_contact(box, Vec2(1.01, 0.0), contact));
+}
+
+// ---------------------------------------------------------------------------
+// Energy: without damping and friction the contact is a conservative spring,
+// and energy() counts the obstacle's spring. At the deepest point all the
+// energy is in the spring: without that term energy() would read ~0 there.
+// The ball starts exactly at the face, so the force's kink at d = 0 falls on
+// a step boundary and RK4 at ω·Δt = 1e-3 is smooth up to the deepest point:
+// its error there is O((ω·Δt)⁴) ≈ 1e-12, below the 1e-9 relative tolerance.
+// (After separation the kink falls inside a step: measured 3e-8 then.)
+TEST(ObstacleEnergy, SpringEnergyIsCountedDuringAnElasticBounce) {
+  Scene scene = wall_scene(DampingLaw::Compression, 0.0);
+  scene.contact.c = 0.0;
+  scene.obstacles = {make_box_obstacle(1.0, 1.0, 1.0, 20.0)};  // face at x = 0.5
+  scene.initial.q = Vec3(0.5 - scene.radius, 1.0, 0.0);        // well above the ground
+  scene.initial.v = Vec3(1.0, 0.0, 0.0);
+  scene.sim.output_dt = scene.sim.dt;
+  const Model model = make_model(scene);
+  const double e0 = energy(model, initial_state(scene));
+  double deepest = 0.0, energy_there = 0.0;
+  run(scene, [&](const Sample& s) {
+    const double depth = max_penetration(model, s.state.q);
+    if (depth > deepest) {
+      deepest = depth;
+      energy_there = energy(model, s.state);
+    }
+  });
+  // v0/ω, to within one step of travel at the turning point (v ≈ 0 there).
+  EXPECT_NEAR(deepest, 1.0 / std::sqrt(scene.contact.k / scene.mass), 1e-8);
+  EXPECT_NEAR(energy_there, e0, 1e-9 * e0);
+}
+
+// ---------------------------------------------------------------------------
+// The divergence rule with a player: a constant push of F into a wall holds
+// the ball at d = F/k, with work F·d done on it. With g = 0 and the ball at
+// rest the scene alone holds (almost) no energy, so that depth is only
+// explained by the applied work: the monitor must accept it with the work
+// and flag it without.
+TEST(ObstacleDivergence, AppliedWorkExplainsAPushIntoAWall) {
+  Scene scene = wall_scene(DampingLaw::KelvinVoigt, 1.0);
+  scene.obstacles = {make_box_obstacle(1.0, 1.0, 1.0, 20.0)};
+  scene.initial.q = Vec3(0.5 - scene.radius, 1.0, 0.0);  // well above the ground
+  scene.initial.v = Vec3::Zero();
+  Model model = make_model(scene);
+  const double push = 1000.0;
+  model.applied = Vec3(push, 0.0, 0.0);
+  State s = initial_state(scene);
+  const DivergenceMonitor monitor(model, s);
+  double work = 0.0;
+  for (int i = 0; i < 20000; ++i) {  // 0.2 s = 20 periods of the critically damped contact
+    const double x0 = s.q.x();
+    step(model, Integrator::RK4, scene.sim.dt, s);
+    work += push * (s.q.x() - x0);
+  }
+  const double d = push / scene.contact.k;
+  EXPECT_NEAR(max_penetration(model, s.q), d, 1e-6 * d);
+  EXPECT_FALSE(monitor.check(s, 0.2, work)) << "the push explains the depth";
+  const auto flagged = monitor.check(s, 0.2, 0.0);
+  ASSERT_TRUE(flagged);
+  EXPECT_NE(flagged->kind, DivergenceKind::NonFinite);
+}
+
+// ---------------------------------------------------------------------------
+// Scene files: [[obstacle]] tables and their errors.
+TEST(ObstacleSceneFile, BoxesAndSegmentsAreRead) {
+  const Scene scene = parse_scene(R"(
+scene = "circle"
+[[obstacle]]
+type = "box"
+x = 10.06
+y = 2.5
+width = 0.12
+height = 0.12
+[[obstacle]]
+type = "segment"
+x1 = 0
+y1 = 1
+x2 = 2
+y2 = 1.5
+radius = 0.05
+)",
+                                  "test.toml");
+  ASSERT_EQ(scene.obstacles.size(), 2u);
+  EXPECT_EQ(scene.obstacles[0].shape, ObstacleShape::Box);
+  EXPECT_NEAR(scene.obstacles[0].a.x(), 10.0, 1e-12);
+  EXPECT_NEAR(scene.obstacles[0].b.y(), 2.56, 1e-12);
+  EXPECT_EQ(scene.obstacles[1].shape, ObstacleShape::Segment);
+  EXPECT_EQ(scene.obstacles[1].b, Vec2(2.0, 1.5));
+  EXPECT_EQ(scene.obstacles[1].radius, 0.05);
+  EXPECT_EQ(make_model(scene).obstacles.size(), 2u);
+}
+
+struct BadObstacle {
+  const char* toml;
+  const char* expected;  // part of the one-line message
+};
+
+class ObstacleSceneFileErrors : public ::testing::TestWithParam<BadObstacle> {};
+
+TEST_P(ObstacleSceneFileErrors, NameTheKeyAndTheRange) {
+  const std::string text = std::string("scene = \"circle\"\n") + GetParam().toml;
+  try {
+    parse_scene(text, "bad.toml");
+    FAIL() << "accepted: " << GetParam().toml;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(GetParam().expected), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, ObstacleSceneFileErrors,
+    ::testing::Values(
+        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = -1\nheight = 1\n",
+                    "obstacle[0].width = -1 is out of range: must be in (0, 1e6] m"},
+        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = inf\nheight = 1\n",
+                    "obstacle[0].width = inf is out of range"},
+        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = nan\ny = 0\nwidth = 1\nheight = 1\n",
+                    "obstacle[0].x = nan is out of range: must be finite"},
+        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = 1\n",
+                    "obstacle[0].height is required"},
+        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = 1\nheight = 1\nradius = 2\n",
+                    "unknown key 'obstacle[0].radius' (allowed here: type, x, y, width, height)"},
+        BadObstacle{"[[obstacle]]\nx = 0\n", "obstacle[0].type is required"},
+        BadObstacle{"[[obstacle]]\ntype = \"circle\"\n", "obstacle[0].type = \"circle\" is not an obstacle type"},
+        BadObstacle{"[[obstacle]]\ntype = \"segment\"\nx1 = 0\ny1 = 0\nx2 = 1\ny2 = 1\nradius = -0.1\n",
+                    "obstacle[0].radius = -0.1 is out of range: must be in [0, 1e3] m"},
+        BadObstacle{"[[obstacle]]\ntype = \"segment\"\nx1 = 1\ny1 = 1\nx2 = 1\ny2 = 1\n",
+                    "obstacle[0].radius = 0 is out of range: must be > 0 when the two ends coincide"},
+        BadObstacle{"[[obstacle]]\ntype = \"segment\"\nx1 = \"a\"\n", "obstacle[0].x1 must be a number"},
+        BadObstacle{"obstacle = 3\n", "obstacle must be an array of tables"},
+        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = 1\nheight = 1\n"
+                    "[[obstacle]]\ntype = \"box\"\nx = 0\ny = 2e6\nwidth = 1\nheight = 1\n",
+                    "obstacle[1].y = 2e+06 is out of range: must be finite, |y| <= 1e6 m"}));
+
+}  // namespace
+}  // namespace contact2d
