@@ -55,7 +55,7 @@ void semi_implicit_euler(const Model& model, double dt, State& s) {
 void rk4(const Model& model, double dt, State& s) {
   const Vec3 q0 = s.q;
   const Vec3 v0 = s.v;
-  const Vec3 k1q = v0;
+  const Vec3& k1q = v0;
   const Vec3 k1v = acceleration(model, q0, v0);
   const Vec3 k2q = v0 + 0.5 * dt * k1v;
   const Vec3 k2v = acceleration(model, q0 + 0.5 * dt * k1q, k2q);
