@@ -47,5 +47,7 @@ struct Command {
 };
 
 Command add_simulate(CLI::App& app);
+Command add_sweep(CLI::App& app);      // error against run time (src/cli/cmd_sweep.cpp)
+Command add_stability(CLI::App& app);  // stability map (src/cli/cmd_stability.cpp)
 
 }  // namespace contact2d::cli

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
 
   const std::vector<Command> commands = {
       add_simulate(app),
+      add_sweep(app),
+      add_stability(app),
   };
 
   try {

@@ -1,0 +1,80 @@
+#include "analysis/engine.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+namespace contact2d::analysis {
+
+EngineResult run_reference_engine(const Scene& scene) {
+  EngineResult result;
+  const auto start = std::chrono::steady_clock::now();
+  result.trajectory = simulate(scene);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+EngineRunner reference_runner() {
+  return [](const std::string& engine, const Scene& scene) {
+    if (engine != "ref") throw std::invalid_argument("engine '" + engine + "' is not available here");
+    return run_reference_engine(scene);
+  };
+}
+
+double nominal_order(Integrator integrator) { return integrator == Integrator::RK4 ? 4.0 : 1.0; }
+
+bool engine_offers(const std::string& engine, Integrator integrator) {
+  return engine == "ref" || integrator != Integrator::ExplicitEuler;
+}
+
+unsigned default_threads() {
+  const unsigned n = std::thread::hardware_concurrency();
+  return n == 0 ? 1 : n;
+}
+
+void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& task) {
+  if (threads == 0) threads = default_threads();
+  if (threads > n) threads = static_cast<unsigned>(n);
+  std::atomic<size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto worker = [&] {
+    for (size_t i = next++; i < n; i = next++) {
+      try {
+        task(i);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace contact2d::analysis
+
+namespace contact2d::analysis {
+
+std::vector<Integrator> parse_integrators(const std::vector<std::string>& names) {
+  std::vector<Integrator> out;
+  for (const std::string& name : names) {
+    const std::optional<Integrator> integrator = parse_integrator(name);
+    if (!integrator) {
+      throw std::invalid_argument("--integrators: '" + name +
+                                  "' is not an integrator (explicit_euler, semi_implicit_euler, "
+                                  "implicit_euler, rk4)");
+    }
+    if (std::find(out.begin(), out.end(), *integrator) == out.end()) out.push_back(*integrator);
+  }
+  return out;
+}
+
+}  // namespace contact2d::analysis

@@ -1,0 +1,395 @@
+#include "analysis/output.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace contact2d::analysis {
+namespace {
+
+std::string pad(const std::string& text, size_t width) {
+  // Width in characters, counting a UTF-8 sequence as one.
+  size_t chars = 0;
+  for (unsigned char c : text) chars += (c & 0xC0) != 0x80;
+  return chars >= width ? text + " " : text + std::string(width - chars, ' ');
+}
+
+std::string csv_number(double value) { return std::isfinite(value) ? number(value, 9, "") : ""; }
+
+std::string status_text(const SweepRow& row) {
+  switch (row.status) {
+    case RunStatus::Ok: return "ok";
+    case RunStatus::Diverged: return "diverged";
+    case RunStatus::Failed: return "failed";
+  }
+  return "?";
+}
+
+std::string kind_text(DivergenceKind kind) {
+  switch (kind) {
+    case DivergenceKind::NonFinite: return "non-finite state";
+    case DivergenceKind::EnergyGain: return "energy gain";
+    case DivergenceKind::Penetration: return "penetration";
+    case DivergenceKind::NewtonFailed: return "Newton failed";
+  }
+  return "?";
+}
+
+std::string csv_text(std::string text) {
+  for (char& c : text) {
+    if (c == '"') c = '\'';
+    if (c == '\n') c = ' ';
+  }
+  return "\"" + text + "\"";
+}
+
+// A temporary path beside `target`: same file system, so rename is atomic.
+std::string temp_beside(const std::string& target, const char* suffix) {
+  std::string pattern = target + ".tmp.XXXXXX" + suffix;
+  const int fd = ::mkstemps(pattern.data(), static_cast<int>(std::strlen(suffix)));
+  if (fd < 0) throw std::runtime_error(target + ": cannot create output file (" + std::strerror(errno) + ")");
+  ::close(fd);
+  return pattern;
+}
+
+std::string quoted(const std::string& path) {
+  if (path.find('\'') != std::string::npos || path.find('\n') != std::string::npos) {
+    throw std::runtime_error(path + ": a plot path must not contain a quote or newline");
+  }
+  return "'" + path + "'";
+}
+
+std::string series_title(const std::string& engine, Integrator integrator) {
+  std::string title = engine == "ref" ? "" : engine + " ";
+  title += std::string(integrator_title(integrator));
+  return title;
+}
+
+}  // namespace
+
+std::string number(double value, int digits, const char* missing) {
+  if (!std::isfinite(value)) return missing;
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+// ---------------------------------------------------------------- sweep
+
+void print_sweep(std::ostream& out, const SweepResult& r) {
+  const DenseStats& st = r.reference.trajectory.stats();
+  out << r.scene_name << " (" << number(r.duration, 4) << " s): error of each run against the converged reference\n"
+      << "reference: Dormand–Prince 5(4) with event location, tol " << number(r.reference.tol, 2) << ", "
+      << st.accepted << " steps, " << st.events << " events, " << number(r.reference.seconds * 1e3, 3)
+      << " ms; its own error <= " << number(r.reference_error, 2)
+      << " m (distance to the same at 10x the tolerance)\n"
+      << "time: wall clock of each run, best of " << r.repeats << " (one run when it takes over "
+      << number(r.single_run_seconds, 3) << " s), " << r.threads << " thread" << (r.threads > 1 ? "s" : "")
+      << " side by side\n\n";
+  out << pad("engine", 8) << pad("integrator", 21) << pad("dt", 9) << pad("max pos err", 13)
+      << pad("end pos err", 13) << pad("max angle err", 15) << pad("own-finest err", 16) << "time (ms)\n";
+  for (const SweepRow& row : r.rows) {
+    out << pad(row.engine, 8) << pad(std::string(integrator_name(row.integrator)), 21)
+        << pad(number(row.dt, 3), 9);
+    if (row.status == RunStatus::Ok) {
+      out << pad(number(row.error.max_pos), 13) << pad(number(row.error.end_pos), 13)
+          << pad(number(row.error.max_angle), 15)
+          << pad(row.self_error ? number(row.self_error->max_pos) : "(finest)", 16)
+          << number(row.seconds * 1e3, 3);
+    } else if (row.status == RunStatus::Diverged) {
+      out << "diverged at t = " << number(row.divergence->time, 4) << " s ("
+          << kind_text(row.divergence->kind) << ")";
+    } else {
+      out << "failed: " << row.message;
+    }
+    out << "\n";
+  }
+  out << "\n";
+  print_orders(out, r);
+}
+
+void print_orders(std::ostream& out, const SweepResult& r) {
+  out << "observed order: least-squares slope of log max pos err against log dt over the runs whose error\n"
+         "lies between the floor (10x the reference's own error, >= 1e-12 m) and 10 % of the scene's length\n"
+         "scale L = " << number(r.length_scale, 3) << " m (body size or largest COM displacement)\n";
+  out << pad("engine", 8) << pad("integrator", 21) << pad("against", 12) << pad("nominal", 9)
+      << pad("observed", 12) << pad("dt range", 18) << "note\n";
+  for (const OrderFit& f : r.orders) {
+    out << pad(f.engine, 8) << pad(std::string(integrator_name(f.integrator)), 21) << pad(f.against, 12)
+        << pad(number(f.nominal, 2), 9)
+        << pad(f.order ? number(*f.order, 2) + " ± " + number(f.order_stderr, 1) : "-", 12)
+        << pad(f.order ? number(f.dt_min, 2) + ".." + number(f.dt_max, 2) + " (" + std::to_string(f.points) + ")" : "-", 18)
+        << f.note << "\n";
+  }
+}
+
+void write_sweep_csv(std::FILE* out, const SweepResult& r) {
+  std::fprintf(out,
+               "scene,engine,integrator,dt,status,max_pos_err,end_pos_err,max_angle_err,end_angle_err,"
+               "self_max_pos_err,seconds,repeats,diverged_at,reference_tol,reference_err,message\n");
+  for (const SweepRow& row : r.rows) {
+    const bool ok = row.status == RunStatus::Ok;
+    std::fprintf(out, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d,%s,%s,%s,%s\n", r.scene_name.c_str(),
+                 row.engine.c_str(), std::string(integrator_name(row.integrator)).c_str(),
+                 csv_number(row.dt).c_str(), status_text(row).c_str(),
+                 ok ? csv_number(row.error.max_pos).c_str() : "", ok ? csv_number(row.error.end_pos).c_str() : "",
+                 ok ? csv_number(row.error.max_angle).c_str() : "",
+                 ok ? csv_number(row.error.end_angle).c_str() : "",
+                 row.self_error ? csv_number(row.self_error->max_pos).c_str() : "",
+                 row.repeats > 0 ? csv_number(row.seconds).c_str() : "", row.repeats,
+                 row.divergence ? csv_number(row.divergence->time).c_str() : "",
+                 csv_number(r.reference.tol).c_str(), csv_number(r.reference_error).c_str(),
+                 csv_text(row.message).c_str());
+  }
+}
+
+void write_orders_csv(std::FILE* out, const SweepResult& r) {
+  std::fprintf(out, "scene,engine,integrator,against,nominal,observed,observed_stderr,points,dt_min,dt_max,note\n");
+  for (const OrderFit& f : r.orders) {
+    std::fprintf(out, "%s,%s,%s,%s,%s,%s,%s,%d,%s,%s,%s\n", r.scene_name.c_str(), f.engine.c_str(),
+                 std::string(integrator_name(f.integrator)).c_str(), f.against.c_str(),
+                 csv_number(f.nominal).c_str(), f.order ? csv_number(*f.order).c_str() : "",
+                 f.order ? csv_number(f.order_stderr).c_str() : "", f.points,
+                 f.order ? csv_number(f.dt_min).c_str() : "", f.order ? csv_number(f.dt_max).c_str() : "",
+                 csv_text(f.note).c_str());
+  }
+}
+
+void plot_sweep(const std::string& png_path, const SweepResult& r) {
+  const std::string data = temp_beside(png_path, ".dat");
+  struct Remove {
+    std::string path;
+    ~Remove() { std::remove(path.c_str()); }
+  } remove_data{data};
+  std::FILE* f = std::fopen(data.c_str(), "w");
+  if (!f) throw std::runtime_error(data + ": cannot write plot data");
+  // One block per engine/integrator: dt, seconds, max position error.
+  std::vector<std::string> titles;
+  std::vector<std::pair<std::string, Integrator>> keys;
+  for (const SweepRow& row : r.rows) {
+    const auto key = std::make_pair(row.engine, row.integrator);
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  }
+  const double floor = std::max(r.reference_error, 1e-16);
+  int blocks = 0;
+  for (const auto& key : keys) {
+    int points = 0;
+    for (const SweepRow& row : r.rows) {
+      if (row.engine != key.first || row.integrator != key.second || row.status != RunStatus::Ok) continue;
+      std::fprintf(f, "%.9g %.9g %.9g\n", row.dt, std::max(row.seconds, 1e-9), std::max(row.error.max_pos, 1e-16));
+      ++points;
+    }
+    if (points == 0) continue;
+    std::fprintf(f, "\n\n");
+    titles.push_back(series_title(key.first, key.second));
+    ++blocks;
+  }
+  std::fclose(f);
+  if (blocks == 0) throw std::runtime_error(png_path + ": no run finished, nothing to plot");
+
+  const std::string png_tmp = temp_beside(png_path, ".png");
+  std::ostringstream s;
+  s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1400,600 font ',11' } "
+       "else { set terminal png size 1400,600 }\n"
+    << "set output " << quoted(png_tmp) << "\n"
+    << "set multiplot layout 1,2 title '" << r.scene_name << ": max position error against the converged reference (floor: reference error "
+    << number(floor, 2) << " m)'\n"
+    << "set logscale xy\nset grid\nset format y '10^{%L}'\nset key bottom left font ',9'\n"
+    << "set ylabel 'max position error (m)'\n"
+    << "set xlabel 'wall-clock time of the run (s)'\nset format x '10^{%L}'\n"
+    << "set title 'work–precision'\n";
+  auto plot_lines = [&](const char* using_cols) {
+    s << "plot ";
+    for (int i = 0; i < blocks; ++i) {
+      s << (i ? ", " : "") << quoted(data) << " index " << i << " using " << using_cols << " with linespoints lw 2 pt " << (i % 7) + 1
+        << " title '" << titles[i] << "'";
+    }
+    s << ", " << number(floor, 3) << " with lines dt 3 lc 'gray' title 'reference error'\n";
+  };
+  plot_lines("2:3");
+  s << "set xlabel 'time step dt (s)'\nset title 'error against dt (slope = observed order)'\n";
+  plot_lines("1:3");
+  s << "unset multiplot\n";
+  try {
+    run_gnuplot(s.str(), png_tmp);
+  } catch (...) {
+    std::remove(png_tmp.c_str());
+    throw;
+  }
+  if (std::rename(png_tmp.c_str(), png_path.c_str()) != 0) {
+    std::remove(png_tmp.c_str());
+    throw std::runtime_error(png_path + ": cannot write (" + std::strerror(errno) + ")");
+  }
+}
+
+// ------------------------------------------------------ reference study
+
+void print_reference_study(std::ostream& out, const std::string& scene_name, const ReferenceStudy& study) {
+  out << scene_name << ": converged reference (Dormand–Prince 5(4), events located) at each tolerance\n"
+      << "against tol " << number(study.truth_tol, 2) << " (" << study.truth_stats.accepted << " steps, "
+      << study.truth_stats.events << " events, " << number(study.truth_seconds * 1e3, 3)
+      << " ms); the scene magnifies an initial height change by up to " << number(study.amplification, 3)
+      << "x\n";
+  out << pad("tol", 8) << pad("max pos err", 13) << pad("end pos err", 13) << pad("max angle err", 15)
+      << pad("steps", 8) << pad("rejected", 10) << pad("events", 8) << pad("f evals", 9) << "time (ms)\n";
+  for (const ToleranceRow& row : study.rows) {
+    out << pad(number(row.tol, 2), 8);
+    if (!row.failure.empty()) {
+      out << "failed: " << row.failure << "\n";
+      continue;
+    }
+    out << pad(number(row.error.max_pos), 13) << pad(number(row.error.end_pos), 13)
+        << pad(number(row.error.max_angle), 15) << pad(std::to_string(row.stats.accepted), 8)
+        << pad(std::to_string(row.stats.rejected), 10) << pad(std::to_string(row.stats.events), 8)
+        << pad(std::to_string(row.stats.evaluations), 9) << number(row.seconds * 1e3, 3) << "\n";
+  }
+}
+
+void write_reference_study_csv(std::FILE* out, const std::string& scene_name, const ReferenceStudy& study) {
+  std::fprintf(out, "scene,tol,truth_tol,max_pos_err,end_pos_err,max_angle_err,steps,rejected,events,evaluations,seconds,amplification\n");
+  for (const ToleranceRow& row : study.rows) {
+    const bool ok = row.failure.empty();
+    std::fprintf(out, "%s,%s,%s,%s,%s,%s,%lld,%lld,%lld,%lld,%s,%s\n", scene_name.c_str(),
+                 csv_number(row.tol).c_str(), csv_number(study.truth_tol).c_str(),
+                 ok ? csv_number(row.error.max_pos).c_str() : "", ok ? csv_number(row.error.end_pos).c_str() : "",
+                 ok ? csv_number(row.error.max_angle).c_str() : "", row.stats.accepted, row.stats.rejected,
+                 row.stats.events, row.stats.evaluations, csv_number(row.seconds).c_str(),
+                 csv_number(study.amplification).c_str());
+  }
+}
+
+// ------------------------------------------------------------ stability
+
+void print_stability(std::ostream& out, const StabilityResult& r) {
+  out << r.scene_name << ": largest stable dt per contact stiffness k (bisection on log dt to "
+      << number(r.precision * 100, 2) << " %, dt up to " << number(r.dt_max, 3) << " s, "
+      << number(r.duration, 4) << " s runs)\n"
+      << "stable = the core's divergence rule holds at every step: finite state, no energy gain beyond what\n"
+         "the system held, penetration below twice the energy bound, Newton converged (implicit Euler)\n"
+      << "damping: " << (r.zeta ? "c = 2*zeta*sqrt(k*m_eff) with zeta = " + number(*r.zeta, 3) : std::string("the scene's c at every k"))
+      << "; theory: largest stable omega*dt of the linear oscillator, omega = sqrt(k/m_eff)\n\n";
+  out << pad("engine", 8) << pad("integrator", 21) << pad("k (N/m)", 9) << pad("zeta", 9)
+      << pad("omega", 10) << pad("stable dt", 11) << pad("omega*dt", 10) << pad("theory", 8)
+      << pad("ratio", 7) << pad("penetr. (m)", 12) << pad("ref pen.", 10) << "first failure / note\n";
+  for (const StabilityRow& row : r.rows) {
+    out << pad(row.engine, 8) << pad(std::string(integrator_name(row.integrator)), 21) << pad(number(row.k, 2), 9)
+        << pad(number(row.zeta, 3), 9) << pad(number(row.omega, 4), 10);
+    std::string stable;
+    switch (row.verdict) {
+      case StabilityVerdict::Bracketed: stable = number(row.dt_stable, 3); break;
+      case StabilityVerdict::StableAtMax: stable = ">=" + number(row.dt_stable, 3); break;
+      case StabilityVerdict::UnstableAtMin: stable = "<" + number(row.dt_min, 3); break;
+      case StabilityVerdict::Failed: stable = "failed"; break;
+    }
+    const double observed = row.omega * row.dt_stable;
+    out << pad(stable, 11) << pad(std::isnan(row.dt_stable) ? "-" : (row.verdict == StabilityVerdict::StableAtMax ? ">=" : "") + number(observed, 3), 10)
+        << pad(std::isfinite(row.theory) ? number(row.theory, 3) : "inf", 8)
+        << pad(std::isfinite(row.theory) && !std::isnan(row.dt_stable) ? number(observed / row.theory, 3) : "-", 7)
+        << pad(number(row.penetration, 3), 12) << pad(number(row.reference_penetration, 3), 10);
+    std::string tail = row.failure;
+    if (!row.note.empty()) tail += (tail.empty() ? "" : "; ") + row.note;
+    out << tail << "\n";
+  }
+}
+
+void write_stability_csv(std::FILE* out, const StabilityResult& r) {
+  std::fprintf(out,
+               "scene,engine,integrator,k,c,m_eff,omega,zeta,theory_omega_dt,theory_dt,dt_stable,dt_unstable,"
+               "dt_min,dt_max,verdict,omega_dt_stable,probes,penetration,reference_penetration,failure,note\n");
+  for (const StabilityRow& row : r.rows) {
+    std::fprintf(out, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d,%s,%s,%s,%s\n", r.scene_name.c_str(),
+                 row.engine.c_str(), std::string(integrator_name(row.integrator)).c_str(), csv_number(row.k).c_str(),
+                 csv_number(row.c).c_str(), csv_number(row.m_eff).c_str(), csv_number(row.omega).c_str(),
+                 csv_number(row.zeta).c_str(), std::isfinite(row.theory) ? csv_number(row.theory).c_str() : "inf",
+                 std::isfinite(row.theory) ? csv_number(row.theory / row.omega).c_str() : "inf",
+                 csv_number(row.dt_stable).c_str(), csv_number(row.dt_unstable).c_str(),
+                 csv_number(row.dt_min).c_str(), csv_number(r.dt_max).c_str(), verdict_name(row.verdict),
+                 csv_number(row.omega * row.dt_stable).c_str(), row.probes, csv_number(row.penetration).c_str(),
+                 csv_number(row.reference_penetration).c_str(), csv_text(row.failure).c_str(),
+                 csv_text(row.note).c_str());
+  }
+}
+
+void plot_stability(const std::string& png_path, const StabilityResult& r) {
+  const std::string data = temp_beside(png_path, ".dat");
+  struct Remove {
+    std::string path;
+    ~Remove() { std::remove(path.c_str()); }
+  } remove_data{data};
+  std::FILE* f = std::fopen(data.c_str(), "w");
+  if (!f) throw std::runtime_error(data + ": cannot write plot data");
+  std::vector<std::pair<std::string, Integrator>> keys;
+  for (const StabilityRow& row : r.rows) {
+    const auto key = std::make_pair(row.engine, row.integrator);
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  }
+  // Per block: k, observed ω·Δt (stable), theory ω·Δt (finite only).
+  std::vector<std::string> titles;
+  std::vector<bool> has_theory;
+  for (const auto& key : keys) {
+    bool theory = false;
+    for (const StabilityRow& row : r.rows) {
+      if (row.engine != key.first || row.integrator != key.second) continue;
+      const double observed = row.omega * row.dt_stable;
+      std::fprintf(f, "%.9g %s %s\n", row.k, std::isfinite(observed) ? number(observed, 6).c_str() : "?",
+                   std::isfinite(row.theory) ? number(row.theory, 6).c_str() : "?");
+      theory = theory || std::isfinite(row.theory);
+    }
+    std::fprintf(f, "\n\n");
+    titles.push_back(series_title(key.first, key.second));
+    has_theory.push_back(theory);
+  }
+  std::fclose(f);
+
+  const std::string png_tmp = temp_beside(png_path, ".png");
+  std::ostringstream s;
+  s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1000,650 font ',11' } "
+       "else { set terminal png size 1000,650 }\n"
+    << "set output " << quoted(png_tmp) << "\n"
+    << "set title '" << r.scene_name << ": largest stable {/Symbol w}{/Symbol D}t against contact stiffness (lines: linear theory; points: measured)'\n"
+    << "set logscale xy\nset grid\nset format x '10^{%L}'\nset datafile missing '?'\nset key outside right font ',9'\n"
+    << "set xlabel 'contact stiffness k (N/m)'\nset ylabel 'largest stable {/Symbol w}{/Symbol D}t'\n"
+    << "plot ";
+  for (size_t i = 0; i < keys.size(); ++i) {
+    s << (i ? ", " : "") << quoted(data) << " index " << i << " using 1:2 with points pt " << (i % 7) + 1
+      << " ps 1.5 lc " << i + 1 << " title '" << titles[i] << "'";
+    if (has_theory[i]) {
+      s << ", " << quoted(data) << " index " << i << " using 1:3 with lines dt 2 lc " << i + 1 << " notitle";
+    }
+  }
+  s << "\n";
+  try {
+    run_gnuplot(s.str(), png_tmp);
+  } catch (...) {
+    std::remove(png_tmp.c_str());
+    throw;
+  }
+  if (std::rename(png_tmp.c_str(), png_path.c_str()) != 0) {
+    std::remove(png_tmp.c_str());
+    throw std::runtime_error(png_path + ": cannot write (" + std::strerror(errno) + ")");
+  }
+}
+
+// ---------------------------------------------------------------- gnuplot
+
+void run_gnuplot(const std::string& script, const std::string& png_path) {
+  std::FILE* pipe = ::popen("gnuplot", "w");
+  if (!pipe) throw std::runtime_error("cannot start gnuplot (install gnuplot-nox)");
+  std::fwrite(script.data(), 1, script.size(), pipe);
+  const int status = ::pclose(pipe);
+  if (status != 0) {
+    throw std::runtime_error("gnuplot failed (exit " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                             ") writing " + png_path + "; is gnuplot-nox installed?");
+  }
+}
+
+}  // namespace contact2d::analysis

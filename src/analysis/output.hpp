@@ -1,0 +1,42 @@
+// Tables, CSV and gnuplot PNGs of the sweep, the reference study and the
+// stability map. No number is ever printed as "nan": a missing value is "-"
+// in tables and an empty field in CSV.
+#pragma once
+
+#include <cstdio>
+#include <ostream>
+#include <string>
+
+#include "analysis/reference.hpp"
+#include "analysis/stability.hpp"
+#include "analysis/sweep.hpp"
+
+namespace contact2d::analysis {
+
+// "%.*g" of a finite value, `missing` otherwise.
+std::string number(double value, int digits = 3, const char* missing = "-");
+
+void print_sweep(std::ostream& out, const SweepResult& result);
+void print_orders(std::ostream& out, const SweepResult& result);
+void write_sweep_csv(std::FILE* out, const SweepResult& result);
+void write_orders_csv(std::FILE* out, const SweepResult& result);
+// Work–precision diagram (max position error against wall-clock, log–log)
+// beside error against Δt. Throws std::runtime_error when gnuplot fails.
+void plot_sweep(const std::string& png_path, const SweepResult& result);
+
+void print_reference_study(std::ostream& out, const std::string& scene_name,
+                           const ReferenceStudy& study);
+void write_reference_study_csv(std::FILE* out, const std::string& scene_name,
+                               const ReferenceStudy& study);
+
+void print_stability(std::ostream& out, const StabilityResult& result);
+void write_stability_csv(std::FILE* out, const StabilityResult& result);
+// Largest stable ω·Δt against k per engine/integrator, with the theoretical
+// bounds as lines. Throws std::runtime_error when gnuplot fails.
+void plot_stability(const std::string& png_path, const StabilityResult& result);
+
+// Runs gnuplot on `script`, whose output must go to `png_tmp`; renames it to
+// `png_path` on success. Throws std::runtime_error otherwise.
+void run_gnuplot(const std::string& script, const std::string& png_path);
+
+}  // namespace contact2d::analysis

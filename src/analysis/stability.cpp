@@ -1,0 +1,241 @@
+#include "analysis/stability.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+
+#include "analysis/reference.hpp"
+#include "core/dense_reference.hpp"
+
+namespace contact2d::analysis {
+namespace {
+
+std::string format(const char* fmt, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, fmt, value);
+  return buffer;
+}
+
+const char* kind_name(DivergenceKind kind) {
+  switch (kind) {
+    case DivergenceKind::NonFinite: return "non-finite state";
+    case DivergenceKind::EnergyGain: return "energy gain";
+    case DivergenceKind::Penetration: return "penetration beyond bound";
+    case DivergenceKind::NewtonFailed: return "Newton failed";
+  }
+  return "?";
+}
+
+struct Probe {
+  bool stable = false;
+  std::string failure;
+  double penetration = 0.0;
+};
+
+Probe probe(const Scene& scene, const std::string& engine, const EngineRunner& runner) {
+  Probe p;
+  const Model model = make_model(scene);
+  if (engine == "ref") {
+    // The core's run loop checks the rule after every step; no trajectory kept.
+    const RunResult run = contact2d::run(scene, [&](const Sample& s) {
+      p.penetration = std::max(p.penetration, contact2d::max_penetration(model, s.state.q));
+    });
+    p.stable = !run.divergence;
+    if (run.divergence) p.failure = kind_name(run.divergence->kind) + format(" at t = %.3g s", run.divergence->time);
+    return p;
+  }
+  const EngineResult run = runner(engine, scene);
+  for (const Sample& s : run.trajectory.samples) {
+    p.penetration = std::max(p.penetration, contact2d::max_penetration(model, s.state.q));
+  }
+  if (run.trajectory.divergence) {
+    p.failure = kind_name(run.trajectory.divergence->kind) +
+                format(" at t = %.3g s", run.trajectory.divergence->time);
+    return p;
+  }
+  // Samples are checked again here, so the rule is the same whatever the
+  // adapter does internally.
+  const DivergenceMonitor monitor(model, initial_state(scene));
+  for (const Sample& s : run.trajectory.samples) {
+    if (const auto d = monitor.check(s.state, s.t)) {
+      p.failure = kind_name(d->kind) + format(" at t = %.3g s", d->time);
+      return p;
+    }
+  }
+  if (!run.warnings.empty()) {
+    p.failure = "warning: " + run.warnings.front();
+    return p;
+  }
+  p.stable = true;
+  return p;
+}
+
+}  // namespace
+
+const char* verdict_name(StabilityVerdict verdict) {
+  switch (verdict) {
+    case StabilityVerdict::Bracketed: return "bracketed";
+    case StabilityVerdict::StableAtMax: return "stable at dt_max";
+    case StabilityVerdict::UnstableAtMin: return "unstable at dt_min";
+    case StabilityVerdict::Failed: return "failed";
+  }
+  return "?";
+}
+
+Scene scene_with_stiffness(const Scene& scene, double k, std::optional<double> zeta) {
+  Scene s = scene;
+  s.contact.k = k;
+  if (zeta) {
+    const double m_eff = min_effective_mass(make_body(s));
+    s.contact.c = 2.0 * *zeta * std::sqrt(k * m_eff);
+  }
+  return s;
+}
+
+StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
+                              const EngineRunner& runner) {
+  if (config.ks.empty()) throw std::invalid_argument("--ks: the list is empty");
+  if (config.integrators.empty()) throw std::invalid_argument("--integrators: the list is empty");
+  if (config.engines.empty()) throw std::invalid_argument("--engines: the list is empty");
+  for (double k : config.ks) {
+    if (!(k > 0.0 && k <= 1e12)) throw std::invalid_argument("--ks: " + format("%g", k) + " is not in (0, 1e12] N/m");
+  }
+  if (config.zeta && !(*config.zeta >= 0.0 && *config.zeta <= 1e3)) {
+    throw std::invalid_argument("--zeta: must be in [0, 1e3]");
+  }
+  if (!(config.dt_max > 0.0)) throw std::invalid_argument("--dt-max: must be > 0");
+  if (!(config.precision > 0.0)) throw std::invalid_argument("precision must be > 0");
+
+  StabilityResult result;
+  result.scene_name = std::string(shape_name(scene.shape));
+  result.duration = scene.sim.duration;
+  result.dt_max = std::min(config.dt_max, scene.sim.duration);
+  result.precision = config.precision;
+  result.zeta = config.zeta;
+  result.threads = config.threads == 0 ? default_threads() : config.threads;
+
+  std::vector<StabilityRow>& rows = result.rows;
+  for (const std::string& engine : config.engines) {
+    for (Integrator integrator : config.integrators) {
+      if (!engine_offers(engine, integrator)) continue;
+      for (double k : config.ks) {
+        StabilityRow row;
+        row.engine = engine;
+        row.integrator = integrator;
+        row.k = k;
+        const Scene s = scene_with_stiffness(scene, k, config.zeta);
+        const ContactStiffness cs = contact_stiffness(make_model(s));
+        row.c = s.contact.c;
+        row.m_eff = cs.m_eff;
+        row.omega = cs.omega;
+        row.zeta = cs.zeta;
+        row.theory = stability_limit(integrator, cs.zeta);
+        const long long max_steps = engine == "ref" ? config.max_steps : config.max_steps_other;
+        row.dt_min = std::min(result.dt_max, scene.sim.duration / static_cast<double>(max_steps));
+        rows.push_back(row);
+      }
+    }
+  }
+
+  // Reference penetration per k, from the converged reference.
+  std::vector<double> reference_penetration(config.ks.size(), std::nan(""));
+  const size_t n_ref = config.ks.size();
+  std::mutex progress_mutex;
+  size_t done = 0;
+  const size_t total = n_ref + rows.size();
+  auto report = [&](const std::string& what) {
+    if (!config.progress) return;
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    config.progress(++done, total, what);
+  };
+
+  // Jobs: the converged reference of each k (for its penetration), then one
+  // probe series per row.
+  parallel_for(total, config.threads, [&](size_t index) {
+    if (index < n_ref) {
+      const Scene s = scene_with_stiffness(scene, config.ks[index], config.zeta);
+      const DenseTrajectory ref = converged_reference(s, 1e-9);
+      if (ref.ok()) {
+        // Sampled at the output times, like the engines' runs.
+        const Model model = make_model(s);
+        double deepest = 0.0;
+        for (double t : output_times(s.sim)) {
+          deepest = std::max(deepest, contact2d::max_penetration(model, ref.at(t).q));
+        }
+        reference_penetration[index] = deepest;
+      }
+      report("reference k=" + format("%g", config.ks[index]));
+      return;
+    }
+    StabilityRow& row = rows[index - n_ref];
+    Scene s = scene_with_stiffness(scene, row.k, config.zeta);
+    s.sim.integrator = row.integrator;
+    double penetration_at_stable = std::nan("");
+    auto try_dt = [&](double dt) {
+      s.sim.dt = dt;
+      ++row.probes;
+      const Probe p = probe(s, row.engine, runner);
+      if (p.stable) {
+        if (!(dt <= row.dt_stable)) penetration_at_stable = p.penetration;
+      } else {
+        if (dt < row.dt_unstable) row.failure = p.failure;
+      }
+      return p.stable;
+    };
+    try {
+      const double theory_dt = row.omega > 0.0 ? row.theory / row.omega : INFINITY;
+      const double dt_max = result.dt_max;
+      double dt = std::clamp(std::isfinite(theory_dt) ? 0.9 * theory_dt : dt_max, row.dt_min, dt_max);
+      if (try_dt(dt)) {
+        row.dt_stable = dt;
+        while (!std::isfinite(row.dt_unstable) && row.dt_stable < dt_max) {
+          dt = std::min(4.0 * row.dt_stable, dt_max);
+          if (try_dt(dt)) row.dt_stable = dt; else row.dt_unstable = dt;
+        }
+      } else {
+        row.dt_unstable = dt;
+        while (std::isnan(row.dt_stable) && row.dt_unstable > row.dt_min) {
+          dt = std::max(0.25 * row.dt_unstable, row.dt_min);
+          if (try_dt(dt)) row.dt_stable = dt; else row.dt_unstable = dt;
+        }
+      }
+      if (std::isnan(row.dt_stable)) {
+        row.verdict = StabilityVerdict::UnstableAtMin;
+      } else if (!std::isfinite(row.dt_unstable)) {
+        row.verdict = StabilityVerdict::StableAtMax;
+      } else {
+        while (row.dt_unstable / row.dt_stable > 1.0 + config.precision) {
+          dt = std::sqrt(row.dt_stable * row.dt_unstable);
+          if (try_dt(dt)) row.dt_stable = dt; else row.dt_unstable = dt;
+        }
+        row.verdict = StabilityVerdict::Bracketed;
+      }
+      row.penetration = penetration_at_stable;
+    } catch (const std::exception& e) {
+      row.verdict = StabilityVerdict::Failed;
+      row.failure = e.what();
+    }
+    report(row.engine + " " + std::string(integrator_name(row.integrator)) + " k=" + format("%g", row.k));
+  });
+
+  for (StabilityRow& row : rows) {
+    const size_t i = static_cast<size_t>(std::find(config.ks.begin(), config.ks.end(), row.k) - config.ks.begin());
+    row.reference_penetration = reference_penetration[i];
+    if (row.engine != "ref" && std::isfinite(row.penetration) && row.reference_penetration > 0.0) {
+      const double ratio = row.penetration / row.reference_penetration;
+      if (ratio > 2.0) {
+        row.note = "stays stable by going soft: penetration " + format("%.3g", ratio) +
+                   "× the reference's at the largest stable dt";
+      }
+    }
+    if (row.engine != "ref" && row.verdict == StabilityVerdict::Bracketed && row.omega * row.dt_stable > 1.5 * row.theory) {
+      if (!row.note.empty()) row.note += "; ";
+      row.note += "stable beyond the linear bound";
+    }
+  }
+  return result;
+}
+
+}  // namespace contact2d::analysis

@@ -1,0 +1,101 @@
+// contact2d stability SCENE [--ks LIST] [--integrators LIST] [--engines LIST]
+//                           [--zeta Z] [--csv FILE] [--plot FILE.png] [...]
+// Largest stable Δt per contact stiffness and integrator, by bisection, next
+// to the linear theory.
+#include <iostream>
+#include <memory>
+
+#include "analysis/output.hpp"
+#include "analysis/stability.hpp"
+#include "cli/common.hpp"
+#include "io/csv.hpp"
+#include "io/scene_file.hpp"
+
+namespace contact2d::cli {
+
+// Defined in cmd_sweep.cpp.
+analysis::EngineRunner cli_engine_runner();
+std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label, bool quiet);
+Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
+                      const std::optional<double>& duration);
+
+namespace {
+
+struct StabilityOptions {
+  std::string path;
+  std::vector<std::string> sets;
+  std::optional<double> duration;
+  std::vector<double> ks;
+  std::vector<std::string> integrators;
+  std::vector<std::string> engines{"ref"};
+  std::optional<double> zeta;
+  double dt_max = 1e-2;
+  double precision = 0.02;
+  std::string csv, plot;
+  unsigned threads = 0;
+  bool quiet = false;
+};
+
+int stability(const StabilityOptions& o) {
+  const Scene scene = load_scene_with(o.path, o.sets, o.duration);
+  std::unique_ptr<AtomicFile> csv;
+  if (!o.csv.empty()) csv = std::make_unique<AtomicFile>(o.csv);
+
+  analysis::StabilityConfig config;
+  analysis::StabilityResult result;
+  try {
+    if (!o.ks.empty()) config.ks = o.ks;
+    if (!o.integrators.empty()) config.integrators = analysis::parse_integrators(o.integrators);
+    config.engines = o.engines;
+    config.zeta = o.zeta;
+    config.dt_max = o.dt_max;
+    config.precision = o.precision;
+    config.threads = o.threads;
+    config.progress = terminal_progress("stability " + std::string(shape_name(scene.shape)), o.quiet);
+    result = analysis::run_stability(scene, config, cli_engine_runner());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  analysis::print_stability(std::cout, result);
+  if (csv) {
+    analysis::write_stability_csv(csv->get(), result);
+    csv->commit();
+  }
+  if (!o.plot.empty()) {
+    try {
+      analysis::plot_stability(o.plot, result);
+    } catch (const std::runtime_error& e) {
+      throw InputError(e.what());
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_stability(CLI::App& app) {
+  auto o = std::make_shared<StabilityOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "stability", "Largest stable dt per contact stiffness and integrator (bisection), against the linear theory");
+  cmd->add_option("scene", o->path, "Scene file (TOML)")->required();
+  cmd->add_option("--ks", o->ks, "Comma-separated contact stiffnesses, N/m (default 1e3,1e4,...,1e9)")
+      ->delimiter(',');
+  cmd->add_option("--integrators", o->integrators, "Comma-separated list (default: all four)")->delimiter(',');
+  cmd->add_option("--engines", o->engines, "Comma-separated: ref, mujoco (default: ref)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"ref", "mujoco"}));
+  cmd->add_option("--zeta", o->zeta,
+                  "Damping ratio held at every k: c = 2*zeta*sqrt(k*m_eff) (default: keep the scene's c)");
+  cmd->add_option("--dt-max", o->dt_max, "Largest dt tried, s (default 1e-2)")->check(CLI::PositiveNumber);
+  cmd->add_option("--precision", o->precision, "Relative width of the final bracket (default 0.02)")
+      ->check(CLI::Range(1e-4, 1.0));
+  cmd->add_option("--csv", o->csv, "Write one row per engine, integrator and k to this CSV file");
+  cmd->add_option("--plot", o->plot, "Write the stability map (PNG, gnuplot)");
+  cmd->add_option("--threads", o->threads, "Worker threads (default: one per core)")->check(CLI::Range(1u, 256u));
+  cmd->add_option("--duration", o->duration, "Simulated time of each probe, s (overrides sim.duration)");
+  cmd->add_option("--set", o->sets, "Override any scene key, e.g. --set contact.c=0 (repeatable)");
+  cmd->add_flag("--quiet", o->quiet, "No progress on stderr");
+  return {cmd, [o] { return stability(*o); }};
+}
+
+}  // namespace contact2d::cli

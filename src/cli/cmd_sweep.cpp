@@ -1,0 +1,173 @@
+// contact2d sweep SCENE [--integrators LIST] [--dts LIST] [--engines ref,mujoco]
+//                       [--csv FILE] [--plot FILE.png] [...]
+// Error against run time for every engine × integrator × Δt, against the
+// scene's converged reference; table on stdout, progress on stderr.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <mutex>
+
+#include "analysis/output.hpp"
+#include "analysis/sweep.hpp"
+#include "cli/common.hpp"
+#include "cli/engines.hpp"
+#include "io/csv.hpp"
+#include "io/scene_file.hpp"
+
+namespace contact2d::cli {
+
+// Shared by sweep and stability: the CLI's engines as an analysis runner.
+analysis::EngineRunner cli_engine_runner() {
+  return [](const std::string& engine, const Scene& scene) {
+    EngineRun run = run_engine(engine, scene);
+    analysis::EngineResult result;
+    result.trajectory = std::move(run.trajectory);
+    result.seconds = run.seconds;
+    result.warnings = std::move(run.warnings);
+    return result;
+  };
+}
+
+// Progress on stderr, rewritten in place, only when stderr is a terminal.
+std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label,
+                                                                          bool quiet) {
+  if (quiet || !::isatty(2)) return {};
+  return [label](size_t done, size_t total, const std::string& what) {
+    std::fprintf(stderr, "\r\033[K%s: %zu/%zu %s", label.c_str(), done, total, what.c_str());
+    if (done == total) std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+  };
+}
+
+Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
+                      const std::optional<double>& duration) {
+  std::vector<Override> overrides;
+  for (const std::string& s : sets) overrides.push_back(parse_override(s));
+  if (duration) overrides.push_back({"sim.duration", format_number(*duration, 17)});
+  return load_scene(path, overrides);
+}
+
+namespace {
+
+struct SweepOptions {
+  std::string path;
+  std::vector<std::string> sets;
+  std::optional<double> duration;
+  std::vector<std::string> integrators;
+  std::vector<double> dts;
+  std::vector<std::string> engines{"ref"};
+  std::string csv, orders_csv, plot;
+  int repeats = 3;
+  double tol = 1e-12;
+  unsigned threads = 0;
+  bool reference_study = false;
+  std::string study_csv;
+  bool quiet = false;
+};
+
+int sweep(const SweepOptions& o) {
+  const Scene scene = load_scene_with(o.path, o.sets, o.duration);
+  if (!scene.obstacles.empty()) {
+    throw InputError(o.path + ": sweep measures errors against the converged reference, which handles "
+                     "ground contact only; this scene has static obstacles");
+  }
+  // Outputs are opened first: a bad path fails before any work.
+  std::unique_ptr<AtomicFile> csv, orders_csv, study_csv;
+  if (!o.csv.empty()) csv = std::make_unique<AtomicFile>(o.csv);
+  if (!o.orders_csv.empty()) orders_csv = std::make_unique<AtomicFile>(o.orders_csv);
+  if (!o.study_csv.empty()) study_csv = std::make_unique<AtomicFile>(o.study_csv);
+
+  analysis::SweepConfig config;
+  try {
+    if (!o.integrators.empty()) config.integrators = analysis::parse_integrators(o.integrators);
+    if (!o.dts.empty()) config.dts = o.dts;
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  config.engines = o.engines;
+  config.repeats = o.repeats;
+  config.reference_tol = o.tol;
+  config.threads = o.threads;
+  config.progress = terminal_progress("sweep " + std::string(shape_name(scene.shape)), o.quiet);
+
+  if (o.reference_study || study_csv) {
+    const std::vector<double> tols{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
+    const analysis::ReferenceStudy study = analysis::study_reference(scene, tols, 1e-14, o.threads);
+    analysis::print_reference_study(std::cout, std::string(shape_name(scene.shape)), study);
+    std::cout << "\n";
+    if (study_csv) {
+      analysis::write_reference_study_csv(study_csv->get(), std::string(shape_name(scene.shape)), study);
+      study_csv->commit();
+    }
+  }
+
+  analysis::SweepResult result;
+  try {
+    result = analysis::run_sweep(scene, config, cli_engine_runner());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  } catch (const std::runtime_error& e) {
+    std::cerr << "contact2d: " << o.path << ": " << e.what() << "\n";
+    return kExitDiverged;
+  }
+  analysis::print_sweep(std::cout, result);
+  for (const analysis::SweepRow& row : result.rows) {
+    for (const std::string& w : row.warnings) {
+      std::cerr << "contact2d: " << row.engine << " " << integrator_name(row.integrator) << " dt "
+                << format_number(row.dt) << " warning: " << w << "\n";
+    }
+  }
+  if (csv) {
+    analysis::write_sweep_csv(csv->get(), result);
+    csv->commit();
+  }
+  if (orders_csv) {
+    analysis::write_orders_csv(orders_csv->get(), result);
+    orders_csv->commit();
+  }
+  if (!o.plot.empty()) {
+    try {
+      analysis::plot_sweep(o.plot, result);
+    } catch (const std::runtime_error& e) {
+      throw InputError(e.what());
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_sweep(CLI::App& app) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "sweep",
+      "Error against run time: every engine x integrator x dt against the scene's converged reference");
+  cmd->add_option("scene", o->path, "Scene file (TOML)")->required();
+  cmd->add_option("--integrators", o->integrators,
+                  "Comma-separated list (default: explicit_euler,semi_implicit_euler,implicit_euler,rk4)")
+      ->delimiter(',');
+  cmd->add_option("--dts", o->dts, "Comma-separated time steps, s (default: 1e-3,5e-4,2e-4,1e-4,5e-5,2e-5,1e-5)")
+      ->delimiter(',');
+  cmd->add_option("--engines", o->engines, "Comma-separated: ref, mujoco (default: ref)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"ref", "mujoco"}));
+  cmd->add_option("--csv", o->csv, "Write one row per run to this CSV file");
+  cmd->add_option("--orders-csv", o->orders_csv, "Write the observed orders to this CSV file");
+  cmd->add_option("--plot", o->plot, "Write the work-precision diagram (PNG, gnuplot)");
+  cmd->add_option("--repeats", o->repeats, "Time each run as the best of N repeats (default 3; 1 when a run takes over 0.25 s)")
+      ->check(CLI::Range(1, 100));
+  cmd->add_option("--tol", o->tol, "Tolerance of the converged reference (default 1e-12)")
+      ->check(CLI::Range(1e-15, 1e-3));
+  cmd->add_option("--threads", o->threads, "Worker threads (default: one per core)")->check(CLI::Range(1u, 256u));
+  cmd->add_flag("--reference-study", o->reference_study,
+                "First show the reference's self-consistency error at tolerances 1e-3..1e-13 against 1e-14");
+  cmd->add_option("--study-csv", o->study_csv, "Write the reference study to this CSV file (implies --reference-study)");
+  cmd->add_option("--duration", o->duration, "Simulated time, s (overrides sim.duration)");
+  cmd->add_option("--set", o->sets, "Override any scene key, e.g. --set contact.k=1e6 (repeatable)");
+  cmd->add_flag("--quiet", o->quiet, "No progress on stderr");
+  return {cmd, [o] { return sweep(*o); }};
+}
+
+}  // namespace contact2d::cli
