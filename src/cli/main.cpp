@@ -14,6 +14,10 @@ int main(int argc, char** argv) {
 
   const std::vector<Command> commands = {
       add_simulate(app),
+#ifdef CONTACT2D_WITH_MUJOCO
+      add_generate(app),
+      add_compare(app),
+#endif
       add_sweep(app),
       add_stability(app),
   };

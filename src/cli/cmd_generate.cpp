@@ -1,0 +1,48 @@
+// contact2d generate SCENE [-o FILE] [--mapping NAME] [--geometry NAME] [overrides]
+#include <iostream>
+#include <memory>
+
+#include "cli/common.hpp"
+#include "cli/mujoco_engine.hpp"
+#include "io/csv.hpp"
+#include "io/scene_file.hpp"
+
+namespace contact2d::cli {
+namespace {
+
+struct GenerateOptions {
+  SceneOptions scene;
+  MujocoOptions mujoco;
+  std::string output;
+};
+
+int generate(const GenerateOptions& options) {
+  const Scene scene = options.scene.load();
+  std::unique_ptr<AtomicFile> out;
+  if (!options.output.empty()) out = std::make_unique<AtomicFile>(options.output);
+  const auto model = contact2d::mujoco::generate_mjcf(scene, options.mujoco.resolve(options.scene.path));
+  if (model.settings.refsafe_clamped) {
+    std::cerr << "contact2d: note: timeconst " << format_number(model.settings.solref[0])
+              << " s < 2 dt: MuJoCo raises it to 2 dt (refsafe), a softer contact than contact.k\n";
+  }
+  if (!out) {
+    std::cout << model.xml;
+    return kExitOk;
+  }
+  std::fputs(model.xml.c_str(), out->get());
+  out->commit();
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_generate(CLI::App& app) {
+  auto options = std::make_shared<GenerateOptions>();
+  CLI::App* cmd = app.add_subcommand("generate", "Write the MuJoCo MJCF model of a scene");
+  options->scene.add_to(*cmd);
+  options->mujoco.add_to(*cmd);
+  cmd->add_option("-o,--output", options->output, "Write the MJCF to this file (default: standard output)");
+  return {cmd, [options] { return generate(*options); }};
+}
+
+}  // namespace contact2d::cli

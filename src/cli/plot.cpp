@@ -1,0 +1,111 @@
+#include "cli/plot.hpp"
+
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "io/scene_file.hpp"
+
+namespace contact2d::cli {
+namespace {
+
+// Columns: t, x, y, θ (ref), x, y, θ (MuJoCo), position error, angle error.
+// Errors of exactly 0 are written as 1e-300 so the log axis keeps them.
+void write_data(std::FILE* out, const Trajectory& ref, const Trajectory& mj) {
+  const size_t n = std::min(ref.samples.size(), mj.samples.size());
+  for (size_t i = 0; i < n; ++i) {
+    const State& a = ref.samples[i].state;
+    const State& b = mj.samples[i].state;
+    const double pos = std::max((a.q.head<2>() - b.q.head<2>()).norm(), 1e-300);
+    const double angle = std::max(std::abs(a.q.z() - b.q.z()), 1e-300);
+    std::fprintf(out, "%.9g %.12g %.12g %.12g %.12g %.12g %.12g %.6g %.6g\n", ref.samples[i].t, a.q.x(), a.q.y(),
+                 a.q.z(), b.q.x(), b.q.y(), b.q.z(), pos, angle);
+  }
+}
+
+std::string script(const std::string& data, const std::string& png, const std::string& title) {
+  const std::string d = "'" + data + "'";
+  return "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,900 } "
+         "else { set terminal png size 1200,900 }\n"
+         "set output '" + png + "'\n"
+         "set multiplot layout 2,2 title '" + title + "'\n"
+         "set xlabel 't (s)'\nset grid\nset key top right\n"
+         "set ylabel 'x (m)'\nplot " + d + " u 1:2 w l lw 2 t 'ref', " + d + " u 1:5 w l dt 2 lw 2 t 'MuJoCo'\n"
+         "set ylabel 'y (m)'\nplot " + d + " u 1:3 w l lw 2 t 'ref', " + d + " u 1:6 w l dt 2 lw 2 t 'MuJoCo'\n"
+         "set ylabel 'theta (rad)'\nplot " + d + " u 1:4 w l lw 2 t 'ref', " + d +
+         " u 1:7 w l dt 2 lw 2 t 'MuJoCo'\n"
+         "set logscale y\nset format y '10^{%L}'\nset yrange [1e-12:*]\nset ylabel 'error'\n"
+         "plot " + d + " u 1:8 w l lw 2 t 'position (m)', " + d + " u 1:9 w l lw 2 t 'angle (rad)'\n"
+         "unset multiplot\n";
+}
+
+// A temporary file beside `target` (same file system, so rename is atomic),
+// removed on destruction unless renamed onto the target.
+class TempFile {
+ public:
+  explicit TempFile(const std::string& target) : target_(target) {
+    std::string pattern = target + ".tmp.XXXXXX";
+    const int fd = ::mkstemp(pattern.data());
+    if (fd < 0) throw InputError(target + ": cannot create output file (" + std::strerror(errno) + ")");
+    ::close(fd);
+    path_ = pattern;
+  }
+  ~TempFile() {
+    if (!path_.empty()) std::remove(path_.c_str());
+  }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  const std::string& path() const { return path_; }
+  void commit() {
+    ::chmod(path_.c_str(), 0644);
+    if (std::rename(path_.c_str(), target_.c_str()) != 0) {
+      throw InputError(target_ + ": cannot write output file (" + std::strerror(errno) + ")");
+    }
+    path_.clear();
+  }
+
+ private:
+  std::string target_;
+  std::string path_;
+};
+
+void require_quotable(const std::string& text, const std::string& what) {
+  if (text.find('\'') != std::string::npos || text.find('\n') != std::string::npos) {
+    throw InputError(what + " '" + text + "' must not contain a single quote or newline (gnuplot script)");
+  }
+}
+
+// Runs gnuplot on the script; returns its exit status (127: not installed).
+int run_gnuplot(const std::string& text) {
+  std::FILE* pipe = ::popen("gnuplot 2>&1", "w");
+  if (!pipe) return 127;
+  std::fputs(text.c_str(), pipe);
+  const int status = ::pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+}  // namespace
+
+void plot_comparison(const std::string& png_path, const std::string& title, const Trajectory& ref,
+                     const Trajectory& mujoco) {
+  require_quotable(png_path, "--plot");
+  require_quotable(title, "plot title");
+  TempFile png(png_path);                // gnuplot writes here; renamed on success
+  TempFile data(png_path + ".data");     // never committed
+  std::FILE* out = std::fopen(data.path().c_str(), "w");
+  if (!out) throw InputError(data.path() + ": cannot write plot data");
+  write_data(out, ref, mujoco);
+  std::fclose(out);
+  const int status = run_gnuplot(script(data.path(), png.path(), title));
+  if (status == 127) throw InputError("--plot: gnuplot not found (install Debian package gnuplot-nox)");
+  if (status != 0) throw InputError("--plot " + png_path + ": gnuplot failed (exit status " + std::to_string(status) + ")");
+  png.commit();
+}
+
+}  // namespace contact2d::cli

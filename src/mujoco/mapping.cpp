@@ -1,0 +1,137 @@
+#include "mujoco/mapping.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "io/scene_file.hpp"
+
+namespace contact2d::mujoco {
+namespace {
+
+// impratio is kept inside a range where MuJoCo's R_t = R/impratio stays a
+// normal floating-point number (R ≈ Â/d ≈ 1e4·Â).
+constexpr double kMinImpratio = 1e-15;
+constexpr double kMaxImpratio = 1e10;
+constexpr double kMinMu = 1e-5;  // MuJoCo's mjMINMU
+
+std::string number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+void require_spring_and_damper(const Scene& scene, Mapping mapping) {
+  const std::string why = std::string(" for --mapping ") + std::string(mapping_name(mapping)) +
+                          " (its timeconst and dampratio need k > 0 and c > 0; use --mapping calibrated)";
+  if (!(scene.contact.k > 0.0)) throw InputError("contact.k = " + number(scene.contact.k) + " must be > 0 N/m" + why);
+  if (!(scene.contact.c > 0.0)) throw InputError("contact.c = " + number(scene.contact.c) + " must be > 0 N·s/m" + why);
+}
+
+// Largest inverse mass a contact point can present along the ground
+// (tangentially): 1/m + r²/I with r the farthest contact point from the COM
+// (for the circle the point below the centre, r = R). 1/m without rotation.
+double max_tangential_inverse_mass(const RigidBody& body) {
+  if (!body.rotates || body.inertia <= 0.0) return 1.0 / body.mass;
+  const double r = body_extent(body);
+  return 1.0 / body.mass + r * r / body.inertia;
+}
+
+// impratio (see mapping.hpp): the largest value for which MuJoCo's explicit
+// viscous friction, slope impratio·c per contact, does not reverse a slip
+// within one step at any contact: Δt·A_t·impratio·c ≤ 1 (sliding) and, for a
+// rolling contact, Δt·(1/I)·impratio·c·(μ_roll/μ)² ≤ 1 (the rolling rows'
+// regulariser is R_t·μ²/μ_roll²). μ is clamped at MuJoCo's mjMINMU = 1e-5.
+// Without sliding or rolling friction, the smallest impratio switches off
+// what remains of MuJoCo's friction (coefficients are clamped at 1e-5).
+double calibrated_impratio(const Scene& scene, const RigidBody& body) {
+  const ContactParams& p = scene.contact;
+  const bool rolls = body.roll_radius > 0.0 && p.mu_roll > 0.0;
+  if (!(p.c > 0.0)) return 1.0;  // no damper: MuJoCo's friction has no velocity term at all
+  if (p.mu <= 0.0 && !rolls) return kMinImpratio;
+  const double step = p.c * scene.sim.dt;
+  double ratio = 1.0 / (step * max_tangential_inverse_mass(body));
+  if (rolls) {
+    const double mu = std::max(p.mu, kMinMu);
+    ratio = std::min(ratio, body.inertia * (mu / p.mu_roll) * (mu / p.mu_roll) / step);
+  }
+  return std::clamp(ratio, kMinImpratio, kMaxImpratio);
+}
+
+}  // namespace
+
+std::string_view mapping_name(Mapping mapping) {
+  switch (mapping) {
+    case Mapping::Seed: return "seed";
+    case Mapping::Exact: return "exact";
+    case Mapping::Calibrated: return "calibrated";
+  }
+  return "?";
+}
+
+std::optional<Mapping> parse_mapping(std::string_view name) {
+  for (Mapping mapping : kAllMappings) {
+    if (mapping_name(mapping) == name) return mapping;
+  }
+  return std::nullopt;
+}
+
+std::string_view geometry_name(Geometry geometry) {
+  return geometry == Geometry::CornerSpheres ? "corners" : "boxes";
+}
+
+std::optional<Geometry> parse_geometry(std::string_view name) {
+  for (Geometry g : {Geometry::CornerSpheres, Geometry::BoxGeoms}) {
+    if (geometry_name(g) == name) return g;
+  }
+  return std::nullopt;
+}
+
+int contacts_per_point(Shape shape, Geometry geometry) {
+  const bool boxes = shape == Shape::Box || shape == Shape::TShape;
+  return boxes && geometry == Geometry::BoxGeoms ? 2 : 1;
+}
+
+SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_mass, int split) {
+  SolverSettings s;
+  s.mapping = mapping;
+  const RigidBody body = make_body(scene);
+  const double m = body.mass;
+  const double k = scene.contact.k;
+  const double c = scene.contact.c;
+  if (mapping == Mapping::Calibrated) {
+    s.inv_mass = inv_mass;
+    s.split = split;
+    s.solref = {-k * inv_mass / split, -c * inv_mass / split};
+    s.solimp = kMinimalSolimp;
+    s.elliptic = true;
+    s.impratio = calibrated_impratio(scene, body);
+    return s;
+  }
+  require_spring_and_damper(scene, mapping);
+  const double dampratio = c / (2.0 * std::sqrt(m * k));
+  const double timeconst = mapping == Mapping::Seed ? std::sqrt(m / k) : 2.0 * m / c;
+  s.solref = {timeconst, dampratio};
+  s.refsafe_clamped = timeconst < 2.0 * scene.sim.dt;
+  return s;
+}
+
+AccelerationGains acceleration_gains(const std::array<double, 2>& solref) {
+  if (solref[0] <= 0.0 && solref[1] <= 0.0) return {-solref[0], -solref[1]};
+  const double tc = solref[0];
+  const double zeta = solref[1];
+  return {1.0 / (tc * tc * zeta * zeta), 2.0 / tc};
+}
+
+std::string mujoco_integrator(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::SemiImplicitEuler: return "Euler";
+    case Integrator::RK4: return "RK4";
+    case Integrator::ImplicitEuler: return "implicit";
+    case Integrator::ExplicitEuler: break;
+  }
+  throw InputError(
+      "sim.integrator = explicit_euler has no MuJoCo 2.2 counterpart: use semi_implicit_euler (MuJoCo Euler), "
+      "rk4 (RK4) or implicit_euler (implicit)");
+}
+
+}  // namespace contact2d::mujoco

@@ -1,0 +1,74 @@
+// MJCF for a scene (SPEC §5), written with tinyxml2: same scene and options,
+// same bytes.
+//
+// The plane of motion is MuJoCo's x–z plane (2D y = MuJoCo z). One body with
+// slide joints along x and z and, for bodies that rotate, a hinge about
+// (0, −1, 0) so that θ is counter-clockwise in the x–z plane (R_y(−θ) maps
+// (x, z) to (x·cosθ − z·sinθ, x·sinθ + z·cosθ), the 2D R(θ)). The body frame
+// is the COM and starts at the initial (x, y); qpos = (x − x0, y − y0, θ),
+// qvel = (vx, vy, ω); the initial θ and velocities are the keyframe
+// "initial". Contact parameters live in <default> so that the ground plane
+// carries the same values and MuJoCo's per-pair mixing (friction: max,
+// direct solref: min, solimp: average) changes nothing.
+//
+// Contact geoms (condim 6, friction "μ μ_torsion μ_roll"):
+//   point mass  a sphere of radius ρ = max(h, ε) centred at (0, ρ − h): its
+//               lowest point is the 2D contact point (0, −h) (no rotation)
+//   circle      a sphere of radius R at the COM: the single contact point
+//               below the centre of Algorithm 4
+//   box, T      corners: a sphere of radius ε = kCornerRadius at every 2D
+//               contact point (one MuJoCo contact per 2D point; the contact
+//               sits ε lower than the 2D point, shifting rest heights by ε)
+//               boxes:   one box geom per part (a 2D corner becomes a 3D edge
+//               whose two end vertices both touch: 2 contacts per point)
+// Visual-only geoms (contype = conaffinity = 0, group 1) draw the shape.
+//
+// Inertia (explicit <inertial>, inertiafromgeom="false"): the 2D value on the
+// hinge axis (MuJoCo y). The other two axes carry no joint; they are the
+// values of a prism of depth D (box, T: D = smallest side of any part) or,
+// for the circle, of a cylinder of length 2R: Ix = Iz = m·R²/4 + m·(2R)²/12.
+#pragma once
+
+#include <string>
+
+#include "core/scene.hpp"
+#include "mujoco/mapping.hpp"
+
+namespace contact2d::mujoco {
+
+// Radius of a corner sphere: small against any penetration the tolerance
+// tests resolve (the rest height shifts by exactly this much), large against
+// MuJoCo's mjMINVAL = 1e-15.
+constexpr double kCornerRadius = 1e-9;
+
+struct MjcfOptions {
+  Mapping mapping = kDefaultMapping;
+  Geometry geometry = kDefaultGeometry;
+  std::string source;  // the scene file named in the header comment
+};
+
+struct GeneratedModel {
+  std::string xml;
+  SolverSettings settings;
+};
+
+// The MJCF of a scene. For the calibrated mapping it compiles a first pass
+// to read body_invweight0 (the effective-mass factor Â) from MuJoCo, then
+// writes the final model. Throws InputError when the scene cannot be mapped
+// (explicit Euler; seed/exact with k or c = 0; obstacles, which the model
+// does not carry) or MuJoCo rejects the final
+// model or warns while loading it (it is loaded once to check).
+GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options);
+
+// The MJCF with given solver settings (no MuJoCo involved).
+std::string write_mjcf(const Scene& scene, const MjcfOptions& options, const SolverSettings& settings);
+
+// How messages name the MJCF generated from a scene file: "<source> (its
+// generated MJCF)".
+std::string generated_origin(const std::string& source);
+
+// Shortest decimal text that reads back as the same double ("0.1", not
+// "0.10000000000000001").
+std::string format_exact(double value);
+
+}  // namespace contact2d::mujoco

@@ -1,0 +1,96 @@
+#include "mujoco/model.hpp"
+
+#include <cstring>
+#include <mutex>
+
+#include "io/scene_file.hpp"
+
+namespace contact2d::mujoco {
+namespace {
+
+thread_local std::vector<std::string>* t_sink = nullptr;
+
+std::string trim(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  for (char& ch : text) {
+    if (ch == '\n') ch = ' ';
+  }
+  return text;
+}
+
+void on_warning(const char* message) {
+  if (t_sink) {
+    t_sink->push_back(trim(message));
+  } else {
+    std::fprintf(stderr, "contact2d: MuJoCo warning: %s\n", trim(message).c_str());
+  }
+}
+
+[[noreturn]] void on_error(const char* message) { throw MujocoError(trim(message)); }
+
+void install_handlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    mju_user_warning = on_warning;
+    mju_user_error = on_error;
+  });
+}
+
+const char* warning_name(int i) {
+  switch (i) {
+    case mjWARN_INERTIA: return "(near) singular inertia matrix";
+    case mjWARN_CONTACTFULL: return "too many contacts (nconmax)";
+    case mjWARN_CNSTRFULL: return "too many constraints (njmax)";
+    case mjWARN_VGEOMFULL: return "too many visual geoms";
+    case mjWARN_BADQPOS: return "bad number in qpos";
+    case mjWARN_BADQVEL: return "bad number in qvel";
+    case mjWARN_BADQACC: return "bad number in qacc";
+    case mjWARN_BADCTRL: return "bad number in ctrl";
+    default: return "unknown warning";
+  }
+}
+
+}  // namespace
+
+ModelPtr load_model(const std::string& xml, const std::string& origin) {
+  install_handlers();
+  static constexpr char kName[] = "contact2d_model.xml";
+  auto vfs = std::make_unique<mjVFS>();  // ~2 MB: never on the stack
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(xml.size())) != 0) {
+    throw InputError(origin + ": MuJoCo cannot load the model: virtual file system refused it");
+  }
+  const int index = mj_findFileVFS(vfs.get(), kName);
+  std::memcpy(vfs->filedata[index], xml.data(), xml.size());
+  char error[1000] = "";
+  mjModel* model = mj_loadXML(kName, vfs.get(), error, sizeof error);
+  mj_deleteVFS(vfs.get());
+  if (!model) throw InputError(origin + ": MuJoCo cannot load the model: " + trim(error));
+  ModelPtr owned(model);
+  if (error[0] != '\0') throw InputError(origin + ": MuJoCo warns while loading the model: " + trim(error));
+  return owned;
+}
+
+DataPtr make_data(const mjModel* model) {
+  mjData* data = mj_makeData(model);
+  if (!data) throw MujocoError("mj_makeData failed");
+  return DataPtr(data);
+}
+
+WarningCapture::WarningCapture(std::vector<std::string>& messages) : previous_(t_sink) {
+  install_handlers();
+  t_sink = &messages;
+}
+
+WarningCapture::~WarningCapture() { t_sink = previous_; }
+
+std::vector<std::string> warning_counters(const mjData* data) {
+  std::vector<std::string> out;
+  for (int i = 0; i < mjNWARNING; ++i) {
+    const int n = data->warning[i].number;
+    if (n > 0) out.push_back(std::string(warning_name(i)) + " (" + std::to_string(n) + " times)");
+  }
+  return out;
+}
+
+}  // namespace contact2d::mujoco
