@@ -1,0 +1,64 @@
+// The pitch: a circle scene (the ball, its contact law, the goal's obstacles)
+// plus the game's rules, read from the scene file's [game] table.
+//
+// The goal is at the +x or −x side, whichever the goal line is on as seen
+// from the pass's start. The crossbar is one of the scene's [[obstacle]]
+// boxes (game.crossbar is its index); its underside is the height below which
+// a ball crossing the goal line is a goal. The crossbar, the goal's roof and
+// its back are ordinary obstacles: the ball bounces off them with the contact
+// law, in the same physics as the ground.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/scene.hpp"
+
+namespace contact2d::game {
+
+struct Rules {
+  double goal_line = 10.0;         // x of the goal line (its rear edge), m
+  int crossbar = 0;                // index of the crossbar obstacle (a box)
+  double min_kick_distance = 1.0;  // a kick counts from this far from the goal line, m
+  double kick_impulse = 5.0;       // N·s, spread over kick_duration
+  double kick_duration = 0.04;     // s
+  double kick_angle = 15.0;        // initial kick angle above the horizontal, degrees
+  double kick_angle_min = 0.0;     // degrees
+  double kick_angle_max = 60.0;    // degrees
+  double kick_angle_step = 5.0;    // degrees per key press
+  double push_force = 4.0;         // N, while an arrow key is held
+  double pass_x = 0.5;             // where the pass starts (ball centre), m
+  double pass_speed_min = 2.5;     // m/s, drawn uniformly from [min, max]
+  double pass_speed_max = 3.5;
+  double pass_spin_min = 0.5;      // spin as a multiple of rolling spin (1 = rolling, 0 = none)
+  double pass_spin_max = 1.5;
+  double round_time = 20.0;        // s, then the round is over
+  double rest_speed = 0.02;        // m/s: the ball is at rest below this (centre and rim speed)...
+  double rest_time = 0.5;          // ...for this long, s
+  double result_time = 2.0;        // s between the end of a round and the next pass
+  double pitch_min_x = -0.5;       // the ball is out of play beyond these, m
+  double pitch_max_x = 12.5;
+};
+
+struct Pitch {
+  Scene scene;          // shape circle; sim.dt is the physics step
+  Rules rules;
+  std::string path;     // where it was read from
+  std::uint64_t fingerprint = 0;  // FNV-1a of the file's bytes (stamped into replays)
+
+  // Derived: +1 when the goal is towards +x from the pass.
+  double direction() const { return rules.goal_line >= rules.pass_x ? 1.0 : -1.0; }
+  double crossbar_bottom() const;  // underside of the crossbar, m
+};
+
+// The built-in pitch (validation/scenes/game/pitch.toml has the same values).
+Pitch default_pitch();
+
+// Reads and checks a pitch file: the scene (parse_scene) and its [game]
+// table. Throws InputError with one line naming the key and its range.
+Pitch load_pitch(const std::string& path);
+Pitch parse_pitch(const std::string& toml_text, const std::string& origin);
+
+std::uint64_t fnv1a(const std::string& bytes);
+
+}  // namespace contact2d::game

@@ -1,0 +1,368 @@
+#include "game/render.hpp"
+
+#include <GL/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+#include <string>
+
+#include <stb_easy_font.h>
+
+namespace contact2d::game {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Color {
+  float r, g, b, a;
+};
+constexpr Color kSkyTop{0.35f, 0.58f, 0.85f, 1.0f};
+constexpr Color kSkyLow{0.72f, 0.85f, 0.95f, 1.0f};
+constexpr Color kGrassA{0.20f, 0.55f, 0.22f, 1.0f};
+constexpr Color kGrassB{0.24f, 0.60f, 0.25f, 1.0f};
+constexpr Color kTurfShade{0.16f, 0.44f, 0.18f, 1.0f};  // opaque: drawn without blending
+constexpr Color kWhite{1.0f, 1.0f, 1.0f, 1.0f};
+constexpr Color kPost{1.0f, 1.0f, 1.0f, 0.45f};
+constexpr Color kNet{1.0f, 1.0f, 1.0f, 0.35f};
+constexpr Color kObstacle{0.93f, 0.93f, 0.93f, 1.0f};
+constexpr Color kOutline{0.1f, 0.1f, 0.1f, 1.0f};
+constexpr Color kZone{1.0f, 0.85f, 0.1f, 0.9f};
+constexpr Color kForce{0.9f, 0.12f, 0.1f, 1.0f};
+constexpr Color kAim{1.0f, 0.9f, 0.2f, 0.9f};
+constexpr Color kPanel{0.0f, 0.0f, 0.0f, 0.55f};
+constexpr Color kText{1.0f, 1.0f, 1.0f, 1.0f};
+constexpr Color kGoal{1.0f, 0.85f, 0.1f, 1.0f};
+constexpr Color kNoGoal{1.0f, 0.55f, 0.45f, 1.0f};
+
+// Every shape of a frame goes into one triangle list with a colour per
+// vertex and is drawn with a single glDrawArrays per projection: llvmpipe
+// (Mesa's software renderer) pays ~40 µs per draw call, so ~100 small
+// glBegin/glEnd shapes cost more than the pixels (measured: 3.8 ms a frame
+// for the pitch drawn shape by shape).
+struct Batch {
+  std::vector<float> v;  // x, y, r, g, b, a per vertex
+  void vertex(double x, double y, const Color& c) {
+    v.insert(v.end(), {static_cast<float>(x), static_cast<float>(y), c.r, c.g, c.b, c.a});
+  }
+  void triangle(const Vec2& a, const Vec2& b, const Vec2& c, const Color& col) {
+    vertex(a.x(), a.y(), col);
+    vertex(b.x(), b.y(), col);
+    vertex(c.x(), c.y(), col);
+  }
+  void quad(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, const Color& col) {
+    triangle(a, b, c, col);
+    triangle(a, c, d, col);
+  }
+  void flush() {
+    if (v.empty()) return;
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glVertexPointer(2, GL_FLOAT, 6 * sizeof(float), v.data());
+    glColorPointer(4, GL_FLOAT, 6 * sizeof(float), v.data() + 2);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(v.size() / 6));
+    glDisableClientState(GL_COLOR_ARRAY);
+    glDisableClientState(GL_VERTEX_ARRAY);
+    v.clear();
+  }
+};
+
+Batch g_batch;  // reused: no allocation once it has grown
+
+void rect(double x0, double y0, double x1, double y1, const Color& c) {
+  g_batch.quad(Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1), c);
+}
+
+void gradient(double x0, double y0, double x1, double y1, const Color& low, const Color& high) {
+  g_batch.vertex(x0, y0, low);
+  g_batch.vertex(x1, y0, low);
+  g_batch.vertex(x1, y1, high);
+  g_batch.vertex(x0, y0, low);
+  g_batch.vertex(x1, y1, high);
+  g_batch.vertex(x0, y1, high);
+}
+
+// A thick line as a quad (width in world units).
+void thick_line(const Vec2& a, const Vec2& b, double width, const Color& c) {
+  const Vec2 d = b - a;
+  const double len = d.norm();
+  if (len <= 0.0) return;
+  const Vec2 n = Vec2(-d.y(), d.x()) * (0.5 * width / len);
+  g_batch.quad(a + n, b + n, b - n, a - n, c);
+}
+
+void rect_outline(double x0, double y0, double x1, double y1, double width, const Color& c) {
+  thick_line(Vec2(x0, y0), Vec2(x1, y0), width, c);
+  thick_line(Vec2(x1, y0), Vec2(x1, y1), width, c);
+  thick_line(Vec2(x1, y1), Vec2(x0, y1), width, c);
+  thick_line(Vec2(x0, y1), Vec2(x0, y0), width, c);
+}
+
+void disc(double x, double y, double rx, double ry, const Color& c, int segments = 32) {
+  for (int i = 0; i < segments; ++i) {
+    const double a0 = 2.0 * kPi * i / segments, a1 = 2.0 * kPi * (i + 1) / segments;
+    g_batch.triangle(Vec2(x, y), Vec2(x + rx * std::cos(a0), y + ry * std::sin(a0)),
+                     Vec2(x + rx * std::cos(a1), y + ry * std::sin(a1)), c);
+  }
+}
+
+void ring(double x, double y, double r, double width, const Color& c, int segments = 32) {
+  for (int i = 0; i < segments; ++i) {
+    const double a0 = 2.0 * kPi * i / segments, a1 = 2.0 * kPi * (i + 1) / segments;
+    const Vec2 u0(std::cos(a0), std::sin(a0)), u1(std::cos(a1), std::sin(a1)), p(x, y);
+    g_batch.quad(p + (r - width) * u0, p + r * u0, p + r * u1, p + (r - width) * u1, c);
+  }
+}
+
+void arrow(const Vec2& from, const Vec2& to, double width, const Color& c) {
+  const Vec2 d = to - from;
+  const double len = d.norm();
+  if (len < 1e-9) return;
+  const Vec2 u = d / len;
+  const Vec2 n(-u.y(), u.x());
+  const double head = std::min(0.4 * len + 2.0 * width, 4.0 * width);
+  const Vec2 base = to - head * u;
+  thick_line(from, base, width, c);
+  g_batch.triangle(to, base + 0.75 * head * n, base - 0.75 * head * n, c);
+}
+
+// Text in pixels (y down), scaled; stb_easy_font's glyphs are ~7 px high.
+// Its quads (x, y, z, colour: 16 bytes a vertex) become two triangles each.
+void text(double x, double y, const std::string& s, double scale, const Color& c) {
+  static char buffer[60000];  // 270 bytes per character at most: ~220 characters
+  const int quads = stb_easy_font_print(0.0f, 0.0f, const_cast<char*>(s.c_str()), nullptr, buffer, sizeof buffer);
+  for (int q = 0; q < quads; ++q) {
+    Vec2 corner[4];
+    for (int k = 0; k < 4; ++k) {
+      float xy[2];
+      std::memcpy(xy, buffer + 16 * (4 * q + k), sizeof xy);
+      corner[k] = Vec2(x + scale * xy[0], y + scale * xy[1]);
+    }
+    g_batch.quad(corner[0], corner[1], corner[2], corner[3], c);
+  }
+}
+
+double text_width(const std::string& s, double scale) {
+  return scale * stb_easy_font_width(const_cast<char*>(s.c_str()));
+}
+
+std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
+  char buffer[160];
+  std::snprintf(buffer, sizeof buffer, format, a, b, c);
+  return buffer;
+}
+
+// World-to-screen mapping: the pitch's width fills the window, the grass
+// line sits 90 px above the bottom.
+struct View {
+  double x0, x1, y0, y1, scale;  // metres; pixels per metre
+  View(const Rules& r, int width, int height) {
+    x0 = r.pitch_min_x;
+    x1 = r.pitch_max_x;
+    scale = width / (x1 - x0);
+    y0 = -90.0 / scale;
+    y1 = y0 + height / scale;
+  }
+  // Pixel position (y down) of a world point, for labels.
+  Vec2 pixel(double x, double y, int height) const { return {(x - x0) * scale, height - (y - y0) * scale}; }
+};
+
+void draw_world(const Game& game, const View& v) {
+  const Pitch& pitch = game.pitch();
+  const Rules& r = pitch.rules;
+  const double dir = pitch.direction();
+
+  // Sky and grass (mowing stripes one metre wide).
+  gradient(v.x0, 0.0, v.x1, v.y1, kSkyLow, kSkyTop);
+  for (double x = std::floor(v.x0); x < v.x1; x += 1.0) {
+    rect(x, v.y0, x + 1.0, 0.0, (static_cast<long long>(std::floor(x)) % 2 == 0) ? kGrassA : kGrassB);
+  }
+  rect(v.x0, v.y0, v.x1, v.y0 + 0.35 * (0.0 - v.y0), kTurfShade);
+  // The background covers every pixel: drawn without blending, which makes
+  // llvmpipe read the framebuffer back (measured: ~2 ms a frame at 800×600).
+  glDisable(GL_BLEND);
+  g_batch.flush();
+  glEnable(GL_BLEND);
+
+  // The goal: net (behind everything), the near post (beside the plane of
+  // play, so not solid here), the goal line, the obstacles.
+  const Obstacle& bar = pitch.scene.obstacles[static_cast<size_t>(r.crossbar)];
+  double back = r.goal_line + dir * 1.0, roof = bar.b.y();
+  for (const Obstacle& o : pitch.scene.obstacles) {
+    if (o.shape != ObstacleShape::Box) continue;
+    if (dir > 0 && o.a.x() >= r.goal_line) back = std::max(back, o.a.x());
+    if (dir < 0 && o.b.x() <= r.goal_line) back = std::min(back, o.b.x());
+  }
+  for (int i = 0; i <= 12; ++i) {
+    const double x = r.goal_line + (back - r.goal_line) * i / 12.0;
+    thick_line(Vec2(x, 0.0), Vec2(x, roof), 0.012, kNet);
+  }
+  for (int i = 0; i <= 12; ++i) {
+    const double y = roof * i / 12.0;
+    thick_line(Vec2(r.goal_line, y), Vec2(back, y), 0.012, kNet);
+  }
+  const double bar_width = bar.b.x() - bar.a.x();
+  const double post0 = dir > 0 ? r.goal_line - bar_width : r.goal_line;
+  rect(post0, 0.0, post0 + bar_width, bar.a.y(), kPost);
+  rect(post0, -0.05, post0 + bar_width, 0.0, kWhite);  // the goal line on the grass
+
+  // The line beyond which kicks do not count.
+  const double zone = r.goal_line - dir * r.min_kick_distance;
+  for (double y = 0.0; y < 2.8; y += 0.2) thick_line(Vec2(zone, y), Vec2(zone, y + 0.12), 0.03, kZone);
+  rect(std::min(zone, r.goal_line), -0.05, std::max(zone, r.goal_line), 0.0, Color{1.0f, 0.85f, 0.1f, 0.35f});
+
+  for (const Obstacle& o : pitch.scene.obstacles) {
+    if (o.shape == ObstacleShape::Box) {
+      rect(o.a.x(), o.a.y(), o.b.x(), o.b.y(), kObstacle);
+      rect_outline(o.a.x(), o.a.y(), o.b.x(), o.b.y(), 1.0 / v.scale, Color{0.5f, 0.5f, 0.5f, 1.0f});
+    } else {
+      const double w = std::max(2.0 * o.radius, 2.0 / v.scale);
+      thick_line(o.a, o.b, w, kObstacle);
+      disc(o.a.x(), o.a.y(), 0.5 * w, 0.5 * w, kObstacle, 16);
+      disc(o.b.x(), o.b.y(), 0.5 * w, 0.5 * w, kObstacle, 16);
+    }
+  }
+
+  // The ball: a shadow that shrinks with height, the disc, two spokes that
+  // show its spin.
+  const State& s = game.ball();
+  const double R = game.radius();
+  const double lift = std::max(0.0, s.q.y() - R);
+  const double shadow = R * std::max(0.3, 1.0 - 0.15 * lift);
+  disc(s.q.x(), 0.0, shadow, 0.25 * shadow, Color{0.0f, 0.0f, 0.0f, 0.3f}, 20);
+  disc(s.q.x(), s.q.y(), R, R, kWhite);
+  ring(s.q.x(), s.q.y(), R, 1.5 / v.scale, kOutline);
+  for (int i = 0; i < 2; ++i) {
+    const double a = s.q.z() + i * kPi / 2.0;
+    const Vec2 d(std::cos(a) * R, std::sin(a) * R);
+    thick_line(Vec2(s.q.x(), s.q.y()) - d, Vec2(s.q.x(), s.q.y()) + d, 0.018, kOutline);
+  }
+  disc(s.q.x() + 0.45 * R * std::cos(s.q.z() + 0.8), s.q.y() + 0.45 * R * std::sin(s.q.z() + 0.8), 0.25 * R,
+       0.25 * R, kOutline, 10);
+
+  // Aim (the kick's direction) and the force being applied.
+  const Vec2 c(s.q.x(), s.q.y());
+  const double a = game.kick_angle() * kPi / 180.0;
+  const Vec2 aim(dir * std::cos(a), std::sin(a));
+  for (int i = 0; i < 5; ++i) {
+    const double t0 = R + 0.1 + 0.2 * i;
+    thick_line(c + t0 * aim, c + (t0 + 0.1) * aim, 0.025, kAim);
+  }
+  const Vec3 f = game.applied();
+  const double fn = std::hypot(f.x(), f.y());
+  if (fn > 0.0) {
+    // 0.15 m per N up to 1.5 m: a push (a few N) and a kick (~100 N) both show.
+    const double len = std::min(1.5, 0.15 * fn);
+    arrow(c, c + Vec2(f.x(), f.y()) * (len / fn), 0.05, kForce);
+  }
+}
+
+void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width, int height) {
+  const Pitch& pitch = game.pitch();
+  const Rules& r = pitch.rules;
+  const State& s = game.ball();
+  const Vec3 f = game.applied();
+
+  rect(0, 0, width, 78, kPanel);
+  text(10, 8,
+       fmt("ROUND %.0f   GOALS %.0f   TIME %.1f s", game.round(), game.goals(), game.round_time()), 2.0, kText);
+  text(10, 30,
+       fmt("SPEED %.2f m/s   DISTANCE TO GOAL %.2f m", std::hypot(s.v.x(), s.v.y()), game.distance_to_goal()), 2.0,
+       kText);
+  text(10, 52,
+       fmt("KICK ANGLE %.0f deg   FORCE (%.1f, %.1f) N", game.kick_angle(), f.x(), f.y()), 2.0, kText);
+  std::string right = "F1/H: HELP";
+  if (overlay.fps > 0.0) right = fmt("%.0f FPS", overlay.fps) + "   " + right;
+  text(width - 10 - text_width(right, 1.5), 10, right, 1.5, kText);
+  if (overlay.replaying) text(width - 10 - text_width("REPLAY", 2.0), 34, "REPLAY", 2.0, kGoal);
+  if (overlay.recording) text(width - 10 - text_width("REC", 2.0), 56, "REC", 2.0, kForce);
+
+  // Label of the 1 m line, at its foot.
+  const Vec2 zone = v.pixel(r.goal_line - pitch.direction() * r.min_kick_distance, 0.0, height);
+  const std::string zone_label = fmt("%g m", r.min_kick_distance);
+  text(zone.x() - 0.5 * text_width(zone_label, 1.5), zone.y() + 8, zone_label, 1.5, kZone);
+
+  // The last kick, while it is recent.
+  if (!game.kicks().empty()) {
+    const KickRecord& k = game.kicks().back();
+    if (k.round == game.round() && game.time() - k.time < 2.0) {
+      const std::string what = k.counted ? fmt("KICK FROM %.2f m", k.distance)
+                                         : fmt("KICK FROM %.2f m: INSIDE %g m, DOES NOT COUNT", k.distance,
+                                               r.min_kick_distance);
+      text(10, 88, what, 2.0, k.counted ? kGoal : kNoGoal);
+    }
+  }
+
+  // Result of the round.
+  if (game.phase() == Phase::Over) {
+    const Outcome outcome = game.current_round().outcome;
+    const std::string what = outcome_text(outcome, r.min_kick_distance);
+    const double scale = outcome == Outcome::Goal ? 6.0 : 2.5;
+    const double w = text_width(what, scale);
+    rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20, 0.38 * height + 9 * scale, kPanel);
+    text(0.5 * (width - w), 0.38 * height, what, scale, outcome == Outcome::Goal ? kGoal : kNoGoal);
+  }
+  if (overlay.paused) {
+    const double w = text_width("PAUSED", 4.0);
+    text(0.5 * (width - w), 0.25 * height, "PAUSED", 4.0, kText);
+  }
+
+  if (overlay.help) {
+    const char* lines[] = {
+        "CONTACT2D PLAY - score from at least 1 m",
+        "",
+        "A teammate passes: the ball rolls in towards the goal.",
+        "Kick it into the goal. A kick counts only if the ball",
+        "is at least " "1 m from the goal line (the yellow line).",
+        "The whole ball must cross the line under the crossbar,",
+        "and the last touch must be a counted kick.",
+        "The crossbar, the roof and the back of the goal are solid.",
+        "",
+        "ARROWS        push the ball (a force)",
+        "K / ENTER     kick towards the goal",
+        "W / S         raise / lower the kick angle",
+        "SPACE         pause",
+        "BACKSPACE     next pass",
+        "F1 / H        this help",
+        "ESC           quit",
+    };
+    const double x0 = 0.5 * width - 300, y0 = 120;
+    rect(x0 - 16, y0 - 16, x0 + 616, y0 + 16 * 22 + 8, Color{0.0f, 0.0f, 0.0f, 0.8f});
+    double y = y0;
+    for (const char* line : lines) {
+      text(x0, y, line, 2.0, kText);
+      y += 22;
+    }
+  }
+}
+
+}  // namespace
+
+void draw_frame(const Game& game, const Overlay& overlay, int width, int height) {
+  const View v(game.pitch().rules, width, height);
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  // No glClear: the sky and the ground cover the whole window.
+
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(v.x0, v.x1, v.y0, v.y1, -1.0, 1.0);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  draw_world(game, v);
+  g_batch.flush();
+
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(0.0, width, height, 0.0, -1.0, 1.0);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  draw_hud(game, overlay, v, width, height);
+  g_batch.flush();
+}
+
+}  // namespace contact2d::game

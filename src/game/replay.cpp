@@ -1,0 +1,156 @@
+#include "game/replay.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "io/scene_file.hpp"
+
+namespace contact2d::game {
+namespace {
+
+constexpr Key kKeys[] = {Key::Left, Key::Right, Key::Up, Key::Down, Key::Kick, Key::AngleUp, Key::AngleDown,
+                         Key::Reset};
+constexpr const char* kAllowedKeys = "left, right, up, down, kick, angle_up, angle_down, reset";
+
+bool parse_u64(const std::string& text, std::uint64_t& out, int base) {
+  if (text.empty() || text[0] == '-' || text[0] == '+') return false;
+  errno = 0;
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(text.c_str(), &end, base);
+  if (errno != 0 || *end != '\0') return false;
+  out = v;
+  return true;
+}
+
+}  // namespace
+
+std::string_view key_name(Key key) {
+  switch (key) {
+    case Key::Left: return "left";
+    case Key::Right: return "right";
+    case Key::Up: return "up";
+    case Key::Down: return "down";
+    case Key::Kick: return "kick";
+    case Key::AngleUp: return "angle_up";
+    case Key::AngleDown: return "angle_down";
+    case Key::Reset: return "reset";
+  }
+  return "?";
+}
+
+std::optional<Key> parse_key(std::string_view name) {
+  for (Key key : kKeys) {
+    if (key_name(key) == name) return key;
+  }
+  return std::nullopt;
+}
+
+Replay parse_replay(const std::string& text, const std::string& origin) {
+  Replay replay;
+  std::istringstream in(text);
+  std::string line;
+  int number = 0;
+  bool header = false, have_seed = false, have_dt = false;
+  auto fail = [&](const std::string& why) -> void {
+    throw InputError(origin + ":" + std::to_string(number) + ": " + why);
+  };
+  while (std::getline(in, line)) {
+    ++number;
+    if (const size_t hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream words(line);
+    std::string first;
+    if (!(words >> first)) continue;
+    std::string second, third, extra;
+    words >> second >> third >> extra;
+    if (!extra.empty()) fail("unexpected '" + extra + "' at the end of the line");
+    if (!header) {
+      if (first != "contact2d-replay" || second != "1" || !third.empty()) {
+        fail("not a replay file: the first line must be 'contact2d-replay 1'");
+      }
+      header = true;
+      continue;
+    }
+    if (first == "seed") {
+      if (!parse_u64(second, replay.seed, 10) || !third.empty()) fail("seed must be an integer in [0, 2^64)");
+      have_seed = true;
+    } else if (first == "dt") {
+      char* end = nullptr;
+      replay.dt = std::strtod(second.c_str(), &end);
+      if (second.empty() || *end != '\0' || !std::isfinite(replay.dt) || replay.dt <= 0.0 || !third.empty()) {
+        fail("dt must be a number > 0 (the physics step, s)");
+      }
+      have_dt = true;
+    } else if (first == "pitch") {
+      if (second.size() != 16 || !parse_u64(second, replay.pitch_fingerprint, 16) || !third.empty()) {
+        fail("pitch must be 16 hexadecimal digits (the pitch file's FNV-1a)");
+      }
+    } else {
+      std::uint64_t step = 0;
+      if (!parse_u64(first, step, 10) || step > (1ull << 62)) {
+        fail("'" + first + "' is not a step index, seed, dt or pitch line (event lines: <step> <key> down|up)");
+      }
+      const auto key = parse_key(second);
+      if (!key) fail("key '" + second + "' is not one of " + kAllowedKeys);
+      if (third != "down" && third != "up") fail("key action '" + third + "' must be 'down' or 'up'");
+      const long long s = static_cast<long long>(step);
+      if (!replay.events.empty() && s < replay.events.back().step) {
+        fail("step " + first + " is earlier than the line before (events must be in step order)");
+      }
+      replay.events.push_back({s, *key, third == "down"});
+    }
+  }
+  if (!header) throw InputError(origin + ": empty file: not a replay (first line 'contact2d-replay 1')");
+  if (!have_seed) throw InputError(origin + ": missing 'seed' line");
+  if (!have_dt) throw InputError(origin + ": missing 'dt' line");
+  return replay;
+}
+
+Replay read_replay(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot read replay file (missing or unreadable)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_replay(text.str(), path);
+}
+
+std::string format_replay(const Replay& replay) {
+  std::ostringstream out;
+  char fingerprint[32];
+  std::snprintf(fingerprint, sizeof fingerprint, "%016llx", static_cast<unsigned long long>(replay.pitch_fingerprint));
+  // The shortest decimal that reads back as the same double.
+  char dt[64];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(dt, sizeof dt, "%.*g", digits, replay.dt);
+    if (std::strtod(dt, nullptr) == replay.dt) break;
+  }
+  out << "contact2d-replay 1\n"
+      << "# inputs of contact2d play, stamped with the physics step they apply before\n"
+      << "seed " << replay.seed << "\n"
+      << "dt " << dt << "\n"
+      << "pitch " << fingerprint << "\n";
+  for (const InputEvent& e : replay.events) {
+    out << e.step << " " << key_name(e.key) << " " << (e.down ? "down" : "up") << "\n";
+  }
+  return out.str();
+}
+
+void write_replay(const Replay& replay, const std::string& path) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(path + ": cannot write replay file (" + std::strerror(errno) + ")");
+    out << format_replay(replay);
+    out.flush();
+    if (!out) throw InputError(path + ": cannot write replay file (write error)");
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    throw InputError(path + ": cannot write replay file (" + std::strerror(errno) + ")");
+  }
+}
+
+}  // namespace contact2d::game

@@ -1,0 +1,48 @@
+// The player's inputs, stamped with the physics step they apply before, so a
+// replay reproduces a round exactly whatever the frame rate was.
+//
+// File format (text, one item per line, '#' starts a comment):
+//   contact2d-replay 1
+//   seed 7                       the pass generator's seed
+//   dt 1e-05                     the physics step the steps count (must match the pitch)
+//   pitch 0123456789abcdef       FNV-1a of the pitch file (a mismatch is a warning)
+//   <step> <key> down|up         e.g. "123000 kick down": applied before step 123000
+// Keys: left right up down kick angle_up angle_down reset.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace contact2d::game {
+
+enum class Key { Left, Right, Up, Down, Kick, AngleUp, AngleDown, Reset };
+
+std::string_view key_name(Key key);
+std::optional<Key> parse_key(std::string_view name);
+
+struct InputEvent {
+  long long step = 0;  // applied before the physics step with this index (0 = the first)
+  Key key = Key::Kick;
+  bool down = true;
+};
+
+struct Replay {
+  std::uint64_t seed = 0;
+  double dt = 0.0;
+  std::uint64_t pitch_fingerprint = 0;
+  std::vector<InputEvent> events;  // non-decreasing steps
+};
+
+// Throws InputError naming the file and line.
+Replay read_replay(const std::string& path);
+Replay parse_replay(const std::string& text, const std::string& origin);
+
+std::string format_replay(const Replay& replay);
+// Writes through a temporary file renamed into place. Throws InputError when
+// the file cannot be written.
+void write_replay(const Replay& replay, const std::string& path);
+
+}  // namespace contact2d::game

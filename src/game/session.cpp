@@ -1,0 +1,97 @@
+#include "game/session.hpp"
+
+#include <cstdio>
+
+namespace contact2d::game {
+
+InputFeed::InputFeed(Game& game, const Replay* replay) : game_(game), replay_(replay) {
+  log_.seed = game.seed();
+  log_.dt = game.dt();
+  log_.pitch_fingerprint = game.pitch().fingerprint;
+}
+
+void InputFeed::apply_due() {
+  if (!replay_) return;
+  const auto& events = replay_->events;
+  while (next_ < events.size() && events[next_].step <= game_.steps()) {
+    const InputEvent& e = events[next_++];
+    game_.handle(e.key, e.down);
+    log_.events.push_back({game_.steps(), e.key, e.down});
+  }
+}
+
+void InputFeed::live(Key key, bool down) {
+  if (replay_) return;
+  game_.handle(key, down);
+  log_.events.push_back({game_.steps(), key, down});
+}
+
+bool InputFeed::replay_done() const {
+  if (!replay_) return true;
+  for (size_t i = next_; i < replay_->events.size(); ++i) {
+    if (replay_->events[i].down) return false;
+  }
+  return true;
+}
+
+Replay InputFeed::recorded() const { return log_; }
+
+bool session_over(const Game& game, const InputFeed& feed) {
+  return game.divergence().has_value() || (game.phase() == Phase::Over && feed.replay_done());
+}
+
+void run_headless(Game& game, InputFeed& feed) {
+  for (;;) {
+    feed.apply_due();
+    if (session_over(game, feed)) return;
+    game.step();
+  }
+}
+
+namespace {
+
+std::string number(double v, int digits = 9) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+  return buffer;
+}
+
+}  // namespace
+
+std::string report_json(const Game& game) {
+  const State& s = game.ball();
+  const RoundRecord& last = game.current_round();
+  std::string out = "{";
+  out += "\"goal\":" + std::string(game.goals() > 0 ? "true" : "false");
+  out += ",\"goals\":" + std::to_string(game.goals());
+  out += ",\"outcome\":\"" + std::string(outcome_name(last.outcome)) + "\"";
+  out += ",\"kicks\":[";
+  bool first = true;
+  for (const KickRecord& k : game.kicks()) {
+    out += first ? "" : ",";
+    first = false;
+    out += "{\"round\":" + std::to_string(k.round) + ",\"step\":" + std::to_string(k.step) +
+           ",\"time\":" + number(k.time) + ",\"round_time\":" + number(k.round_time) +
+           ",\"distance\":" + number(k.distance) + ",\"angle\":" + number(k.angle) +
+           ",\"counted\":" + (k.counted ? "true" : "false") + "}";
+  }
+  out += "],\"rounds\":[";
+  first = true;
+  for (const RoundRecord& r : game.rounds()) {
+    out += first ? "" : ",";
+    first = false;
+    out += "{\"round\":" + std::to_string(r.round) + ",\"pass_speed\":" + number(r.pass_speed) +
+           ",\"pass_spin\":" + number(r.pass_spin) + ",\"outcome\":\"" + std::string(outcome_name(r.outcome)) +
+           "\",\"end_time\":" + number(r.end_time) + "}";
+  }
+  out += "],\"time\":" + number(game.time());
+  out += ",\"steps\":" + std::to_string(game.steps());
+  out += ",\"engine\":\"" + std::string(game.engine_name()) + "\"";
+  out += ",\"seed\":" + std::to_string(game.seed());
+  out += ",\"ball\":{\"x\":" + number(s.q.x()) + ",\"y\":" + number(s.q.y()) + ",\"vx\":" + number(s.v.x()) +
+         ",\"vy\":" + number(s.v.y()) + ",\"omega\":" + number(s.v.z()) + "}";
+  out += "}";
+  return out;
+}
+
+}  // namespace contact2d::game

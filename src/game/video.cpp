@@ -1,0 +1,78 @@
+#include "game/video.hpp"
+
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "io/scene_file.hpp"
+
+extern char** environ;
+
+namespace contact2d::game {
+
+VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps) : path_(path) {
+  // A write to a dead ffmpeg must fail with EPIPE, not kill the game.
+  std::signal(SIGPIPE, SIG_IGN);
+  int fds[2];
+  if (pipe(fds) != 0) throw InputError("--record " + path + ": cannot create a pipe (" + std::strerror(errno) + ")");
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  const std::string rate = std::to_string(fps);
+  std::vector<std::string> args = {"ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pixel_format", "rgb24",
+                                   "-video_size", size, "-framerate", rate, "-i", "-", "-vf", "vflip", "-c:v",
+                                   "libx264", "-preset", "veryfast", "-crf", "20", "-pix_fmt", "yuv420p",
+                                   "-movflags", "+faststart", "-f", "mp4", path + ".tmp"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
+  posix_spawn_file_actions_addclose(&actions, fds[1]);
+  posix_spawn_file_actions_addclose(&actions, fds[0]);
+  const int rc = posix_spawnp(&pid_, "ffmpeg", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(fds[0]);
+  if (rc != 0) {
+    close(fds[1]);
+    throw InputError("--record " + path + ": cannot start ffmpeg (" + std::strerror(rc) +
+                     "); install Debian's ffmpeg package");
+  }
+  pipe_ = fdopen(fds[1], "wb");
+}
+
+VideoWriter::~VideoWriter() {
+  try {
+    finish();
+  } catch (...) {
+  }
+}
+
+bool VideoWriter::write(const std::vector<unsigned char>& rgb) {
+  if (!pipe_) return false;
+  return std::fwrite(rgb.data(), 1, rgb.size(), pipe_) == rgb.size();
+}
+
+void VideoWriter::finish() {
+  if (pid_ < 0) return;
+  if (pipe_) std::fclose(pipe_);
+  pipe_ = nullptr;
+  int status = 0;
+  waitpid(pid_, &status, 0);
+  pid_ = -1;
+  const std::string temporary = path_ + ".tmp";
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::remove(temporary.c_str());
+    throw InputError("--record " + path_ + ": ffmpeg failed (exit status " +
+                     std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "); no video written");
+  }
+  // Like every output of contact2d: the file appears only when complete.
+  if (std::rename(temporary.c_str(), path_.c_str()) != 0) {
+    throw InputError("--record " + path_ + ": cannot write the video (" + std::strerror(errno) + ")");
+  }
+}
+
+}  // namespace contact2d::game

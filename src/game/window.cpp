@@ -1,0 +1,167 @@
+#include "game/window.hpp"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <GL/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "game/render.hpp"
+#include "game/video.hpp"
+#include "io/scene_file.hpp"
+
+namespace contact2d::game {
+namespace {
+
+std::string g_glfw_error;
+
+void on_glfw_error(int, const char* description) { g_glfw_error = description ? description : "unknown error"; }
+
+// Key callback → queue, drained once per frame: a press and release within
+// one frame are both seen, in order.
+struct KeyQueue {
+  std::vector<std::pair<int, int>> events;  // (GLFW key, GLFW action)
+};
+
+void on_key(GLFWwindow* window, int key, int, int action, int) {
+  auto* queue = static_cast<KeyQueue*>(glfwGetWindowUserPointer(window));
+  queue->events.emplace_back(key, action);
+}
+
+// Game keys; UI keys (pause, help, quit) are handled by the loop.
+std::optional<Key> game_key(int key) {
+  switch (key) {
+    case GLFW_KEY_LEFT: return Key::Left;
+    case GLFW_KEY_RIGHT: return Key::Right;
+    case GLFW_KEY_UP: return Key::Up;
+    case GLFW_KEY_DOWN: return Key::Down;
+    case GLFW_KEY_K:
+    case GLFW_KEY_ENTER:
+    case GLFW_KEY_KP_ENTER: return Key::Kick;
+    case GLFW_KEY_W:
+    case GLFW_KEY_PAGE_UP: return Key::AngleUp;
+    case GLFW_KEY_S:
+    case GLFW_KEY_PAGE_DOWN: return Key::AngleDown;
+    case GLFW_KEY_BACKSPACE: return Key::Reset;
+    default: return std::nullopt;
+  }
+}
+
+struct GlfwSession {
+  GlfwSession() {
+    glfwSetErrorCallback(on_glfw_error);
+    if (!glfwInit()) {
+      throw InputError("play: cannot open a window (" + g_glfw_error +
+                       "); run it on a display, under xvfb-run, or with --headless");
+    }
+  }
+  ~GlfwSession() { glfwTerminate(); }
+};
+
+}  // namespace
+
+WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
+  GlfwSession glfw;
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
+  GLFWwindow* window = glfwCreateWindow(o.width, o.height, "contact2d play", nullptr, nullptr);
+  if (!window) throw InputError("play: cannot create an OpenGL 2.1 window (" + g_glfw_error + ")");
+  KeyQueue queue;
+  glfwSetWindowUserPointer(window, &queue);
+  glfwSetKeyCallback(window, on_key);
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(o.vsync ? 1 : 0);
+
+  int fb_width = o.width, fb_height = o.height;
+  glfwGetFramebufferSize(window, &fb_width, &fb_height);
+  std::unique_ptr<VideoWriter> video;
+  std::vector<unsigned char> pixels;
+  if (!o.record_path.empty()) {
+    video = std::make_unique<VideoWriter>(o.record_path, fb_width, fb_height, o.record_fps);
+    pixels.resize(static_cast<size_t>(fb_width) * static_cast<size_t>(fb_height) * 3);
+  }
+
+  Overlay overlay;
+  overlay.replaying = feed.replaying();
+  overlay.recording = video != nullptr;
+  overlay.help = o.start_with_help;
+  const double dt = game.dt();
+  double accumulator = 0.0;
+  double last = glfwGetTime();
+  const double start = last;
+  double fps_window_start = last;
+  long long fps_window_frames = 0;
+  WindowStats stats;
+  bool quit = false;
+
+  while (!quit && !glfwWindowShouldClose(window)) {
+    glfwPollEvents();
+    for (const auto& [key, action] : queue.events) {
+      if (action == GLFW_PRESS) {
+        if (key == GLFW_KEY_ESCAPE) quit = true;
+        if (key == GLFW_KEY_SPACE) overlay.paused = !overlay.paused;
+        if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) overlay.help = !overlay.help;
+      }
+      const auto k = game_key(key);
+      if (!k) continue;
+      const bool angle = *k == Key::AngleUp || *k == Key::AngleDown;
+      if (action == GLFW_PRESS || (action == GLFW_REPEAT && angle)) feed.live(*k, true);
+      if (action == GLFW_RELEASE) feed.live(*k, false);
+    }
+    queue.events.clear();
+
+    const double now = glfwGetTime();
+    // Recording: exactly one video frame of simulated time per frame.
+    const double frame_time = video ? 1.0 / o.record_fps : now - last;
+    last = now;
+    if (!overlay.paused) {
+      accumulator += std::min(frame_time, 0.25);
+      while (accumulator >= dt) {
+        feed.apply_due();
+        // A replay ends once its last round has been decided and its result
+        // shown for result_time (just before the next pass would start).
+        if (feed.replaying() && session_over(game, feed) &&
+            (game.divergence() || game.steps_since_end() + 1 >= game.result_steps())) {
+          quit = true;
+          break;
+        }
+        if (game.divergence()) break;
+        game.step();
+        accumulator -= dt;
+      }
+    }
+    if (game.divergence()) quit = true;
+
+    const auto render_start = std::chrono::steady_clock::now();
+    draw_frame(game, overlay, fb_width, fb_height);
+    if (video) {
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glReadBuffer(GL_BACK);
+      glReadPixels(0, 0, fb_width, fb_height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+      if (!video->write(pixels)) quit = true;  // ffmpeg is gone; finish() reports it
+    }
+    glfwSwapBuffers(window);
+    stats.render_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
+    ++stats.frames;
+    ++fps_window_frames;
+    if (now - fps_window_start >= 0.5) {
+      overlay.fps = static_cast<double>(fps_window_frames) / (now - fps_window_start);
+      fps_window_start = now;
+      fps_window_frames = 0;
+    }
+    if (o.max_frames > 0 && stats.frames >= o.max_frames) quit = true;
+  }
+  stats.seconds = glfwGetTime() - start;
+  stats.steps = game.steps();
+  glfwDestroyWindow(window);
+  if (video) video->finish();
+  return stats;
+}
+
+}  // namespace contact2d::game

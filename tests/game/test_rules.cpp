@@ -1,0 +1,263 @@
+// The game's rules on the built-in pitch, through the library (no window):
+// each test sets up a ball and a kick, steps the game and checks what the
+// rules decided and what the ball did to make them decide it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/obstacles.hpp"
+#include "game/game.hpp"
+#include "game/session.hpp"
+#include "io/scene_file.hpp"
+
+namespace contact2d::game {
+namespace {
+
+// The built-in pitch with the ball at rest at x0 (no pass) and the kick
+// angle set to `angle` (any value, not only the 5° steps of the keys).
+Pitch still_ball(double x0, double angle = 0.0) {
+  Pitch p = default_pitch();
+  p.rules.pass_speed_min = p.rules.pass_speed_max = 0.0;
+  p.rules.pass_x = x0;
+  p.rules.kick_angle_min = -90.0;
+  p.rules.kick_angle_max = 90.0;
+  p.rules.kick_angle = angle;
+  return p;
+}
+
+// What happened to the ball on the way.
+struct Watch {
+  bool crossed_wholly = false;  // the whole ball got beyond the goal line at some point
+  bool touched_bar = false;
+  double vx_into_bar = 0.0;     // vx the step before the first contact with the crossbar
+  double vx_off_bar = 0.0;      // vx the first step after it ended
+  double y_at_line = -1.0;      // highest centre height within 1 cm of the goal line
+};
+
+Watch play_round(Game& game) {
+  Watch w;
+  const Pitch& p = game.pitch();
+  const std::vector<Obstacle> bar = {p.scene.obstacles[static_cast<size_t>(p.rules.crossbar)]};
+  const RigidBody body = make_body(p.scene);
+  bool released = false;
+  while (game.phase() == Phase::Playing) {
+    const double vx = game.ball().v.x();
+    game.step();
+    const State& s = game.ball();
+    const bool touching = obstacle_max_penetration(bar, body, s.q) > 0.0;
+    if (touching && !w.touched_bar) {
+      w.touched_bar = true;
+      w.vx_into_bar = vx;
+    }
+    if (w.touched_bar && !touching && !released) {
+      released = true;
+      w.vx_off_bar = s.v.x();
+    }
+    if (s.q.x() - p.rules.goal_line > p.scene.radius) w.crossed_wholly = true;
+    if (std::abs(s.q.x() - p.rules.goal_line) < 0.01) w.y_at_line = std::max(w.y_at_line, s.q.y());
+  }
+  return w;
+}
+
+Outcome kick_from(const Pitch& pitch, Watch* watch = nullptr) {
+  Game game(pitch, make_engine("ref", pitch.scene), 1);
+  game.handle(Key::Kick, true);
+  const Watch w = play_round(game);
+  if (watch) *watch = w;
+  return game.current_round().outcome;
+}
+
+TEST(Rules, NoInputScoresNoGoal) {
+  for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u}) {
+    const Pitch pitch = default_pitch();
+    Game game(pitch, make_engine("ref", pitch.scene), seed);
+    play_round(game);
+    EXPECT_EQ(game.goals(), 0) << "seed " << seed;
+    EXPECT_TRUE(game.kicks().empty());
+  }
+}
+
+TEST(Rules, APassThatRollsInByItselfIsNoGoal) {
+  // A pass strong enough to roll over the line: the ball does go in, but
+  // nobody kicked it.
+  Pitch pitch = default_pitch();
+  pitch.rules.pass_speed_min = pitch.rules.pass_speed_max = 7.0;
+  pitch.rules.pass_spin_min = pitch.rules.pass_spin_max = 1.0;
+  Game game(pitch, make_engine("ref", pitch.scene), 1);
+  const Watch w = play_round(game);
+  EXPECT_TRUE(w.crossed_wholly);
+  EXPECT_EQ(game.current_round().outcome, Outcome::NotKicked);
+  EXPECT_EQ(game.goals(), 0);
+}
+
+TEST(Rules, AKickInsideTheMinimumDistanceDoesNotCountEvenIfTheBallGoesIn) {
+  const Pitch base = default_pitch();
+  const double line = base.rules.goal_line, min = base.rules.min_kick_distance;
+  Watch w;
+  EXPECT_EQ(kick_from(still_ball(line - 0.6 * min), &w), Outcome::KickTooClose);
+  EXPECT_TRUE(w.crossed_wholly) << "the ball must go in for the rule to matter";
+  // The same kick from just beyond the minimum distance scores.
+  EXPECT_EQ(kick_from(still_ball(line - 1.2 * min), &w), Outcome::Goal);
+
+  Pitch pitch = still_ball(line - 0.6 * min);
+  Game game(pitch, make_engine("ref", pitch.scene), 1);
+  game.handle(Key::Kick, true);
+  play_round(game);
+  ASSERT_EQ(game.kicks().size(), 1u);
+  EXPECT_FALSE(game.kicks()[0].counted);
+  EXPECT_NEAR(game.kicks()[0].distance, 0.6 * min, 1e-12);
+}
+
+TEST(Rules, APushAfterACountedKickTakesTheGoalAway) {
+  // Last touch decides: kick from 3 m, then push the ball on its way in.
+  Pitch pitch = still_ball(default_pitch().rules.goal_line - 3.0);
+  Game game(pitch, make_engine("ref", pitch.scene), 1);
+  game.handle(Key::Kick, true);
+  for (int i = 0; i < 10000; ++i) game.step();  // 0.1 s: the kick is over, the ball is on its way
+  game.handle(Key::Right, true);
+  play_round(game);
+  EXPECT_EQ(game.current_round().outcome, Outcome::Pushed);
+  EXPECT_TRUE(game.kicks().at(0).counted);
+}
+
+TEST(Rules, ABallThatStopsOnTheLineIsNoGoal) {
+  // A flat kick from 3 m with an impulse found by bisection so that the ball
+  // comes to rest with its centre on the goal line (half of it across).
+  // Rolling distance grows with the impulse, so the bisection converges; the
+  // ball must end straddling the line, and a 5 % harder kick must score,
+  // so the line rule (not a short kick) is what decided.
+  const Pitch base = default_pitch();
+  const double line = base.rules.goal_line, R = base.scene.radius;
+  auto final_x = [&](double impulse, Outcome* outcome) {
+    Pitch pitch = still_ball(line - 3.0);
+    pitch.rules.kick_impulse = impulse;
+    Game game(pitch, make_engine("ref", pitch.scene), 1);
+    game.handle(Key::Kick, true);
+    play_round(game);
+    *outcome = game.current_round().outcome;
+    return game.ball().q.x();
+  };
+  double lo = 0.1, hi = 3.0;  // N·s: the ball stops short / scores
+  Outcome outcome = Outcome::None;
+  ASSERT_LT(final_x(lo, &outcome), line);
+  ASSERT_EQ((final_x(hi, &outcome), outcome), Outcome::Goal);
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const double x = final_x(mid, &outcome);
+    if (outcome == Outcome::Goal || x > line) {
+      hi = mid;
+    } else {
+      lo = mid;
+    }
+  }
+  const double x = final_x(lo, &outcome);
+  EXPECT_EQ(outcome, Outcome::Stopped);
+  EXPECT_GT(x, line - R) << "the ball must touch the line";
+  EXPECT_LT(x, line + R) << "and not be wholly across";
+  std::printf("stopped on the line: impulse %.6f N·s, centre %.4f m from the line\n", lo, x - line);
+  EXPECT_EQ((final_x(1.05 * lo, &outcome), outcome), Outcome::Goal);
+}
+
+// Shots from 4 m in front of the goal line (x = 6) with the built-in kick;
+// the angles were found by scanning 36-46° in 1° steps: 36-39° go under the
+// bar, 40° hits it and goes in, 41-43° hit its front face and come back,
+// 44° and more go over the goal.
+TEST(Rules, TheBallBouncesOffTheCrossbar) {
+  Watch w;
+  const Outcome outcome = kick_from(still_ball(6.0, 41.0), &w);
+  ASSERT_TRUE(w.touched_bar);
+  EXPECT_GT(w.vx_into_bar, 5.0);
+  EXPECT_LT(w.vx_off_bar, 0.0) << "the bar sends the ball back";
+  EXPECT_LT(-w.vx_off_bar, w.vx_into_bar) << "with less speed: the contact is damped";
+  EXPECT_FALSE(w.crossed_wholly);
+  EXPECT_NE(outcome, Outcome::Goal);
+}
+
+TEST(Rules, OffTheCrossbarAndInIsAGoal) {
+  Watch w;
+  EXPECT_EQ(kick_from(still_ball(6.0, 40.0), &w), Outcome::Goal);
+  EXPECT_TRUE(w.touched_bar);
+}
+
+TEST(Rules, OverTheCrossbarIsNoGoal) {
+  const Pitch base = default_pitch();
+  const double bar_top = base.scene.obstacles[0].b.y();
+  Watch w;
+  const Outcome outcome = kick_from(still_ball(6.0, 45.0), &w);
+  EXPECT_GT(w.y_at_line, bar_top + base.scene.radius) << "the ball must clear the bar";
+  EXPECT_FALSE(w.touched_bar);
+  EXPECT_NE(outcome, Outcome::Goal);
+  EXPECT_EQ(outcome, Outcome::Out) << "it flies over the goal and off the pitch";
+}
+
+TEST(Rules, TheKickAngleKeysStepAndClamp) {
+  const Pitch pitch = default_pitch();
+  Game game(pitch, make_engine("ref", pitch.scene), 1);
+  EXPECT_EQ(game.kick_angle(), 15.0);
+  game.handle(Key::AngleUp, true);
+  EXPECT_EQ(game.kick_angle(), 20.0);
+  for (int i = 0; i < 20; ++i) game.handle(Key::AngleUp, true);
+  EXPECT_EQ(game.kick_angle(), pitch.rules.kick_angle_max);
+  for (int i = 0; i < 20; ++i) game.handle(Key::AngleDown, true);
+  EXPECT_EQ(game.kick_angle(), pitch.rules.kick_angle_min);
+}
+
+TEST(Rules, TheKickDeliversItsImpulse) {
+  // Without gravity, a kick changes the momentum by exactly kick_impulse
+  // along the kick angle: the force is J/(n·Δt) for n
+  // whole steps, and semi-implicit Euler adds F·Δt per step.
+  Pitch pitch = still_ball(5.0, 30.0);
+  pitch.scene.sim.gravity = 0.0;
+  Game game(pitch, make_engine("ref", pitch.scene), 1);
+  game.handle(Key::Kick, true);
+  for (int i = 0; i < 10000; ++i) game.step();  // 0.1 s > kick_duration
+  const double m = pitch.scene.mass, J = pitch.rules.kick_impulse, a = 30.0 * 3.14159265358979323846 / 180.0;
+  // With g = 0 the ball starts just touching the grass (no spring force),
+  // the kick lifts it at once (no damper: compression only, no friction:
+  // Fn = 0), so only rounding remains: tolerance 1e-9 m/s on ~11.6 m/s.
+  EXPECT_NEAR(game.ball().v.x(), J / m * std::cos(a), 1e-9);
+  EXPECT_NEAR(game.ball().v.y(), J / m * std::sin(a), 1e-9);
+}
+
+TEST(Rules, ResetStartsTheNextPass) {
+  const Pitch pitch = default_pitch();
+  Game game(pitch, make_engine("ref", pitch.scene), 1);
+  for (int i = 0; i < 1000; ++i) game.step();
+  game.handle(Key::Reset, true);
+  EXPECT_EQ(game.round(), 2);
+  EXPECT_EQ(game.rounds()[0].outcome, Outcome::Reset);
+  EXPECT_EQ(game.phase(), Phase::Playing);
+  EXPECT_EQ(game.ball().q.x(), pitch.rules.pass_x);
+  EXPECT_NE(game.rounds()[0].pass_speed, game.rounds()[1].pass_speed) << "a new draw";
+}
+
+TEST(Rules, TheSameSeedGivesTheSamePasses) {
+  const Pitch pitch = default_pitch();
+  Game a(pitch, make_engine("ref", pitch.scene), 42), b(pitch, make_engine("ref", pitch.scene), 42),
+      c(pitch, make_engine("ref", pitch.scene), 43);
+  EXPECT_EQ(a.current_round().pass_speed, b.current_round().pass_speed);
+  EXPECT_EQ(a.current_round().pass_spin, b.current_round().pass_spin);
+  EXPECT_NE(a.current_round().pass_speed, c.current_round().pass_speed);
+  EXPECT_GE(a.current_round().pass_speed, pitch.rules.pass_speed_min);
+  EXPECT_LE(a.current_round().pass_speed, pitch.rules.pass_speed_max);
+}
+
+TEST(PitchFile, TheGameNeedsACircle) {
+  try {
+    parse_pitch("scene = \"box\"\n", "box.toml");
+    FAIL() << "a box was accepted as a ball";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the game needs scene = \"circle\""), std::string::npos) << e.what();
+  }
+}
+
+TEST(PitchFile, TheBuiltInPitchIsTheShippedFile) {
+  const Pitch built_in = default_pitch();
+  const Pitch file = load_pitch(CONTACT2D_SOURCE_DIR "/validation/scenes/game/pitch.toml");
+  EXPECT_EQ(built_in.fingerprint, file.fingerprint);
+  EXPECT_EQ(built_in.scene.obstacles.size(), 3u);
+  EXPECT_EQ(built_in.crossbar_bottom(), 2.44);
+}
+
+}  // namespace
+}  // namespace contact2d::game

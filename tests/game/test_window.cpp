@@ -1,0 +1,191 @@
+// The game's window, as a person would use it: under Xvfb (ctest runs this
+// through xvfb-run, label "window"), start `contact2d play`, send keys with
+// xdotool, take screenshots with ffmpeg's x11grab, quit with Esc. Checks that
+// the keys reached the game (a kick at the raised angle, a held arrow), that
+// the ball moved, that the screen is a picture and not blank, and that the
+// inputs recorded from the live window replay headless to the same kicks.
+//
+// Waits are for the program to start and react, not measurements: nothing
+// here depends on how fast the machine is beyond "within 30 s".
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temp(const std::string& name) {
+  return fs::temp_directory_path() / ("contact2d_window_" + std::to_string(::getpid()) + "_" + name);
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+int sh(const std::string& command) {
+  const int raw = std::system(command.c_str());
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+std::string capture(const std::string& command) {
+  const fs::path out = temp("capture");
+  sh(command + " >'" + out.string() + "' 2>/dev/null");
+  std::string text = slurp(out);
+  fs::remove(out);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
+void pause(double seconds) { std::this_thread::sleep_for(std::chrono::duration<double>(seconds)); }
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  unsigned pixel(int x, int y) const {
+    const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
+    return (unsigned(rgb[i]) << 16) | (unsigned(rgb[i + 1]) << 8) | unsigned(rgb[i + 2]);
+  }
+};
+
+// A screenshot of the whole X screen as binary PPM, read back.
+Image screenshot(const std::string& name, const std::string& screen_size) {
+  const fs::path file = temp(name + ".ppm");
+  const std::string display = std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "";
+  sh("ffmpeg -loglevel error -y -f x11grab -video_size " + screen_size + " -i '" + display +
+     "' -frames:v 1 -f image2 -c:v ppm '" + file.string() + "'");
+  Image image;
+  std::ifstream in(file, std::ios::binary);
+  std::string magic;
+  int maxval = 0;
+  in >> magic >> image.width >> image.height >> maxval;
+  in.get();
+  if (magic != "P6" || maxval != 255) return {};
+  image.rgb.resize(static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 3);
+  in.read(reinterpret_cast<char*>(image.rgb.data()), static_cast<std::streamsize>(image.rgb.size()));
+  fs::remove(file);
+  return image;
+}
+
+double json_number(const std::string& json, const std::string& key, size_t from = 0) {
+  const size_t at = json.find("\"" + key + "\":", from);
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
+}
+
+TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
+  ASSERT_EQ(sh("command -v xdotool >/dev/null && command -v ffmpeg >/dev/null"), 0)
+      << "needs xdotool and ffmpeg (scripts/setup installs them)";
+  const std::string screen = capture("xdotool getdisplaygeometry");  // "1024 768"
+  const size_t space = screen.find(' ');
+  ASSERT_NE(space, std::string::npos) << screen;
+  const std::string screen_size = screen.substr(0, space) + "x" + screen.substr(space + 1);
+
+  const fs::path out = temp("out.json"), err = temp("err.txt"), replay = temp("live.replay");
+  const std::string command = std::string("exec '") + CONTACT2D_EXE + "' play --seed 5 --record-input '" +
+                              replay.string() + "' >'" + out.string() + "' 2>'" + err.string() + "'";
+  pid_t pid = -1;
+  const char* argv[] = {"sh", "-c", command.c_str(), nullptr};
+  ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+
+  ASSERT_EQ(sh("timeout 30 xdotool search --sync --name 'contact2d play' >/dev/null"), 0)
+      << "the window did not appear: " << slurp(err);
+  pause(0.5);
+  const Image before = screenshot("before", screen_size);
+  sh("xdotool keydown Right; sleep 0.5; xdotool keyup Right");
+  sh("xdotool key w");  // kick angle 15 → 20 degrees
+  sh("xdotool key k");
+  pause(0.6);
+  const Image after = screenshot("after", screen_size);
+  sh("xdotool key Escape");
+
+  int status = -1;
+  for (int i = 0; i < 300; ++i) {  // up to 30 s
+    if (waitpid(pid, &status, WNOHANG) == pid) break;
+    pause(0.1);
+  }
+  if (!WIFEXITED(status)) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    FAIL() << "play did not quit on Esc";
+  }
+  EXPECT_EQ(WEXITSTATUS(status), 0) << slurp(err);
+  const std::string json = slurp(out);
+  std::printf("window: %s", slurp(err).c_str());
+
+  // The keys reached the game: one kick, at the raised angle, counted (the
+  // pass stops 3.5-7 m from the goal), and the held arrow was recorded as a
+  // press and a later release.
+  EXPECT_NE(json.find("\"kicks\":[{"), std::string::npos) << json;
+  EXPECT_EQ(json_number(json, "angle", json.find("\"kicks\"")), 20.0) << json;
+  const std::string recorded = slurp(replay);
+  const size_t down = recorded.find(" right down"), up = recorded.find(" right up");
+  ASSERT_NE(down, std::string::npos) << recorded;
+  ASSERT_NE(up, std::string::npos) << recorded;
+  EXPECT_LT(down, up);
+  EXPECT_NE(recorded.find(" kick down"), std::string::npos) << recorded;
+
+  // The ball had moved from where the pass starts (x = 0.5 m) when it was
+  // kicked: the kick records its distance to the goal line (x = 10 m). (Its
+  // final position is no evidence: after a goal the next pass restarts it.)
+  const double x_at_kick = 10.0 - json_number(json, "distance", json.find("\"kicks\""));
+  EXPECT_GT(x_at_kick - 0.5, 0.5) << json;
+
+  // The screen is a picture: the 800×600 window (at the top left of the
+  // screen) has many colours and no colour covers most of it; and the pitch
+  // below the HUD changed between the screenshots (the ball is the only
+  // thing that moves there).
+  ASSERT_GE(before.width, 800);
+  ASSERT_GE(before.height, 600);
+  ASSERT_EQ(after.width, before.width);
+  std::map<unsigned, long> histogram;
+  long changed = 0;
+  for (int yy = 0; yy < 600; ++yy) {
+    for (int xx = 0; xx < 800; ++xx) {
+      ++histogram[after.pixel(xx, yy)];
+      if (yy > 110 && before.pixel(xx, yy) != after.pixel(xx, yy)) ++changed;
+    }
+  }
+  long most = 0;
+  for (const auto& [colour, count] : histogram) most = std::max(most, count);
+  std::printf("screenshot: %zu colours, the commonest on %.1f %% of the window, %ld pixels changed\n",
+              histogram.size(), 100.0 * most / (800.0 * 600.0), changed);
+  EXPECT_GT(histogram.size(), 30u) << "a blank or flat screen";
+  EXPECT_LT(most, 800L * 600L * 7 / 10);
+  EXPECT_GT(changed, 50) << "the ball did not move on screen";
+
+  // What the live window recorded replays headless to the same kick.
+  const fs::path replay_out = temp("replay.json");
+  ASSERT_EQ(sh(std::string("'") + CONTACT2D_EXE + "' play --headless --replay '" + replay.string() + "' >'" +
+               replay_out.string() + "'"),
+            0);
+  const std::string replayed = slurp(replay_out);
+  const auto kicks = [](const std::string& j) { return j.substr(j.find("\"kicks\""), j.find("\"rounds\"") - j.find("\"kicks\"")); };
+  EXPECT_EQ(kicks(replayed), kicks(json));
+  fs::remove(out);
+  fs::remove(err);
+  fs::remove(replay);
+  fs::remove(replay_out);
+}
+
+}  // namespace
