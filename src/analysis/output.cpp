@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -68,10 +69,34 @@ std::string quoted(const std::string& path) {
   return "'" + path + "'";
 }
 
+// "RK4" for the reference, "MuJoCo Euler" etc. for MuJoCo (its Euler is
+// semi-implicit; it has no explicit Euler).
 std::string series_title(const std::string& engine, Integrator integrator) {
-  std::string title = engine == "ref" ? "" : engine + " ";
-  title += std::string(integrator_title(integrator));
-  return title;
+  if (engine == "ref") return std::string(integrator_title(integrator));
+  if (engine == "mujoco") {
+    switch (integrator) {
+      case Integrator::SemiImplicitEuler: return "MuJoCo Euler";
+      case Integrator::ImplicitEuler: return "MuJoCo implicit";
+      case Integrator::RK4: return "MuJoCo RK4";
+      case Integrator::ExplicitEuler: return "MuJoCo explicit Euler";
+    }
+  }
+  return engine + " " + std::string(integrator_title(integrator));
+}
+
+// Text for gnuplot's enhanced mode inside single quotes: '_' and '^' would
+// start a subscript or superscript.
+std::string gp_text(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '_' || c == '^' || c == '{' || c == '}' || c == '@' || c == '&') out += '\\';
+    if (c == '\'') {
+      out += "''";
+      continue;
+    }
+    out += c;
+  }
+  return out;
 }
 
 }  // namespace
@@ -113,6 +138,21 @@ void print_sweep(std::ostream& out, const SweepResult& r) {
     }
     out << "\n";
   }
+  if (!r.dense_curve.empty()) {
+    out << "\nthe adaptive method itself (Dormand–Prince 5(4) with events) at other tolerances:\n"
+        << pad("tol", 9) << pad("max pos err", 13) << pad("end pos err", 13) << pad("max angle err", 15)
+        << pad("steps", 8) << pad("events", 8) << "time (ms)\n";
+    for (const ToleranceRow& row : r.dense_curve) {
+      out << pad(number(row.tol, 2), 9);
+      if (!row.failure.empty()) {
+        out << "failed: " << row.failure << "\n";
+        continue;
+      }
+      out << pad(number(row.error.max_pos), 13) << pad(number(row.error.end_pos), 13)
+          << pad(number(row.error.max_angle), 15) << pad(std::to_string(row.stats.accepted), 8)
+          << pad(std::to_string(row.stats.events), 8) << number(row.seconds * 1e3, 3) << "\n";
+    }
+  }
   out << "\n";
   print_orders(out, r);
 }
@@ -134,11 +174,11 @@ void print_orders(std::ostream& out, const SweepResult& r) {
 
 void write_sweep_csv(std::FILE* out, const SweepResult& r) {
   std::fprintf(out,
-               "scene,engine,integrator,dt,status,max_pos_err,end_pos_err,max_angle_err,end_angle_err,"
+               "scene,engine,integrator,dt,tol,status,max_pos_err,end_pos_err,max_angle_err,end_angle_err,"
                "self_max_pos_err,seconds,repeats,diverged_at,reference_tol,reference_err,message\n");
   for (const SweepRow& row : r.rows) {
     const bool ok = row.status == RunStatus::Ok;
-    std::fprintf(out, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d,%s,%s,%s,%s\n", r.scene_name.c_str(),
+    std::fprintf(out, "%s,%s,%s,%s,,%s,%s,%s,%s,%s,%s,%s,%d,%s,%s,%s,%s\n", r.scene_name.c_str(),
                  row.engine.c_str(), std::string(integrator_name(row.integrator)).c_str(),
                  csv_number(row.dt).c_str(), status_text(row).c_str(),
                  ok ? csv_number(row.error.max_pos).c_str() : "", ok ? csv_number(row.error.end_pos).c_str() : "",
@@ -149,6 +189,16 @@ void write_sweep_csv(std::FILE* out, const SweepResult& r) {
                  row.divergence ? csv_number(row.divergence->time).c_str() : "",
                  csv_number(r.reference.tol).c_str(), csv_number(r.reference_error).c_str(),
                  csv_text(row.message).c_str());
+  }
+  // The adaptive method's own curve: integrator "dopri5_events", no dt.
+  for (const ToleranceRow& row : r.dense_curve) {
+    const bool ok = row.failure.empty();
+    std::fprintf(out, "%s,ref,dopri5_events,,%s,%s,%s,%s,%s,%s,,%s,3,,%s,%s,%s\n", r.scene_name.c_str(),
+                 csv_number(row.tol).c_str(), ok ? "ok" : "failed", ok ? csv_number(row.error.max_pos).c_str() : "",
+                 ok ? csv_number(row.error.end_pos).c_str() : "", ok ? csv_number(row.error.max_angle).c_str() : "",
+                 ok ? csv_number(row.error.end_angle).c_str() : "", csv_number(row.seconds).c_str(),
+                 csv_number(r.reference.tol).c_str(), csv_number(r.reference_error).c_str(),
+                 csv_text(row.failure).c_str());
   }
 }
 
@@ -193,6 +243,14 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
     titles.push_back(series_title(key.first, key.second));
     ++blocks;
   }
+  // The adaptive method: tolerance in column 1 (no dt), its time and error.
+  int dense_points = 0;
+  for (const ToleranceRow& row : r.dense_curve) {
+    if (!row.failure.empty()) continue;
+    std::fprintf(f, "%.9g %.9g %.9g\n", row.tol, std::max(row.seconds, 1e-9), std::max(row.error.max_pos, 1e-16));
+    ++dense_points;
+  }
+  std::fprintf(f, "\n\n");
   std::fclose(f);
   if (blocks == 0) throw std::runtime_error(png_path + ": no run finished, nothing to plot");
 
@@ -201,23 +259,29 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
   s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1400,600 font ',11' } "
        "else { set terminal png size 1400,600 }\n"
     << "set output " << quoted(png_tmp) << "\n"
-    << "set multiplot layout 1,2 title '" << r.scene_name << ": max position error against the converged reference (floor: reference error "
-    << number(floor, 2) << " m)'\n"
-    << "set logscale xy\nset grid\nset format y '10^{%L}'\nset key bottom left font ',9'\n"
+    << "set multiplot layout 1,2 title '" << gp_text(r.scene_name) << " (" << number(r.duration, 3)
+    << " s): max position error against the converged reference (its own error: " << number(floor, 2) << " m)'\n"
+    << "set logscale xy\nset grid\nset format y '10^{%L}'\nset key bottom right font ',9'\n"
     << "set ylabel 'max position error (m)'\n"
     << "set xlabel 'wall-clock time of the run (s)'\nset format x '10^{%L}'\n"
     << "set title 'work–precision'\n";
-  auto plot_lines = [&](const char* using_cols) {
+  auto plot_lines = [&](const char* using_cols, bool with_dense) {
     s << "plot ";
     for (int i = 0; i < blocks; ++i) {
-      s << (i ? ", " : "") << quoted(data) << " index " << i << " using " << using_cols << " with linespoints lw 2 pt " << (i % 7) + 1
-        << " title '" << titles[i] << "'";
+      // MuJoCo dashed, the reference solid.
+      const bool mujoco = titles[i].rfind("MuJoCo", 0) == 0;
+      s << (i ? ", " : "") << quoted(data) << " index " << i << " using " << using_cols << " with linespoints lw 2 pt "
+        << (i % 7) + 1 << (mujoco ? " dt 2" : "") << " title '" << gp_text(titles[i]) << "'";
+    }
+    if (with_dense && dense_points > 0) {
+      s << ", " << quoted(data) << " index " << blocks << " using 2:3 with linespoints lw 2 lc 'black' pt 7 ps 0.7 title 'adaptive DOPRI5 + events (tol 1e-4..1e-10)'";
     }
     s << ", " << number(floor, 3) << " with lines dt 3 lc 'gray' title 'reference error'\n";
   };
-  plot_lines("2:3");
+  s << "set yrange [" << number(floor / 10.0, 3) << ":*]\n";
+  plot_lines("2:3", true);
   s << "set xlabel 'time step dt (s)'\nset title 'error against dt (slope = observed order)'\n";
-  plot_lines("1:3");
+  plot_lines("1:3", false);
   s << "unset multiplot\n";
   try {
     run_gnuplot(s.str(), png_tmp);
@@ -332,18 +396,29 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
     const auto key = std::make_pair(row.engine, row.integrator);
     if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
   }
-  // Per block: k, observed ω·Δt (stable), theory ω·Δt (finite only).
+  // Per block: k, bracketed ω·Δt, theory ω·Δt, lower bound (stable up to
+  // dt_max), upper bound (unstable down to dt_min); '?' where absent.
   std::vector<std::string> titles;
   std::vector<bool> has_theory;
+  std::vector<std::array<bool, 3>> has;  // bracketed, lower bound, upper bound
   for (const auto& key : keys) {
     bool theory = false;
+    std::array<bool, 3> any{false, false, false};
     for (const StabilityRow& row : r.rows) {
       if (row.engine != key.first || row.integrator != key.second) continue;
       const double observed = row.omega * row.dt_stable;
-      std::fprintf(f, "%.9g %s %s\n", row.k, std::isfinite(observed) ? number(observed, 6).c_str() : "?",
-                   std::isfinite(row.theory) ? number(row.theory, 6).c_str() : "?");
+      const bool bracketed = row.verdict == StabilityVerdict::Bracketed;
+      const bool lower = row.verdict == StabilityVerdict::StableAtMax;
+      const bool upper = row.verdict == StabilityVerdict::UnstableAtMin;
+      std::fprintf(f, "%.9g %s %s %s %s\n", row.k, bracketed ? number(observed, 6).c_str() : "?",
+                   std::isfinite(row.theory) ? number(row.theory, 6).c_str() : "?",
+                   lower ? number(observed, 6).c_str() : "?", upper ? number(row.omega * row.dt_min, 6).c_str() : "?");
       theory = theory || std::isfinite(row.theory);
+      any[0] = any[0] || bracketed;
+      any[1] = any[1] || lower;
+      any[2] = any[2] || upper;
     }
+    has.push_back(any);
     std::fprintf(f, "\n\n");
     titles.push_back(series_title(key.first, key.second));
     has_theory.push_back(theory);
@@ -355,17 +430,32 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
   s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1000,650 font ',11' } "
        "else { set terminal png size 1000,650 }\n"
     << "set output " << quoted(png_tmp) << "\n"
-    << "set title '" << r.scene_name << ": largest stable {/Symbol w}{/Symbol D}t against contact stiffness (lines: linear theory; points: measured)'\n"
+    << "set title '" << gp_text(r.scene_name) << ": largest stable {/Symbol w}{/Symbol D}t against contact stiffness"
+    << (r.zeta ? " ({/Symbol z} = " + number(*r.zeta, 3) + " at every k)" : std::string(" (the scene's c at every k)"))
+    << "'\n"
     << "set logscale xy\nset grid\nset format x '10^{%L}'\nset datafile missing '?'\nset key outside right font ',9'\n"
     << "set xlabel 'contact stiffness k (N/m)'\nset ylabel 'largest stable {/Symbol w}{/Symbol D}t'\n"
     << "plot ";
+  bool first = true;
   for (size_t i = 0; i < keys.size(); ++i) {
-    s << (i ? ", " : "") << quoted(data) << " index " << i << " using 1:2 with points pt " << (i % 7) + 1
-      << " ps 1.5 lc " << i + 1 << " title '" << titles[i] << "'";
+    // The first plotted element of each series carries its title.
+    std::string title = " title '" + gp_text(titles[i]) + "'";
+    auto element = [&](const std::string& spec) {
+      s << (first ? "" : ", ") << quoted(data) << " index " << i << " using " << spec << title;
+      first = false;
+      title = " notitle";
+    };
+    if (has[i][0]) element("1:2 with linespoints pt " + std::to_string(i % 7 + 1) + " ps 1.5 lc " + std::to_string(i + 1));
+    if (has[i][1]) element("1:4 with points pt 8 ps 1.5 lc " + std::to_string(i + 1));
+    if (has[i][2]) element("1:5 with points pt 10 ps 1.5 lc " + std::to_string(i + 1));
     if (has_theory[i]) {
-      s << ", " << quoted(data) << " index " << i << " using 1:3 with lines dt 2 lc " << i + 1 << " notitle";
+      title = " notitle";
+      element("1:3 with lines dt 2 lc " + std::to_string(i + 1));
     }
   }
+  if (first) throw std::runtime_error(png_path + ": nothing to plot");
+  s << ", NaN with lines dt 2 lc 'black' title 'linear theory', NaN with points pt 8 lc 'black' title "
+       "'stable up to the largest dt tried', NaN with points pt 10 lc 'black' title 'unstable at the smallest dt tried'";
   s << "\n";
   try {
     run_gnuplot(s.str(), png_tmp);

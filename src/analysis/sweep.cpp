@@ -17,7 +17,7 @@ std::string format(const char* fmt, double value) {
 }
 
 struct Job {
-  enum Kind { Reference, LooseReference, Run } kind = Run;
+  enum Kind { Reference, LooseReference, Dense, Run } kind = Run;
   size_t row = 0;
   double cost = 0.0;  // rough, for ordering: longest first
 };
@@ -143,7 +143,9 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
   if (config.engines.empty()) throw std::invalid_argument("--engines: the list is empty");
   if (config.integrators.empty()) throw std::invalid_argument("--integrators: the list is empty");
   if (config.dts.empty()) throw std::invalid_argument("--dts: the list is empty");
-  for (double dt : config.dts) {
+  std::vector<double> all_dts = config.dts;
+  if (config.other_dts) all_dts.insert(all_dts.end(), config.other_dts->begin(), config.other_dts->end());
+  for (double dt : all_dts) {
     if (!(dt > 0.0) || !std::isfinite(dt) || dt > scene.sim.duration || scene.sim.duration / dt > 1e9) {
       throw std::invalid_argument("--dts: " + format("%g", dt) +
                                   " is not a step in (0, sim.duration] with at most 1e9 steps");
@@ -164,7 +166,8 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
   for (const std::string& engine : config.engines) {
     for (Integrator integrator : config.integrators) {
       if (!engine_offers(engine, integrator)) continue;
-      for (double dt : config.dts) {
+      const std::vector<double>& dts = (engine != "ref" && config.other_dts) ? *config.other_dts : config.dts;
+      for (double dt : dts) {
         SweepRow row;
         row.engine = engine;
         row.integrator = integrator;
@@ -180,6 +183,9 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
   std::vector<Job> jobs;
   jobs.push_back({Job::Reference, 0, INFINITY});
   jobs.push_back({Job::LooseReference, 0, INFINITY});
+  result.dense_curve.resize(config.dense_tols.size());
+  for (size_t i = 0; i < config.dense_tols.size(); ++i) jobs.push_back({Job::Dense, i, 1e9});
+  std::vector<DenseTrajectory> dense_runs(config.dense_tols.size());
   for (size_t i = 0; i < rows.size(); ++i) {
     const double evals = rows[i].integrator == Integrator::RK4 ? 4.0
                          : rows[i].integrator == Integrator::ImplicitEuler ? 10.0 : 1.0;
@@ -200,6 +206,15 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
     } else if (job.kind == Job::LooseReference) {
       loose = timed_reference(scene, 10.0 * config.reference_tol, 1);
       what = "reference check";
+    } else if (job.kind == Job::Dense) {
+      TimedReference run = timed_reference(scene, config.dense_tols[job.row]);
+      ToleranceRow& row = result.dense_curve[job.row];
+      row.tol = run.tol;
+      row.seconds = run.seconds;
+      row.stats = run.trajectory.stats();
+      row.failure = run.trajectory.failure();
+      dense_runs[job.row] = std::move(run.trajectory);
+      what = "adaptive tol=" + format("%g", config.dense_tols[job.row]);
     } else {
       SweepRow& row = rows[job.row];
       Scene s = scene;
@@ -245,6 +260,13 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
       loose.trajectory.ok()
           ? error_between(loose.trajectory, reference, output_times(scene.sim)).max_pos
           : INFINITY;
+
+  const std::vector<double> times = output_times(scene.sim);
+  for (size_t i = 0; i < dense_runs.size(); ++i) {
+    if (result.dense_curve[i].failure.empty()) {
+      result.dense_curve[i].error = error_between(dense_runs[i], reference, times);
+    }
+  }
 
   // Errors against the reference, and against each engine/integrator's finest run.
   std::map<std::pair<std::string, Integrator>, size_t> finest;

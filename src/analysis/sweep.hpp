@@ -26,6 +26,12 @@ struct SweepConfig {
   int repeats = 3;                 // best of this many runs …
   double single_run_seconds = 0.25;  // … unless one run takes longer than this
   double reference_tol = 1e-12;
+  // Engines other than "ref" run only these steps when given (MuJoCo's step
+  // costs ~100× a reference step: its smallest steps dominate a sweep).
+  std::optional<std::vector<double>> other_dts;
+  // The adaptive integrator itself at these tolerances, for the work–precision
+  // diagram (error against the reference, best-of-3 time).
+  std::vector<double> dense_tols{1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
   unsigned threads = 0;            // 0: one per core
   // Called from worker threads (serialised) after each configuration.
   std::function<void(size_t done, size_t total, const std::string& what)> progress;
@@ -76,6 +82,7 @@ struct SweepResult {
   double reference_loose_seconds = 0.0;
   double length_scale = 0.0;       // L of the order fit, m
   std::vector<SweepRow> rows;
+  std::vector<ToleranceRow> dense_curve;  // the adaptive method at other tolerances
   std::vector<OrderFit> orders;
   unsigned threads = 1;
   int repeats = 0;
