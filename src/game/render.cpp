@@ -273,11 +273,12 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
        kText);
   text(10, 52,
        fmt("KICK ANGLE %.0f deg   FORCE (%.1f, %.1f) N", game.kick_angle(), f.x(), f.y()), 2.0, kText);
+  // A recording shows neither the frame rate (that of the encoder, not the
+  // game) nor a REC mark.
   std::string right = "F1/H: HELP";
-  if (overlay.fps > 0.0) right = fmt("%.0f FPS", overlay.fps) + "   " + right;
+  if (overlay.fps > 0.0 && !overlay.recording) right = fmt("%.0f FPS", overlay.fps) + "   " + right;
   text(width - 10 - text_width(right, 1.5), 10, right, 1.5, kText);
   if (overlay.replaying) text(width - 10 - text_width("REPLAY", 2.0), 34, "REPLAY", 2.0, kGoal);
-  if (overlay.recording) text(width - 10 - text_width("REC", 2.0), 56, "REC", 2.0, kForce);
 
   // Label of the 1 m line, at its foot.
   const Vec2 zone = v.pixel(r.goal_line - pitch.direction() * r.min_kick_distance, 0.0, height);

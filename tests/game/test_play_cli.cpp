@@ -100,6 +100,27 @@ TEST(PlayCli, AMujocoGameIsRefusedClearly) {
   EXPECT_EQ(r.out, "");
 }
 
+TEST(PlayCli, ADivergingPitchExitsThreeWithTheDiagnosis) {
+  // A contact 1000 times stiffer at a 500 times larger step: ω·Δt ≈ 24,
+  // far past semi-implicit Euler's limit of ~1.7 at this damping.
+  std::string text = slurp(kPitch);
+  const auto set = [&](const std::string& key, const std::string& value) {
+    const size_t at = text.find("\n" + key + " = ");
+    ASSERT_NE(at, std::string::npos) << key;
+    text.replace(at + 1, text.find('\n', at + 1) - at - 1, key + " = " + value);
+  };
+  set("k", "1e8");
+  set("dt", "5e-3");
+  const fs::path pitch = temp("diverging.toml");
+  std::ofstream(pitch) << text;
+  const Result r = run("play --headless --seed 1 '" + pitch.string() + "'");
+  EXPECT_EQ(r.status, 3) << r.out << r.err;
+  EXPECT_TRUE(has(r.out, "\"outcome\":\"diverged\"")) << r.out;
+  EXPECT_TRUE(has(r.err, "simulation diverged")) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  fs::remove(pitch);
+}
+
 struct BadPlay {
   const char* name;
   const char* pitch_extra;   // appended to a copy of the shipped pitch ("" = no pitch file)

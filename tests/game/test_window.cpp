@@ -188,4 +188,39 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
   fs::remove(replay_out);
 }
 
+TEST(Window, RecordingTheGoalReplayWritesAVideoOfEveryFrame) {
+  // While recording, each frame advances exactly 1/60 s of game time, and a
+  // window replay ends result_time (2 s) after the goal was given: the video
+  // must hold (goal time + 2 s)·60 frames, one per window frame, whatever
+  // the machine's speed.
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
+  ASSERT_EQ(sh("command -v ffprobe >/dev/null"), 0) << "needs ffmpeg's ffprobe";
+  const fs::path video = temp("goal.mp4"), out = temp("goal.json"), err = temp("goal.err");
+  ASSERT_EQ(sh(std::string("'") + CONTACT2D_EXE + "' play --replay '" CONTACT2D_SOURCE_DIR
+               "/validation/replays/goal.replay' --record '" + video.string() + "' >'" + out.string() + "' 2>'" +
+               err.string() + "'"),
+            0)
+      << slurp(err);
+  const std::string json = slurp(out), log = slurp(err);
+  EXPECT_NE(json.find("\"goal\":true"), std::string::npos) << json;
+  EXPECT_FALSE(fs::exists(video.string() + ".tmp"));
+  ASSERT_TRUE(fs::exists(video));
+  const long frames_drawn = std::atol(log.substr(log.find("play: ") + 6).c_str());
+  const long frames_in_video = std::atol(
+      capture("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+              "-of default=nokey=1:noprint_wrappers=1 '" + video.string() + "'")
+          .c_str());
+  const std::string size = capture("ffprobe -v error -select_streams v:0 -show_entries stream=width,height "
+                                   "-of csv=p=0 '" + video.string() + "'");
+  const double goal_time = json_number(json, "end_time");
+  std::printf("video: %ld frames drawn, %ld in the video, %s, goal at %.3f s\n", frames_drawn, frames_in_video,
+              size.c_str(), goal_time);
+  EXPECT_EQ(size, "800,600");
+  EXPECT_EQ(frames_in_video, frames_drawn);
+  EXPECT_NEAR(static_cast<double>(frames_in_video), (goal_time + 2.0) * 60.0, 1.0);
+  fs::remove(video);
+  fs::remove(out);
+  fs::remove(err);
+}
+
 }  // namespace
