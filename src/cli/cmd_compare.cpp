@@ -153,7 +153,9 @@ int compare(const CompareOptions& options) {
   if (csv) write_csv(*csv, c);
   if (!options.plot.empty()) {
     const std::string title = std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo (" +
-                              std::string(mj::mapping_name(c.mjcf.mapping)) + ")";
+                              std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping, " +
+                              (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
+                              " damping)";
     plot_comparison(options.plot, title, c.ref.trajectory, c.mujoco.trajectory);
   }
   if (options.json) {
