@@ -19,8 +19,7 @@ constexpr double kPi = 3.14159265358979323846;
 struct Color {
   float r, g, b, a;
 };
-constexpr Color kSkyTop{0.35f, 0.58f, 0.85f, 1.0f};
-constexpr Color kSkyLow{0.72f, 0.85f, 0.95f, 1.0f};
+constexpr Color kSky{0.55f, 0.75f, 0.92f, 1.0f};
 constexpr Color kGrassA{0.20f, 0.55f, 0.22f, 1.0f};
 constexpr Color kGrassB{0.24f, 0.60f, 0.25f, 1.0f};
 constexpr Color kTurfShade{0.16f, 0.44f, 0.18f, 1.0f};  // opaque: drawn without blending
@@ -32,7 +31,7 @@ constexpr Color kOutline{0.1f, 0.1f, 0.1f, 1.0f};
 constexpr Color kZone{1.0f, 0.85f, 0.1f, 0.9f};
 constexpr Color kForce{0.9f, 0.12f, 0.1f, 1.0f};
 constexpr Color kAim{1.0f, 0.9f, 0.2f, 0.9f};
-constexpr Color kPanel{0.0f, 0.0f, 0.0f, 0.55f};
+constexpr Color kPanel{0.13f, 0.17f, 0.24f, 1.0f};  // opaque: the HUD is drawn without blending
 constexpr Color kText{1.0f, 1.0f, 1.0f, 1.0f};
 constexpr Color kGoal{1.0f, 0.85f, 0.1f, 1.0f};
 constexpr Color kNoGoal{1.0f, 0.55f, 0.45f, 1.0f};
@@ -73,15 +72,6 @@ Batch g_batch;  // reused: no allocation once it has grown
 
 void rect(double x0, double y0, double x1, double y1, const Color& c) {
   g_batch.quad(Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1), c);
-}
-
-void gradient(double x0, double y0, double x1, double y1, const Color& low, const Color& high) {
-  g_batch.vertex(x0, y0, low);
-  g_batch.vertex(x1, y0, low);
-  g_batch.vertex(x1, y1, high);
-  g_batch.vertex(x0, y0, low);
-  g_batch.vertex(x1, y1, high);
-  g_batch.vertex(x0, y1, high);
 }
 
 // A thick line as a quad (width in world units).
@@ -128,19 +118,105 @@ void arrow(const Vec2& from, const Vec2& to, double width, const Color& c) {
   g_batch.triangle(to, base + 0.75 * head * n, base - 0.75 * head * n, c);
 }
 
-// Text in pixels (y down), scaled; stb_easy_font's glyphs are ~7 px high.
-// Its quads (x, y, z, colour: 16 bytes a vertex) become two triangles each.
-void text(double x, double y, const std::string& s, double scale, const Color& c) {
-  static char buffer[60000];  // 270 bytes per character at most: ~220 characters
-  const int quads = stb_easy_font_print(0.0f, 0.0f, const_cast<char*>(s.c_str()), nullptr, buffer, sizeof buffer);
-  for (int q = 0; q < quads; ++q) {
-    Vec2 corner[4];
-    for (int k = 0; k < 4; ++k) {
-      float xy[2];
-      std::memcpy(xy, buffer + 16 * (4 * q + k), sizeof xy);
-      corner[k] = Vec2(x + scale * xy[0], y + scale * xy[1]);
+// Text. stb_easy_font draws a glyph as ~8 small rectangles; llvmpipe pays
+// both per triangle and per pixel, so the glyphs are drawn once into an
+// alpha texture and each character becomes one textured quad the size of
+// its own bounding box (at most 7 × 9 px at scale 1), alpha-tested, without
+// blending. Measured with the help overlay (~700 characters): rectangles cost
+// ~5 ms a frame, quads over whole 16 px cells three times that (fill), tight
+// quads the least.
+constexpr int kCellW = 8, kCellH = 10, kAtlasColumns = 16;
+constexpr int kAtlasWidth = kCellW * kAtlasColumns, kAtlasHeight = kCellH * 6;
+
+struct TextBatch {
+  std::vector<float> v;  // x, y, u, v, r, g, b, a per vertex
+  GLuint texture = 0;
+  std::vector<unsigned char> alpha;    // the atlas, once rasterised
+  int box_w[95] = {}, box_h[95] = {};  // each glyph's extent from its origin, px
+
+  // Glyph rectangles from stb_easy_font, rasterised on the CPU once (they
+  // are axis-aligned with integer corners). Needs no GL context.
+  void rasterise() {
+    if (!alpha.empty()) return;
+    alpha.assign(static_cast<size_t>(kAtlasWidth) * kAtlasHeight, 0);
+    static char quads[4096];
+    for (int c = 32; c < 127; ++c) {
+      char one[2] = {static_cast<char>(c), 0};
+      const int n = stb_easy_font_print(0.0f, 0.0f, one, nullptr, quads, sizeof quads);
+      const int cx = ((c - 32) % kAtlasColumns) * kCellW, cy = ((c - 32) / kAtlasColumns) * kCellH;
+      for (int q = 0; q < n; ++q) {
+        float p0[2], p2[2];  // corners 0 and 2 of the rectangle
+        std::memcpy(p0, quads + 64 * q, sizeof p0);
+        std::memcpy(p2, quads + 64 * q + 32, sizeof p2);
+        const int x0 = static_cast<int>(p0[0]), y0 = static_cast<int>(p0[1]);
+        const int x1 = std::min(static_cast<int>(p2[0]), kCellW), y1 = std::min(static_cast<int>(p2[1]), kCellH);
+        box_w[c - 32] = std::max(box_w[c - 32], x1);
+        box_h[c - 32] = std::max(box_h[c - 32], y1);
+        for (int y = y0; y < y1; ++y) {
+          for (int x = x0; x < x1; ++x) alpha[static_cast<size_t>(cy + y) * kAtlasWidth + static_cast<size_t>(cx + x)] = 255;
+        }
+      }
     }
-    g_batch.quad(corner[0], corner[1], corner[2], corner[3], c);
+  }
+
+  void glyph(double x, double y, int c, double scale, const Color& col) {
+    rasterise();
+    const int w = box_w[c - 32], h = box_h[c - 32];
+    if (w == 0 || h == 0) return;
+    const int cx = ((c - 32) % kAtlasColumns) * kCellW, cy = ((c - 32) / kAtlasColumns) * kCellH;
+    const float u0 = static_cast<float>(cx) / kAtlasWidth, u1 = static_cast<float>(cx + w) / kAtlasWidth;
+    const float v0 = static_cast<float>(cy) / kAtlasHeight, v1 = static_cast<float>(cy + h) / kAtlasHeight;
+    const float x0 = static_cast<float>(x), y0 = static_cast<float>(y);
+    const float x1 = static_cast<float>(x + scale * w), y1 = static_cast<float>(y + scale * h);
+    const float corners[6][4] = {{x0, y0, u0, v0}, {x1, y0, u1, v0}, {x1, y1, u1, v1},
+                                 {x0, y0, u0, v0}, {x1, y1, u1, v1}, {x0, y1, u0, v1}};
+    for (const auto& k : corners) v.insert(v.end(), {k[0], k[1], k[2], k[3], col.r, col.g, col.b, col.a});
+  }
+
+  void flush() {
+    if (!texture) {
+      rasterise();
+      glGenTextures(1, &texture);
+      glBindTexture(GL_TEXTURE_2D, texture);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, kAtlasWidth, kAtlasHeight, 0, GL_ALPHA, GL_UNSIGNED_BYTE,
+                   alpha.data());
+    }
+    if (v.empty()) return;
+    glEnable(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+    glEnable(GL_ALPHA_TEST);
+    glAlphaFunc(GL_GREATER, 0.5f);
+    glEnableClientState(GL_VERTEX_ARRAY);
+    glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glVertexPointer(2, GL_FLOAT, 8 * sizeof(float), v.data());
+    glTexCoordPointer(2, GL_FLOAT, 8 * sizeof(float), v.data() + 2);
+    glColorPointer(4, GL_FLOAT, 8 * sizeof(float), v.data() + 4);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(v.size() / 8));
+    glDisableClientState(GL_COLOR_ARRAY);
+    glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+    glDisableClientState(GL_VERTEX_ARRAY);
+    glDisable(GL_ALPHA_TEST);
+    glDisable(GL_TEXTURE_2D);
+    v.clear();
+  }
+};
+
+TextBatch g_text;
+
+// Text in pixels (y down), scaled; glyphs are ~7 px high at scale 1.
+void text(double x, double y, const std::string& s, double scale, const Color& c) {
+  double pen = 0.0;
+  for (const char ch : s) {
+    const int code = static_cast<unsigned char>(ch);
+    if (code < 32 || code > 126) continue;
+    if (code != ' ') g_text.glyph(x + scale * pen, y, code, scale, c);
+    char one[2] = {ch, 0};
+    pen += stb_easy_font_width(one);
   }
 }
 
@@ -174,14 +250,16 @@ void draw_world(const Game& game, const View& v) {
   const Rules& r = pitch.rules;
   const double dir = pitch.direction();
 
-  // Sky and grass (mowing stripes one metre wide).
-  gradient(v.x0, 0.0, v.x1, v.y1, kSkyLow, kSkyTop);
+  // Sky: one glClear (a plain colour; llvmpipe clears at memset speed but
+  // shades a window-sized gradient slowly: measured under load, 6 ms a
+  // frame for the sky as triangles against ~1 ms as a clear). Grass: mowing
+  // stripes one metre wide, opaque, drawn without blending.
+  glClearColor(kSky.r, kSky.g, kSky.b, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
   for (double x = std::floor(v.x0); x < v.x1; x += 1.0) {
     rect(x, v.y0, x + 1.0, 0.0, (static_cast<long long>(std::floor(x)) % 2 == 0) ? kGrassA : kGrassB);
   }
   rect(v.x0, v.y0, v.x1, v.y0 + 0.35 * (0.0 - v.y0), kTurfShade);
-  // The background covers every pixel: drawn without blending, which makes
-  // llvmpipe read the framebuffer back (measured: ~2 ms a frame at 800×600).
   glDisable(GL_BLEND);
   g_batch.flush();
   glEnable(GL_BLEND);
@@ -329,8 +407,17 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
         "F1 / H        this help",
         "ESC           quit",
     };
-    const double x0 = 0.5 * width - 300, y0 = 120;
-    rect(x0 - 16, y0 - 16, x0 + 616, y0 + 16 * 22 + 8, Color{0.0f, 0.0f, 0.0f, 0.8f});
+    double widest = 0.0;
+    for (const char* line : lines) widest = std::max(widest, text_width(line, 2.0));
+    const double x0 = std::max(16.0, 0.5 * (width - widest)), y0 = 120;
+    // The panel is a scissored clear (the world is already drawn and the HUD
+    // not yet): llvmpipe clears far faster than it shades a large quad.
+    const int top = static_cast<int>(y0 - 16), bottom = static_cast<int>(y0 + 16 * 22 + 8);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(static_cast<int>(x0 - 16), height - bottom, static_cast<int>(widest + 32), bottom - top);
+    glClearColor(0.06f, 0.08f, 0.11f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
     double y = y0;
     for (const char* line : lines) {
       text(x0, y, line, 2.0, kText);
@@ -347,7 +434,6 @@ void draw_frame(const Game& game, const Overlay& overlay, int width, int height)
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  // No glClear: the sky and the ground cover the whole window.
 
   glMatrixMode(GL_PROJECTION);
   glLoadIdentity();
@@ -363,7 +449,9 @@ void draw_frame(const Game& game, const Overlay& overlay, int width, int height)
   glMatrixMode(GL_MODELVIEW);
   glLoadIdentity();
   draw_hud(game, overlay, v, width, height);
+  glDisable(GL_BLEND);  // the HUD is opaque: blending would read every pixel back
   g_batch.flush();
+  g_text.flush();
 }
 
 }  // namespace contact2d::game
