@@ -16,6 +16,9 @@ struct EngineResult {
   Trajectory trajectory;
   double seconds = 0.0;               // wall clock of the run
   std::vector<std::string> warnings;  // anything the engine reported
+  // Facts about the run that are not failures, e.g. "refsafe" when MuJoCo
+  // raised a standard-form timeconst to 2·Δt (a softer contact than asked).
+  std::vector<std::string> notes;
 };
 
 // Runs `scene` (its sim.integrator and sim.dt included) on the named engine;

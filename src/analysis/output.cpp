@@ -73,12 +73,14 @@ std::string quoted(const std::string& path) {
 // semi-implicit; it has no explicit Euler).
 std::string series_title(const std::string& engine, Integrator integrator) {
   if (engine == "ref") return std::string(integrator_title(integrator));
-  if (engine == "mujoco") {
+  if (engine.rfind("mujoco", 0) == 0) {
+    // "mujoco" or "mujoco:MAPPING"
+    const std::string prefix = engine.size() > 7 ? "MuJoCo (" + engine.substr(7) + ") " : "MuJoCo ";
     switch (integrator) {
-      case Integrator::SemiImplicitEuler: return "MuJoCo Euler";
-      case Integrator::ImplicitEuler: return "MuJoCo implicit";
-      case Integrator::RK4: return "MuJoCo RK4";
-      case Integrator::ExplicitEuler: return "MuJoCo explicit Euler";
+      case Integrator::SemiImplicitEuler: return prefix + "Euler";
+      case Integrator::ImplicitEuler: return prefix + "implicit";
+      case Integrator::RK4: return prefix + "RK4";
+      case Integrator::ExplicitEuler: return prefix + "explicit Euler";
     }
   }
   return engine + " " + std::string(integrator_title(integrator));
@@ -343,7 +345,8 @@ void print_stability(std::ostream& out, const StabilityResult& r) {
       << "; theory: largest stable omega*dt of the linear oscillator, omega = sqrt(k/m_eff)\n\n";
   out << pad("engine", 8) << pad("integrator", 21) << pad("k (N/m)", 9) << pad("zeta", 9)
       << pad("omega", 10) << pad("stable dt", 11) << pad("omega*dt", 10) << pad("theory", 8)
-      << pad("ratio", 7) << pad("penetr. (m)", 12) << pad("ref pen.", 10) << "first failure / note\n";
+      << pad("ratio", 7) << pad("depth (m)", 11) << pad("at wdt=0.2", 11) << pad("ref depth", 10)
+      << "first failure / note\n";
   for (const StabilityRow& row : r.rows) {
     out << pad(row.engine, 8) << pad(std::string(integrator_name(row.integrator)), 21) << pad(number(row.k, 2), 9)
         << pad(number(row.zeta, 3), 9) << pad(number(row.omega, 4), 10);
@@ -358,7 +361,8 @@ void print_stability(std::ostream& out, const StabilityResult& r) {
     out << pad(stable, 11) << pad(std::isnan(row.dt_stable) ? "-" : (row.verdict == StabilityVerdict::StableAtMax ? ">=" : "") + number(observed, 3), 10)
         << pad(std::isfinite(row.theory) ? number(row.theory, 3) : "inf", 8)
         << pad(std::isfinite(row.theory) && !std::isnan(row.dt_stable) ? number(observed / row.theory, 3) : "-", 7)
-        << pad(number(row.penetration, 3), 12) << pad(number(row.reference_penetration, 3), 10);
+        << pad(number(row.penetration, 3), 11) << pad(number(row.penetration_small_step, 3), 11)
+        << pad(number(row.reference_penetration, 3), 10);
     std::string tail = row.failure;
     if (!row.note.empty()) tail += (tail.empty() ? "" : "; ") + row.note;
     out << tail << "\n";
@@ -368,9 +372,10 @@ void print_stability(std::ostream& out, const StabilityResult& r) {
 void write_stability_csv(std::FILE* out, const StabilityResult& r) {
   std::fprintf(out,
                "scene,engine,integrator,k,c,m_eff,omega,zeta,theory_omega_dt,theory_dt,dt_stable,dt_unstable,"
-               "dt_min,dt_max,verdict,omega_dt_stable,probes,penetration,reference_penetration,failure,note\n");
+               "dt_min,dt_max,verdict,omega_dt_stable,probes,penetration,penetration_small_step,reference_penetration,"
+               "failure,note\n");
   for (const StabilityRow& row : r.rows) {
-    std::fprintf(out, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d,%s,%s,%s,%s\n", r.scene_name.c_str(),
+    std::fprintf(out, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d,%s,%s,%s,%s,%s\n", r.scene_name.c_str(),
                  row.engine.c_str(), std::string(integrator_name(row.integrator)).c_str(), csv_number(row.k).c_str(),
                  csv_number(row.c).c_str(), csv_number(row.m_eff).c_str(), csv_number(row.omega).c_str(),
                  csv_number(row.zeta).c_str(), std::isfinite(row.theory) ? csv_number(row.theory).c_str() : "inf",
@@ -378,7 +383,7 @@ void write_stability_csv(std::FILE* out, const StabilityResult& r) {
                  csv_number(row.dt_stable).c_str(), csv_number(row.dt_unstable).c_str(),
                  csv_number(row.dt_min).c_str(), csv_number(r.dt_max).c_str(), verdict_name(row.verdict),
                  csv_number(row.omega * row.dt_stable).c_str(), row.probes, csv_number(row.penetration).c_str(),
-                 csv_number(row.reference_penetration).c_str(), csv_text(row.failure).c_str(),
+                 csv_number(row.penetration_small_step).c_str(), csv_number(row.reference_penetration).c_str(), csv_text(row.failure).c_str(),
                  csv_text(row.note).c_str());
   }
 }
@@ -431,7 +436,7 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
        "else { set terminal png size 1000,650 }\n"
     << "set output " << quoted(png_tmp) << "\n"
     << "set title '" << gp_text(r.scene_name) << ": largest stable {/Symbol w}{/Symbol D}t against contact stiffness"
-    << (r.zeta ? " ({/Symbol z} = " + number(*r.zeta, 3) + " at every k)" : std::string(" (the scene's c at every k)"))
+    << (r.zeta ? " ({/Symbol z} = " + number(*r.zeta, 3) + " at every k)" : std::string(" (c of the scene file at every k)"))
     << "'\n"
     << "set logscale xy\nset grid\nset format x '10^{%L}'\nset datafile missing '?'\nset key outside right font ',9'\n"
     << "set xlabel 'contact stiffness k (N/m)'\nset ylabel 'largest stable {/Symbol w}{/Symbol D}t'\n"

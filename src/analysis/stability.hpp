@@ -64,8 +64,17 @@ struct StabilityRow {
   StabilityVerdict verdict = StabilityVerdict::Failed;
   std::string failure;                  // how the smallest unstable probe failed
   int probes = 0;
-  double penetration = std::nan("");           // deepest sampled penetration at dt_stable
-  double reference_penetration = std::nan("");  // the converged reference's
+  // Deepest penetration of the run at dt_stable (over every step for an
+  // engine other than "ref", over the output samples for "ref"), of a run at
+  // a small step (ω·Δt = 0.2, where nothing is softened; only when MuJoCo's
+  // refsafe was active at dt_stable), and of the converged reference. A contact that MuJoCo's refsafe softens at
+  // large steps sinks deeper there than at the small step: that ratio is
+  // the signature of "stable because the model changed".
+  double penetration = std::nan("");
+  double penetration_small_step = std::nan("");
+  double reference_penetration = std::nan("");
+  // MuJoCo's refsafe raised the timeconst of the run at dt_stable.
+  bool refsafe_at_stable = false;
   std::string note;
 };
 

@@ -29,6 +29,8 @@ struct SweepConfig {
   // Engines other than "ref" run only these steps when given (MuJoCo's step
   // costs ~100× a reference step: its smallest steps dominate a sweep).
   std::optional<std::vector<double>> other_dts;
+  // … and only these integrators when given.
+  std::optional<std::vector<Integrator>> other_integrators;
   // The adaptive integrator itself at these tolerances, for the work–precision
   // diagram (error against the reference, best-of-3 time).
   std::vector<double> dense_tols{1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
@@ -60,7 +62,9 @@ struct SweepRow {
 // beyond that a run is not yet in the asymptotic regime — a different
 // bounce, a different tumble). The floor is 10× the reference's own error,
 // and at least 1e-12·max(1 m, L): a fixed-step run's rounding random-walks
-// to about √n·ε·|y| ≈ 1e-13 m over n = 1e5 steps.
+// to about √n·ε·|y| ≈ 1e-13 m over n = 1e5 steps. Against an engine's own
+// finest run, only runs at ≥ 2× its step count (closer ones shrink
+// artificially).
 struct OrderFit {
   std::string engine;
   Integrator integrator = Integrator::SemiImplicitEuler;

@@ -14,6 +14,7 @@
 namespace contact2d::cli {
 
 // Defined in cmd_sweep.cpp.
+extern const std::vector<std::string> kAnalysisEngines;
 analysis::EngineRunner cli_engine_runner();
 std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label, bool quiet);
 Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
@@ -81,9 +82,11 @@ Command add_stability(CLI::App& app) {
   cmd->add_option("--ks", o->ks, "Comma-separated contact stiffnesses, N/m (default 1e3,1e4,...,1e9)")
       ->delimiter(',');
   cmd->add_option("--integrators", o->integrators, "Comma-separated list (default: all four)")->delimiter(',');
-  cmd->add_option("--engines", o->engines, "Comma-separated: ref, mujoco (default: ref)")
+  cmd->add_option("--engines", o->engines,
+                  "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = its default) "
+                  "(default: ref)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"ref", "mujoco"}));
+      ->check(CLI::IsMember(kAnalysisEngines));
   cmd->add_option("--zeta", o->zeta,
                   "Damping ratio held at every k: c = 2*zeta*sqrt(k*m_eff) (default: keep the scene's c)");
   cmd->add_option("--dt-max", o->dt_max, "Largest dt tried, s (default 1e-2)")->check(CLI::PositiveNumber);

@@ -15,14 +15,40 @@
 #include "cli/engines.hpp"
 #include "io/csv.hpp"
 #include "io/scene_file.hpp"
+#ifdef CONTACT2D_WITH_MUJOCO
+#include "cli/mujoco_engine.hpp"
+#endif
 
 namespace contact2d::cli {
+
+// The engines sweep and stability accept: run_engine()'s, plus MuJoCo under
+// a named solref/solimp mapping ("mujoco:exact"): the standard-form
+// mappings show what MuJoCo's refsafe does to a stiff contact.
+extern const std::vector<std::string> kAnalysisEngines;
+const std::vector<std::string> kAnalysisEngines{"ref", "mujoco", "mujoco:seed", "mujoco:exact", "mujoco:calibrated"};
 
 // Shared by sweep and stability: the CLI's engines as an analysis runner.
 analysis::EngineRunner cli_engine_runner() {
   return [](const std::string& engine, const Scene& scene) {
-    EngineRun run = run_engine(engine, scene);
+    EngineRun run;
     analysis::EngineResult result;
+#ifdef CONTACT2D_WITH_MUJOCO
+    if (engine.rfind("mujoco", 0) == 0) {
+      contact2d::mujoco::MjcfOptions options;  // "mujoco": the default mapping
+      if (engine.size() > 6) {
+        const auto mapping = contact2d::mujoco::parse_mapping(engine.substr(7));
+        if (!mapping) throw InputError("--engines " + engine + ": unknown mapping (seed, exact, calibrated)");
+        options.mapping = *mapping;
+      }
+      contact2d::mujoco::SolverSettings settings;
+      run = run_mujoco_engine(scene, options, &settings);
+      if (settings.refsafe_clamped) result.notes.push_back("refsafe");
+    } else {
+      run = run_engine(engine, scene);
+    }
+#else
+    run = run_engine(engine, scene);
+#endif
     result.trajectory = std::move(run.trajectory);
     result.seconds = run.seconds;
     result.warnings = std::move(run.warnings);
@@ -58,6 +84,7 @@ struct SweepOptions {
   std::vector<std::string> integrators;
   std::vector<double> dts;
   std::vector<double> mujoco_dts;
+  std::vector<std::string> mujoco_integrators;
   std::vector<std::string> engines{"ref"};
   std::string csv, orders_csv, plot;
   int repeats = 3;
@@ -85,6 +112,7 @@ int sweep(const SweepOptions& o) {
     if (!o.integrators.empty()) config.integrators = analysis::parse_integrators(o.integrators);
     if (!o.dts.empty()) config.dts = o.dts;
     if (!o.mujoco_dts.empty()) config.other_dts = o.mujoco_dts;
+    if (!o.mujoco_integrators.empty()) config.other_integrators = analysis::parse_integrators(o.mujoco_integrators);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -96,7 +124,9 @@ int sweep(const SweepOptions& o) {
 
   if (o.reference_study || study_csv) {
     const std::vector<double> tols{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
-    const analysis::ReferenceStudy study = analysis::study_reference(scene, tols, 1e-14, o.threads);
+    // One thread: the study times every run, and two side by side would
+    // disturb each other's timing more than they save.
+    const analysis::ReferenceStudy study = analysis::study_reference(scene, tols, 1e-14, 1);
     analysis::print_reference_study(std::cout, std::string(shape_name(scene.shape)), study);
     std::cout << "\n";
     if (study_csv) {
@@ -155,9 +185,14 @@ Command add_sweep(CLI::App& app) {
   cmd->add_option("--mujoco-dts", o->mujoco_dts,
                   "Comma-separated time steps for MuJoCo only (default: --dts; a MuJoCo step costs ~100x a reference step)")
       ->delimiter(',');
-  cmd->add_option("--engines", o->engines, "Comma-separated: ref, mujoco (default: ref)")
+  cmd->add_option("--mujoco-integrators", o->mujoco_integrators,
+                  "Comma-separated integrators for MuJoCo only (default: --integrators; it has no explicit Euler)")
+      ->delimiter(',');
+  cmd->add_option("--engines", o->engines,
+                  "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = its default) "
+                  "(default: ref)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"ref", "mujoco"}));
+      ->check(CLI::IsMember(kAnalysisEngines));
   cmd->add_option("--csv", o->csv, "Write one row per run to this CSV file");
   cmd->add_option("--orders-csv", o->orders_csv, "Write the observed orders to this CSV file");
   cmd->add_option("--plot", o->plot, "Write the work-precision diagram (PNG, gnuplot)");
