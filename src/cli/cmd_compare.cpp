@@ -1,4 +1,5 @@
-// contact2d compare SCENE [--mapping NAME] [--geometry NAME] [--csv FILE] [--json] [--plot FILE.png] [overrides]
+// contact2d compare SCENE [--mapping NAME] [--geometry NAME] [--csv FILE] [--json] [--plot
+// FILE.png] [overrides]
 //
 // Runs the reference solver and MuJoCo on the same scene (same Δt, same
 // sample times) and reports their differences (mujoco/comparison.hpp).
@@ -73,20 +74,26 @@ void print_json(const Comparison& c, const std::string& path) {
     << ", \"mapping\": \"" << mj::mapping_name(c.mjcf.mapping) << "\", \"geometry\": \""
     << mj::geometry_name(c.mjcf.geometry) << "\", \"damping\": \""
     << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") << "\""
-    << ", \"integrators\": {\"ref\": \"" << integrator_name(c.scene.sim.integrator) << "\", \"mujoco\": \""
-    << mj::mujoco_integrator(c.scene.sim.integrator) << "\"}"
-    << ", \"dt\": " << json_number(c.scene.sim.dt) << ", \"duration\": " << json_number(c.scene.sim.duration)
-    << ", \"samples\": " << e.samples << ", \"max_pos_err\": " << json_number(e.max_pos)
-    << ", \"rms_pos_err\": " << json_number(e.rms_pos) << ", \"max_angle_err\": " << json_number(e.max_angle)
-    << ", \"max_vel_err\": " << json_number(e.max_vel) << ", \"max_omega_err\": " << json_number(e.max_omega)
-    << ", \"end_pos_err\": " << json_number(e.end_pos) << ", \"end_angle_err\": " << json_number(e.end_angle)
-    << ", \"time_of_max_pos_err\": " << json_number(e.time_of_max_pos)
-    << ", \"ref_energy\": [" << json_number(er.initial) << ", " << json_number(er.final) << "]"
+    << ", \"integrators\": {\"ref\": \"" << integrator_name(c.scene.sim.integrator)
+    << "\", \"mujoco\": \"" << mj::mujoco_integrator(c.scene.sim.integrator) << "\"}"
+    << ", \"dt\": " << json_number(c.scene.sim.dt)
+    << ", \"duration\": " << json_number(c.scene.sim.duration) << ", \"samples\": " << e.samples
+    << ", \"max_pos_err\": " << json_number(e.max_pos)
+    << ", \"rms_pos_err\": " << json_number(e.rms_pos)
+    << ", \"max_angle_err\": " << json_number(e.max_angle)
+    << ", \"max_vel_err\": " << json_number(e.max_vel)
+    << ", \"max_omega_err\": " << json_number(e.max_omega)
+    << ", \"end_pos_err\": " << json_number(e.end_pos)
+    << ", \"end_angle_err\": " << json_number(e.end_angle)
+    << ", \"time_of_max_pos_err\": " << json_number(e.time_of_max_pos) << ", \"ref_energy\": ["
+    << json_number(er.initial) << ", " << json_number(er.final) << "]"
     << ", \"mujoco_energy\": [" << json_number(em.initial) << ", " << json_number(em.final) << "]"
-    << ", \"ref_seconds\": " << json_number(c.ref.seconds) << ", \"mujoco_seconds\": " << json_number(c.mujoco.seconds)
-    << ", \"solref\": [" << json_number(c.settings.solref[0]) << ", " << json_number(c.settings.solref[1]) << "]"
+    << ", \"ref_seconds\": " << json_number(c.ref.seconds)
+    << ", \"mujoco_seconds\": " << json_number(c.mujoco.seconds) << ", \"solref\": ["
+    << json_number(c.settings.solref[0]) << ", " << json_number(c.settings.solref[1]) << "]"
     << ", \"impratio\": " << json_number(c.settings.impratio) << ", \"mujoco_warnings\": [";
-  for (size_t i = 0; i < c.mujoco.warnings.size(); ++i) o << (i ? ", " : "") << json_string(c.mujoco.warnings[i]);
+  for (size_t i = 0; i < c.mujoco.warnings.size(); ++i)
+    o << (i ? ", " : "") << json_string(c.mujoco.warnings[i]);
   o << "]}\n";
   std::cout << o.str();
 }
@@ -96,18 +103,22 @@ void print_table(const Comparison& c) {
   const Energies em = energies(c.scene, c.mujoco.trajectory);
   const mj::TrajectoryErrors& e = c.errors;
   auto f = [](double v) { return format_number(v, 4); };
-  std::cout << shape_name(c.scene.shape) << ": ref " << integrator_name(c.scene.sim.integrator) << " vs MuJoCo "
-            << mj::mujoco_integrator(c.scene.sim.integrator) << ", mapping " << mj::mapping_name(c.mjcf.mapping)
-            << ", geometry " << mj::geometry_name(c.mjcf.geometry) << ", dt = " << f(c.scene.sim.dt) << " s, "
+  std::cout << shape_name(c.scene.shape) << ": ref " << integrator_name(c.scene.sim.integrator)
+            << " vs MuJoCo " << mj::mujoco_integrator(c.scene.sim.integrator) << ", mapping "
+            << mj::mapping_name(c.mjcf.mapping) << ", geometry "
+            << mj::geometry_name(c.mjcf.geometry) << ", dt = " << f(c.scene.sim.dt) << " s, "
             << e.samples << " samples over " << f(c.scene.sim.duration) << " s\n"
-            << "  max position error   " << f(e.max_pos) << " m (at t = " << f(e.time_of_max_pos) << " s)\n"
+            << "  max position error   " << f(e.max_pos) << " m (at t = " << f(e.time_of_max_pos)
+            << " s)\n"
             << "  RMS position error   " << f(e.rms_pos) << " m\n"
             << "  max angle error      " << f(e.max_angle) << " rad\n"
-            << "  max velocity error   " << f(e.max_vel) << " m/s, omega " << f(e.max_omega) << " rad/s\n"
+            << "  max velocity error   " << f(e.max_vel) << " m/s, omega " << f(e.max_omega)
+            << " rad/s\n"
             << "  end error            " << f(e.end_pos) << " m, " << f(e.end_angle) << " rad\n"
             << "  energy ref           " << f(er.initial) << " -> " << f(er.final) << " J\n"
             << "  energy MuJoCo        " << f(em.initial) << " -> " << f(em.final) << " J\n"
-            << "  wall clock           ref " << f(c.ref.seconds) << " s, MuJoCo " << f(c.mujoco.seconds) << " s\n";
+            << "  wall clock           ref " << f(c.ref.seconds) << " s, MuJoCo "
+            << f(c.mujoco.seconds) << " s\n";
 }
 
 void write_csv(AtomicFile& out, const Comparison& c) {
@@ -119,9 +130,10 @@ void write_csv(AtomicFile& out, const Comparison& c) {
   for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
     const State& r = a[i].state;
     const State& m = b[i].state;
-    std::fprintf(out.get(), "%.10g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n",
-                 a[i].t, r.q.x(), r.q.y(), r.q.z(), r.v.x(), r.v.y(), r.v.z(), m.q.x(), m.q.y(), m.q.z(), m.v.x(),
-                 m.v.y(), m.v.z());
+    std::fprintf(out.get(),
+                 "%.10g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n",
+                 a[i].t, r.q.x(), r.q.y(), r.q.z(), r.v.x(), r.v.y(), r.v.z(), m.q.x(), m.q.y(),
+                 m.q.z(), m.v.x(), m.v.y(), m.v.z());
   }
   out.commit();
 }
@@ -131,8 +143,8 @@ bool report_divergence(const Comparison& c, const std::string& path) {
   bool diverged = false;
   for (const auto& [name, run] : {std::pair{"ref", &c.ref}, std::pair{"MuJoCo", &c.mujoco}}) {
     if (!run->trajectory.divergence) continue;
-    std::cerr << "contact2d: " << path << ": " << name << ": " << describe(*run->trajectory.divergence, c.scene)
-              << "\n";
+    std::cerr << "contact2d: " << path << ": " << name << ": "
+              << describe(*run->trajectory.divergence, c.scene) << "\n";
     diverged = true;
   }
   return diverged;
@@ -147,15 +159,17 @@ int compare(const CompareOptions& options) {
   if (!options.csv.empty()) csv = std::make_unique<AtomicFile>(options.csv);
   c.mujoco = run_mujoco_engine(c.scene, c.mjcf, &c.settings);
   c.ref = run_reference(c.scene);
-  for (const std::string& w : c.mujoco.warnings) std::cerr << "contact2d: MuJoCo warning: " << w << "\n";
+  for (const std::string& w : c.mujoco.warnings)
+    std::cerr << "contact2d: MuJoCo warning: " << w << "\n";
   if (report_divergence(c, options.scene.path)) return kExitDiverged;
   c.errors = mj::compare_trajectories(c.ref.trajectory, c.mujoco.trajectory);
   if (csv) write_csv(*csv, c);
   if (!options.plot.empty()) {
-    const std::string title = std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo (" +
-                              std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping, " +
-                              (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
-                              " damping)";
+    const std::string title =
+        std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo (" +
+        std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping, " +
+        (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
+        " damping)";
     plot_comparison(options.plot, title, c.ref.trajectory, c.mujoco.trajectory);
   }
   if (options.json) {
@@ -170,12 +184,14 @@ int compare(const CompareOptions& options) {
 
 Command add_compare(CLI::App& app) {
   auto options = std::make_shared<CompareOptions>();
-  CLI::App* cmd = app.add_subcommand("compare", "Run the reference solver and MuJoCo on a scene and compare them");
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Run the reference solver and MuJoCo on a scene and compare them");
   options->scene.add_to(*cmd);
   options->mujoco.add_to(*cmd);
   cmd->add_option("--csv", options->csv, "Write both trajectories side by side to this file");
   cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
-  cmd->add_option("--plot", options->plot, "Draw x, y, theta of both engines and the errors into this PNG (gnuplot)");
+  cmd->add_option("--plot", options->plot,
+                  "Draw x, y, theta of both engines and the errors into this PNG (gnuplot)");
   return {cmd, [options] { return compare(*options); }};
 }
 

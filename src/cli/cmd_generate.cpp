@@ -20,7 +20,8 @@ int generate(const GenerateOptions& options) {
   const Scene scene = options.scene.load();
   std::unique_ptr<AtomicFile> out;
   if (!options.output.empty()) out = std::make_unique<AtomicFile>(options.output);
-  const auto model = contact2d::mujoco::generate_mjcf(scene, options.mujoco.resolve(options.scene.path));
+  const auto model =
+      contact2d::mujoco::generate_mjcf(scene, options.mujoco.resolve(options.scene.path));
   if (model.settings.refsafe_clamped) {
     std::cerr << "contact2d: note: timeconst " << format_number(model.settings.solref[0])
               << " s < 2 dt: MuJoCo raises it to 2 dt (refsafe), a softer contact than contact.k\n";
@@ -41,7 +42,8 @@ Command add_generate(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("generate", "Write the MuJoCo MJCF model of a scene");
   options->scene.add_to(*cmd);
   options->mujoco.add_to(*cmd);
-  cmd->add_option("-o,--output", options->output, "Write the MJCF to this file (default: standard output)");
+  cmd->add_option("-o,--output", options->output,
+                  "Write the MJCF to this file (default: standard output)");
   return {cmd, [options] { return generate(*options); }};
 }
 

@@ -15,7 +15,8 @@ EngineRun run_engine(const std::string& engine, const Scene& scene) {
   }
   throw InputError("--engine " + engine + ": unknown engine (use ref or mujoco)");
 #else
-  throw InputError("--engine " + engine + ": not available (contact2d was built without MuJoCo; use --engine ref)");
+  throw InputError("--engine " + engine +
+                   ": not available (contact2d was built without MuJoCo; use --engine ref)");
 #endif
 }
 

@@ -6,10 +6,12 @@
 namespace contact2d::cli {
 
 void MujocoOptions::add_to(CLI::App& cmd) {
-  cmd.add_option("--mapping", mapping, "solref/solimp mapping: seed | exact | calibrated (default calibrated)")
+  cmd.add_option("--mapping", mapping,
+                 "solref/solimp mapping: seed | exact | calibrated (default calibrated)")
       ->check(CLI::IsMember({"seed", "exact", "calibrated"}));
   cmd.add_option("--geometry", geometry,
-                 "MuJoCo geoms of a box or T: corners (a small sphere per 2D contact point, default) | boxes")
+                 "MuJoCo geoms of a box or T: corners (a small sphere per 2D contact point, "
+                 "default) | boxes")
       ->check(CLI::IsMember({"corners", "boxes"}));
 }
 

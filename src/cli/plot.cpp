@@ -24,8 +24,8 @@ void write_data(std::FILE* out, const Trajectory& ref, const Trajectory& mj) {
     const State& b = mj.samples[i].state;
     const double pos = std::max((a.q.head<2>() - b.q.head<2>()).norm(), 1e-300);
     const double angle = std::max(std::abs(a.q.z() - b.q.z()), 1e-300);
-    std::fprintf(out, "%.9g %.12g %.12g %.12g %.12g %.12g %.12g %.6g %.6g\n", ref.samples[i].t, a.q.x(), a.q.y(),
-                 a.q.z(), b.q.x(), b.q.y(), b.q.z(), pos, angle);
+    std::fprintf(out, "%.9g %.12g %.12g %.12g %.12g %.12g %.12g %.6g %.6g\n", ref.samples[i].t,
+                 a.q.x(), a.q.y(), a.q.z(), b.q.x(), b.q.y(), b.q.z(), pos, angle);
   }
 }
 
@@ -33,15 +33,26 @@ std::string script(const std::string& data, const std::string& png, const std::s
   const std::string d = "'" + data + "'";
   return "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,900 } "
          "else { set terminal png size 1200,900 }\n"
-         "set output '" + png + "'\n"
-         "set multiplot layout 2,2 title '" + title + "'\n"
+         "set output '" +
+         png +
+         "'\n"
+         "set multiplot layout 2,2 title '" +
+         title +
+         "'\n"
          "set xlabel 't (s)'\nset grid\nset key top right\n"
-         "set ylabel 'x (m)'\nplot " + d + " u 1:2 w l lw 2 t 'ref', " + d + " u 1:5 w l dt 2 lw 2 t 'MuJoCo'\n"
-         "set ylabel 'y (m)'\nplot " + d + " u 1:3 w l lw 2 t 'ref', " + d + " u 1:6 w l dt 2 lw 2 t 'MuJoCo'\n"
-         "set ylabel 'theta (rad)'\nplot " + d + " u 1:4 w l lw 2 t 'ref', " + d +
+         "set ylabel 'x (m)'\nplot " +
+         d + " u 1:2 w l lw 2 t 'ref', " + d +
+         " u 1:5 w l dt 2 lw 2 t 'MuJoCo'\n"
+         "set ylabel 'y (m)'\nplot " +
+         d + " u 1:3 w l lw 2 t 'ref', " + d +
+         " u 1:6 w l dt 2 lw 2 t 'MuJoCo'\n"
+         "set ylabel 'theta (rad)'\nplot " +
+         d + " u 1:4 w l lw 2 t 'ref', " + d +
          " u 1:7 w l dt 2 lw 2 t 'MuJoCo'\n"
          "set logscale y\nset format y '10^{%L}'\nset yrange [1e-12:*]\nset ylabel 'error'\n"
-         "plot " + d + " u 1:8 w l lw 2 t 'position (m)', " + d + " u 1:9 w l lw 2 t 'angle (rad)'\n"
+         "plot " +
+         d + " u 1:8 w l lw 2 t 'position (m)', " + d +
+         " u 1:9 w l lw 2 t 'angle (rad)'\n"
          "unset multiplot\n";
 }
 
@@ -52,7 +63,8 @@ class TempFile {
   explicit TempFile(const std::string& target) : target_(target) {
     std::string pattern = target + ".tmp.XXXXXX";
     const int fd = ::mkstemp(pattern.data());
-    if (fd < 0) throw InputError(target + ": cannot create output file (" + std::strerror(errno) + ")");
+    if (fd < 0)
+      throw InputError(target + ": cannot create output file (" + std::strerror(errno) + ")");
     ::close(fd);
     path_ = pattern;
   }
@@ -77,7 +89,8 @@ class TempFile {
 
 void require_quotable(const std::string& text, const std::string& what) {
   if (text.find('\'') != std::string::npos || text.find('\n') != std::string::npos) {
-    throw InputError(what + " '" + text + "' must not contain a single quote or newline (gnuplot script)");
+    throw InputError(what + " '" + text +
+                     "' must not contain a single quote or newline (gnuplot script)");
   }
 }
 
@@ -96,15 +109,18 @@ void plot_comparison(const std::string& png_path, const std::string& title, cons
                      const Trajectory& mujoco) {
   require_quotable(png_path, "--plot");
   require_quotable(title, "plot title");
-  TempFile png(png_path);                // gnuplot writes here; renamed on success
-  TempFile data(png_path + ".data");     // never committed
+  TempFile png(png_path);             // gnuplot writes here; renamed on success
+  TempFile data(png_path + ".data");  // never committed
   std::FILE* out = std::fopen(data.path().c_str(), "w");
   if (!out) throw InputError(data.path() + ": cannot write plot data");
   write_data(out, ref, mujoco);
   std::fclose(out);
   const int status = run_gnuplot(script(data.path(), png.path(), title));
-  if (status == 127) throw InputError("--plot: gnuplot not found (install Debian package gnuplot-nox)");
-  if (status != 0) throw InputError("--plot " + png_path + ": gnuplot failed (exit status " + std::to_string(status) + ")");
+  if (status == 127)
+    throw InputError("--plot: gnuplot not found (install Debian package gnuplot-nox)");
+  if (status != 0)
+    throw InputError("--plot " + png_path + ": gnuplot failed (exit status " +
+                     std::to_string(status) + ")");
   png.commit();
 }
 

@@ -13,7 +13,8 @@ struct PlanarReader {
   double y0 = 0.0;
   bool hinge = false;
 
-  explicit PlanarReader(const mjModel* m) : x0(m->body_pos[3]), y0(m->body_pos[5]), hinge(m->nq == 3) {}
+  explicit PlanarReader(const mjModel* m)
+      : x0(m->body_pos[3]), y0(m->body_pos[5]), hinge(m->nq == 3) {}
 
   State read(const mjData* d) const {
     State s;
@@ -29,7 +30,8 @@ bool bad_numbers(const mjData* d) {
 }
 
 // Steps and samples; returns the divergence that stopped the run, if any.
-std::optional<Divergence> step_all(const Scene& scene, const mjModel* m, mjData* d, Trajectory& out) {
+std::optional<Divergence> step_all(const Scene& scene, const mjModel* m, mjData* d,
+                                   Trajectory& out) {
   const PlanarReader reader(m);
   const Model model = make_model(scene);
   const State initial = reader.read(d);
@@ -63,7 +65,8 @@ MujocoRun run_mujoco_xml(const Scene& scene, const std::string& xml, const std::
     run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   // Counters of warnings whose text was already captured add the count.
-  for (const std::string& w : warning_counters(data.get())) run.warnings.push_back("mjData.warning: " + w);
+  for (const std::string& w : warning_counters(data.get()))
+    run.warnings.push_back("mjData.warning: " + w);
   return run;
 }
 

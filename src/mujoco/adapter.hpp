@@ -23,8 +23,8 @@ namespace contact2d::mujoco {
 
 struct MujocoRun {
   Trajectory trajectory;
-  double seconds = 0.0;                // wall clock of the stepping alone
-  std::vector<std::string> warnings;   // MuJoCo's runtime warnings
+  double seconds = 0.0;               // wall clock of the stepping alone
+  std::vector<std::string> warnings;  // MuJoCo's runtime warnings
   SolverSettings settings;
 };
 

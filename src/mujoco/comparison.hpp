@@ -11,14 +11,14 @@
 namespace contact2d::mujoco {
 
 struct TrajectoryErrors {
-  long long samples = 0;       // common samples compared
-  double max_pos = 0.0;        // m
-  double rms_pos = 0.0;        // m
-  double max_angle = 0.0;      // rad
-  double max_vel = 0.0;        // m/s
-  double max_omega = 0.0;      // rad/s
-  double end_pos = 0.0;        // m
-  double end_angle = 0.0;      // rad
+  long long samples = 0;         // common samples compared
+  double max_pos = 0.0;          // m
+  double rms_pos = 0.0;          // m
+  double max_angle = 0.0;        // rad
+  double max_vel = 0.0;          // m/s
+  double max_omega = 0.0;        // rad/s
+  double end_pos = 0.0;          // m
+  double end_angle = 0.0;        // rad
   double time_of_max_pos = 0.0;  // s
 };
 

@@ -21,10 +21,13 @@ std::string number(double v) {
 }
 
 void require_spring_and_damper(const Scene& scene, Mapping mapping) {
-  const std::string why = std::string(" for --mapping ") + std::string(mapping_name(mapping)) +
-                          " (its timeconst and dampratio need k > 0 and c > 0; use --mapping calibrated)";
-  if (!(scene.contact.k > 0.0)) throw InputError("contact.k = " + number(scene.contact.k) + " must be > 0 N/m" + why);
-  if (!(scene.contact.c > 0.0)) throw InputError("contact.c = " + number(scene.contact.c) + " must be > 0 N·s/m" + why);
+  const std::string why =
+      std::string(" for --mapping ") + std::string(mapping_name(mapping)) +
+      " (its timeconst and dampratio need k > 0 and c > 0; use --mapping calibrated)";
+  if (!(scene.contact.k > 0.0))
+    throw InputError("contact.k = " + number(scene.contact.k) + " must be > 0 N/m" + why);
+  if (!(scene.contact.c > 0.0))
+    throw InputError("contact.c = " + number(scene.contact.c) + " must be > 0 N·s/m" + why);
 }
 
 // Largest inverse mass a contact point can present along the ground
@@ -130,7 +133,8 @@ std::string mujoco_integrator(Integrator integrator) {
     case Integrator::ExplicitEuler: break;
   }
   throw InputError(
-      "sim.integrator = explicit_euler has no MuJoCo 2.2 counterpart: use semi_implicit_euler (MuJoCo Euler), "
+      "sim.integrator = explicit_euler has no MuJoCo 2.2 counterpart: use semi_implicit_euler "
+      "(MuJoCo Euler), "
       "rk4 (RK4) or implicit_euler (implicit)");
 }
 

@@ -61,7 +61,8 @@ struct GeneratedModel {
 GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options);
 
 // The MJCF with given solver settings (no MuJoCo involved).
-std::string write_mjcf(const Scene& scene, const MjcfOptions& options, const SolverSettings& settings);
+std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
+                       const SolverSettings& settings);
 
 // How messages name the MJCF generated from a scene file: "<source> (its
 // generated MJCF)".

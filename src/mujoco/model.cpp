@@ -67,7 +67,8 @@ ModelPtr load_model(const std::string& xml, const std::string& origin) {
   mj_deleteVFS(vfs.get());
   if (!model) throw InputError(origin + ": MuJoCo cannot load the model: " + trim(error));
   ModelPtr owned(model);
-  if (error[0] != '\0') throw InputError(origin + ": MuJoCo warns while loading the model: " + trim(error));
+  if (error[0] != '\0')
+    throw InputError(origin + ": MuJoCo warns while loading the model: " + trim(error));
   return owned;
 }
 

@@ -23,18 +23,21 @@ inline Scene scene_from(const std::string& toml) { return parse_scene(toml, "tes
 // The bodies fall from rest heights of 0.5–1 m with a sideways velocity and,
 // for the box and the T, a tilt, so that they land on a corner and rock.
 inline Scene drop_scene(Shape shape, double c, double mu) {
-  const std::string contact = "[contact]\nk = 1e4\nc = " + std::to_string(c) + "\nmu = " + std::to_string(mu) +
+  const std::string contact = "[contact]\nk = 1e4\nc = " + std::to_string(c) +
+                              "\nmu = " + std::to_string(mu) +
                               "\nalpha = 100\ndamping = \"kelvin_voigt\"\n";
-  const std::string sim = "[sim]\ndt = 1e-4\nduration = 2.0\nintegrator = \"semi_implicit_euler\"\n";
+  const std::string sim =
+      "[sim]\ndt = 1e-4\nduration = 2.0\nintegrator = \"semi_implicit_euler\"\n";
   switch (shape) {
     case Shape::PointMass:
-      return scene_from("scene = \"point_mass\"\n[body]\nmass = 1.0\nhalf_height = 0.05\n" + contact +
-                        "[initial]\ny = 1.0\nvx = 0.5\n" + sim);
+      return scene_from("scene = \"point_mass\"\n[body]\nmass = 1.0\nhalf_height = 0.05\n" +
+                        contact + "[initial]\ny = 1.0\nvx = 0.5\n" + sim);
     case Shape::Box:
-      return scene_from("scene = \"box\"\n[body]\nmass = 1.0\nwidth = 0.4\nheight = 0.2\n" + contact +
-                        "[initial]\ny = 0.6\ntheta = 0.3\nvx = 0.5\nomega = 1.0\n" + sim);
+      return scene_from("scene = \"box\"\n[body]\nmass = 1.0\nwidth = 0.4\nheight = 0.2\n" +
+                        contact + "[initial]\ny = 0.6\ntheta = 0.3\nvx = 0.5\nomega = 1.0\n" + sim);
     case Shape::TShape:
-      return scene_from("scene = \"tshape\"\n" + contact + "[initial]\ny = 0.8\ntheta = 0.2\nvx = 0.3\n" + sim);
+      return scene_from("scene = \"tshape\"\n" + contact +
+                        "[initial]\ny = 0.8\ntheta = 0.2\nvx = 0.3\n" + sim);
     case Shape::Circle:
       return scene_from("scene = \"circle\"\n[body]\nmass = 1.0\nradius = 0.1\n" + contact +
                         "[initial]\ny = 0.5\nvx = 1.0\n" + sim);
@@ -48,7 +51,8 @@ struct BothRuns {
   mujoco::TrajectoryErrors errors;
 };
 
-inline BothRuns run_both(const Scene& scene, mujoco::Mapping mapping = mujoco::Mapping::Calibrated) {
+inline BothRuns run_both(const Scene& scene,
+                         mujoco::Mapping mapping = mujoco::Mapping::Calibrated) {
   BothRuns out;
   mujoco::MjcfOptions options;
   options.mapping = mapping;

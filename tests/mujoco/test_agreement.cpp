@@ -42,13 +42,15 @@ struct DropCase {
 void PrintTo(const DropCase& d, std::ostream* os) { *os << shape_name(d.shape) << ", c = " << d.c; }
 
 std::string drop_name(const ::testing::TestParamInfo<DropCase>& info) {
-  return std::string(shape_name(info.param.shape)) + "_c" + std::to_string(static_cast<int>(info.param.c));
+  return std::string(shape_name(info.param.shape)) + "_c" +
+         std::to_string(static_cast<int>(info.param.c));
 }
 
 std::vector<DropCase> drop_cases() {
   std::vector<DropCase> out;
   for (double c : {200.0, 1000.0}) {
-    for (Shape s : {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle}) out.push_back({s, c});
+    for (Shape s : {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle})
+      out.push_back({s, c});
   }
   return out;
 }
@@ -64,7 +66,8 @@ TEST_P(FrictionlessDrop, AgreesToMicrometres) {
   // The body really landed: the test is about contact (m·g/k = 1e-3 m).
   const Model model = make_model(test::drop_scene(shape, c, 0.0));
   double deepest = 0.0;
-  for (const Sample& s : runs.ref.samples) deepest = std::max(deepest, max_penetration(model, s.state.q));
+  for (const Sample& s : runs.ref.samples)
+    deepest = std::max(deepest, max_penetration(model, s.state.q));
   EXPECT_GT(deepest, 1e-3);
 }
 
@@ -89,7 +92,8 @@ TEST_P(FrictionDrop, AgreesWithinTheMeasuredFrictionDifference) {
   EXPECT_LT(runs.errors.max_pos, friction_tolerance(shape));
   // Friction acted: the body ends far from where it would without it.
   const Trajectory frictionless = simulate(test::drop_scene(shape, c, 0.0));
-  const double shift = std::abs(frictionless.samples.back().state.q.x() - runs.ref.samples.back().state.q.x());
+  const double shift =
+      std::abs(frictionless.samples.back().state.q.x() - runs.ref.samples.back().state.q.x());
   EXPECT_GT(shift, 10 * friction_tolerance(shape));
 }
 

@@ -33,8 +33,9 @@ std::string read(const fs::path& path) {
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("contact2d_mj_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("contact2d_mj_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -48,8 +49,8 @@ class Cli : public ::testing::Test {
   // Runs contact2d with the arguments (already quoted), in the test's directory.
   Result run(const std::string& args) const {
     const std::string out = (dir_ / "stdout").string(), err = (dir_ / "stderr").string();
-    const std::string command = "cd '" + dir_.string() + "' && '" CONTACT2D_BINARY "' " + args + " >'" + out +
-                                "' 2>'" + err + "'";
+    const std::string command = "cd '" + dir_.string() + "' && '" CONTACT2D_BINARY "' " + args +
+                                " >'" + out + "' 2>'" + err + "'";
     const int raw = std::system(command.c_str());
     return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read(out), read(err)};
   }
@@ -59,7 +60,8 @@ class Cli : public ::testing::Test {
     std::vector<std::string> names;
     for (const auto& e : fs::directory_iterator(dir_)) {
       const std::string name = e.path().filename().string();
-      if (name != "stdout" && name != "stderr" && e.path().extension() != ".toml") names.push_back(name);
+      if (name != "stdout" && name != "stderr" && e.path().extension() != ".toml")
+        names.push_back(name);
     }
     return names;
   }
@@ -91,11 +93,13 @@ TEST_F(Cli, GenerateWritesTheSameBytesAsTheLibrary) {
 // lighter than mjMINVAL = 1e-15.
 TEST_F(Cli, SceneMujocoCannotLoadIsBadInput) {
   write("light.toml", "scene = \"point_mass\"\n[body]\nmass = 1e-16\n");
-  for (const std::string args : {"generate light.toml -o light.xml", "compare light.toml --csv both.csv",
-                                 "simulate light.toml --engine mujoco --csv one.csv"}) {
+  for (const std::string args :
+       {"generate light.toml -o light.xml", "compare light.toml --csv both.csv",
+        "simulate light.toml --engine mujoco --csv one.csv"}) {
     const Result r = run(args);
     EXPECT_EQ(r.status, 2) << args;
-    expect_one_line(r.err, "MuJoCo cannot load the model: Error: mass and inertia of moving bodies");
+    expect_one_line(r.err,
+                    "MuJoCo cannot load the model: Error: mass and inertia of moving bodies");
     EXPECT_TRUE(leftovers().empty()) << args;
   }
 }
@@ -109,13 +113,16 @@ TEST_F(Cli, SceneMujocoWarnsOnIsBadInput) {
         "[sim]\ndt = 1e-3\nduration = 0.01\n");
   const Result r = run("generate hard.toml -o hard.xml");
   EXPECT_EQ(r.status, 2);
-  expect_one_line(r.err, "hard.toml (its generated MJCF): MuJoCo warns while loading the model: Nan, Inf or huge value in QACC");
+  expect_one_line(r.err,
+                  "hard.toml (its generated MJCF): MuJoCo warns while loading the model: Nan, Inf "
+                  "or huge value in QACC");
   EXPECT_TRUE(leftovers().empty());
 }
 
 // Obstacles are part of the 2D scene only; the MJCF has the ground plane.
 TEST_F(Cli, ObstaclesAreBadInputForMujoco) {
-  write("wall.toml", std::string(kBox) + "[[obstacle]]\ntype = \"box\"\nx = 2\ny = 0.5\nwidth = 0.2\nheight = 1\n");
+  write("wall.toml", std::string(kBox) +
+                         "[[obstacle]]\ntype = \"box\"\nx = 2\ny = 0.5\nwidth = 0.2\nheight = 1\n");
   ASSERT_EQ(run("simulate wall.toml --engine ref").status, 0);
   const Result r = run("compare wall.toml");
   EXPECT_EQ(r.status, 2);
@@ -148,14 +155,16 @@ TEST_F(Cli, CompareJsonHasTheAgreedKeysAndTheLibrarysNumbers) {
   const Result r = run("compare box.toml --json --mapping calibrated");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1);
-  for (const char* key : {"\"scene\": \"box.toml\"", "\"mapping\": \"calibrated\"",
-                          "\"integrators\": {\"ref\": \"semi_implicit_euler\", \"mujoco\": \"Euler\"}"}) {
+  for (const char* key :
+       {"\"scene\": \"box.toml\"", "\"mapping\": \"calibrated\"",
+        "\"integrators\": {\"ref\": \"semi_implicit_euler\", \"mujoco\": \"Euler\"}"}) {
     EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
   }
   const test::BothRuns runs = test::run_both(test::scene_from(kBox));
   EXPECT_NEAR(json_number(r.out, "max_pos_err"), runs.errors.max_pos, 1e-9 * runs.errors.max_pos);
   EXPECT_NEAR(json_number(r.out, "rms_pos_err"), runs.errors.rms_pos, 1e-9 * runs.errors.rms_pos);
-  EXPECT_NEAR(json_number(r.out, "max_angle_err"), runs.errors.max_angle, 1e-9 * runs.errors.max_angle);
+  EXPECT_NEAR(json_number(r.out, "max_angle_err"), runs.errors.max_angle,
+              1e-9 * runs.errors.max_angle);
   EXPECT_EQ(json_number(r.out, "dt"), 1e-4);
   EXPECT_GT(json_number(r.out, "ref_seconds"), 0.0);
   EXPECT_GT(json_number(r.out, "mujoco_seconds"), 0.0);
@@ -169,7 +178,8 @@ TEST_F(Cli, CompareCsvHasBothTrajectoriesAtTheSameTimes) {
   std::string header, line;
   std::getline(csv, header);
   EXPECT_EQ(header,
-            "t,x_ref,y_ref,theta_ref,vx_ref,vy_ref,omega_ref,x_mujoco,y_mujoco,theta_mujoco,vx_mujoco,vy_mujoco,"
+            "t,x_ref,y_ref,theta_ref,vx_ref,vy_ref,omega_ref,x_mujoco,y_mujoco,theta_mujoco,vx_"
+            "mujoco,vy_mujoco,"
             "omega_mujoco");
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
@@ -177,7 +187,8 @@ TEST_F(Cli, CompareCsvHasBothTrajectoriesAtTheSameTimes) {
 }
 
 TEST_F(Cli, ComparePlotWritesAPng) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot (gnuplot-nox) not installed";
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "gnuplot (gnuplot-nox) not installed";
   write("box.toml", kBox);
   const Result r = run("compare box.toml --plot box.png");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -205,7 +216,8 @@ TEST_F(Cli, SimulateWithMujocoWritesTheReferencesSampleTimes) {
 // Euler's limit; both engines blow up and compare reports it (status 3).
 TEST_F(Cli, CompareReportsDivergence) {
   write("stiff.toml",
-        "scene = \"point_mass\"\n[contact]\nk = 1e8\nc = 0\ndamping = \"kelvin_voigt\"\n[initial]\ny = 0.06\n"
+        "scene = \"point_mass\"\n[contact]\nk = 1e8\nc = 0\ndamping = "
+        "\"kelvin_voigt\"\n[initial]\ny = 0.06\n"
         "[sim]\ndt = 1e-3\nduration = 1\n");
   const Result r = run("compare stiff.toml --mapping calibrated --csv both.csv");
   EXPECT_EQ(r.status, 3) << r.err;

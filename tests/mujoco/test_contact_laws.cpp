@@ -21,7 +21,8 @@ double final_penetration(const Scene& scene, const Trajectory& t) {
 // p = (1 − d)·F/k − ε to within 1e-6·F/k, the residual of a run that has
 // settled for 2 s (the contact's decay time is 2m/c = 0.01 s) and of
 // MuJoCo's solver tolerance (1e-8); and |p − F/k| ≤ 1.1e-4·F/k.
-void expect_static_penetration(const std::string& toml, double load_per_contact, double k, double sphere_offset) {
+void expect_static_penetration(const std::string& toml, double load_per_contact, double k,
+                               double sphere_offset) {
   const Scene scene = test::scene_from(toml);
   const mujoco::MujocoRun run = mujoco::run_mujoco(scene, {});
   ASSERT_FALSE(run.trajectory.divergence.has_value());
@@ -34,14 +35,16 @@ void expect_static_penetration(const std::string& toml, double load_per_contact,
 
 TEST(StaticPenetration, CircleIsMgOverK) {
   expect_static_penetration(
-      "scene = \"circle\"\n[body]\nmass = 1.0\nradius = 0.1\n[contact]\nk = 1e4\nc = 200\nmu = 0.5\n"
+      "scene = \"circle\"\n[body]\nmass = 1.0\nradius = 0.1\n[contact]\nk = 1e4\nc = 200\nmu = "
+      "0.5\n"
       "damping = \"kelvin_voigt\"\n[initial]\ny = 0.1\n[sim]\ndt = 1e-4\nduration = 2\n",
       1.0 * 9.81, 1e4, 0.0);
 }
 
 TEST(StaticPenetration, HeavyStiffPointMassIsMgOverK) {
   expect_static_penetration(
-      "scene = \"point_mass\"\n[body]\nmass = 7.0\nhalf_height = 0.05\n[contact]\nk = 3e5\nc = 3000\n"
+      "scene = \"point_mass\"\n[body]\nmass = 7.0\nhalf_height = 0.05\n[contact]\nk = 3e5\nc = "
+      "3000\n"
       "damping = \"kelvin_voigt\"\n[initial]\ny = 0.05\n[sim]\ndt = 1e-4\nduration = 2\n",
       7.0 * 9.81, 3e5, 0.0);
 }
@@ -49,7 +52,8 @@ TEST(StaticPenetration, HeavyStiffPointMassIsMgOverK) {
 // A box lying flat rests on two 2D corners (two corner spheres), m·g/2 each.
 TEST(StaticPenetration, FlatBoxCarriesHalfTheWeightOnEachCorner) {
   expect_static_penetration(
-      "scene = \"box\"\n[body]\nmass = 2.0\nwidth = 0.4\nheight = 0.2\n[contact]\nk = 2e4\nc = 400\nmu = 0.5\n"
+      "scene = \"box\"\n[body]\nmass = 2.0\nwidth = 0.4\nheight = 0.2\n[contact]\nk = 2e4\nc = "
+      "400\nmu = 0.5\n"
       "damping = \"kelvin_voigt\"\n[initial]\ny = 0.1\n[sim]\ndt = 1e-4\nduration = 2\n",
       0.5 * 2.0 * 9.81, 2e4, mujoco::kCornerRadius);
 }
@@ -68,7 +72,8 @@ struct RollCase {
 };
 
 void PrintTo(const RollCase& r, std::ostream* os) {
-  *os << "m = " << r.mass << ", R = " << r.radius << ", mu_roll = " << r.mu_roll << ", v0 = " << r.v0;
+  *os << "m = " << r.mass << ", R = " << r.radius << ", mu_roll = " << r.mu_roll
+      << ", v0 = " << r.v0;
 }
 
 class RollingStop : public ::testing::TestWithParam<RollCase> {};
@@ -79,8 +84,10 @@ TEST_P(RollingStop, StopsNearTheAnalyticDistance) {
   const double rest = rc.radius - rc.mass * g / k;
   char toml[1024];
   std::snprintf(toml, sizeof toml,
-                "scene = \"circle\"\n[body]\nmass = %.17g\nradius = %.17g\n[contact]\nk = 1e4\nc = 200\nmu = 0.5\n"
-                "mu_roll = %.17g\ndamping = \"kelvin_voigt\"\n[initial]\ny = %.17g\nvx = %.17g\nomega = %.17g\n"
+                "scene = \"circle\"\n[body]\nmass = %.17g\nradius = %.17g\n[contact]\nk = 1e4\nc = "
+                "200\nmu = 0.5\n"
+                "mu_roll = %.17g\ndamping = \"kelvin_voigt\"\n[initial]\ny = %.17g\nvx = "
+                "%.17g\nomega = %.17g\n"
                 "[sim]\ndt = 1e-4\nduration = 6\n",
                 rc.mass, rc.radius, rc.mu_roll, rest, rc.v0, -rc.v0 / rc.radius);
   const Scene scene = test::scene_from(toml);
@@ -95,7 +102,8 @@ TEST_P(RollingStop, StopsNearTheAnalyticDistance) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Discs, RollingStop,
-                         ::testing::Values(RollCase{1.0, 0.1, 0.01, 2.0}, RollCase{3.0, 0.2, 0.02, 1.5}));
+                         ::testing::Values(RollCase{1.0, 0.1, 0.01, 2.0},
+                                           RollCase{3.0, 0.2, 0.02, 1.5}));
 
 }  // namespace
 }  // namespace contact2d

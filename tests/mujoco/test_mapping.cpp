@@ -38,7 +38,9 @@ struct Parsed {
   }
 };
 
-void parse(const std::string& xml, Parsed& out) { ASSERT_EQ(out.doc.Parse(xml.c_str()), tinyxml2::XML_SUCCESS); }
+void parse(const std::string& xml, Parsed& out) {
+  ASSERT_EQ(out.doc.Parse(xml.c_str()), tinyxml2::XML_SUCCESS);
+}
 
 std::vector<double> numbers(const char* text) {
   std::vector<double> out;
@@ -109,10 +111,12 @@ TEST(Mapping, ExactEqualsTheDirectFormAndSeedDoesNotUnlessZetaIsOne) {
   const Scene s = unusual_box();
   const double m = 2.7, k = 3.3e5, c = 40.0;
   const double zeta = c / (2.0 * std::sqrt(m * k));
-  const auto exact = mujoco::acceleration_gains(mujoco::solver_settings(s, Mapping::Exact, 0.0, 1).solref);
+  const auto exact =
+      mujoco::acceleration_gains(mujoco::solver_settings(s, Mapping::Exact, 0.0, 1).solref);
   expect_near_rel(exact.stiffness, k / m, 1e-14);
   expect_near_rel(exact.damping, c / m, 1e-14);
-  const auto seed = mujoco::acceleration_gains(mujoco::solver_settings(s, Mapping::Seed, 0.0, 1).solref);
+  const auto seed =
+      mujoco::acceleration_gains(mujoco::solver_settings(s, Mapping::Seed, 0.0, 1).solref);
   expect_near_rel(seed.stiffness, k / m / (zeta * zeta), 1e-14);
   expect_near_rel(seed.damping, c / m / zeta, 1e-14);
 }
@@ -156,7 +160,8 @@ TEST(Mjcf, EveryContactGeomHasCondimSixAndTheSceneFriction) {
   for (Shape shape : {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle}) {
     Scene scene = default_scene(shape);
     scene.contact = s.contact;
-    const mujoco::ModelPtr model = mujoco::load_model(mujoco::generate_mjcf(scene, {}).xml, "model");
+    const mujoco::ModelPtr model =
+        mujoco::load_model(mujoco::generate_mjcf(scene, {}).xml, "model");
     int contact_geoms = 0;
     for (int g = 0; g < model->ngeom; ++g) {
       if (model->geom_contype[g] == 0 && model->geom_conaffinity[g] == 0) continue;
@@ -167,7 +172,8 @@ TEST(Mjcf, EveryContactGeomHasCondimSixAndTheSceneFriction) {
       EXPECT_EQ(model->geom_friction[3 * g + 2], 0.002);
     }
     // plane + one geom per 2D contact point
-    EXPECT_EQ(contact_geoms, 1 + static_cast<int>(make_body(scene).points.size())) << shape_name(shape);
+    EXPECT_EQ(contact_geoms, 1 + static_cast<int>(make_body(scene).points.size()))
+        << shape_name(shape);
   }
 }
 
@@ -176,7 +182,8 @@ TEST(Mjcf, EveryContactGeomHasCondimSixAndTheSceneFriction) {
 TEST(Mjcf, InertiaFromTheTwoDimensionalModel) {
   for (Shape shape : {Shape::Box, Shape::TShape, Shape::Circle}) {
     const Scene scene = default_scene(shape);
-    const mujoco::ModelPtr model = mujoco::load_model(mujoco::generate_mjcf(scene, {}).xml, "model");
+    const mujoco::ModelPtr model =
+        mujoco::load_model(mujoco::generate_mjcf(scene, {}).xml, "model");
     const RigidBody body = make_body(scene);
     expect_near_rel(model->body_mass[1], body.mass, kRoundTrip);
     expect_near_rel(model->body_inertia[3 + 1], body.inertia, 1e-14);  // y
@@ -208,7 +215,8 @@ TEST(Mjcf, TimestepIntegratorAndGravityFromTheScene) {
   EXPECT_EQ(model->opt.integrator, mjINT_RK4);
   EXPECT_EQ(model->opt.gravity[2], -3.5);
   s.sim.integrator = Integrator::ImplicitEuler;
-  EXPECT_EQ(mujoco::load_model(mujoco::generate_mjcf(s, {}).xml, "model")->opt.integrator, mjINT_IMPLICIT);
+  EXPECT_EQ(mujoco::load_model(mujoco::generate_mjcf(s, {}).xml, "model")->opt.integrator,
+            mjINT_IMPLICIT);
 }
 
 TEST(Mjcf, ExplicitEulerHasNoMujocoCounterpart) {
@@ -218,7 +226,8 @@ TEST(Mjcf, ExplicitEulerHasNoMujocoCounterpart) {
     mujoco::generate_mjcf(s, {});
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("sim.integrator = explicit_euler"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("sim.integrator = explicit_euler"), std::string::npos)
+        << e.what();
   }
 }
 
@@ -232,7 +241,8 @@ TEST(Mjcf, SeedAndExactNeedADamper) {
       mujoco::generate_mjcf(s, options);
       FAIL() << "no error";
     } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("contact.c = 0 must be > 0"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("contact.c = 0 must be > 0"), std::string::npos)
+          << e.what();
     }
   }
   EXPECT_NO_THROW(mujoco::generate_mjcf(s, {}));  // calibrated: direct form with c = 0

@@ -24,7 +24,9 @@ std::string read(const std::string& path) {
   return text.str();
 }
 
-void PrintTo(const Case& c, std::ostream* os) { *os << c.scene << "." << mujoco::mapping_name(c.mapping); }
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.scene << "." << mujoco::mapping_name(c.mapping);
+}
 
 class Models : public ::testing::TestWithParam<Case> {};
 
@@ -35,15 +37,17 @@ TEST_P(Models, RegenerateToTheSameBytesAndLoadWithoutWarning) {
       "models/" + c.scene + "." + std::string(mujoco::mapping_name(c.mapping)) + ".xml";
   mujoco::MjcfOptions options;
   options.mapping = c.mapping;
-  options.source = scene_path;  // as `contact2d generate` names it when run from the repository root
+  options.source =
+      scene_path;  // as `contact2d generate` names it when run from the repository root
   const Scene scene = load_scene(test::source_dir() + "/" + scene_path);
   const std::string generated = mujoco::generate_mjcf(scene, options).xml;
   const std::string stored = read(test::source_dir() + "/" + model_path);
-  EXPECT_EQ(generated, stored) << model_path
-                               << " is out of date: regenerate it with scripts/report (or from the repository "
-                                  "root: contact2d generate "
-                               << scene_path << " --mapping " << mujoco::mapping_name(c.mapping) << " -o "
-                               << model_path << ")";
+  EXPECT_EQ(generated, stored)
+      << model_path
+      << " is out of date: regenerate it with scripts/report (or from the repository "
+         "root: contact2d generate "
+      << scene_path << " --mapping " << mujoco::mapping_name(c.mapping) << " -o " << model_path
+      << ")";
   EXPECT_NO_THROW(mujoco::load_model(stored, model_path));
 }
 
@@ -57,7 +61,8 @@ std::vector<Case> cases() {
 
 INSTANTIATE_TEST_SUITE_P(BuiltInScenes, Models, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<Case>& info) {
-                           return info.param.scene + "_" + std::string(mujoco::mapping_name(info.param.mapping));
+                           return info.param.scene + "_" +
+                                  std::string(mujoco::mapping_name(info.param.mapping));
                          });
 
 }  // namespace
