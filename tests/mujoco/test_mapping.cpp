@@ -104,6 +104,23 @@ TEST(Mapping, CalibratedSolrefIsKAndCTimesMujocosInverseMass) {
   EXPECT_EQ(model->opt.cone, mjCONE_ELLIPTIC);
 }
 
+// impratio (mapping.hpp): the largest value at which MuJoCo's explicit
+// viscous friction (slope impratio·c) does not reverse a slip within one
+// step at the contact with the largest tangential inverse mass,
+// A_t = 1/m + r_max²/I: impratio = 1/(c·Δt·A_t). Without friction it is
+// MuJoCo's floor (1e-15), which switches off the 1e-5 friction MuJoCo keeps.
+TEST(Mapping, CalibratedImpratioIsTheChatterFreeBound) {
+  const Scene s = unusual_box();  // 0.3 × 0.5 box of 2.7 kg, c = 40, Δt = 2e-4
+  const double m = 2.7, inertia = m * (0.3 * 0.3 + 0.5 * 0.5) / 12.0;
+  const double r2 = 0.15 * 0.15 + 0.25 * 0.25;
+  const double expected = 1.0 / (40.0 * 2e-4 * (1.0 / m + r2 / inertia));
+  const auto settings = mujoco::solver_settings(s, Mapping::Calibrated, 1.0, 1);
+  expect_near_rel(settings.impratio, expected, 1e-14);
+  Scene frictionless = s;
+  frictionless.contact.mu = 0.0;
+  EXPECT_EQ(mujoco::solver_settings(frictionless, Mapping::Calibrated, 1.0, 1).impratio, 1e-15);
+}
+
 // MuJoCo's standard form gives K·d² = 1/(tc²ζ²) and B·d = 2/tc; with
 // tc = 2m/c these are k/m and c/m, the direct form's (−k/m, −c/m). The
 // seed form is off by 1/ζ² and 1/ζ.
