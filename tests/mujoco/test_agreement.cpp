@@ -12,15 +12,17 @@
 // the goal of issue 3 (1e-5 m, 1e-4 rad), 5–10× above what is measured.
 //
 // With friction MuJoCo's law differs in kind (mapping.hpp): on the cone the
-// damper's slip term μ·c·|v_t| adds to the normal force, so a body that lands
-// or slides sliding hops off the ground, and MuJoCo puts the contact point
+// damper's slip term μ·c·|v_t| adds to the normal force, so a body that
+// lands or slides hops off the ground, and MuJoCo puts the contact point
 // midway between the surfaces, p/2 above the 2D point, so a rolling disc
-// rolls on R − p/2. The tolerances are the measured errors (c = 200 and
-// 1000) rounded up to the next 1-2-5 step (an allowance of about 25 % for
-// platform rounding in these chaotic landings): point mass 1e-3 m
-// (measured 2.3e-4 m), box 5e-3 m (4.0e-3, 4.8e-3), T 5e-3 m (3.0e-3,
-// 3.2e-3), circle 1e-2 m (5.4e-3, 2.9e-3). Issue 3 asks for 1e-3 / 3e-3:
-// reached for the point mass only; see validation/report/README.md.
+// rolls on R − p/2. Measured maxima (c = 200, c = 1000): point mass 2.3e-4
+// and 1.8e-5 m, box 4.0e-3 and 4.8e-3 m, T 3.0e-3 and 3.2e-3 m, circle
+// 5.4e-3 and 2.9e-3 m. Tolerance: issue 3's goal where it is met (point
+// mass, 1e-3 m); elsewhere 1.25 × the larger measured value rounded up to
+// one significant digit, an allowance for rounding differences between
+// builds, which these chaotic landings amplify: box 7e-3 m, T 4e-3 m,
+// circle 7e-3 m. Issue 3 asks for 3e-3 m (box, T) and 1e-3 m (circle):
+// not reached; see validation/report/README.md.
 #include <algorithm>
 #include <cmath>
 
@@ -76,9 +78,9 @@ INSTANTIATE_TEST_SUITE_P(AllBodies, FrictionlessDrop, ::testing::ValuesIn(drop_c
 double friction_tolerance(Shape shape) {
   switch (shape) {
     case Shape::PointMass: return 1e-3;
-    case Shape::Box: return 5e-3;
-    case Shape::TShape: return 5e-3;
-    case Shape::Circle: return 1e-2;
+    case Shape::Box: return 7e-3;
+    case Shape::TShape: return 4e-3;
+    case Shape::Circle: return 7e-3;
   }
   return 0.0;
 }
