@@ -95,24 +95,45 @@ std::string describe(const Divergence& d, const Scene& scene) {
                         "): " + what + ". ";
 
   const double omega_dt = cs.omega * dt;
-  const double limit = stability_limit(integrator, cs.zeta);
+  const std::string method(integrator_title(integrator));
+  // The compression law damps only while the point moves in: the rebound is
+  // an undamped oscillator, so the binding limit is the smaller of ζ and 0.
+  const double limit =
+      scene.contact.damping == DampingLaw::Compression
+          ? std::min(stability_limit(integrator, cs.zeta), stability_limit(integrator, 0.0))
+          : stability_limit(integrator, cs.zeta);
+  const std::string omega_text =
+      format(" (ω = √(k/m_eff) = %.4g rad/s, ζ = %.3g)", cs.omega, cs.zeta);
   // Friction linearised at Fn ≈ m·g: a viscous rate μ·g·α (per unit mass).
   const double friction_rate_dt = scene.contact.mu * scene.sim.gravity * scene.contact.alpha * dt;
-  if (omega_dt > limit) {
+  const bool implicit = integrator == Integrator::ImplicitEuler;
+  const std::string alternative = implicit ? "" : " or --integrator implicit_euler";
+  if (implicit) {
+    message += "Implicit Euler is stable on the linear contact at any step; at ω·Δt = " +
+               format("%.3g", omega_dt) + omega_text +
+               " the piecewise contact force defeats its Newton iteration. Try a smaller --dt.";
+  } else if (limit < 1e-3) {
+    // Explicit Euler on an undamped rebound: no step is stable; each contact
+    // step multiplies the energy by 1 + (ω·Δt)².
+    const double safe_dt = 0.05 / cs.omega;
+    message += "Likely cause: " + method + " gains energy on every undamped rebound (the " +
+               "compression law does not damp it): each contact step multiplies it by 1 + (ω·Δt)² = " +
+               format("%.3g", 1.0 + omega_dt * omega_dt) + omega_text + ". Try --dt " +
+               format("%.2g", safe_dt) + " or --integrator semi_implicit_euler.";
+  } else if (omega_dt > limit) {
     const double safe_dt = 0.5 * limit / cs.omega;
-    message += "Likely cause: ω·Δt = " + format("%.3g", omega_dt) + " exceeds the " +
-               std::string(integrator_title(integrator)) + " limit " + format("%.3g", limit) +
-               format(" (ω = √(k/m_eff) = %.4g rad/s, ζ = %.3g). ", cs.omega, cs.zeta) +
-               "Try --dt " + format("%.2g", safe_dt) + " or --integrator implicit_euler.";
-  } else if (friction_rate_dt > 1.0 && integrator != Integrator::ImplicitEuler) {
+    message += "Likely cause: ω·Δt = " + format("%.3g", omega_dt) + " exceeds the " + method +
+               " limit " + format("%.3g", limit) + omega_text + ". Try --dt " +
+               format("%.2g", safe_dt) + alternative + ".";
+  } else if (friction_rate_dt > 1.0) {
     message += "Likely cause: stiff friction, μ·g·α·Δt = " + format("%.3g", friction_rate_dt) +
                " (explicit methods need it well below 2). Try a smaller --dt, a smaller "
-               "contact.alpha, or --integrator implicit_euler.";
+               "contact.alpha" + alternative + ".";
   } else {
-    message += "ω·Δt = " + format("%.3g", omega_dt) + " is within the " +
-               std::string(integrator_title(integrator)) + " limit " + format("%.3g", limit) +
+    message += "ω·Δt = " + format("%.3g", omega_dt) + " is within the " + method + " limit " +
+               format("%.3g", limit) + omega_text +
                " for one contact; several contacts at once or a fast impact stiffen it. Try a "
-               "smaller --dt or --integrator implicit_euler.";
+               "smaller --dt" + alternative + ".";
   }
   return message;
 }
