@@ -4,6 +4,9 @@
 
 #include "cli/common.hpp"
 #include "cli/engines.hpp"
+#ifdef CONTACT2D_WITH_MUJOCO
+#include "cli/mujoco_engine.hpp"
+#endif
 #include "io/csv.hpp"
 #include "io/scene_file.hpp"
 
@@ -14,7 +17,19 @@ struct SimulateOptions {
   SceneOptions scene;
   std::string engine = "ref";
   std::string csv;
+#ifdef CONTACT2D_WITH_MUJOCO
+  MujocoOptions mujoco;  // --mapping, --geometry
+#endif
 };
+
+EngineRun run_chosen_engine(const SimulateOptions& options, const Scene& scene) {
+#ifdef CONTACT2D_WITH_MUJOCO
+  if (options.engine == "mujoco") {
+    return run_mujoco_engine(scene, options.mujoco.resolve(options.scene.path));
+  }
+#endif
+  return run_engine(options.engine, scene);
+}
 
 void print_summary(const Scene& scene, const std::string& engine, const EngineRun& run) {
   const Model model = make_model(scene);
@@ -40,7 +55,7 @@ int simulate(const SimulateOptions& options) {
   // only appears (renamed from a temporary) once the run has succeeded.
   std::unique_ptr<AtomicFile> out;
   if (!options.csv.empty()) out = std::make_unique<AtomicFile>(options.csv);
-  const EngineRun run = run_engine(options.engine, scene);
+  const EngineRun run = run_chosen_engine(options, scene);
   for (const std::string& warning : run.warnings) {
     std::cerr << "contact2d: " << options.engine << " warning: " << warning << "\n";
   }
@@ -67,6 +82,9 @@ Command add_simulate(CLI::App& app) {
   cmd->add_option("--engine", options->engine, "ref | mujoco")
       ->check(CLI::IsMember({"ref", "mujoco"}));
   cmd->add_option("--csv", options->csv, "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file");
+#ifdef CONTACT2D_WITH_MUJOCO
+  options->mujoco.add_to(*cmd);
+#endif
   return {cmd, [options] { return simulate(*options); }};
 }
 
