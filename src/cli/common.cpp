@@ -28,12 +28,7 @@ Scene SceneOptions::load() const {
 std::string format_number(double v, int digits) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-  std::string text = buffer;
-  // TOML needs a digit after a decimal exponent-less integer-looking value
-  // only for floats; "%g" output is valid TOML except for inf/nan spellings.
-  if (text == "inf") return "inf";
-  if (text == "-inf") return "-inf";
-  return text;
+  return buffer;  // "%g" output is also a valid TOML number (inf and nan included)
 }
 
 EngineRun run_reference(const Scene& scene) {
