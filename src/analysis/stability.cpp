@@ -1,3 +1,4 @@
+#include "core/format.hpp"
 #include "analysis/stability.hpp"
 
 #include <algorithm>
@@ -11,12 +12,6 @@
 
 namespace contact2d::analysis {
 namespace {
-
-std::string format(const char* fmt, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, fmt, value);
-  return buffer;
-}
 
 const char* kind_name(DivergenceKind kind) {
   switch (kind) {
@@ -48,7 +43,7 @@ Probe probe(Scene scene, const std::string& engine, const EngineRunner& runner) 
       p.penetration = std::max(p.penetration, contact2d::max_penetration(model, s.state.q));
     });
     p.stable = !run.divergence;
-    if (run.divergence) p.failure = kind_name(run.divergence->kind) + format(" at t = %.3g s", run.divergence->time);
+    if (run.divergence) p.failure = kind_name(run.divergence->kind) + format_number(" at t = %.3g s", run.divergence->time);
     return p;
   }
   const EngineResult run = runner(engine, scene);
@@ -58,7 +53,7 @@ Probe probe(Scene scene, const std::string& engine, const EngineRunner& runner) 
   }
   if (run.trajectory.divergence) {
     p.failure = kind_name(run.trajectory.divergence->kind) +
-                format(" at t = %.3g s", run.trajectory.divergence->time);
+                format_number(" at t = %.3g s", run.trajectory.divergence->time);
     return p;
   }
   // Samples are checked again here, so the rule is the same whatever the
@@ -66,7 +61,7 @@ Probe probe(Scene scene, const std::string& engine, const EngineRunner& runner) 
   const DivergenceMonitor monitor(model, initial_state(scene));
   for (const Sample& s : run.trajectory.samples) {
     if (const auto d = monitor.check(s.state, s.t)) {
-      p.failure = kind_name(d->kind) + format(" at t = %.3g s", d->time);
+      p.failure = kind_name(d->kind) + format_number(" at t = %.3g s", d->time);
       return p;
     }
   }
@@ -107,7 +102,7 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
   if (config.engines.empty()) throw std::invalid_argument("--engines: the list is empty");
   for (double k : config.ks) {
     if (!(k > 0.0 && k <= 1e12)) {
-      throw std::invalid_argument("--ks: " + (std::isfinite(k) ? format("%g", k) : std::string("a non-finite value")) +
+      throw std::invalid_argument("--ks: " + (std::isfinite(k) ? format_number("%g", k) : std::string("a non-finite value")) +
                                   " is not in (0, 1e12] N/m");
     }
   }
@@ -173,7 +168,7 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
         const double omega = contact_stiffness(model).omega;
         reference_penetration[index] = max_penetration(model, ref, std::min(1e-4, omega > 0.0 ? 0.05 / omega : 1e-4));
       }
-      report("reference k=" + format("%g", config.ks[index]));
+      report("reference k=" + format_number("%g", config.ks[index]));
       return;
     }
     StabilityRow& row = rows[index - n_ref];
@@ -237,7 +232,7 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
       row.verdict = StabilityVerdict::Failed;
       row.failure = e.what();
     }
-    report(row.engine + " " + std::string(integrator_name(row.integrator)) + " k=" + format("%g", row.k));
+    report(row.engine + " " + std::string(integrator_name(row.integrator)) + " k=" + format_number("%g", row.k));
   });
 
   for (StabilityRow& row : rows) {
@@ -247,7 +242,7 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
       row.note = "refsafe: at its largest stable dt MuJoCo ran with timeconst raised to 2·dt, a softer contact "
                  "than k";
       const double ratio = row.penetration / row.penetration_small_step;
-      if (std::isfinite(ratio)) row.note += " (deepest penetration " + format("%.3g", ratio) + "× that at ω·Δt = 0.2)";
+      if (std::isfinite(ratio)) row.note += " (deepest penetration " + format_number("%.3g", ratio) + "× that at ω·Δt = 0.2)";
     }
     if (row.engine != "ref" && row.verdict == StabilityVerdict::Bracketed && row.omega * row.dt_stable > 1.5 * row.theory) {
       if (!row.note.empty()) row.note += "; ";

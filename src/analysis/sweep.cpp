@@ -1,3 +1,4 @@
+#include "core/format.hpp"
 #include "analysis/sweep.hpp"
 
 #include <algorithm>
@@ -9,12 +10,6 @@
 
 namespace contact2d::analysis {
 namespace {
-
-std::string format(const char* fmt, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, fmt, value);
-  return buffer;
-}
 
 struct Job {
   enum Kind { Reference, LooseReference, Dense, Run } kind = Run;
@@ -76,7 +71,7 @@ std::string order_note(const Scene& scene, const std::string& engine, Integrator
     note = "pre-asymptotic";
   }
   if (p.mu > 0.0 && p.alpha * p.mu * scene.sim.gravity > 100.0) {
-    note += "; stiff tanh friction (μ·g·α = " + format("%.3g", p.mu * scene.sim.gravity * p.alpha) +
+    note += "; stiff tanh friction (μ·g·α = " + format_number("%.3g", p.mu * scene.sim.gravity * p.alpha) +
             " 1/s) and stick–slip transitions need Δt ≪ 1/(μ·g·α) before the asymptotic rate shows";
   }
   if (scene.shape == Shape::Circle && p.mu_roll > 0.0) {
@@ -134,11 +129,11 @@ std::vector<OrderFit> fit_orders(const Scene& scene, const std::vector<SweepRow>
         fit.dt_max = x.back();
         fit.note = order_note(scene, engine, integrator, *fit.order, against);
       } else if (engine != "ref" && against == std::string("reference")) {
-        fit.note = "no slope: every run is at least " + format("%.1g", ceiling) +
+        fit.note = "no slope: every run is at least " + format_number("%.1g", ceiling) +
                    " m (10 % of the scene's length scale) from the reference, the distance between the models";
       } else {
-        fit.note = "fewer than 3 runs with an error between " + format("%.1g", floor) + " m (the floor) and " +
-                   format("%.1g", ceiling) + " m (10 % of the scene's length scale)";
+        fit.note = "fewer than 3 runs with an error between " + format_number("%.1g", floor) + " m (the floor) and " +
+                   format_number("%.1g", ceiling) + " m (10 % of the scene's length scale)";
       }
       fits.push_back(fit);
     }
@@ -154,7 +149,7 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
   if (config.other_dts) all_dts.insert(all_dts.end(), config.other_dts->begin(), config.other_dts->end());
   for (double dt : all_dts) {
     if (!(dt > 0.0) || !std::isfinite(dt) || dt > scene.sim.duration || scene.sim.duration / dt > 1e9) {
-      throw std::invalid_argument("--dts: " + (std::isfinite(dt) ? format("%g", dt) : std::string("a non-finite value")) +
+      throw std::invalid_argument("--dts: " + (std::isfinite(dt) ? format_number("%g", dt) : std::string("a non-finite value")) +
                                   " is not a step in (0, sim.duration] with at most 1e9 steps");
     }
   }
@@ -223,13 +218,13 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
       row.stats = run.trajectory.stats();
       row.failure = run.trajectory.failure();
       dense_runs[job.row] = std::move(run.trajectory);
-      what = "adaptive tol=" + format("%g", config.dense_tols[job.row]);
+      what = "adaptive tol=" + format_number("%g", config.dense_tols[job.row]);
     } else {
       SweepRow& row = rows[job.row];
       Scene s = scene;
       s.sim.integrator = row.integrator;
       s.sim.dt = row.dt;
-      what = row.engine + " " + std::string(integrator_name(row.integrator)) + " dt=" + format("%g", row.dt);
+      what = row.engine + " " + std::string(integrator_name(row.integrator)) + " dt=" + format_number("%g", row.dt);
       try {
         double best = INFINITY;
         for (int r = 0; r < result.repeats; ++r) {

@@ -1,3 +1,4 @@
+#include "core/format.hpp"
 #include "game/pitch.hpp"
 
 #include <cmath>
@@ -16,11 +17,7 @@ extern const char* const kDefaultPitchToml;  // generated from validation/scenes
 
 namespace {
 
-std::string format_value(double v) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
+std::string format_value(double v) { return format_number("%g", v); }
 
 // Reads the [game] table: numbers only, every key checked against its range,
 // unknown keys rejected.

@@ -1,3 +1,4 @@
+#include "core/format.hpp"
 #include "io/scene_file.hpp"
 
 #include <cmath>
@@ -11,11 +12,7 @@
 namespace contact2d {
 namespace {
 
-std::string format_value(double v) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
+std::string format_value(double v) { return format_number("%g", v); }
 
 // Reads keys out of one TOML table, remembering which were used so that the
 // rest can be reported as unknown.
