@@ -47,7 +47,9 @@ TEST(Cli, SimulateWritesTheTrajectoryCsv) {
 
 TEST(Cli, HelpOnTheProgramAndEverySubcommand) {
   EXPECT_EQ(run("--help >/dev/null"), 0);
-  EXPECT_EQ(run("simulate --help >/dev/null"), 0);
+  for (const char* command : {"simulate", "generate", "compare", "sweep", "stability", "play"}) {
+    EXPECT_EQ(run(std::string(command) + " --help >/dev/null"), 0) << command;
+  }
 }
 
 TEST(Cli, AllBuiltInScenesRunWithEveryIntegrator) {
