@@ -31,6 +31,7 @@
 // correction term or the 1.5 of the disc's inertia were wrong.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "test_util.hpp"
@@ -134,6 +135,22 @@ TEST(RollingFriction, DiscAtRestNeitherChattersNorCreeps) {
   }
   EXPECT_EQ(sign_changes, 0);
   EXPECT_NEAR(trajectory.samples.back().state.q.x(), x_at_5, 1e-6);
+}
+
+// smooth_sign skips libm's tanh where the correctly rounded result is ±1; it
+// must not change a single bit anywhere: checked on a fine grid across the
+// threshold (|x| = 22) and on both sides of it, plus the non-finite inputs.
+TEST(SmoothSign, BitIdenticalToStdTanh) {
+  for (double x = -40.0; x <= 40.0; x += 1.0 / 1024.0) {
+    ASSERT_EQ(smooth_sign(x), std::tanh(x)) << "x = " << x;
+  }
+  for (double x : {21.999999999999996, 22.0, 22.000000000000004, 1e300, -1e300}) {
+    EXPECT_EQ(smooth_sign(x), std::tanh(x)) << "x = " << x;
+    EXPECT_EQ(smooth_sign(-x), std::tanh(-x)) << "x = " << -x;
+  }
+  EXPECT_EQ(smooth_sign(INFINITY), 1.0);
+  EXPECT_EQ(smooth_sign(-INFINITY), -1.0);
+  EXPECT_TRUE(std::isnan(smooth_sign(NAN)));
 }
 
 }  // namespace

@@ -94,13 +94,10 @@ class System {
       } else {
         fn = active_[i] ? fn - law.c * vcy : 0.0;
       }
-      const double ft = -law.mu * fn * std::tanh(law.alpha * vcx);
+      const double ft = friction_force(law, fn, vcx);
       fx += ft;
       fy += fn;
-      torque += rx * fn - ry * ft;
-      if (body.roll_radius > 0.0 && law.mu_roll > 0.0) {
-        torque -= law.mu_roll * fn * std::tanh(law.alpha * body.roll_radius * y[5]);
-      }
+      torque += rx * fn - ry * ft + rolling_torque(law, fn, body.roll_radius, y[5]);
     }
     dy.head<3>() = y.tail<3>();
     dy[3] = fx / body.mass;

@@ -37,12 +37,9 @@ Vec3 acceleration(const Model& model, const Vec3& q, const Vec3& v) {
     const double vc_x = v.x() - v.z() * r.y();
     const double vc_y = v.y() + v.z() * r.x();
     const double fn = normal_force(law, -c_y, vc_y);
-    const double ft = -law.mu * fn * std::tanh(law.alpha * vc_x);
+    const double ft = friction_force(law, fn, vc_x);
     force += Vec2(ft, fn);
-    torque += r.x() * fn - r.y() * ft;
-    if (body.roll_radius > 0.0 && law.mu_roll > 0.0) {
-      torque -= law.mu_roll * fn * std::tanh(law.alpha * body.roll_radius * v.z());
-    }
+    torque += r.x() * fn - r.y() * ft + rolling_torque(law, fn, body.roll_radius, v.z());
   }
   if (!model.obstacles.empty()) add_obstacle_forces(model.obstacles, body, law, q, v, force, torque);
 

@@ -151,7 +151,6 @@ void add_obstacle_forces(const std::vector<Obstacle>& obstacles, const RigidBody
                          const ContactParams& law, const Vec3& q, const Vec3& v, Vec2& force,
                          double& torque) {
   if (obstacles.empty()) return;
-  const bool rolling = body.roll_radius > 0.0 && law.mu_roll > 0.0;
   for_each_contact(obstacles, body, q, [&](const ObstacleContact& contact) {
     const Vec2& n = contact.normal;
     const Vec2& r = contact.r;
@@ -159,11 +158,11 @@ void add_obstacle_forces(const std::vector<Obstacle>& obstacles, const RigidBody
     const double omega = body.rotates ? v.z() : 0.0;
     const Vec2 vc(v.x() - omega * r.y(), v.y() + omega * r.x());
     const double fn = normal_force(law, contact.depth, vc.dot(n));
-    const double ft = -law.mu * fn * std::tanh(law.alpha * vc.dot(t));
+    const double ft = friction_force(law, fn, vc.dot(t));
     const Vec2 f = fn * n + ft * t;
     force += f;
     torque += r.x() * f.y() - r.y() * f.x();
-    if (rolling) torque -= law.mu_roll * fn * std::tanh(law.alpha * body.roll_radius * v.z());
+    torque += rolling_torque(law, fn, body.roll_radius, v.z());
   });
 }
 
