@@ -35,7 +35,9 @@ struct Case {
   Integrator integrator;
 };
 
-std::string case_name(const Case& c) { return c.scene + "/" + std::string(integrator_name(c.integrator)); }
+std::string case_name(const Case& c) {
+  return c.scene + "/" + std::string(integrator_name(c.integrator));
+}
 
 void reference_step(benchmark::State& state, const Case& c) {
   Scene scene = load_scene(std::string(CONTACT2D_SCENES_DIR) + "/" + c.scene + ".toml");
@@ -99,7 +101,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
     for (const Run& run : runs) {
       if (run.error_occurred || run.iterations == 0) continue;
       const double n = static_cast<double>(run.iterations);
-      times_[run.benchmark_name()] = {run.real_accumulated_time / n * 1e9, run.cpu_accumulated_time / n * 1e9};
+      times_[run.benchmark_name()] = {run.real_accumulated_time / n * 1e9,
+                                      run.cpu_accumulated_time / n * 1e9};
     }
   }
   struct Times {
@@ -117,7 +120,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
 int main(int argc, char** argv) {
   std::vector<Case> cases;
   for (const char* scene : kScenes) {
-    for (Integrator integrator : {Integrator::SemiImplicitEuler, Integrator::RK4, Integrator::ImplicitEuler}) {
+    for (Integrator integrator :
+         {Integrator::SemiImplicitEuler, Integrator::RK4, Integrator::ImplicitEuler}) {
       cases.push_back({scene, integrator});
     }
   }
@@ -132,22 +136,25 @@ int main(int argc, char** argv) {
   RatioReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
 
-  std::printf("\nper step at each scene's dt; MuJoCo: models/<scene>.calibrated.xml (its Euler is semi-implicit).\n"
-              "ratio = mj_step / reference step, on CPU time (robust to other load on the machine) and wall clock\n");
-  std::printf("%-11s %-20s %10s %10s %9s %9s %9s\n", "scene", "integrator", "ref cpu", "mj cpu", "ratio", "ref wall",
-              "mj wall");
+  std::printf(
+      "\nper step at each scene's dt; MuJoCo: models/<scene>.calibrated.xml (its Euler is "
+      "semi-implicit).\n"
+      "ratio = mj_step / reference step, on CPU time (robust to other load on the machine) and "
+      "wall clock\n");
+  std::printf("%-11s %-20s %10s %10s %9s %9s %9s\n", "scene", "integrator", "ref cpu", "mj cpu",
+              "ratio", "ref wall", "mj wall");
   for (const Case& c : cases) {
     const auto ref = reporter.times().find("ref/" + case_name(c));
     const auto mj = reporter.times().find("mj_step/" + case_name(c));
     if (ref == reporter.times().end()) continue;
     const std::string integrator(integrator_name(c.integrator));
     if (mj == reporter.times().end()) {
-      std::printf("%-11s %-20s %8.1fns %10s %9s %7.1fns %9s\n", c.scene.c_str(), integrator.c_str(), ref->second.cpu_ns,
-                  "-", "-", ref->second.real_ns, "-");
+      std::printf("%-11s %-20s %8.1fns %10s %9s %7.1fns %9s\n", c.scene.c_str(), integrator.c_str(),
+                  ref->second.cpu_ns, "-", "-", ref->second.real_ns, "-");
     } else {
-      std::printf("%-11s %-20s %8.1fns %8.0fns %8.0fx %7.1fns %7.0fns\n", c.scene.c_str(), integrator.c_str(),
-                  ref->second.cpu_ns, mj->second.cpu_ns, mj->second.cpu_ns / ref->second.cpu_ns, ref->second.real_ns,
-                  mj->second.real_ns);
+      std::printf("%-11s %-20s %8.1fns %8.0fns %8.0fx %7.1fns %7.0fns\n", c.scene.c_str(),
+                  integrator.c_str(), ref->second.cpu_ns, mj->second.cpu_ns,
+                  mj->second.cpu_ns / ref->second.cpu_ns, ref->second.real_ns, mj->second.real_ns);
     }
   }
   return 0;

@@ -42,14 +42,16 @@ std::vector<BadInput> load_cases() {
     auto value = [&](const std::string& tag) { return line.substr(tag.size()); };
     while (std::getline(in, line)) {
       if (line.rfind("# expect-status: ", 0) == 0) c.status = std::stoi(value("# expect-status: "));
-      if (line.rfind("# expect-message: ", 0) == 0) c.messages.push_back(value("# expect-message: "));
+      if (line.rfind("# expect-message: ", 0) == 0)
+        c.messages.push_back(value("# expect-message: "));
       if (line.rfind("# args: ", 0) == 0) c.args = value("# args: ");
       if (line.rfind("# scene-path: ", 0) == 0) c.scene_path = value("# scene-path: ");
       if (line.rfind("# csv-path: ", 0) == 0) c.csv_path = value("# csv-path: ");
     }
     cases.push_back(c);
   }
-  std::sort(cases.begin(), cases.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  std::sort(cases.begin(), cases.end(),
+            [](const auto& a, const auto& b) { return a.name < b.name; });
   return cases;
 }
 
@@ -59,13 +61,14 @@ TEST_P(BadInputs, ExitStatusMessageAndNoOutput) {
   const BadInput& c = GetParam();
   ASSERT_NE(c.status, -1) << c.file << " has no '# expect-status:' line";
   ASSERT_FALSE(c.messages.empty()) << c.file << " has no '# expect-message:' line";
-  const fs::path dir = fs::temp_directory_path() / ("contact2d_bad_" + c.name + "_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("contact2d_bad_" + c.name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path err = dir.parent_path() / (dir.filename().string() + ".stderr");
   const std::string command = "cd '" + dir.string() + "' && '" + CONTACT2D_EXE + "' simulate '" +
-                              c.scene_path + "' --csv '" + c.csv_path + "' " + c.args + " >/dev/null 2>'" +
-                              err.string() + "'";
+                              c.scene_path + "' --csv '" + c.csv_path + "' " + c.args +
+                              " >/dev/null 2>'" + err.string() + "'";
   const int raw = std::system(command.c_str());
   ASSERT_TRUE(WIFEXITED(raw));
   EXPECT_EQ(WEXITSTATUS(raw), c.status);
@@ -75,7 +78,8 @@ TEST_P(BadInputs, ExitStatusMessageAndNoOutput) {
   text << in.rdbuf();
   const std::string stderr_text = text.str();
   for (const std::string& m : c.messages) {
-    EXPECT_NE(stderr_text.find(m), std::string::npos) << "missing '" << m << "' in: " << stderr_text;
+    EXPECT_NE(stderr_text.find(m), std::string::npos)
+        << "missing '" << m << "' in: " << stderr_text;
   }
   EXPECT_EQ(std::count(stderr_text.begin(), stderr_text.end(), '\n'), 1) << stderr_text;
   EXPECT_TRUE(fs::is_empty(dir)) << "output left behind in " << dir;

@@ -18,7 +18,8 @@ int run(const std::string& args) {
 }
 
 TEST(Cli, SimulateWritesTheTrajectoryCsv) {
-  const fs::path csv = fs::temp_directory_path() / ("contact2d_cli_" + std::to_string(::getpid()) + ".csv");
+  const fs::path csv =
+      fs::temp_directory_path() / ("contact2d_cli_" + std::to_string(::getpid()) + ".csv");
   fs::remove(csv);
   ASSERT_EQ(run("simulate " CONTACT2D_SCENES_DIR "/box.toml --engine ref --duration 0.5 --csv '" +
                 csv.string() + "' >/dev/null"),
@@ -54,7 +55,8 @@ TEST(Cli, HelpOnTheProgramAndEverySubcommand) {
 
 TEST(Cli, AllBuiltInScenesRunWithEveryIntegrator) {
   for (const char* scene : {"point_mass", "box", "tshape", "circle"}) {
-    for (const char* integrator : {"explicit_euler", "semi_implicit_euler", "implicit_euler", "rk4"}) {
+    for (const char* integrator :
+         {"explicit_euler", "semi_implicit_euler", "implicit_euler", "rk4"}) {
       EXPECT_EQ(run(std::string("simulate " CONTACT2D_SCENES_DIR "/") + scene +
                     ".toml --integrator " + integrator + " >/dev/null"),
                 0)

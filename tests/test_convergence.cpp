@@ -56,7 +56,8 @@ TEST_P(ConvergenceOrder, SlopeOfLogErrorMatchesNominalOrder) {
   std::vector<double> errors;
   for (double dt : c.dts) errors.push_back(error_at_one_second(c.integrator, dt));
   const double slope = test::log_log_slope(c.dts, errors);
-  std::printf("observed order %s: %.4f\n", std::string(integrator_name(c.integrator)).c_str(), slope);
+  std::printf("observed order %s: %.4f\n", std::string(integrator_name(c.integrator)).c_str(),
+              slope);
   EXPECT_NEAR(slope, c.order, 0.1) << integrator_name(c.integrator);
 }
 

@@ -63,7 +63,7 @@ double compression_restitution(double zeta) {
 double kelvin_voigt_restitution(double zeta) {
   const double s = std::sqrt(1.0 - zeta * zeta);
   const double phase = kPi - std::atan2(2.0 * zeta * s, 1.0 - 2.0 * zeta * zeta);  // ω_d·t_e
-  const double decay = std::exp(-zeta * phase / s);                                // e^(−ζω t_e)
+  const double decay = std::exp(-zeta * phase / s);  // e^(−ζω t_e)
   return decay * std::abs(std::cos(phase) - zeta / s * std::sin(phase));
 }
 

@@ -20,7 +20,8 @@ EngineResult run_reference_engine(const Scene& scene) {
 
 EngineRunner reference_runner() {
   return [](const std::string& engine, const Scene& scene) {
-    if (engine != "ref") throw std::invalid_argument("engine '" + engine + "' is not available here");
+    if (engine != "ref")
+      throw std::invalid_argument("engine '" + engine + "' is not available here");
     return run_reference_engine(scene);
   };
 }

@@ -51,7 +51,8 @@ TrajectoryError error_between(const Trajectory& a, const Trajectory& b) {
 std::vector<double> output_times(const SimParams& sim) {
   std::vector<double> times;
   const long long n = static_cast<long long>(std::floor(sim.duration / sim.output_dt + 1e-9));
-  for (long long i = 0; i <= n; ++i) times.push_back(std::min(sim.duration, static_cast<double>(i) * sim.output_dt));
+  for (long long i = 0; i <= n; ++i)
+    times.push_back(std::min(sim.duration, static_cast<double>(i) * sim.output_dt));
   if (times.back() < sim.duration) times.push_back(sim.duration);
   return times;
 }
@@ -73,7 +74,8 @@ TimedReference timed_reference(const Scene& scene, double tol, int repeats) {
   for (int r = 0; r < std::max(1, repeats); ++r) {
     const auto start = std::chrono::steady_clock::now();
     DenseTrajectory trajectory = converged_reference(scene, tol);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out.seconds = std::min(out.seconds, seconds);
     if (r == 0) out.trajectory = std::move(trajectory);
   }

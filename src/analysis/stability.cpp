@@ -1,5 +1,5 @@
-#include "core/format.hpp"
 #include "analysis/stability.hpp"
+#include "core/format.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -43,7 +43,9 @@ Probe probe(Scene scene, const std::string& engine, const EngineRunner& runner) 
       p.penetration = std::max(p.penetration, contact2d::max_penetration(model, s.state.q));
     });
     p.stable = !run.divergence;
-    if (run.divergence) p.failure = kind_name(run.divergence->kind) + format_number(" at t = %.3g s", run.divergence->time);
+    if (run.divergence)
+      p.failure =
+          kind_name(run.divergence->kind) + format_number(" at t = %.3g s", run.divergence->time);
     return p;
   }
   const EngineResult run = runner(engine, scene);
@@ -102,8 +104,10 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
   if (config.engines.empty()) throw std::invalid_argument("--engines: the list is empty");
   for (double k : config.ks) {
     if (!(k > 0.0 && k <= 1e12)) {
-      throw std::invalid_argument("--ks: " + (std::isfinite(k) ? format_number("%g", k) : std::string("a non-finite value")) +
-                                  " is not in (0, 1e12] N/m");
+      throw std::invalid_argument(
+          "--ks: " +
+          (std::isfinite(k) ? format_number("%g", k) : std::string("a non-finite value")) +
+          " is not in (0, 1e12] N/m");
     }
   }
   if (config.zeta && !(*config.zeta >= 0.0 && *config.zeta <= 1e3)) {
@@ -166,7 +170,8 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
         // lasts about π/ω.
         const Model model = make_model(s);
         const double omega = contact_stiffness(model).omega;
-        reference_penetration[index] = max_penetration(model, ref, std::min(1e-4, omega > 0.0 ? 0.05 / omega : 1e-4));
+        reference_penetration[index] =
+            max_penetration(model, ref, std::min(1e-4, omega > 0.0 ? 0.05 / omega : 1e-4));
       }
       report("reference k=" + format_number("%g", config.ks[index]));
       return;
@@ -193,18 +198,25 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
     try {
       const double theory_dt = row.omega > 0.0 ? row.theory / row.omega : INFINITY;
       const double dt_max = result.dt_max;
-      double dt = std::clamp(std::isfinite(theory_dt) ? 0.9 * theory_dt : dt_max, row.dt_min, dt_max);
+      double dt =
+          std::clamp(std::isfinite(theory_dt) ? 0.9 * theory_dt : dt_max, row.dt_min, dt_max);
       if (try_dt(dt)) {
         row.dt_stable = dt;
         while (!std::isfinite(row.dt_unstable) && row.dt_stable < dt_max) {
           dt = std::min(4.0 * row.dt_stable, dt_max);
-          if (try_dt(dt)) row.dt_stable = dt; else row.dt_unstable = dt;
+          if (try_dt(dt))
+            row.dt_stable = dt;
+          else
+            row.dt_unstable = dt;
         }
       } else {
         row.dt_unstable = dt;
         while (std::isnan(row.dt_stable) && row.dt_unstable > row.dt_min) {
           dt = std::max(0.25 * row.dt_unstable, row.dt_min);
-          if (try_dt(dt)) row.dt_stable = dt; else row.dt_unstable = dt;
+          if (try_dt(dt))
+            row.dt_stable = dt;
+          else
+            row.dt_unstable = dt;
         }
       }
       if (std::isnan(row.dt_stable)) {
@@ -214,7 +226,10 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
       } else {
         while (row.dt_unstable / row.dt_stable > 1.0 + config.precision) {
           dt = std::sqrt(row.dt_stable * row.dt_unstable);
-          if (try_dt(dt)) row.dt_stable = dt; else row.dt_unstable = dt;
+          if (try_dt(dt))
+            row.dt_stable = dt;
+          else
+            row.dt_unstable = dt;
         }
         row.verdict = StabilityVerdict::Bracketed;
       }
@@ -232,19 +247,26 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
       row.verdict = StabilityVerdict::Failed;
       row.failure = e.what();
     }
-    report(row.engine + " " + std::string(integrator_name(row.integrator)) + " k=" + format_number("%g", row.k));
+    report(row.engine + " " + std::string(integrator_name(row.integrator)) +
+           " k=" + format_number("%g", row.k));
   });
 
   for (StabilityRow& row : rows) {
-    const size_t i = static_cast<size_t>(std::find(config.ks.begin(), config.ks.end(), row.k) - config.ks.begin());
+    const size_t i = static_cast<size_t>(std::find(config.ks.begin(), config.ks.end(), row.k) -
+                                         config.ks.begin());
     row.reference_penetration = reference_penetration[i];
     if (row.refsafe_at_stable) {
-      row.note = "refsafe: at its largest stable dt MuJoCo ran with timeconst raised to 2·dt, a softer contact "
-                 "than k";
+      row.note =
+          "refsafe: at its largest stable dt MuJoCo ran with timeconst raised to 2·dt, a softer "
+          "contact "
+          "than k";
       const double ratio = row.penetration / row.penetration_small_step;
-      if (std::isfinite(ratio)) row.note += " (deepest penetration " + format_number("%.3g", ratio) + "× that at ω·Δt = 0.2)";
+      if (std::isfinite(ratio))
+        row.note +=
+            " (deepest penetration " + format_number("%.3g", ratio) + "× that at ω·Δt = 0.2)";
     }
-    if (row.engine != "ref" && row.verdict == StabilityVerdict::Bracketed && row.omega * row.dt_stable > 1.5 * row.theory) {
+    if (row.engine != "ref" && row.verdict == StabilityVerdict::Bracketed &&
+        row.omega * row.dt_stable > 1.5 * row.theory) {
       if (!row.note.empty()) row.note += "; ";
       row.note += "stable beyond the linear bound";
     }

@@ -36,12 +36,12 @@ struct StabilityConfig {
   std::vector<double> ks{1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
   std::vector<Integrator> integrators{std::begin(kAllIntegrators), std::end(kAllIntegrators)};
   std::vector<std::string> engines{"ref"};
-  std::optional<double> zeta;        // c = 2ζ√(k·m_eff) at every k; none: the scene's c
-  double dt_max = 1e-2;              // search range, s
-  long long max_steps = 2'000'000;   // per probe of "ref": dt_min = duration / max_steps
+  std::optional<double> zeta;           // c = 2ζ√(k·m_eff) at every k; none: the scene's c
+  double dt_max = 1e-2;                 // search range, s
+  long long max_steps = 2'000'000;      // per probe of "ref": dt_min = duration / max_steps
   long long max_steps_other = 200'000;  // per probe of any other engine (≈50× dearer per step)
-  double precision = 0.02;           // stop when dt_unstable / dt_stable ≤ 1 + precision
-  unsigned threads = 0;              // 0: one per core
+  double precision = 0.02;              // stop when dt_unstable / dt_stable ≤ 1 + precision
+  unsigned threads = 0;                 // 0: one per core
   std::function<void(size_t done, size_t total, const std::string& what)> progress;
 };
 
@@ -57,19 +57,19 @@ struct StabilityRow {
   Integrator integrator = Integrator::SemiImplicitEuler;
   double k = 0.0, c = 0.0;
   double m_eff = 0.0, omega = 0.0, zeta = 0.0;
-  double theory = 0.0;                  // largest stable ω·Δt of the linear oscillator
-  double dt_stable = std::nan("");     // largest Δt found stable
-  double dt_unstable = INFINITY;        // smallest Δt found unstable
+  double theory = 0.0;              // largest stable ω·Δt of the linear oscillator
+  double dt_stable = std::nan("");  // largest Δt found stable
+  double dt_unstable = INFINITY;    // smallest Δt found unstable
   double dt_min = 0.0;
   StabilityVerdict verdict = StabilityVerdict::Failed;
-  std::string failure;                  // how the smallest unstable probe failed
+  std::string failure;  // how the smallest unstable probe failed
   int probes = 0;
   // Deepest penetration of the run at dt_stable (over every step for an
   // engine other than "ref", over the output samples for "ref"), of a run at
   // a small step (ω·Δt = 0.2, where nothing is softened; only when MuJoCo's
-  // refsafe was active at dt_stable), and of the converged reference. A contact that MuJoCo's refsafe softens at
-  // large steps sinks deeper there than at the small step: that ratio is
-  // the signature of "stable because the model changed".
+  // refsafe was active at dt_stable), and of the converged reference. A contact that MuJoCo's
+  // refsafe softens at large steps sinks deeper there than at the small step: that ratio is the
+  // signature of "stable because the model changed".
   double penetration = std::nan("");
   double penetration_small_step = std::nan("");
   double reference_penetration = std::nan("");

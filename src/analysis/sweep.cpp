@@ -1,5 +1,5 @@
-#include "core/format.hpp"
 #include "analysis/sweep.hpp"
+#include "core/format.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +19,8 @@ struct Job {
 
 }  // namespace
 
-double log_log_slope(const std::vector<double>& x, const std::vector<double>& y, double* stderr_out) {
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& y,
+                     double* stderr_out) {
   const size_t n = x.size();
   double mx = 0.0, my = 0.0;
   for (size_t i = 0; i < n; ++i) {
@@ -61,22 +62,26 @@ std::string order_note(const Scene& scene, const std::string& engine, Integrator
   }
   std::string note;
   if (integrator == Integrator::RK4 && p.c > 0.0) {
-    note = "the normal force jumps by c·|v_n| when a point enters contact (damping starts with "
-           "the contact): a fixed step across the jump errs by O(Δt) in velocity per impact, so "
-           "the method is first order";
+    note =
+        "the normal force jumps by c·|v_n| when a point enters contact (damping starts with "
+        "the contact): a fixed step across the jump errs by O(Δt) in velocity per impact, so "
+        "the method is first order";
   } else if (integrator == Integrator::RK4) {
-    note = "the force is continuous but its slope jumps at contact entry and exit (the k·d kink): "
-           "O(Δt²) per event, second order";
+    note =
+        "the force is continuous but its slope jumps at contact entry and exit (the k·d kink): "
+        "O(Δt²) per event, second order";
   } else {
     note = "pre-asymptotic";
   }
   if (p.mu > 0.0 && p.alpha * p.mu * scene.sim.gravity > 100.0) {
-    note += "; stiff tanh friction (μ·g·α = " + format_number("%.3g", p.mu * scene.sim.gravity * p.alpha) +
+    note += "; stiff tanh friction (μ·g·α = " +
+            format_number("%.3g", p.mu * scene.sim.gravity * p.alpha) +
             " 1/s) and stick–slip transitions need Δt ≪ 1/(μ·g·α) before the asymptotic rate shows";
   }
   if (scene.shape == Shape::Circle && p.mu_roll > 0.0) {
-    note += "; the regularised sign of rolling resistance, tanh(α·R·ω), turns on sharply as the "
-            "disc stops";
+    note +=
+        "; the regularised sign of rolling resistance, tanh(α·R·ω), turns on sharply as the "
+        "disc stops";
   }
   return note;
 }
@@ -102,7 +107,8 @@ std::vector<OrderFit> fit_orders(const Scene& scene, const std::vector<SweepRow>
       }
       std::vector<std::pair<double, double>> points;  // (dt, error)
       for (const SweepRow& row : rows) {
-        if (row.engine != engine || row.integrator != integrator || row.status != RunStatus::Ok) continue;
+        if (row.engine != engine || row.integrator != integrator || row.status != RunStatus::Ok)
+          continue;
         double err = row.error.max_pos;
         if (against == std::string("own finest")) {
           // Distances to the finest run shrink artificially next to it.
@@ -130,10 +136,12 @@ std::vector<OrderFit> fit_orders(const Scene& scene, const std::vector<SweepRow>
         fit.note = order_note(scene, engine, integrator, *fit.order, against);
       } else if (engine != "ref" && against == std::string("reference")) {
         fit.note = "no slope: every run is at least " + format_number("%.1g", ceiling) +
-                   " m (10 % of the scene's length scale) from the reference, the distance between the models";
+                   " m (10 % of the scene's length scale) from the reference, the distance between "
+                   "the models";
       } else {
-        fit.note = "fewer than 3 runs with an error between " + format_number("%.1g", floor) + " m (the floor) and " +
-                   format_number("%.1g", ceiling) + " m (10 % of the scene's length scale)";
+        fit.note = "fewer than 3 runs with an error between " + format_number("%.1g", floor) +
+                   " m (the floor) and " + format_number("%.1g", ceiling) +
+                   " m (10 % of the scene's length scale)";
       }
       fits.push_back(fit);
     }
@@ -146,11 +154,15 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
   if (config.integrators.empty()) throw std::invalid_argument("--integrators: the list is empty");
   if (config.dts.empty()) throw std::invalid_argument("--dts: the list is empty");
   std::vector<double> all_dts = config.dts;
-  if (config.other_dts) all_dts.insert(all_dts.end(), config.other_dts->begin(), config.other_dts->end());
+  if (config.other_dts)
+    all_dts.insert(all_dts.end(), config.other_dts->begin(), config.other_dts->end());
   for (double dt : all_dts) {
-    if (!(dt > 0.0) || !std::isfinite(dt) || dt > scene.sim.duration || scene.sim.duration / dt > 1e9) {
-      throw std::invalid_argument("--dts: " + (std::isfinite(dt) ? format_number("%g", dt) : std::string("a non-finite value")) +
-                                  " is not a step in (0, sim.duration] with at most 1e9 steps");
+    if (!(dt > 0.0) || !std::isfinite(dt) || dt > scene.sim.duration ||
+        scene.sim.duration / dt > 1e9) {
+      throw std::invalid_argument(
+          "--dts: " +
+          (std::isfinite(dt) ? format_number("%g", dt) : std::string("a non-finite value")) +
+          " is not a step in (0, sim.duration] with at most 1e9 steps");
     }
   }
   if (!(config.reference_tol >= 1e-15 && config.reference_tol <= 1e-3)) {
@@ -166,11 +178,13 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
 
   std::vector<SweepRow>& rows = result.rows;
   for (const std::string& engine : config.engines) {
-    const std::vector<Integrator>& integrators =
-        (engine != "ref" && config.other_integrators) ? *config.other_integrators : config.integrators;
+    const std::vector<Integrator>& integrators = (engine != "ref" && config.other_integrators)
+                                                     ? *config.other_integrators
+                                                     : config.integrators;
     for (Integrator integrator : integrators) {
       if (!engine_offers(engine, integrator)) continue;
-      const std::vector<double>& dts = (engine != "ref" && config.other_dts) ? *config.other_dts : config.dts;
+      const std::vector<double>& dts =
+          (engine != "ref" && config.other_dts) ? *config.other_dts : config.dts;
       for (double dt : dts) {
         SweepRow row;
         row.engine = engine;
@@ -191,12 +205,14 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
   for (size_t i = 0; i < config.dense_tols.size(); ++i) jobs.push_back({Job::Dense, i, 1e9});
   std::vector<DenseTrajectory> dense_runs(config.dense_tols.size());
   for (size_t i = 0; i < rows.size(); ++i) {
-    const double evals = rows[i].integrator == Integrator::RK4 ? 4.0
-                         : rows[i].integrator == Integrator::ImplicitEuler ? 10.0 : 1.0;
+    const double evals = rows[i].integrator == Integrator::RK4             ? 4.0
+                         : rows[i].integrator == Integrator::ImplicitEuler ? 10.0
+                                                                           : 1.0;
     const double engine_cost = rows[i].engine == "ref" ? 1.0 : 50.0;
     jobs.push_back({Job::Run, i, engine_cost * evals * scene.sim.duration / rows[i].dt});
   }
-  std::stable_sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.cost > b.cost; });
+  std::stable_sort(jobs.begin(), jobs.end(),
+                   [](const Job& a, const Job& b) { return a.cost > b.cost; });
 
   TimedReference loose;
   std::mutex progress_mutex;
@@ -224,7 +240,8 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
       Scene s = scene;
       s.sim.integrator = row.integrator;
       s.sim.dt = row.dt;
-      what = row.engine + " " + std::string(integrator_name(row.integrator)) + " dt=" + format_number("%g", row.dt);
+      what = row.engine + " " + std::string(integrator_name(row.integrator)) +
+             " dt=" + format_number("%g", row.dt);
       try {
         double best = INFINITY;
         for (int r = 0; r < result.repeats; ++r) {
@@ -290,7 +307,8 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
   const State start = reference.at(0.0);
   result.length_scale = body_extent(make_body(scene));
   for (double t : output_times(scene.sim)) {
-    result.length_scale = std::max(result.length_scale, (reference.at(t).q.head<2>() - start.q.head<2>()).norm());
+    result.length_scale =
+        std::max(result.length_scale, (reference.at(t).q.head<2>() - start.q.head<2>()).norm());
   }
   result.orders = fit_orders(scene, rows, result.reference_error, result.length_scale);
   return result;

@@ -23,7 +23,7 @@ struct SweepConfig {
   std::vector<std::string> engines{"ref"};
   std::vector<Integrator> integrators{std::begin(kAllIntegrators), std::end(kAllIntegrators)};
   std::vector<double> dts{1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5};
-  int repeats = 3;                 // best of this many runs …
+  int repeats = 3;                   // best of this many runs …
   double single_run_seconds = 0.25;  // … unless one run takes longer than this
   double reference_tol = 1e-12;
   // Engines other than "ref" run only these steps when given (MuJoCo's step
@@ -34,7 +34,7 @@ struct SweepConfig {
   // The adaptive integrator itself at these tolerances, for the work–precision
   // diagram (error against the reference, best-of-3 time).
   std::vector<double> dense_tols{1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
-  unsigned threads = 0;            // 0: one per core
+  unsigned threads = 0;  // 0: one per core
   // Called from worker threads (serialised) after each configuration.
   std::function<void(size_t done, size_t total, const std::string& what)> progress;
 };
@@ -46,12 +46,12 @@ struct SweepRow {
   Integrator integrator = Integrator::SemiImplicitEuler;
   double dt = 0.0;
   RunStatus status = RunStatus::Ok;
-  std::string message;             // divergence diagnostic or error text
+  std::string message;  // divergence diagnostic or error text
   std::optional<Divergence> divergence;
-  TrajectoryError error;           // against the converged reference
+  TrajectoryError error;                      // against the converged reference
   std::optional<TrajectoryError> self_error;  // against the smallest Δt (not for that run itself)
-  double seconds = 0.0;            // best wall-clock time
-  int repeats = 0;                 // runs it is the best of
+  double seconds = 0.0;                       // best wall-clock time
+  int repeats = 0;                            // runs it is the best of
   std::vector<std::string> warnings;
 };
 
@@ -68,23 +68,23 @@ struct SweepRow {
 struct OrderFit {
   std::string engine;
   Integrator integrator = Integrator::SemiImplicitEuler;
-  std::string against;             // "reference" or "own finest"
+  std::string against;  // "reference" or "own finest"
   double nominal = 0.0;
-  std::optional<double> order;     // none with fewer than 3 usable points
-  double order_stderr = 0.0;       // standard error of the fitted slope
+  std::optional<double> order;  // none with fewer than 3 usable points
+  double order_stderr = 0.0;    // standard error of the fitted slope
   int points = 0;
   double dt_min = 0.0;
   double dt_max = 0.0;
-  std::string note;                // why the order is below nominal, if it is
+  std::string note;  // why the order is below nominal, if it is
 };
 
 struct SweepResult {
   std::string scene_name;
   double duration = 0.0;
-  TimedReference reference;        // the converged reference the errors are against
-  double reference_error = 0.0;    // its own error bound: distance to the run at 10× the tolerance
+  TimedReference reference;      // the converged reference the errors are against
+  double reference_error = 0.0;  // its own error bound: distance to the run at 10× the tolerance
   double reference_loose_seconds = 0.0;
-  double length_scale = 0.0;       // L of the order fit, m
+  double length_scale = 0.0;  // L of the order fit, m
   std::vector<SweepRow> rows;
   std::vector<ToleranceRow> dense_curve;  // the adaptive method at other tolerances
   std::vector<OrderFit> orders;

@@ -54,8 +54,10 @@ struct PlayOptions {
 
 int play(const PlayOptions& o) {
   using namespace contact2d::game;
-  if (o.headless && !o.record.empty()) throw InputError("--record needs the window: it cannot be used with --headless");
-  if (o.headless && o.frames > 0) throw InputError("--frames counts window frames: it cannot be used with --headless");
+  if (o.headless && !o.record.empty())
+    throw InputError("--record needs the window: it cannot be used with --headless");
+  if (o.headless && o.frames > 0)
+    throw InputError("--frames counts window frames: it cannot be used with --headless");
   const std::optional<std::uint64_t> seed_option = parse_seed(o.seed);
   const Pitch pitch = o.pitch.empty() ? default_pitch() : load_pitch(o.pitch);
 
@@ -64,20 +66,26 @@ int play(const PlayOptions& o) {
   if (!o.replay.empty()) {
     replay = read_replay(o.replay);
     if (seed_option && *seed_option != replay->seed) {
-      throw InputError("--seed " + std::to_string(*seed_option) + " conflicts with the replay's seed " +
-                       std::to_string(replay->seed) + " (a replay plays its own passes; drop --seed)");
+      throw InputError("--seed " + std::to_string(*seed_option) +
+                       " conflicts with the replay's seed " + std::to_string(replay->seed) +
+                       " (a replay plays its own passes; drop --seed)");
     }
     if (replay->dt != pitch.scene.sim.dt) {
-      throw InputError(o.replay + ": dt " + shortest(replay->dt) + " s does not match the pitch's sim.dt = " +
-                       shortest(pitch.scene.sim.dt) + " s (its steps would fall at other times)");
+      throw InputError(o.replay + ": dt " + shortest(replay->dt) +
+                       " s does not match the pitch's sim.dt = " + shortest(pitch.scene.sim.dt) +
+                       " s (its steps would fall at other times)");
     }
     if (replay->pitch_fingerprint != 0 && replay->pitch_fingerprint != pitch.fingerprint) {
-      std::cerr << "contact2d: warning: " << o.replay << " was recorded on a different pitch file than "
-                << pitch.path << "; the outcome may differ\n";
+      std::cerr << "contact2d: warning: " << o.replay
+                << " was recorded on a different pitch file than " << pitch.path
+                << "; the outcome may differ\n";
     }
     seed = replay->seed;
   } else {
-    seed = seed_option ? *seed_option : (static_cast<std::uint64_t>(std::random_device{}()) << 32 | std::random_device{}());
+    seed =
+        seed_option
+            ? *seed_option
+            : (static_cast<std::uint64_t>(std::random_device{}()) << 32 | std::random_device{}());
   }
 
   Game game(pitch, make_engine(o.engine, pitch.scene), seed);
@@ -93,19 +101,25 @@ int play(const PlayOptions& o) {
     w.max_frames = o.frames;
     w.start_with_help = o.help_on_start;
     const WindowStats stats = run_window(game, feed, w);
-    const double fps = stats.seconds > 0.0 ? static_cast<double>(stats.frames) / stats.seconds : 0.0;
-    const double render_ms = stats.frames > 0 ? 1e3 * stats.render_seconds / static_cast<double>(stats.frames) : 0.0;
-    std::cerr << "contact2d play: " << stats.frames << " frames in " << format_number(stats.seconds, 4) << " s ("
-              << format_number(fps, 4) << " fps, drawing " << format_number(render_ms, 3) << " ms/frame), "
-              << stats.steps << " physics steps\n";
+    const double fps =
+        stats.seconds > 0.0 ? static_cast<double>(stats.frames) / stats.seconds : 0.0;
+    const double render_ms =
+        stats.frames > 0 ? 1e3 * stats.render_seconds / static_cast<double>(stats.frames) : 0.0;
+    std::cerr << "contact2d play: " << stats.frames << " frames in "
+              << format_number(stats.seconds, 4) << " s (" << format_number(fps, 4)
+              << " fps, drawing " << format_number(render_ms, 3) << " ms/frame), " << stats.steps
+              << " physics steps\n";
 #else
-    throw InputError("play: the window is not available (contact2d was built without GLFW/OpenGL); use --headless");
+    throw InputError(
+        "play: the window is not available (contact2d was built without GLFW/OpenGL); use "
+        "--headless");
 #endif
   }
   if (!o.record_input.empty()) write_replay(feed.recorded(), o.record_input);
   std::cout << report_json(game) << "\n";
   if (game.divergence()) {
-    std::cerr << "contact2d: " << pitch.path << ": " << describe(*game.divergence(), pitch.scene) << "\n";
+    std::cerr << "contact2d: " << pitch.path << ": " << describe(*game.divergence(), pitch.scene)
+              << "\n";
     return kExitDiverged;
   }
   return kExitOk;
@@ -117,19 +131,30 @@ Command add_play(CLI::App& app) {
   auto o = std::make_shared<PlayOptions>();
   CLI::App* cmd = app.add_subcommand(
       "play",
-      "The game: receive a pass, push the ball with the arrows, kick it (K) into the goal from at least 1 m.\n"
-      "Keys: arrows push, K or Enter kicks, W/S change the kick angle, Space pauses, Backspace resets\n"
+      "The game: receive a pass, push the ball with the arrows, kick it (K) into the goal from at "
+      "least 1 m.\n"
+      "Keys: arrows push, K or Enter kicks, W/S change the kick angle, Space pauses, Backspace "
+      "resets\n"
       "to the next pass, F1 or H shows the help, Esc quits. Prints one JSON line at the end.");
-  cmd->add_option("pitch", o->pitch, "Pitch file: a circle scene with [[obstacle]] and [game] (default: the built-in pitch)");
+  cmd->add_option(
+      "pitch", o->pitch,
+      "Pitch file: a circle scene with [[obstacle]] and [game] (default: the built-in pitch)");
   cmd->add_option("--engine", o->engine, "ref | mujoco")->check(CLI::IsMember({"ref", "mujoco"}));
-  cmd->add_option("--seed", o->seed, "Seed of the passes (default: random; the JSON and the replay say which)");
-  cmd->add_option("--record-input", o->record_input, "Save the key events (stamped with physics steps) to this replay file");
-  cmd->add_option("--replay", o->replay, "Play back a replay file (its seed, its inputs; live keys are ignored)");
-  cmd->add_flag("--headless", o->headless, "No window: run as fast as possible and print the JSON line");
-  cmd->add_option("--record", o->record, "Write a video of the window to this .mp4 file (through ffmpeg)");
-  cmd->add_option("--frames", o->frames, "Close the window after this many frames (to measure the frame rate)")
+  cmd->add_option("--seed", o->seed,
+                  "Seed of the passes (default: random; the JSON and the replay say which)");
+  cmd->add_option("--record-input", o->record_input,
+                  "Save the key events (stamped with physics steps) to this replay file");
+  cmd->add_option("--replay", o->replay,
+                  "Play back a replay file (its seed, its inputs; live keys are ignored)");
+  cmd->add_flag("--headless", o->headless,
+                "No window: run as fast as possible and print the JSON line");
+  cmd->add_option("--record", o->record,
+                  "Write a video of the window to this .mp4 file (through ffmpeg)");
+  cmd->add_option("--frames", o->frames,
+                  "Close the window after this many frames (to measure the frame rate)")
       ->check(CLI::Range(1LL, 100000000LL));
-  cmd->add_flag("--no-vsync", o->no_vsync, "Do not wait for the display's refresh (to measure the frame rate)");
+  cmd->add_flag("--no-vsync", o->no_vsync,
+                "Do not wait for the display's refresh (to measure the frame rate)");
   cmd->add_flag("--help-overlay", o->help_on_start, "Start with the help overlay shown");
   return {cmd, [o] { return play(*o); }};
 }

@@ -41,8 +41,10 @@ void print_summary(const Scene& scene, const std::string& engine, const EngineRu
   std::cout << shape_name(scene.shape) << " [" << engine << ", "
             << integrator_name(scene.sim.integrator) << ", dt = " << format_number(scene.sim.dt)
             << " s, " << format_number(scene.sim.duration) << " s in "
-            << format_number(run.seconds * 1e3, 3) << " ms]: final x = " << format_number(last.q.x())
-            << " m, y = " << format_number(last.q.y()) << " m, theta = " << format_number(last.q.z())
+            << format_number(run.seconds * 1e3, 3)
+            << " ms]: final x = " << format_number(last.q.x())
+            << " m, y = " << format_number(last.q.y())
+            << " m, theta = " << format_number(last.q.z())
             << " rad, |v| = " << format_number(last.v.head<2>().norm())
             << " m/s; max sampled penetration " << format_number(deepest) << " m; energy "
             << format_number(energy(model, first)) << " -> " << format_number(energy(model, last))
@@ -77,11 +79,13 @@ int simulate(const SimulateOptions& options) {
 
 Command add_simulate(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
-  CLI::App* cmd = app.add_subcommand("simulate", "Run one engine on a scene and write its trajectory");
+  CLI::App* cmd =
+      app.add_subcommand("simulate", "Run one engine on a scene and write its trajectory");
   options->scene.add_to(*cmd);
   cmd->add_option("--engine", options->engine, "ref | mujoco")
       ->check(CLI::IsMember({"ref", "mujoco"}));
-  cmd->add_option("--csv", options->csv, "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file");
+  cmd->add_option("--csv", options->csv,
+                  "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file");
 #ifdef CONTACT2D_WITH_MUJOCO
   options->mujoco.add_to(*cmd);
 #endif

@@ -16,7 +16,8 @@ namespace contact2d::cli {
 // Defined in cmd_sweep.cpp.
 extern const std::vector<std::string> kAnalysisEngines;
 analysis::EngineRunner cli_engine_runner();
-std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label, bool quiet);
+std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label,
+                                                                          bool quiet);
 Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
                       const std::optional<double>& duration);
 
@@ -52,7 +53,8 @@ int stability(const StabilityOptions& o) {
     config.dt_max = o.dt_max;
     config.precision = o.precision;
     config.threads = o.threads;
-    config.progress = terminal_progress("stability " + std::string(shape_name(scene.shape)), o.quiet);
+    config.progress =
+        terminal_progress("stability " + std::string(shape_name(scene.shape)), o.quiet);
     result = analysis::run_stability(scene, config, cli_engine_runner());
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
@@ -76,26 +78,34 @@ int stability(const StabilityOptions& o) {
 
 Command add_stability(CLI::App& app) {
   auto o = std::make_shared<StabilityOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "stability", "Largest stable dt per contact stiffness and integrator (bisection), against the linear theory");
+  CLI::App* cmd = app.add_subcommand("stability",
+                                     "Largest stable dt per contact stiffness and integrator "
+                                     "(bisection), against the linear theory");
   cmd->add_option("scene", o->path, "Scene file (TOML)")->required();
-  cmd->add_option("--ks", o->ks, "Comma-separated contact stiffnesses, N/m (default 1e3,1e4,...,1e9)")
+  cmd->add_option("--ks", o->ks,
+                  "Comma-separated contact stiffnesses, N/m (default 1e3,1e4,...,1e9)")
       ->delimiter(',');
-  cmd->add_option("--integrators", o->integrators, "Comma-separated list (default: all four)")->delimiter(',');
+  cmd->add_option("--integrators", o->integrators, "Comma-separated list (default: all four)")
+      ->delimiter(',');
   cmd->add_option("--engines", o->engines,
-                  "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = its default) "
+                  "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = "
+                  "its default) "
                   "(default: ref)")
       ->delimiter(',')
       ->check(CLI::IsMember(kAnalysisEngines));
-  cmd->add_option("--zeta", o->zeta,
-                  "Damping ratio held at every k: c = 2*zeta*sqrt(k*m_eff) (default: keep the scene's c)");
-  cmd->add_option("--dt-max", o->dt_max, "Largest dt tried, s (default 1e-2)")->check(CLI::PositiveNumber);
+  cmd->add_option(
+      "--zeta", o->zeta,
+      "Damping ratio held at every k: c = 2*zeta*sqrt(k*m_eff) (default: keep the scene's c)");
+  cmd->add_option("--dt-max", o->dt_max, "Largest dt tried, s (default 1e-2)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--precision", o->precision, "Relative width of the final bracket (default 0.02)")
       ->check(CLI::Range(1e-4, 1.0));
   cmd->add_option("--csv", o->csv, "Write one row per engine, integrator and k to this CSV file");
   cmd->add_option("--plot", o->plot, "Write the stability map (PNG, gnuplot)");
-  cmd->add_option("--threads", o->threads, "Worker threads (default: one per core)")->check(CLI::Range(1u, 256u));
-  cmd->add_option("--duration", o->duration, "Simulated time of each probe, s (overrides sim.duration)");
+  cmd->add_option("--threads", o->threads, "Worker threads (default: one per core)")
+      ->check(CLI::Range(1u, 256u));
+  cmd->add_option("--duration", o->duration,
+                  "Simulated time of each probe, s (overrides sim.duration)");
   cmd->add_option("--set", o->sets, "Override any scene key, e.g. --set contact.c=0 (repeatable)");
   cmd->add_flag("--quiet", o->quiet, "No progress on stderr");
   return {cmd, [o] { return stability(*o); }};

@@ -25,7 +25,8 @@ namespace contact2d::cli {
 // a named solref/solimp mapping ("mujoco:exact"): the standard-form
 // mappings show what MuJoCo's refsafe does to a stiff contact.
 extern const std::vector<std::string> kAnalysisEngines;
-const std::vector<std::string> kAnalysisEngines{"ref", "mujoco", "mujoco:seed", "mujoco:exact", "mujoco:calibrated"};
+const std::vector<std::string> kAnalysisEngines{"ref", "mujoco", "mujoco:seed", "mujoco:exact",
+                                                "mujoco:calibrated"};
 
 // Shared by sweep and stability: the CLI's engines as an analysis runner.
 analysis::EngineRunner cli_engine_runner() {
@@ -37,7 +38,8 @@ analysis::EngineRunner cli_engine_runner() {
       contact2d::mujoco::MjcfOptions options;  // "mujoco": the default mapping
       if (engine.size() > 6) {
         const auto mapping = contact2d::mujoco::parse_mapping(engine.substr(7));
-        if (!mapping) throw InputError("--engines " + engine + ": unknown mapping (seed, exact, calibrated)");
+        if (!mapping)
+          throw InputError("--engines " + engine + ": unknown mapping (seed, exact, calibrated)");
         options.mapping = *mapping;
       }
       contact2d::mujoco::SolverSettings settings;
@@ -98,7 +100,8 @@ struct SweepOptions {
 int sweep(const SweepOptions& o) {
   const Scene scene = load_scene_with(o.path, o.sets, o.duration);
   if (!scene.obstacles.empty()) {
-    throw InputError(o.path + ": sweep measures errors against the converged reference, which handles "
+    throw InputError(o.path +
+                     ": sweep measures errors against the converged reference, which handles "
                      "ground contact only; this scene has static obstacles");
   }
   // Outputs are opened first: a bad path fails before any work.
@@ -112,7 +115,8 @@ int sweep(const SweepOptions& o) {
     if (!o.integrators.empty()) config.integrators = analysis::parse_integrators(o.integrators);
     if (!o.dts.empty()) config.dts = o.dts;
     if (!o.mujoco_dts.empty()) config.other_dts = o.mujoco_dts;
-    if (!o.mujoco_integrators.empty()) config.other_integrators = analysis::parse_integrators(o.mujoco_integrators);
+    if (!o.mujoco_integrators.empty())
+      config.other_integrators = analysis::parse_integrators(o.mujoco_integrators);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -123,14 +127,16 @@ int sweep(const SweepOptions& o) {
   config.progress = terminal_progress("sweep " + std::string(shape_name(scene.shape)), o.quiet);
 
   if (o.reference_study || study_csv) {
-    const std::vector<double> tols{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
+    const std::vector<double> tols{1e-3, 1e-4,  1e-5,  1e-6,  1e-7, 1e-8,
+                                   1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
     // One thread: the study times every run, and two side by side would
     // disturb each other's timing more than they save.
     const analysis::ReferenceStudy study = analysis::study_reference(scene, tols, 1e-14, 1);
     analysis::print_reference_study(std::cout, std::string(shape_name(scene.shape)), study);
     std::cout << "\n";
     if (study_csv) {
-      analysis::write_reference_study_csv(study_csv->get(), std::string(shape_name(scene.shape)), study);
+      analysis::write_reference_study_csv(study_csv->get(), std::string(shape_name(scene.shape)),
+                                          study);
       study_csv->commit();
     }
   }
@@ -173,39 +179,50 @@ int sweep(const SweepOptions& o) {
 
 Command add_sweep(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "sweep",
-      "Error against run time: every engine x integrator x dt against the scene's converged reference");
+  CLI::App* cmd = app.add_subcommand("sweep",
+                                     "Error against run time: every engine x integrator x dt "
+                                     "against the scene's converged reference");
   cmd->add_option("scene", o->path, "Scene file (TOML)")->required();
-  cmd->add_option("--integrators", o->integrators,
-                  "Comma-separated list (default: explicit_euler,semi_implicit_euler,implicit_euler,rk4)")
+  cmd->add_option(
+         "--integrators", o->integrators,
+         "Comma-separated list (default: explicit_euler,semi_implicit_euler,implicit_euler,rk4)")
       ->delimiter(',');
-  cmd->add_option("--dts", o->dts, "Comma-separated time steps, s (default: 1e-3,5e-4,2e-4,1e-4,5e-5,2e-5,1e-5)")
+  cmd->add_option("--dts", o->dts,
+                  "Comma-separated time steps, s (default: 1e-3,5e-4,2e-4,1e-4,5e-5,2e-5,1e-5)")
       ->delimiter(',');
   cmd->add_option("--mujoco-dts", o->mujoco_dts,
-                  "Comma-separated time steps for MuJoCo only (default: --dts; a MuJoCo step costs ~100x a reference step)")
+                  "Comma-separated time steps for MuJoCo only (default: --dts; a MuJoCo step costs "
+                  "~100x a reference step)")
       ->delimiter(',');
   cmd->add_option("--mujoco-integrators", o->mujoco_integrators,
-                  "Comma-separated integrators for MuJoCo only (default: --integrators; it has no explicit Euler)")
+                  "Comma-separated integrators for MuJoCo only (default: --integrators; it has no "
+                  "explicit Euler)")
       ->delimiter(',');
   cmd->add_option("--engines", o->engines,
-                  "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = its default) "
+                  "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = "
+                  "its default) "
                   "(default: ref)")
       ->delimiter(',')
       ->check(CLI::IsMember(kAnalysisEngines));
   cmd->add_option("--csv", o->csv, "Write one row per run to this CSV file");
   cmd->add_option("--orders-csv", o->orders_csv, "Write the observed orders to this CSV file");
   cmd->add_option("--plot", o->plot, "Write the work-precision diagram (PNG, gnuplot)");
-  cmd->add_option("--repeats", o->repeats, "Time each run as the best of N repeats (default 3; 1 when a run takes over 0.25 s)")
+  cmd->add_option(
+         "--repeats", o->repeats,
+         "Time each run as the best of N repeats (default 3; 1 when a run takes over 0.25 s)")
       ->check(CLI::Range(1, 100));
   cmd->add_option("--tol", o->tol, "Tolerance of the converged reference (default 1e-12)")
       ->check(CLI::Range(1e-15, 1e-3));
-  cmd->add_option("--threads", o->threads, "Worker threads (default: one per core)")->check(CLI::Range(1u, 256u));
-  cmd->add_flag("--reference-study", o->reference_study,
-                "First show the reference's self-consistency error at tolerances 1e-3..1e-13 against 1e-14");
-  cmd->add_option("--study-csv", o->study_csv, "Write the reference study to this CSV file (implies --reference-study)");
+  cmd->add_option("--threads", o->threads, "Worker threads (default: one per core)")
+      ->check(CLI::Range(1u, 256u));
+  cmd->add_flag(
+      "--reference-study", o->reference_study,
+      "First show the reference's self-consistency error at tolerances 1e-3..1e-13 against 1e-14");
+  cmd->add_option("--study-csv", o->study_csv,
+                  "Write the reference study to this CSV file (implies --reference-study)");
   cmd->add_option("--duration", o->duration, "Simulated time, s (overrides sim.duration)");
-  cmd->add_option("--set", o->sets, "Override any scene key, e.g. --set contact.k=1e6 (repeatable)");
+  cmd->add_option("--set", o->sets,
+                  "Override any scene key, e.g. --set contact.k=1e6 (repeatable)");
   cmd->add_flag("--quiet", o->quiet, "No progress on stderr");
   return {cmd, [o] { return sweep(*o); }};
 }

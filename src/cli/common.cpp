@@ -9,8 +9,9 @@ namespace contact2d::cli {
 
 void SceneOptions::add_to(CLI::App& cmd) {
   cmd.add_option("scene", path, "Scene file (TOML)")->required();
-  cmd.add_option("--integrator", integrator,
-                 "explicit_euler | semi_implicit_euler | implicit_euler | rk4 (overrides sim.integrator)");
+  cmd.add_option(
+      "--integrator", integrator,
+      "explicit_euler | semi_implicit_euler | implicit_euler | rk4 (overrides sim.integrator)");
   cmd.add_option("--dt", dt, "Time step, s (overrides sim.dt)");
   cmd.add_option("--duration", duration, "Simulated time, s (overrides sim.duration)");
   cmd.add_option("--set", sets, "Override any scene key, e.g. --set contact.k=1e6 (repeatable)");

@@ -47,9 +47,9 @@ struct Command {
 };
 
 Command add_simulate(CLI::App& app);
-Command add_play(CLI::App& app);  // the game (src/game)
-Command add_generate(CLI::App& app);  // built with MuJoCo only
-Command add_compare(CLI::App& app);   // built with MuJoCo only
+Command add_play(CLI::App& app);       // the game (src/game)
+Command add_generate(CLI::App& app);   // built with MuJoCo only
+Command add_compare(CLI::App& app);    // built with MuJoCo only
 Command add_sweep(CLI::App& app);      // error against run time (src/cli/cmd_sweep.cpp)
 Command add_stability(CLI::App& app);  // stability map (src/cli/cmd_stability.cpp)
 

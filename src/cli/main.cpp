@@ -9,18 +9,17 @@
 
 int main(int argc, char** argv) {
   using namespace contact2d::cli;
-  CLI::App app{"contact2d: a 2D rigid-body penalty-contact reference solver, cross-validated against MuJoCo 2.2"};
+  CLI::App app{
+      "contact2d: a 2D rigid-body penalty-contact reference solver, cross-validated against MuJoCo "
+      "2.2"};
   app.require_subcommand(1);
 
   const std::vector<Command> commands = {
-      add_simulate(app),
-      add_play(app),
+      add_simulate(app), add_play(app),
 #ifdef CONTACT2D_WITH_MUJOCO
-      add_generate(app),
-      add_compare(app),
+      add_generate(app), add_compare(app),
 #endif
-      add_sweep(app),
-      add_stability(app),
+      add_sweep(app),    add_stability(app),
   };
 
   try {

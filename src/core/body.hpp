@@ -30,11 +30,11 @@ struct BoxPart {
 
 struct RigidBody {
   double mass = 1.0;
-  double inertia = 0.0;       // about the COM, kg·m² (0 when rotates = false)
-  bool rotates = true;        // false: θ and ω stay 0 (point mass)
-  bool points_rotate = true;  // false: points keep their world-frame offset (circle)
-  double roll_radius = 0.0;   // > 0: the point is a rolling contact of this radius
-  std::vector<Vec2> points;   // contact points relative to the COM, body frame
+  double inertia = 0.0;            // about the COM, kg·m² (0 when rotates = false)
+  bool rotates = true;             // false: θ and ω stay 0 (point mass)
+  bool points_rotate = true;       // false: points keep their world-frame offset (circle)
+  double roll_radius = 0.0;        // > 0: the point is a rolling contact of this radius
+  std::vector<Vec2> points;        // contact points relative to the COM, body frame
   Vec2 com_offset = Vec2::Zero();  // COM in the construction frame (compound only)
 };
 

@@ -24,12 +24,12 @@ namespace contact2d {
 enum class DampingLaw { Compression, KelvinVoigt };
 
 struct ContactParams {
-  double k = 1e4;          // stiffness, N/m
-  double c = 200.0;        // damping, N·s/m
-  double mu = 0.0;         // sliding friction coefficient
-  double alpha = 100.0;    // tanh regularisation of friction, s/m
-  double mu_roll = 0.0;    // rolling resistance, m (circle only)
-  double mu_torsion = 0.0; // torsional friction (3D only; passed to MuJoCo)
+  double k = 1e4;           // stiffness, N/m
+  double c = 200.0;         // damping, N·s/m
+  double mu = 0.0;          // sliding friction coefficient
+  double alpha = 100.0;     // tanh regularisation of friction, s/m
+  double mu_roll = 0.0;     // rolling resistance, m (circle only)
+  double mu_torsion = 0.0;  // torsional friction (3D only; passed to MuJoCo)
   DampingLaw damping = DampingLaw::Compression;
 };
 

@@ -180,7 +180,7 @@ State unpack(const Vec6& y) {
 // One Dormand–Prince step of length h from (y0, k1) with the mode frozen.
 struct StepResult {
   Vec6 y1;
-  Vec6 k[7];  // k[0] = f(y0), …, k[6] = f(y1)
+  Vec6 k[7];           // k[0] = f(y0), …, k[6] = f(y1)
   double error = 0.0;  // scaled RMS error estimate; ≤ 1 accepts
 };
 
@@ -242,7 +242,7 @@ double bracket_root(F phi, double a, double fa, double b, double fb) {
 }
 
 struct Event {
-  double s = 0.0;          // position in the step, [0, 1]; 0 = at its start
+  double s = 0.0;  // position in the step, [0, 1]; 0 = at its start
   size_t function = 0;
 };
 
@@ -338,7 +338,8 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
     // Obstacle contacts switch between faces and between point and disc
     // geometry; their switching functions are not modelled here, and a
     // reference that silently ignored them would be wrong, not converged.
-    out.failure_ = "static obstacles are not supported by the converged reference (ground contact only)";
+    out.failure_ =
+        "static obstacles are not supported by the converged reference (ground contact only)";
     return out;
   }
   System sys(model);
@@ -373,7 +374,8 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
     const double remaining = duration - t;
     h = std::min(h, h_max);
     if (h >= remaining || remaining - h <= 1e-12 * remaining) h = remaining;
-    if (h <= 8.0 * kEps * std::max(1.0, t)) return fail("step size underflow at t = " + std::to_string(t));
+    if (h <= 8.0 * kEps * std::max(1.0, t))
+      return fail("step size underflow at t = " + std::to_string(t));
 
     dopri_step(sys, y, f, h, rtol, atol, step);
     stats.evaluations += 6;
@@ -427,8 +429,9 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
     // crossings, e.g. a box landing flat on two corners).
     const size_t n = sys.points();
     for (size_t j = 0; j < sys.functions(); ++j) {
-      flips[j] = sys.monitored(j) &&
-                 (j == event->function || (!at_start && sys.signed_value(j, y, nullptr, nullptr) < 0.0));
+      flips[j] =
+          sys.monitored(j) &&
+          (j == event->function || (!at_start && sys.signed_value(j, y, nullptr, nullptr) < 0.0));
     }
     for (size_t i = 0; i < n; ++i) {
       if (flips[i]) {

@@ -50,9 +50,9 @@ namespace contact2d {
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 
 struct DenseOptions {
-  double rtol = 1e-12;     // relative tolerance on every component
-  double atol = 1e-12;     // absolute tolerance (m, rad, m/s, rad/s alike)
-  double h_max = 0.0;      // largest step; 0 = duration / 100
+  double rtol = 1e-12;               // relative tolerance on every component
+  double atol = 1e-12;               // absolute tolerance (m, rad, m/s, rad/s alike)
+  double h_max = 0.0;                // largest step; 0 = duration / 100
   long long max_steps = 20'000'000;  // accepted + rejected; beyond: failed
 };
 

@@ -24,7 +24,8 @@ DivergenceMonitor::DivergenceMonitor(const Model& model, const State& initial) :
   double lowest = std::numeric_limits<double>::infinity();
   const double ct = body.points_rotate ? std::cos(initial.q.z()) : 1.0;
   const double st = body.points_rotate ? std::sin(initial.q.z()) : 0.0;
-  for (const Vec2& r : body.points) lowest = std::min(lowest, initial.q.y() + st * r.x() + ct * r.y());
+  for (const Vec2& r : body.points)
+    lowest = std::min(lowest, initial.q.y() + st * r.x() + ct * r.y());
   const double h0 = std::isfinite(lowest) ? std::max(0.0, lowest) : 0.0;
   const double kinetic = 0.5 * body.mass * initial.v.head<2>().squaredNorm() +
                          0.5 * body.inertia * initial.v.z() * initial.v.z();
@@ -54,7 +55,8 @@ std::optional<Divergence> DivergenceMonitor::check(const State& s, double t,
   const double depth = max_penetration(*model_, s.q);
   // Work put in by applied forces can end up in one spring too.
   const double depth_allowed = applied_work == 0.0 ? max_depth_ : depth_limit(allowed);
-  if (depth > depth_allowed) return Divergence{DivergenceKind::Penetration, t, depth, depth_allowed};
+  if (depth > depth_allowed)
+    return Divergence{DivergenceKind::Penetration, t, depth, depth_allowed};
   return std::nullopt;
 }
 
@@ -81,9 +83,10 @@ std::string describe(const Divergence& d, const Scene& scene) {
                     d.limit);
       break;
     case DivergenceKind::Penetration:
-      what = format("a contact point sank %.3g m into the ground, beyond the %.3g m any "
-                    "energy in the scene can explain",
-                    d.value, d.limit);
+      what = format(
+          "a contact point sank %.3g m into the ground, beyond the %.3g m any "
+          "energy in the scene can explain",
+          d.value, d.limit);
       break;
     case DivergenceKind::NewtonFailed:
       what = "implicit Euler's Newton iteration did not converge even at dt/64";
@@ -116,10 +119,11 @@ std::string describe(const Divergence& d, const Scene& scene) {
     // Explicit Euler on an undamped rebound: no step is stable; each contact
     // step multiplies the energy by 1 + (ω·Δt)².
     const double safe_dt = 0.05 / cs.omega;
-    message += "Likely cause: " + method + " gains energy on every undamped rebound (the " +
-               "compression law does not damp it): each contact step multiplies it by 1 + (ω·Δt)² = " +
-               format("%.3g", 1.0 + omega_dt * omega_dt) + omega_text + ". Try --dt " +
-               format("%.2g", safe_dt) + " or --integrator semi_implicit_euler.";
+    message +=
+        "Likely cause: " + method + " gains energy on every undamped rebound (the " +
+        "compression law does not damp it): each contact step multiplies it by 1 + (ω·Δt)² = " +
+        format("%.3g", 1.0 + omega_dt * omega_dt) + omega_text + ". Try --dt " +
+        format("%.2g", safe_dt) + " or --integrator semi_implicit_euler.";
   } else if (omega_dt > limit) {
     const double safe_dt = 0.5 * limit / cs.omega;
     message += "Likely cause: ω·Δt = " + format("%.3g", omega_dt) + " exceeds the " + method +
@@ -128,12 +132,14 @@ std::string describe(const Divergence& d, const Scene& scene) {
   } else if (friction_rate_dt > 1.0) {
     message += "Likely cause: stiff friction, μ·g·α·Δt = " + format("%.3g", friction_rate_dt) +
                " (explicit methods need it well below 2). Try a smaller --dt, a smaller "
-               "contact.alpha" + alternative + ".";
+               "contact.alpha" +
+               alternative + ".";
   } else {
     message += "ω·Δt = " + format("%.3g", omega_dt) + " is within the " + method + " limit " +
                format("%.3g", limit) + omega_text +
                " for one contact; several contacts at once or a fast impact stiffen it. Try a "
-               "smaller --dt" + alternative + ".";
+               "smaller --dt" +
+               alternative + ".";
   }
   return message;
 }

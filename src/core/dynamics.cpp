@@ -41,7 +41,8 @@ Vec3 acceleration(const Model& model, const Vec3& q, const Vec3& v) {
     force += Vec2(ft, fn);
     torque += r.x() * fn - r.y() * ft + rolling_torque(law, fn, body.roll_radius, v.z());
   }
-  if (!model.obstacles.empty()) add_obstacle_forces(model.obstacles, body, law, q, v, force, torque);
+  if (!model.obstacles.empty())
+    add_obstacle_forces(model.obstacles, body, law, q, v, force, torque);
 
   const double alpha = (body.rotates && body.inertia > 0.0) ? torque / body.inertia : 0.0;
   return {force.x() / body.mass, force.y() / body.mass, alpha};
@@ -69,7 +70,8 @@ double energy(const Model& model, const State& s) {
     const double depth = -(s.q.y() + rotate(local).y());
     if (depth > 0.0) e += 0.5 * model.contact.k * depth * depth;
   }
-  if (!model.obstacles.empty()) e += obstacle_spring_energy(model.obstacles, body, model.contact.k, s.q);
+  if (!model.obstacles.empty())
+    e += obstacle_spring_energy(model.obstacles, body, model.contact.k, s.q);
   return e;
 }
 

@@ -25,7 +25,7 @@ struct Model {
   RigidBody body;
   ContactParams contact;
   double gravity = 9.81;
-  Vec3 applied = Vec3::Zero();  // external (Fx, Fy, τ), e.g. from a player
+  Vec3 applied = Vec3::Zero();      // external (Fx, Fy, τ), e.g. from a player
   std::vector<Obstacle> obstacles;  // static geometry with the ground's contact law
 };
 

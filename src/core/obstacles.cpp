@@ -105,7 +105,8 @@ void for_each_contact(const std::vector<Obstacle>& obstacles, const RigidBody& b
 
 bool disc_contact(const Obstacle& o, const Vec2& centre, double radius, ObstacleContact& out) {
   if (o.shape == ObstacleShape::Box) {
-    const Vec2 q(std::clamp(centre.x(), o.a.x(), o.b.x()), std::clamp(centre.y(), o.a.y(), o.b.y()));
+    const Vec2 q(std::clamp(centre.x(), o.a.x(), o.b.x()),
+                 std::clamp(centre.y(), o.a.y(), o.b.y()));
     const Vec2 delta = centre - q;
     const double d2 = delta.squaredNorm();
     if (d2 >= radius * radius) return false;
@@ -169,16 +170,18 @@ void add_obstacle_forces(const std::vector<Obstacle>& obstacles, const RigidBody
 double obstacle_max_penetration(const std::vector<Obstacle>& obstacles, const RigidBody& body,
                                 const Vec3& q) {
   double deepest = 0.0;
-  for_each_contact(obstacles, body, q,
-                   [&](const ObstacleContact& contact) { deepest = std::max(deepest, contact.depth); });
+  for_each_contact(obstacles, body, q, [&](const ObstacleContact& contact) {
+    deepest = std::max(deepest, contact.depth);
+  });
   return deepest;
 }
 
 double obstacle_spring_energy(const std::vector<Obstacle>& obstacles, const RigidBody& body,
                               double k, const Vec3& q) {
   double e = 0.0;
-  for_each_contact(obstacles, body, q,
-                   [&](const ObstacleContact& contact) { e += 0.5 * k * contact.depth * contact.depth; });
+  for_each_contact(obstacles, body, q, [&](const ObstacleContact& contact) {
+    e += 0.5 * k * contact.depth * contact.depth;
+  });
   return e;
 }
 

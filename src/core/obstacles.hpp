@@ -66,7 +66,8 @@ struct ObstacleContact {
 };
 
 // Contact of a disc (centre, radius) with the obstacle; false when apart.
-bool disc_contact(const Obstacle& obstacle, const Vec2& centre, double radius, ObstacleContact& out);
+bool disc_contact(const Obstacle& obstacle, const Vec2& centre, double radius,
+                  ObstacleContact& out);
 // Contact of a point at world position c with the obstacle (out.r is left
 // for the caller); false when outside.
 bool point_contact(const Obstacle& obstacle, const Vec2& c, ObstacleContact& out);

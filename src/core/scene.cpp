@@ -58,10 +58,14 @@ std::optional<ValidationError> validate_obstacle(const Obstacle& o, const std::s
     const Vec2 centre = 0.5 * (o.a + o.b);
     const Vec2 size = o.b - o.a;
     const std::optional<ValidationError> checks[] = {
-        require(bounded(centre.x(), kMaxCoord), centre.x(), key + "x", "must be finite, |x| <= 1e6 m"),
-        require(bounded(centre.y(), kMaxCoord), centre.y(), key + "y", "must be finite, |y| <= 1e6 m"),
-        require(positive(size.x()) && size.x() <= 1e6, size.x(), key + "width", "must be in (0, 1e6] m"),
-        require(positive(size.y()) && size.y() <= 1e6, size.y(), key + "height", "must be in (0, 1e6] m"),
+        require(bounded(centre.x(), kMaxCoord), centre.x(), key + "x",
+                "must be finite, |x| <= 1e6 m"),
+        require(bounded(centre.y(), kMaxCoord), centre.y(), key + "y",
+                "must be finite, |y| <= 1e6 m"),
+        require(positive(size.x()) && size.x() <= 1e6, size.x(), key + "width",
+                "must be in (0, 1e6] m"),
+        require(positive(size.y()) && size.y() <= 1e6, size.y(), key + "height",
+                "must be in (0, 1e6] m"),
     };
     for (const auto& check : checks) {
       if (check) return check;
@@ -73,7 +77,8 @@ std::optional<ValidationError> validate_obstacle(const Obstacle& o, const std::s
       require(bounded(o.a.y(), kMaxCoord), o.a.y(), key + "y1", "must be finite, |y1| <= 1e6 m"),
       require(bounded(o.b.x(), kMaxCoord), o.b.x(), key + "x2", "must be finite, |x2| <= 1e6 m"),
       require(bounded(o.b.y(), kMaxCoord), o.b.y(), key + "y2", "must be finite, |y2| <= 1e6 m"),
-      require(non_negative(o.radius) && o.radius <= 1e3, o.radius, key + "radius", "must be in [0, 1e3] m"),
+      require(non_negative(o.radius) && o.radius <= 1e3, o.radius, key + "radius",
+              "must be in [0, 1e3] m"),
       require(o.radius > 0.0 || o.a != o.b, o.radius, key + "radius",
               "must be > 0 when the two ends coincide (a segment of no length and no thickness)"),
   };
@@ -89,31 +94,40 @@ std::optional<ValidationError> validate(const Scene& s) {
   constexpr double kMaxCoord = 1e6;
   const std::optional<ValidationError> checks[] = {
       require(positive(s.mass) && s.mass <= 1e9, s.mass, "body.mass", "must be in (0, 1e9] kg"),
-      require(non_negative(s.half_height) && s.half_height <= 1e3, s.half_height, "body.half_height",
-              "must be in [0, 1e3] m"),
+      require(non_negative(s.half_height) && s.half_height <= 1e3, s.half_height,
+              "body.half_height", "must be in [0, 1e3] m"),
       require(positive(s.width) && s.width <= 1e3, s.width, "body.width", "must be in (0, 1e3] m"),
-      require(positive(s.height) && s.height <= 1e3, s.height, "body.height", "must be in (0, 1e3] m"),
-      require(positive(s.radius) && s.radius <= 1e3, s.radius, "body.radius", "must be in (0, 1e3] m"),
+      require(positive(s.height) && s.height <= 1e3, s.height, "body.height",
+              "must be in (0, 1e3] m"),
+      require(positive(s.radius) && s.radius <= 1e3, s.radius, "body.radius",
+              "must be in (0, 1e3] m"),
       require(non_negative(s.contact.k) && s.contact.k <= 1e12, s.contact.k, "contact.k",
               "must be in [0, 1e12] N/m"),
       require(non_negative(s.contact.c) && s.contact.c <= 1e9, s.contact.c, "contact.c",
               "must be in [0, 1e9] N·s/m"),
-      require(non_negative(s.contact.mu) && s.contact.mu <= 100, s.contact.mu, "contact.mu", "must be in [0, 100]"),
+      require(non_negative(s.contact.mu) && s.contact.mu <= 100, s.contact.mu, "contact.mu",
+              "must be in [0, 100]"),
       require(positive(s.contact.alpha) && s.contact.alpha <= 1e9, s.contact.alpha, "contact.alpha",
               "must be in (0, 1e9] s/m"),
-      require(non_negative(s.contact.mu_roll) && s.contact.mu_roll <= 10, s.contact.mu_roll, "contact.mu_roll",
-              "must be in [0, 10] m"),
-      require(non_negative(s.contact.mu_torsion) && s.contact.mu_torsion <= 10, s.contact.mu_torsion,
-              "contact.mu_torsion", "must be in [0, 10] m"),
-      require(bounded(s.initial.q.x(), kMaxCoord), s.initial.q.x(), "initial.x", "must be finite, |x| <= 1e6 m"),
-      require(bounded(s.initial.q.y(), kMaxCoord), s.initial.q.y(), "initial.y", "must be finite, |y| <= 1e6 m"),
-      require(bounded(s.initial.q.z(), 1e3), s.initial.q.z(), "initial.theta", "must be finite, |theta| <= 1e3 rad"),
-      require(bounded(s.initial.v.x(), kMaxCoord), s.initial.v.x(), "initial.vx", "must be finite, |vx| <= 1e6 m/s"),
-      require(bounded(s.initial.v.y(), kMaxCoord), s.initial.v.y(), "initial.vy", "must be finite, |vy| <= 1e6 m/s"),
+      require(non_negative(s.contact.mu_roll) && s.contact.mu_roll <= 10, s.contact.mu_roll,
+              "contact.mu_roll", "must be in [0, 10] m"),
+      require(non_negative(s.contact.mu_torsion) && s.contact.mu_torsion <= 10,
+              s.contact.mu_torsion, "contact.mu_torsion", "must be in [0, 10] m"),
+      require(bounded(s.initial.q.x(), kMaxCoord), s.initial.q.x(), "initial.x",
+              "must be finite, |x| <= 1e6 m"),
+      require(bounded(s.initial.q.y(), kMaxCoord), s.initial.q.y(), "initial.y",
+              "must be finite, |y| <= 1e6 m"),
+      require(bounded(s.initial.q.z(), 1e3), s.initial.q.z(), "initial.theta",
+              "must be finite, |theta| <= 1e3 rad"),
+      require(bounded(s.initial.v.x(), kMaxCoord), s.initial.v.x(), "initial.vx",
+              "must be finite, |vx| <= 1e6 m/s"),
+      require(bounded(s.initial.v.y(), kMaxCoord), s.initial.v.y(), "initial.vy",
+              "must be finite, |vy| <= 1e6 m/s"),
       require(bounded(s.initial.v.z(), 1e6), s.initial.v.z(), "initial.omega",
               "must be finite, |omega| <= 1e6 rad/s"),
-      require(s.shape != Shape::PointMass || (s.initial.q.z() == 0.0 && s.initial.v.z() == 0.0), s.initial.q.z(),
-              "initial.theta", "must be 0 with omega = 0 for a point_mass (it does not rotate)"),
+      require(s.shape != Shape::PointMass || (s.initial.q.z() == 0.0 && s.initial.v.z() == 0.0),
+              s.initial.q.z(), "initial.theta",
+              "must be 0 with omega = 0 for a point_mass (it does not rotate)"),
       require(positive(s.sim.duration) && s.sim.duration <= 1e5, s.sim.duration, "sim.duration",
               "must be in (0, 1e5] s"),
       require(positive(s.sim.dt) && s.sim.dt <= s.sim.duration, s.sim.dt, "sim.dt",
@@ -133,9 +147,12 @@ std::optional<ValidationError> validate(const Scene& s) {
       const BoxPart& p = s.parts[i];
       const std::string key = "body.parts[" + std::to_string(i) + "].";
       const std::optional<ValidationError> part_checks[] = {
-          require(positive(p.width) && p.width <= 1e3, p.width, key + "width", "must be in (0, 1e3] m"),
-          require(positive(p.height) && p.height <= 1e3, p.height, key + "height", "must be in (0, 1e3] m"),
-          require(positive(p.mass) && p.mass <= 1e9, p.mass, key + "mass", "must be in (0, 1e9] kg"),
+          require(positive(p.width) && p.width <= 1e3, p.width, key + "width",
+                  "must be in (0, 1e3] m"),
+          require(positive(p.height) && p.height <= 1e3, p.height, key + "height",
+                  "must be in (0, 1e3] m"),
+          require(positive(p.mass) && p.mass <= 1e9, p.mass, key + "mass",
+                  "must be in (0, 1e9] kg"),
           require(bounded(p.x, 1e3), p.x, key + "x", "must be finite, |x| <= 1e3 m"),
           require(bounded(p.y, 1e3), p.y, key + "y", "must be finite, |y| <= 1e3 m"),
       };
@@ -145,7 +162,8 @@ std::optional<ValidationError> validate(const Scene& s) {
     }
   }
   for (size_t i = 0; i < s.obstacles.size(); ++i) {
-    if (auto error = validate_obstacle(s.obstacles[i], "obstacle[" + std::to_string(i) + "]")) return error;
+    if (auto error = validate_obstacle(s.obstacles[i], "obstacle[" + std::to_string(i) + "]"))
+      return error;
   }
   return std::nullopt;
 }

@@ -29,10 +29,10 @@ struct Scene {
   Shape shape = Shape::PointMass;
   // [body]
   double mass = 1.0;
-  double half_height = 0.05;  // point mass: contact point at (0, −half_height)
-  double width = 0.4;         // box
-  double height = 0.2;        // box
-  double radius = 0.1;        // circle
+  double half_height = 0.05;   // point mass: contact point at (0, −half_height)
+  double width = 0.4;          // box
+  double height = 0.2;         // box
+  double radius = 0.1;         // circle
   std::vector<BoxPart> parts;  // tshape; empty = the default T
   ContactParams contact;
   std::vector<Obstacle> obstacles;  // static geometry, same contact law as the ground
@@ -48,8 +48,8 @@ Scene default_scene(Shape shape);
 
 // A value outside its allowed range: names the key and the range.
 struct ValidationError {
-  std::string key;    // e.g. "body.mass" or "body.parts[1].width"
-  std::string range;  // e.g. "must be in (0, 1e9] kg"
+  std::string key;     // e.g. "body.mass" or "body.parts[1].width"
+  std::string range;   // e.g. "must be in (0, 1e9] kg"
   double value = 0.0;  // the offending value
 };
 

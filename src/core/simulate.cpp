@@ -37,7 +37,8 @@ RunResult run(const Scene& scene, const std::function<void(const Sample&)>& on_s
 
 Trajectory simulate(const Scene& scene) {
   Trajectory trajectory;
-  trajectory.samples.reserve(static_cast<size_t>(step_count(scene.sim) / sample_stride(scene.sim) + 2));
+  trajectory.samples.reserve(
+      static_cast<size_t>(step_count(scene.sim) / sample_stride(scene.sim) + 2));
   const RunResult result = run(scene, [&](const Sample& s) { trajectory.samples.push_back(s); });
   trajectory.divergence = result.divergence;
   return trajectory;

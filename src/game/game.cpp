@@ -86,8 +86,9 @@ Vec3 Game::push_force() const {
 }
 
 int Game::goals() const {
-  return static_cast<int>(
-      std::count_if(rounds_.begin(), rounds_.end(), [](const RoundRecord& r) { return r.outcome == Outcome::Goal; }));
+  return static_cast<int>(std::count_if(rounds_.begin(), rounds_.end(), [](const RoundRecord& r) {
+    return r.outcome == Outcome::Goal;
+  }));
 }
 
 void Game::start_round() {
@@ -101,11 +102,13 @@ void Game::start_round() {
   rounds_.push_back(record);
 
   const double dir = pitch_.direction();
-  const double rest_depth = scene.contact.k > 0.0 ? scene.mass * scene.sim.gravity / scene.contact.k : 0.0;
+  const double rest_depth =
+      scene.contact.k > 0.0 ? scene.mass * scene.sim.gravity / scene.contact.k : 0.0;
   State s;
   s.q = Vec3(r.pass_x, scene.radius - std::min(rest_depth, 0.5 * scene.radius), 0.0);
   // Rolling towards +x turns clockwise: ω = −v/R.
-  s.v = Vec3(dir * record.pass_speed, 0.0, -dir * record.pass_spin * record.pass_speed / scene.radius);
+  s.v = Vec3(dir * record.pass_speed, 0.0,
+             -dir * record.pass_spin * record.pass_speed / scene.radius);
   engine_->reset(s);
   monitor_ = std::make_unique<DivergenceMonitor>(engine_->model(), s);
   round_start_ = steps_;
@@ -137,8 +140,12 @@ void Game::handle(Key key, bool down) {
   if (!down || divergence_) return;
   const Rules& r = pitch_.rules;
   switch (key) {
-    case Key::AngleUp: kick_angle_ = std::min(r.kick_angle_max, kick_angle_ + r.kick_angle_step); return;
-    case Key::AngleDown: kick_angle_ = std::max(r.kick_angle_min, kick_angle_ - r.kick_angle_step); return;
+    case Key::AngleUp:
+      kick_angle_ = std::min(r.kick_angle_max, kick_angle_ + r.kick_angle_step);
+      return;
+    case Key::AngleDown:
+      kick_angle_ = std::max(r.kick_angle_min, kick_angle_ - r.kick_angle_step);
+      return;
     case Key::Reset:
       if (phase_ == Phase::Playing) end_round(Outcome::Reset);
       start_round();
@@ -222,7 +229,8 @@ void Game::apply_rules() {
     end_round(Outcome::Out);
     return;
   }
-  const bool still = std::hypot(s.v.x(), s.v.y()) < r.rest_speed && std::abs(s.v.z()) * radius < r.rest_speed;
+  const bool still =
+      std::hypot(s.v.x(), s.v.y()) < r.rest_speed && std::abs(s.v.z()) * radius < r.rest_speed;
   // A ball being pushed or kicked is not at rest, however slow.
   rest_steps_ = still && applied_.isZero() ? rest_steps_ + 1 : 0;
   if (rest_steps_ >= rest_steps_needed_) {

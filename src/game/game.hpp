@@ -46,7 +46,7 @@
 namespace contact2d::game {
 
 enum class Outcome {
-  None,          // still playing
+  None,  // still playing
   Goal,
   NotKicked,     // crossed the line, but nobody kicked it
   KickTooClose,  // crossed the line after a kick taken inside min_kick_distance
@@ -54,7 +54,7 @@ enum class Outcome {
   Stopped,       // came to rest in play (on the line, short, on the roof)
   Out,           // left the pitch
   TimeUp,
-  Reset,         // the player asked for the next pass
+  Reset,  // the player asked for the next pass
   Diverged,
 };
 
@@ -80,7 +80,7 @@ struct RoundRecord {
   double pass_speed = 0.0;  // m/s towards the goal
   double pass_spin = 0.0;   // multiple of rolling spin
   Outcome outcome = Outcome::None;
-  double end_time = 0.0;    // round time when it was decided, s
+  double end_time = 0.0;  // round time when it was decided, s
 };
 
 class Game {
@@ -101,7 +101,7 @@ class Game {
   double round_time() const { return static_cast<double>(steps_ - round_start_) * dt(); }
   const State& ball() const { return engine_->state(); }
   double radius() const { return pitch_.scene.radius; }
-  double distance_to_goal() const;  // ball centre to the goal line, m
+  double distance_to_goal() const;           // ball centre to the goal line, m
   Vec3 applied() const { return applied_; }  // the force of the last step
   Vec3 push_force() const;                   // from the arrows held now
   bool kicking() const { return kick_steps_left_ > 0; }
@@ -130,10 +130,10 @@ class Game {
   std::uint64_t rng_;
   long long steps_ = 0;
   long long round_start_ = 0;
-  long long kick_steps_ = 1;       // kick duration in steps
+  long long kick_steps_ = 1;  // kick duration in steps
   long long rest_steps_needed_ = 0;
   long long result_steps_ = 0;
-  long long round_steps_ = 0;      // round_time in steps
+  long long round_steps_ = 0;                    // round_time in steps
   bool held_[4] = {false, false, false, false};  // left, right, up, down
   double kick_angle_ = 0.0;
   Vec3 kick_force_ = Vec3::Zero();

@@ -1,13 +1,13 @@
-#include "core/format.hpp"
 #include "game/pitch.hpp"
+#include "core/format.hpp"
 
+#include <toml++/toml.h>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "io/scene_file.hpp"
 
@@ -23,7 +23,8 @@ std::string format_value(double v) { return format_number("%g", v); }
 // unknown keys rejected.
 class GameTable {
  public:
-  GameTable(const toml::table* table, std::string origin) : table_(table), origin_(std::move(origin)) {}
+  GameTable(const toml::table* table, std::string origin)
+      : table_(table), origin_(std::move(origin)) {}
 
   void number(const char* key, double& out, double lo, double hi, const char* range) {
     used_.insert(key);
@@ -54,7 +55,8 @@ class GameTable {
 
   void check(const std::string& key, double value, bool ok, const std::string& range) const {
     if (!ok) {
-      throw InputError(origin_ + ": game." + key + " = " + format_value(value) + " is out of range: " + range);
+      throw InputError(origin_ + ": game." + key + " = " + format_value(value) +
+                       " is out of range: " + range);
     }
   }
 
@@ -68,8 +70,8 @@ class GameTable {
       if (!used_.count(std::string(key.str()))) {
         std::string allowed;
         for (const std::string& k : used_) allowed += (allowed.empty() ? "" : ", ") + k;
-        throw InputError(origin_ + ": unknown key 'game." + std::string(key.str()) + "' (allowed here: " +
-                         allowed + ")");
+        throw InputError(origin_ + ": unknown key 'game." + std::string(key.str()) +
+                         "' (allowed here: " + allowed + ")");
       }
     }
   }
@@ -85,7 +87,8 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
   GameTable g(table, origin);
   constexpr double kBig = 1e6;
   g.number("goal_line", r.goal_line, -kBig, kBig, "must be finite, |goal_line| <= 1e6 m");
-  g.integer("crossbar", r.crossbar, 0, 1'000'000, "must be the index of a box in [[obstacle]], counted from 0");
+  g.integer("crossbar", r.crossbar, 0, 1'000'000,
+            "must be the index of a box in [[obstacle]], counted from 0");
   g.number("min_kick_distance", r.min_kick_distance, 0.0, 1e3, "must be in [0, 1e3] m");
   g.number("kick_impulse", r.kick_impulse, 0.0, 1e4, "must be in [0, 1e4] N·s");
   g.number("kick_duration", r.kick_duration, 1e-6, 10.0, "must be in [1e-6, 10] s");
@@ -97,8 +100,10 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
   g.number("pass_x", r.pass_x, -kBig, kBig, "must be finite, |pass_x| <= 1e6 m");
   g.number("pass_speed_min", r.pass_speed_min, 0.0, 100.0, "must be in [0, 100] m/s");
   g.number("pass_speed_max", r.pass_speed_max, 0.0, 100.0, "must be in [0, 100] m/s");
-  g.number("pass_spin_min", r.pass_spin_min, -10.0, 10.0, "must be in [-10, 10] (multiples of rolling spin)");
-  g.number("pass_spin_max", r.pass_spin_max, -10.0, 10.0, "must be in [-10, 10] (multiples of rolling spin)");
+  g.number("pass_spin_min", r.pass_spin_min, -10.0, 10.0,
+           "must be in [-10, 10] (multiples of rolling spin)");
+  g.number("pass_spin_max", r.pass_spin_max, -10.0, 10.0,
+           "must be in [-10, 10] (multiples of rolling spin)");
   g.number("round_time", r.round_time, 1e-3, 1e4, "must be in [1e-3, 1e4] s");
   g.number("rest_speed", r.rest_speed, 0.0, 100.0, "must be in [0, 100] m/s");
   g.number("rest_time", r.rest_time, 0.0, 1e3, "must be in [0, 1e3] s");
@@ -110,9 +115,10 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
   // Relations between keys.
   g.check("kick_angle_max", r.kick_angle_max, r.kick_angle_max >= r.kick_angle_min,
           "must be >= game.kick_angle_min = " + format_value(r.kick_angle_min));
-  g.check("kick_angle", r.kick_angle, r.kick_angle >= r.kick_angle_min && r.kick_angle <= r.kick_angle_max,
-          "must be in [game.kick_angle_min, game.kick_angle_max] = [" + format_value(r.kick_angle_min) + ", " +
-              format_value(r.kick_angle_max) + "] degrees");
+  g.check("kick_angle", r.kick_angle,
+          r.kick_angle >= r.kick_angle_min && r.kick_angle <= r.kick_angle_max,
+          "must be in [game.kick_angle_min, game.kick_angle_max] = [" +
+              format_value(r.kick_angle_min) + ", " + format_value(r.kick_angle_max) + "] degrees");
   g.check("pass_speed_max", r.pass_speed_max, r.pass_speed_max >= r.pass_speed_min,
           "must be >= game.pass_speed_min = " + format_value(r.pass_speed_min) + " m/s");
   g.check("pass_spin_max", r.pass_spin_max, r.pass_spin_max >= r.pass_spin_min,
@@ -120,12 +126,14 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
   g.check("pitch_max_x", r.pitch_max_x, r.pitch_max_x > r.pitch_min_x,
           "must be > game.pitch_min_x = " + format_value(r.pitch_min_x) + " m");
   g.check("pass_x", r.pass_x, r.pass_x > r.pitch_min_x && r.pass_x < r.pitch_max_x,
-          "must be inside (game.pitch_min_x, game.pitch_max_x) = (" + format_value(r.pitch_min_x) + ", " +
-              format_value(r.pitch_max_x) + ") m");
-  g.check("goal_line", r.goal_line, r.goal_line != r.pass_x, "must differ from game.pass_x (the goal is on one side)");
+          "must be inside (game.pitch_min_x, game.pitch_max_x) = (" + format_value(r.pitch_min_x) +
+              ", " + format_value(r.pitch_max_x) + ") m");
+  g.check("goal_line", r.goal_line, r.goal_line != r.pass_x,
+          "must differ from game.pass_x (the goal is on one side)");
   const int boxes = static_cast<int>(scene.obstacles.size());
   g.check("crossbar", r.crossbar,
-          r.crossbar < boxes && scene.obstacles[static_cast<size_t>(r.crossbar)].shape == ObstacleShape::Box,
+          r.crossbar < boxes &&
+              scene.obstacles[static_cast<size_t>(r.crossbar)].shape == ObstacleShape::Box,
           "must be the index of a box in [[obstacle]] (the scene has " + std::to_string(boxes) +
               " obstacles, counted from 0)");
   return r;
@@ -148,7 +156,8 @@ std::uint64_t fnv1a(const std::string& bytes) {
 
 Pitch parse_pitch(const std::string& toml_text, const std::string& origin) {
   Pitch pitch;
-  pitch.scene = parse_scene(toml_text, origin);  // the physics, [[obstacle]] included; checks [game] is a table
+  pitch.scene = parse_scene(
+      toml_text, origin);  // the physics, [[obstacle]] included; checks [game] is a table
   if (pitch.scene.shape != Shape::Circle) {
     throw InputError(origin + ": scene = \"" + std::string(shape_name(pitch.scene.shape)) +
                      "\" cannot be played: the game needs scene = \"circle\" (the ball)");
@@ -162,7 +171,8 @@ Pitch parse_pitch(const std::string& toml_text, const std::string& origin) {
 
 Pitch load_pitch(const std::string& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot read pitch file (it is a directory)");
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path + ": cannot read pitch file (it is a directory)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read pitch file (missing or unreadable)");
   std::ostringstream text;

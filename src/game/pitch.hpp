@@ -30,20 +30,20 @@ struct Rules {
   double pass_x = 0.5;             // where the pass starts (ball centre), m
   double pass_speed_min = 2.5;     // m/s, drawn uniformly from [min, max]
   double pass_speed_max = 3.5;
-  double pass_spin_min = 0.5;      // spin as a multiple of rolling spin (1 = rolling, 0 = none)
+  double pass_spin_min = 0.5;  // spin as a multiple of rolling spin (1 = rolling, 0 = none)
   double pass_spin_max = 1.5;
-  double round_time = 20.0;        // s, then the round is over
-  double rest_speed = 0.02;        // m/s: the ball is at rest below this (centre and rim speed)...
-  double rest_time = 0.5;          // ...for this long, s
-  double result_time = 2.0;        // s between the end of a round and the next pass
-  double pitch_min_x = -0.5;       // the ball is out of play beyond these, m
+  double round_time = 20.0;   // s, then the round is over
+  double rest_speed = 0.02;   // m/s: the ball is at rest below this (centre and rim speed)...
+  double rest_time = 0.5;     // ...for this long, s
+  double result_time = 2.0;   // s between the end of a round and the next pass
+  double pitch_min_x = -0.5;  // the ball is out of play beyond these, m
   double pitch_max_x = 12.5;
 };
 
 struct Pitch {
-  Scene scene;          // shape circle; sim.dt is the physics step
+  Scene scene;  // shape circle; sim.dt is the physics step
   Rules rules;
-  std::string path;     // where it was read from
+  std::string path;               // where it was read from
   std::uint64_t fingerprint = 0;  // FNV-1a of the file's bytes (stamped into replays)
 
   // Derived: +1 when the goal is towards +x from the pass.

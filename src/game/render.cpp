@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include <stb_easy_font.h>
 
@@ -149,11 +149,13 @@ struct TextBatch {
         std::memcpy(p0, quads + 64 * q, sizeof p0);
         std::memcpy(p2, quads + 64 * q + 32, sizeof p2);
         const int x0 = static_cast<int>(p0[0]), y0 = static_cast<int>(p0[1]);
-        const int x1 = std::min(static_cast<int>(p2[0]), kCellW), y1 = std::min(static_cast<int>(p2[1]), kCellH);
+        const int x1 = std::min(static_cast<int>(p2[0]), kCellW),
+                  y1 = std::min(static_cast<int>(p2[1]), kCellH);
         box_w[c - 32] = std::max(box_w[c - 32], x1);
         box_h[c - 32] = std::max(box_h[c - 32], y1);
         for (int y = y0; y < y1; ++y) {
-          for (int x = x0; x < x1; ++x) alpha[static_cast<size_t>(cy + y) * kAtlasWidth + static_cast<size_t>(cx + x)] = 255;
+          for (int x = x0; x < x1; ++x)
+            alpha[static_cast<size_t>(cy + y) * kAtlasWidth + static_cast<size_t>(cx + x)] = 255;
         }
       }
     }
@@ -164,13 +166,16 @@ struct TextBatch {
     const int w = box_w[c - 32], h = box_h[c - 32];
     if (w == 0 || h == 0) return;
     const int cx = ((c - 32) % kAtlasColumns) * kCellW, cy = ((c - 32) / kAtlasColumns) * kCellH;
-    const float u0 = static_cast<float>(cx) / kAtlasWidth, u1 = static_cast<float>(cx + w) / kAtlasWidth;
-    const float v0 = static_cast<float>(cy) / kAtlasHeight, v1 = static_cast<float>(cy + h) / kAtlasHeight;
+    const float u0 = static_cast<float>(cx) / kAtlasWidth,
+                u1 = static_cast<float>(cx + w) / kAtlasWidth;
+    const float v0 = static_cast<float>(cy) / kAtlasHeight,
+                v1 = static_cast<float>(cy + h) / kAtlasHeight;
     const float x0 = static_cast<float>(x), y0 = static_cast<float>(y);
     const float x1 = static_cast<float>(x + scale * w), y1 = static_cast<float>(y + scale * h);
     const float corners[6][4] = {{x0, y0, u0, v0}, {x1, y0, u1, v0}, {x1, y1, u1, v1},
                                  {x0, y0, u0, v0}, {x1, y1, u1, v1}, {x0, y1, u0, v1}};
-    for (const auto& k : corners) v.insert(v.end(), {k[0], k[1], k[2], k[3], col.r, col.g, col.b, col.a});
+    for (const auto& k : corners)
+      v.insert(v.end(), {k[0], k[1], k[2], k[3], col.r, col.g, col.b, col.a});
   }
 
   void flush() {
@@ -181,8 +186,8 @@ struct TextBatch {
       glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, kAtlasWidth, kAtlasHeight, 0, GL_ALPHA, GL_UNSIGNED_BYTE,
-                   alpha.data());
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA, kAtlasWidth, kAtlasHeight, 0, GL_ALPHA,
+                   GL_UNSIGNED_BYTE, alpha.data());
     }
     if (v.empty()) return;
     glEnable(GL_TEXTURE_2D);
@@ -242,7 +247,9 @@ struct View {
     y1 = y0 + height / scale;
   }
   // Pixel position (y down) of a world point, for labels.
-  Vec2 pixel(double x, double y, int height) const { return {(x - x0) * scale, height - (y - y0) * scale}; }
+  Vec2 pixel(double x, double y, int height) const {
+    return {(x - x0) * scale, height - (y - y0) * scale};
+  }
 };
 
 void draw_world(const Game& game, const View& v) {
@@ -257,7 +264,8 @@ void draw_world(const Game& game, const View& v) {
   glClearColor(kSky.r, kSky.g, kSky.b, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   for (double x = std::floor(v.x0); x < v.x1; x += 1.0) {
-    rect(x, v.y0, x + 1.0, 0.0, (static_cast<long long>(std::floor(x)) % 2 == 0) ? kGrassA : kGrassB);
+    rect(x, v.y0, x + 1.0, 0.0,
+         (static_cast<long long>(std::floor(x)) % 2 == 0) ? kGrassA : kGrassB);
   }
   rect(v.x0, v.y0, v.x1, v.y0 + 0.35 * (0.0 - v.y0), kTurfShade);
   glDisable(GL_BLEND);
@@ -288,13 +296,16 @@ void draw_world(const Game& game, const View& v) {
 
   // The line beyond which kicks do not count.
   const double zone = r.goal_line - dir * r.min_kick_distance;
-  for (double y = 0.0; y < 2.8; y += 0.2) thick_line(Vec2(zone, y), Vec2(zone, y + 0.12), 0.03, kZone);
-  rect(std::min(zone, r.goal_line), -0.05, std::max(zone, r.goal_line), 0.0, Color{1.0f, 0.85f, 0.1f, 0.35f});
+  for (double y = 0.0; y < 2.8; y += 0.2)
+    thick_line(Vec2(zone, y), Vec2(zone, y + 0.12), 0.03, kZone);
+  rect(std::min(zone, r.goal_line), -0.05, std::max(zone, r.goal_line), 0.0,
+       Color{1.0f, 0.85f, 0.1f, 0.35f});
 
   for (const Obstacle& o : pitch.scene.obstacles) {
     if (o.shape == ObstacleShape::Box) {
       rect(o.a.x(), o.a.y(), o.b.x(), o.b.y(), kObstacle);
-      rect_outline(o.a.x(), o.a.y(), o.b.x(), o.b.y(), 1.0 / v.scale, Color{0.5f, 0.5f, 0.5f, 1.0f});
+      rect_outline(o.a.x(), o.a.y(), o.b.x(), o.b.y(), 1.0 / v.scale,
+                   Color{0.5f, 0.5f, 0.5f, 1.0f});
     } else {
       const double w = std::max(2.0 * o.radius, 2.0 / v.scale);
       thick_line(o.a, o.b, w, kObstacle);
@@ -317,8 +328,8 @@ void draw_world(const Game& game, const View& v) {
     const Vec2 d(std::cos(a) * R, std::sin(a) * R);
     thick_line(Vec2(s.q.x(), s.q.y()) - d, Vec2(s.q.x(), s.q.y()) + d, 0.018, kOutline);
   }
-  disc(s.q.x() + 0.45 * R * std::cos(s.q.z() + 0.8), s.q.y() + 0.45 * R * std::sin(s.q.z() + 0.8), 0.25 * R,
-       0.25 * R, kOutline, 10);
+  disc(s.q.x() + 0.45 * R * std::cos(s.q.z() + 0.8), s.q.y() + 0.45 * R * std::sin(s.q.z() + 0.8),
+       0.25 * R, 0.25 * R, kOutline, 10);
 
   // Aim (the kick's direction) and the force being applied.
   const Vec2 c(s.q.x(), s.q.y());
@@ -345,12 +356,14 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
 
   rect(0, 0, width, 78, kPanel);
   text(10, 8,
-       fmt("ROUND %.0f   GOALS %.0f   TIME %.1f s", game.round(), game.goals(), game.round_time()), 2.0, kText);
+       fmt("ROUND %.0f   GOALS %.0f   TIME %.1f s", game.round(), game.goals(), game.round_time()),
+       2.0, kText);
   text(10, 30,
-       fmt("SPEED %.2f m/s   DISTANCE TO GOAL %.2f m", std::hypot(s.v.x(), s.v.y()), game.distance_to_goal()), 2.0,
-       kText);
-  text(10, 52,
-       fmt("KICK ANGLE %.0f deg   FORCE (%.1f, %.1f) N", game.kick_angle(), f.x(), f.y()), 2.0, kText);
+       fmt("SPEED %.2f m/s   DISTANCE TO GOAL %.2f m", std::hypot(s.v.x(), s.v.y()),
+           game.distance_to_goal()),
+       2.0, kText);
+  text(10, 52, fmt("KICK ANGLE %.0f deg   FORCE (%.1f, %.1f) N", game.kick_angle(), f.x(), f.y()),
+       2.0, kText);
   // A recording shows neither the frame rate (that of the encoder, not the
   // game) nor a REC mark.
   std::string right = "F1/H: HELP";
@@ -368,8 +381,8 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
     const KickRecord& k = game.kicks().back();
     if (k.round == game.round() && game.time() - k.time < 2.0) {
       const std::string what = k.counted ? fmt("KICK FROM %.2f m", k.distance)
-                                         : fmt("KICK FROM %.2f m: INSIDE %g m, DOES NOT COUNT", k.distance,
-                                               r.min_kick_distance);
+                                         : fmt("KICK FROM %.2f m: INSIDE %g m, DOES NOT COUNT",
+                                               k.distance, r.min_kick_distance);
       text(10, 88, what, 2.0, k.counted ? kGoal : kNoGoal);
     }
   }
@@ -380,7 +393,8 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
     const std::string what = outcome_text(outcome, r.min_kick_distance);
     const double scale = outcome == Outcome::Goal ? 6.0 : 2.5;
     const double w = text_width(what, scale);
-    rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20, 0.38 * height + 9 * scale, kPanel);
+    rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20,
+         0.38 * height + 9 * scale, kPanel);
     text(0.5 * (width - w), 0.38 * height, what, scale, outcome == Outcome::Goal ? kGoal : kNoGoal);
   }
   if (overlay.paused) {
@@ -394,7 +408,8 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
         "",
         "A teammate passes: the ball rolls in towards the goal.",
         "Kick it into the goal. A kick counts only if the ball",
-        "is at least " "1 m from the goal line (the yellow line).",
+        "is at least "
+        "1 m from the goal line (the yellow line).",
         "The whole ball must cross the line under the crossbar,",
         "and the last touch must be a counted kick.",
         "The crossbar, the roof and the back of the goal are solid.",
@@ -414,7 +429,8 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
     // not yet): llvmpipe clears far faster than it shades a large quad.
     const int top = static_cast<int>(y0 - 16), bottom = static_cast<int>(y0 + 16 * 22 + 8);
     glEnable(GL_SCISSOR_TEST);
-    glScissor(static_cast<int>(x0 - 16), height - bottom, static_cast<int>(widest + 32), bottom - top);
+    glScissor(static_cast<int>(x0 - 16), height - bottom, static_cast<int>(widest + 32),
+              bottom - top);
     glClearColor(0.06f, 0.08f, 0.11f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     glDisable(GL_SCISSOR_TEST);

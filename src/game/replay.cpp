@@ -12,8 +12,8 @@
 namespace contact2d::game {
 namespace {
 
-constexpr Key kKeys[] = {Key::Left, Key::Right, Key::Up, Key::Down, Key::Kick, Key::AngleUp, Key::AngleDown,
-                         Key::Reset};
+constexpr Key kKeys[] = {Key::Left, Key::Right,   Key::Up,        Key::Down,
+                         Key::Kick, Key::AngleUp, Key::AngleDown, Key::Reset};
 constexpr const char* kAllowedKeys = "left, right, up, down, kick, angle_up, angle_down, reset";
 
 bool parse_u64(const std::string& text, std::uint64_t& out, int base) {
@@ -75,27 +75,32 @@ Replay parse_replay(const std::string& text, const std::string& origin) {
       continue;
     }
     if (first == "seed") {
-      if (!parse_u64(second, replay.seed, 10) || !third.empty()) fail("seed must be an integer in [0, 2^64)");
+      if (!parse_u64(second, replay.seed, 10) || !third.empty())
+        fail("seed must be an integer in [0, 2^64)");
       have_seed = true;
     } else if (first == "dt") {
       char* end = nullptr;
       replay.dt = std::strtod(second.c_str(), &end);
-      if (second.empty() || *end != '\0' || !std::isfinite(replay.dt) || replay.dt <= 0.0 || !third.empty()) {
+      if (second.empty() || *end != '\0' || !std::isfinite(replay.dt) || replay.dt <= 0.0 ||
+          !third.empty()) {
         fail("dt must be a number > 0 (the physics step, s)");
       }
       have_dt = true;
     } else if (first == "pitch") {
-      if (second.size() != 16 || !parse_u64(second, replay.pitch_fingerprint, 16) || !third.empty()) {
+      if (second.size() != 16 || !parse_u64(second, replay.pitch_fingerprint, 16) ||
+          !third.empty()) {
         fail("pitch must be 16 hexadecimal digits (the pitch file's FNV-1a)");
       }
     } else {
       std::uint64_t step = 0;
       if (!parse_u64(first, step, 10) || step > (1ull << 62)) {
-        fail("'" + first + "' is not a step index, seed, dt or pitch line (event lines: <step> <key> down|up)");
+        fail("'" + first +
+             "' is not a step index, seed, dt or pitch line (event lines: <step> <key> down|up)");
       }
       const auto key = parse_key(second);
       if (!key) fail("key '" + second + "' is not one of " + kAllowedKeys);
-      if (third != "down" && third != "up") fail("key action '" + third + "' must be 'down' or 'up'");
+      if (third != "down" && third != "up")
+        fail("key action '" + third + "' must be 'down' or 'up'");
       const long long s = static_cast<long long>(step);
       if (!replay.events.empty() && s < replay.events.back().step) {
         fail("step " + first + " is earlier than the line before (events must be in step order)");
@@ -103,7 +108,8 @@ Replay parse_replay(const std::string& text, const std::string& origin) {
       replay.events.push_back({s, *key, third == "down"});
     }
   }
-  if (!header) throw InputError(origin + ": empty file: not a replay (first line 'contact2d-replay 1')");
+  if (!header)
+    throw InputError(origin + ": empty file: not a replay (first line 'contact2d-replay 1')");
   if (!have_seed) throw InputError(origin + ": missing 'seed' line");
   if (!have_dt) throw InputError(origin + ": missing 'dt' line");
   return replay;
@@ -120,7 +126,8 @@ Replay read_replay(const std::string& path) {
 std::string format_replay(const Replay& replay) {
   std::ostringstream out;
   char fingerprint[32];
-  std::snprintf(fingerprint, sizeof fingerprint, "%016llx", static_cast<unsigned long long>(replay.pitch_fingerprint));
+  std::snprintf(fingerprint, sizeof fingerprint, "%016llx",
+                static_cast<unsigned long long>(replay.pitch_fingerprint));
   // The shortest decimal that reads back as the same double.
   char dt[64];
   for (int digits = 6; digits <= 17; ++digits) {

@@ -81,15 +81,16 @@ std::string report_json(const Game& game) {
     out += first ? "" : ",";
     first = false;
     out += "{\"round\":" + std::to_string(r.round) + ",\"pass_speed\":" + number(r.pass_speed) +
-           ",\"pass_spin\":" + number(r.pass_spin) + ",\"outcome\":\"" + std::string(outcome_name(r.outcome)) +
-           "\",\"end_time\":" + number(r.end_time) + "}";
+           ",\"pass_spin\":" + number(r.pass_spin) + ",\"outcome\":\"" +
+           std::string(outcome_name(r.outcome)) + "\",\"end_time\":" + number(r.end_time) + "}";
   }
   out += "],\"time\":" + number(game.time());
   out += ",\"steps\":" + std::to_string(game.steps());
   out += ",\"engine\":\"" + std::string(game.engine_name()) + "\"";
   out += ",\"seed\":" + std::to_string(game.seed());
-  out += ",\"ball\":{\"x\":" + number(s.q.x()) + ",\"y\":" + number(s.q.y()) + ",\"vx\":" + number(s.v.x()) +
-         ",\"vy\":" + number(s.v.y()) + ",\"omega\":" + number(s.v.z()) + "}";
+  out += ",\"ball\":{\"x\":" + number(s.q.x()) + ",\"y\":" + number(s.q.y()) +
+         ",\"vx\":" + number(s.v.x()) + ",\"vy\":" + number(s.v.y()) +
+         ",\"omega\":" + number(s.v.z()) + "}";
   out += "}";
   return out;
 }

@@ -1,12 +1,12 @@
 #include "game/video.hpp"
 
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "io/scene_file.hpp"
 
@@ -18,13 +18,39 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps
   // A write to a dead ffmpeg must fail with EPIPE, not kill the game.
   std::signal(SIGPIPE, SIG_IGN);
   int fds[2];
-  if (pipe(fds) != 0) throw InputError("--record " + path + ": cannot create a pipe (" + std::strerror(errno) + ")");
+  if (pipe(fds) != 0)
+    throw InputError("--record " + path + ": cannot create a pipe (" + std::strerror(errno) + ")");
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   const std::string rate = std::to_string(fps);
-  std::vector<std::string> args = {"ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pixel_format", "rgb24",
-                                   "-video_size", size, "-framerate", rate, "-i", "-", "-vf", "vflip", "-c:v",
-                                   "libx264", "-preset", "veryfast", "-crf", "20", "-pix_fmt", "yuv420p",
-                                   "-movflags", "+faststart", "-f", "mp4", path + ".tmp"};
+  std::vector<std::string> args = {"ffmpeg",
+                                   "-loglevel",
+                                   "error",
+                                   "-y",
+                                   "-f",
+                                   "rawvideo",
+                                   "-pixel_format",
+                                   "rgb24",
+                                   "-video_size",
+                                   size,
+                                   "-framerate",
+                                   rate,
+                                   "-i",
+                                   "-",
+                                   "-vf",
+                                   "vflip",
+                                   "-c:v",
+                                   "libx264",
+                                   "-preset",
+                                   "veryfast",
+                                   "-crf",
+                                   "20",
+                                   "-pix_fmt",
+                                   "yuv420p",
+                                   "-movflags",
+                                   "+faststart",
+                                   "-f",
+                                   "mp4",
+                                   path + ".tmp"};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -67,11 +93,13 @@ void VideoWriter::finish() {
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::remove(temporary.c_str());
     throw InputError("--record " + path_ + ": ffmpeg failed (exit status " +
-                     std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + "); no video written");
+                     std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                     "); no video written");
   }
   // Like every output of contact2d: the file appears only when complete.
   if (std::rename(temporary.c_str(), path_.c_str()) != 0) {
-    throw InputError("--record " + path_ + ": cannot write the video (" + std::strerror(errno) + ")");
+    throw InputError("--record " + path_ + ": cannot write the video (" + std::strerror(errno) +
+                     ")");
   }
 }
 

@@ -2,9 +2,9 @@
 // its standard input: H.264 in MP4, yuv420p so that every player reads it.
 #pragma once
 
+#include <sys/types.h>
 #include <cstdio>
 #include <string>
-#include <sys/types.h>
 #include <vector>
 
 namespace contact2d::game {

@@ -1,8 +1,8 @@
 #include "game/window.hpp"
 
 #define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
 #include <GL/gl.h>
+#include <GLFW/glfw3.h>
 
 #include <algorithm>
 #include <chrono>
@@ -19,7 +19,9 @@ namespace {
 
 std::string g_glfw_error;
 
-void on_glfw_error(int, const char* description) { g_glfw_error = description ? description : "unknown error"; }
+void on_glfw_error(int, const char* description) {
+  g_glfw_error = description ? description : "unknown error";
+}
 
 // Key callback → queue, drained once per frame: a press and release within
 // one frame are both seen, in order.

@@ -19,16 +19,16 @@ namespace contact2d::game {
 struct WindowOptions {
   int width = 800;
   int height = 600;
-  bool vsync = true;          // swap interval 1 (ignored by Xvfb)
-  std::string record_path;    // non-empty: write an H.264 MP4 through ffmpeg
+  bool vsync = true;        // swap interval 1 (ignored by Xvfb)
+  std::string record_path;  // non-empty: write an H.264 MP4 through ffmpeg
   int record_fps = 60;
-  long long max_frames = 0;   // > 0: close after this many frames (measuring)
+  long long max_frames = 0;  // > 0: close after this many frames (measuring)
   bool start_with_help = false;
 };
 
 struct WindowStats {
   long long frames = 0;
-  double seconds = 0.0;       // wall clock from the first to the last frame
+  double seconds = 0.0;         // wall clock from the first to the last frame
   double render_seconds = 0.0;  // drawing and swapping alone
   long long steps = 0;
 };

@@ -1,10 +1,10 @@
 #include "io/csv.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "io/scene_file.hpp"
 
@@ -44,8 +44,8 @@ void AtomicFile::commit() {
 }
 
 void write_trajectory_row(std::FILE* out, const Sample& s) {
-  std::fprintf(out, "%.10g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", s.t, s.state.q.x(), s.state.q.y(),
-               s.state.q.z(), s.state.v.x(), s.state.v.y(), s.state.v.z());
+  std::fprintf(out, "%.10g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", s.t, s.state.q.x(),
+               s.state.q.y(), s.state.q.z(), s.state.v.x(), s.state.v.y(), s.state.v.z());
 }
 
 }  // namespace contact2d

@@ -1,13 +1,13 @@
-#include "core/format.hpp"
 #include "io/scene_file.hpp"
+#include "core/format.hpp"
 
+#include <toml++/toml.h>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 namespace contact2d {
 namespace {
@@ -119,8 +119,7 @@ void read_body(const toml::table* table, Scene& scene, const std::string& origin
       body.number("radius", scene.radius);
       body.reject_unknown("mass, radius");
       return;
-    case Shape::TShape:
-      break;
+    case Shape::TShape: break;
   }
   const toml::array* parts = body.array("parts");
   body.reject_unknown("parts (a tshape's mass comes from its parts)");
@@ -129,8 +128,9 @@ void read_body(const toml::table* table, Scene& scene, const std::string& origin
   for (size_t i = 0; i < parts->size(); ++i) {
     const std::string prefix = "body.parts[" + std::to_string(i) + "].";
     const toml::table* part_table = (*parts)[i].as_table();
-    if (!part_table) throw InputError(origin + ": " + prefix.substr(0, prefix.size() - 1) +
-                                      " must be a table { width, height, x, y, mass }");
+    if (!part_table)
+      throw InputError(origin + ": " + prefix.substr(0, prefix.size() - 1) +
+                       " must be a table { width, height, x, y, mass }");
     TableReader part(part_table, prefix, origin);
     BoxPart p{0.0, 0.0, 0.0, 0.0, 0.0};
     part.number("width", p.width);
@@ -141,7 +141,8 @@ void read_body(const toml::table* table, Scene& scene, const std::string& origin
     part.reject_unknown("width, height, x, y, mass");
     if (!part_table->contains("width") || !part_table->contains("height") ||
         !part_table->contains("mass")) {
-      throw InputError(origin + ": " + prefix + "width, height and mass are required in every part");
+      throw InputError(origin + ": " + prefix +
+                       "width, height and mass are required in every part");
     }
     scene.parts.push_back(p);
   }
@@ -164,7 +165,8 @@ void read_contact(const toml::table* table, Scene& scene, const std::string& ori
   } else if (damping == "kelvin_voigt") {
     p.damping = DampingLaw::KelvinVoigt;
   } else {
-    contact.fail("damping", "= \"" + damping + "\" is not a damping law: use \"compression\" or \"kelvin_voigt\"");
+    contact.fail("damping", "= \"" + damping +
+                                "\" is not a damping law: use \"compression\" or \"kelvin_voigt\"");
   }
 }
 
@@ -208,13 +210,16 @@ void read_obstacles(const toml::table& root, Scene& scene, const std::string& or
   for (size_t i = 0; i < list->size(); ++i) {
     const std::string name = "obstacle[" + std::to_string(i) + "]";
     const toml::table* table = (*list)[i].as_table();
-    if (!table) throw InputError(origin + ": " + name + " must be a table ([[obstacle]] with type = \"box\" or \"segment\")");
+    if (!table)
+      throw InputError(origin + ": " + name +
+                       " must be a table ([[obstacle]] with type = \"box\" or \"segment\")");
     TableReader reader(table, name + ".", origin);
     std::string type;
     reader.string("type", type);
     auto require_keys = [&](std::initializer_list<const char*> keys) {
       for (const char* key : keys) {
-        if (!table->contains(key)) reader.fail(key, "is required for an obstacle of type \"" + type + "\"");
+        if (!table->contains(key))
+          reader.fail(key, "is required for an obstacle of type \"" + type + "\"");
       }
     };
     if (type == "box") {
@@ -250,7 +255,9 @@ void read_obstacles(const toml::table& root, Scene& scene, const std::string& or
       require_keys({"x1", "y1", "x2", "y2"});
       scene.obstacles.push_back(make_segment_obstacle(a, b, radius));
     } else if (!table->contains("type")) {
-      reader.fail("type", "is required: \"box\" (x, y, width, height) or \"segment\" (x1, y1, x2, y2, radius)");
+      reader.fail(
+          "type",
+          "is required: \"box\" (x, y, width, height) or \"segment\" (x1, y1, x2, y2, radius)");
     } else {
       reader.fail("type", "= \"" + type + "\" is not an obstacle type: use \"box\" or \"segment\"");
     }
@@ -269,7 +276,8 @@ void apply_override(toml::table& root, const Override& o, const std::string& ori
       table->insert(part, toml::table{});
       node = table->get(part);
     }
-    if (!node->is_table()) throw InputError(origin + ": --set " + o.key + ": '" + part + "' is not a table");
+    if (!node->is_table())
+      throw InputError(origin + ": --set " + o.key + ": '" + part + "' is not a table");
     table = node->as_table();
     path.remove_prefix(dot + 1);
   }
@@ -315,7 +323,8 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   }
   const auto shape = parse_shape(shape_text);
   if (!shape) {
-    top.fail("scene", "= \"" + shape_text + "\" is not a scene: use point_mass, box, tshape or circle");
+    top.fail("scene",
+             "= \"" + shape_text + "\" is not a scene: use point_mass, box, tshape or circle");
   }
   Scene scene = default_scene(*shape);
   read_body(subtable(root, "body", origin), scene, origin);
@@ -327,12 +336,13 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   // that has one still simulates (the rules do not change the physics).
   if (root.contains("game")) subtable(root, "game", origin);
   // Tables were read by the helpers above; mark them used.
-  for (const char* name : {"body", "contact", "initial", "sim", "obstacle", "game"}) top.mark_used(name);
+  for (const char* name : {"body", "contact", "initial", "sim", "obstacle", "game"})
+    top.mark_used(name);
   top.reject_unknown("scene, [body], [contact], [initial], [sim], [[obstacle]], [game]");
 
   if (const auto error = validate(scene)) {
-    throw InputError(origin + ": " + error->key + " = " + format_value(error->value) + " is out of range: " +
-                     error->range);
+    throw InputError(origin + ": " + error->key + " = " + format_value(error->value) +
+                     " is out of range: " + error->range);
   }
   return scene;
 }

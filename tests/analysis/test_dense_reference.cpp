@@ -43,7 +43,8 @@ TEST(DenseReference, RightHandSideIsTheCoreForceLaw) {
       for (int i = 0; i < 2000; ++i) {
         // Heights within ±0.3 m of the ground put some points inside.
         const Vec3 q(unit(rng), 0.3 * unit(rng), shape == Shape::PointMass ? 0.0 : 3.0 * unit(rng));
-        const Vec3 v(2.0 * unit(rng), 2.0 * unit(rng), shape == Shape::PointMass ? 0.0 : 10.0 * unit(rng));
+        const Vec3 v(2.0 * unit(rng), 2.0 * unit(rng),
+                     shape == Shape::PointMass ? 0.0 : 10.0 * unit(rng));
         in_contact += max_penetration(model, q) > 0.0;
         const Vec3 a_core = acceleration(model, q, v);
         const Vec3 a_ref = dense_reference_acceleration(model, q, v);
@@ -51,9 +52,10 @@ TEST(DenseReference, RightHandSideIsTheCoreForceLaw) {
         // 0.3 m, damper at |v_c| ≤ 2 + 10·0.36 m/s, weight), and its torque
         // per unit inertia for the angular component.
         const double linear = (1e5 * 0.3 + 300.0 * 6.0 + 10.0) / model.body.mass;
-        const double angular = model.body.inertia > 0.0
-                                   ? linear * model.body.mass * body_extent(model.body) / model.body.inertia
-                                   : 0.0;
+        const double angular =
+            model.body.inertia > 0.0
+                ? linear * model.body.mass * body_extent(model.body) / model.body.inertia
+                : 0.0;
         for (int j = 0; j < 3; ++j) {
           EXPECT_NEAR(a_ref[j], a_core[j], 1e-12 * (j == 2 ? angular : linear))
               << shape_name(shape) << " component " << j << " at q = " << q.transpose()
@@ -111,7 +113,8 @@ void evolve(const Phase& p, double z0, double w0, double s, double& z, double& w
 }
 
 // First s > 0 where f(z, w) changes sign from its sign just after s = 0.
-double phase_end(const Phase& p, double z0, double w0, const std::function<double(double, double)>& f) {
+double phase_end(const Phase& p, double z0, double w0,
+                 const std::function<double(double, double)>& f) {
   auto value = [&](double s) {
     double z, w;
     evolve(p, z0, w0, s, z, w);
@@ -299,7 +302,8 @@ TEST_P(BuiltInScene, ReferenceIsSelfConsistentTo1e9) {
   EXPECT_GT(err_loose, err);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, BuiltInScene, ::testing::Values("point_mass", "box", "tshape", "circle"));
+INSTANTIATE_TEST_SUITE_P(Scenes, BuiltInScene,
+                         ::testing::Values("point_mass", "box", "tshape", "circle"));
 
 // A scene the method cannot finish within its step budget says so instead
 // of returning a partial trajectory as if it were whole.

@@ -70,12 +70,15 @@ struct ProgramRun {
 };
 
 ProgramRun run_program(const std::string& scene, const std::string& engine) {
-  const fs::path tmp = fs::temp_directory_path() /
-                       ("contact2d_extreme_" + std::to_string(::getpid()) + "_" + fs::path(scene).stem().string());
-  const fs::path out = tmp.string() + ".out", err = tmp.string() + ".err", csv = tmp.string() + ".csv";
+  const fs::path tmp =
+      fs::temp_directory_path() /
+      ("contact2d_extreme_" + std::to_string(::getpid()) + "_" + fs::path(scene).stem().string());
+  const fs::path out = tmp.string() + ".out", err = tmp.string() + ".err",
+                 csv = tmp.string() + ".csv";
   fs::remove(csv);
-  const std::string cmd = std::string("'") + CONTACT2D_EXE + "' simulate '" + scene + "' --engine " + engine +
-                          " --csv '" + csv.string() + "' >'" + out.string() + "' 2>'" + err.string() + "'";
+  const std::string cmd = std::string("'") + CONTACT2D_EXE + "' simulate '" + scene +
+                          "' --engine " + engine + " --csv '" + csv.string() + "' >'" +
+                          out.string() + "' 2>'" + err.string() + "'";
   const int raw = std::system(cmd.c_str());
   ProgramRun run;
   run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -151,7 +154,8 @@ TEST_P(ExtremeScene, MeetsItsStatedExpectations) {
   for (const std::string& e : expectations) {
     if (std::regex_match(e, m, std::regex(R"(exit (\d+))"))) expected_status = std::stoi(m[1]);
   }
-  ASSERT_TRUE(expected_status == 0 || expected_status == 3) << path << ": needs '# expect: exit 0' or 'exit 3'";
+  ASSERT_TRUE(expected_status == 0 || expected_status == 3)
+      << path << ": needs '# expect: exit 0' or 'exit 3'";
 
   const ProgramRun run = run_program(path, "ref");
   EXPECT_EQ(run.status, expected_status) << run.out << run.err;
@@ -212,7 +216,8 @@ TEST_P(ExtremeScene, MeetsItsStatedExpectations) {
       const bool magnitude = !m[2].str().empty();
       const int c = column(m[3]);
       double worst = -INFINITY;
-      for (const auto* row : rows_after(t0)) worst = std::max(worst, magnitude ? std::abs((*row)[c]) : (*row)[c]);
+      for (const auto* row : rows_after(t0))
+        worst = std::max(worst, magnitude ? std::abs((*row)[c]) : (*row)[c]);
       EXPECT_LE(worst, std::stod(m[4]));
     } else if (std::regex_match(e, m, std::regex(after + R"(range (\w+) <= )" + num))) {
       const double t0 = m[1].matched ? std::stod(m[1]) : -INFINITY;
@@ -237,12 +242,14 @@ TEST_P(ExtremeScene, MeetsItsStatedExpectations) {
       EXPECT_LE(changes, std::stoi(m[3]));
     } else if (std::regex_match(e, m, std::regex(R"(penetration <= )" + num))) {
       double deepest = 0.0;
-      for (const auto& row : table.rows) deepest = std::max(deepest, max_penetration(model, state_of(table, row).q));
+      for (const auto& row : table.rows)
+        deepest = std::max(deepest, max_penetration(model, state_of(table, row).q));
       EXPECT_LE(deepest, std::stod(m[1]));
     } else if (std::regex_match(e, m, std::regex(R"(max energy ratio <= )" + num))) {
       const double e0 = energy(model, state_of(table, table.rows.front()));
       double worst = -INFINITY;
-      for (const auto& row : table.rows) worst = std::max(worst, energy(model, state_of(table, row)) / e0);
+      for (const auto& row : table.rows)
+        worst = std::max(worst, energy(model, state_of(table, row)) / e0);
       EXPECT_LE(worst, std::stod(m[1]));
     } else {
       --trajectory_checks;

@@ -50,7 +50,8 @@ TEST(Stability, BisectionBracketsTheThreshold) {
   // The methods' own limits lie above the threshold (implicit Euler: none;
   // RK4 at k = 1e7 with the scene's c: 2.8/ω = 8.9e-4 s), so it decides.
   for (const StabilityRow& row : r.rows) {
-    ASSERT_EQ(row.verdict, StabilityVerdict::Bracketed) << integrator_name(row.integrator) << " k=" << row.k;
+    ASSERT_EQ(row.verdict, StabilityVerdict::Bracketed)
+        << integrator_name(row.integrator) << " k=" << row.k;
     EXPECT_LE(row.dt_stable, threshold);
     EXPECT_GT(row.dt_unstable, threshold);
     EXPECT_LE(row.dt_unstable / row.dt_stable, 1.02 + 1e-12);
@@ -74,8 +75,10 @@ TEST(Stability, MatchesTheLinearBoundWhereItApplies) {
   config.zeta = 1.0;
   const StabilityResult r = run_stability(scene, config, reference_runner());
   for (const StabilityRow& row : r.rows) {
-    if (row.integrator == Integrator::RK4 && row.k == 1e4) continue;  // stable up to dt_max = 0.01 s
-    ASSERT_EQ(row.verdict, StabilityVerdict::Bracketed) << integrator_name(row.integrator) << " k=" << row.k;
+    if (row.integrator == Integrator::RK4 && row.k == 1e4)
+      continue;  // stable up to dt_max = 0.01 s
+    ASSERT_EQ(row.verdict, StabilityVerdict::Bracketed)
+        << integrator_name(row.integrator) << " k=" << row.k;
     EXPECT_NEAR(row.zeta, 1.0, 1e-12);
     const double ratio = row.omega * row.dt_stable / row.theory;
     EXPECT_GT(ratio, 0.85) << integrator_name(row.integrator) << " k=" << row.k;

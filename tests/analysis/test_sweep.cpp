@@ -19,7 +19,8 @@ Scene built_in(const char* name) {
   return load_scene(std::string(CONTACT2D_SCENES_DIR) + "/" + name + ".toml");
 }
 
-const OrderFit& fit_of(const SweepResult& r, Integrator integrator, const std::string& engine = "ref",
+const OrderFit& fit_of(const SweepResult& r, Integrator integrator,
+                       const std::string& engine = "ref",
                        const std::string& against = "reference") {
   for (const OrderFit& f : r.orders) {
     if (f.integrator == integrator && f.engine == engine && f.against == against) return f;

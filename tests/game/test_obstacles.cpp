@@ -49,8 +49,9 @@ TEST_P(RestOnObstacle, BallOnBoxSinksByWeightOverStiffness) {
   scene.contact.mu = 0.5;
   scene.contact.mu_roll = 0.01;
   const double top = 0.5;
-  scene.obstacles = {make_box_obstacle(0.0, 0.5 * top, 1.0, top)};  // a table standing on the ground
-  scene.initial.q = Vec3(0.1, top + scene.radius + 0.02, 0.0);       // dropped from 2 cm
+  scene.obstacles = {
+      make_box_obstacle(0.0, 0.5 * top, 1.0, top)};             // a table standing on the ground
+  scene.initial.q = Vec3(0.1, top + scene.radius + 0.02, 0.0);  // dropped from 2 cm
   const double d = scene.mass * scene.sim.gravity / scene.contact.k;
   const State s = final_state(scene);
   EXPECT_NEAR(top + scene.radius - s.q.y(), d, 1e-9 * d);
@@ -165,14 +166,19 @@ TEST_P(WallRebound, BallOffASlantedSegmentReflectsTheNormalComponent) {
   EXPECT_NEAR(end.v.z(), 0.0, 1e-12) << "no friction, no spin";
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Laws, WallRebound,
-    ::testing::Values(ReboundCase{DampingLaw::Compression, 0.05}, ReboundCase{DampingLaw::Compression, 0.3},
-                      ReboundCase{DampingLaw::KelvinVoigt, 0.05}, ReboundCase{DampingLaw::KelvinVoigt, 0.3}),
-    [](const auto& info) {
-      return std::string(info.param.law == DampingLaw::Compression ? "compression" : "kelvin_voigt") +
-             "_zeta" + std::to_string(static_cast<int>(std::lround(info.param.zeta * 100)));
-    });
+INSTANTIATE_TEST_SUITE_P(Laws, WallRebound,
+                         ::testing::Values(ReboundCase{DampingLaw::Compression, 0.05},
+                                           ReboundCase{DampingLaw::Compression, 0.3},
+                                           ReboundCase{DampingLaw::KelvinVoigt, 0.05},
+                                           ReboundCase{DampingLaw::KelvinVoigt, 0.3}),
+                         [](const auto& info) {
+                           return std::string(info.param.law == DampingLaw::Compression
+                                                  ? "compression"
+                                                  : "kelvin_voigt") +
+                                  "_zeta" +
+                                  std::to_string(
+                                      static_cast<int>(std::lround(info.param.zeta * 100)));
+                         });
 
 // ---------------------------------------------------------------------------
 // Sliding and rolling on a box top is the ground's problem shifted up: the
@@ -249,7 +255,8 @@ TEST(ObstacleGeometry, ForceAndTorqueOfOneContactFollowTheLaw) {
   const double fn = law.k * 0.01 + law.c * std::max(0.0, -vc.dot(n));
   const double ft = -law.mu * fn * std::tanh(law.alpha * vc.dot(t));
   const Vec2 f = fn * n + ft * t;
-  const double tau = r.x() * f.y() - r.y() * f.x() - law.mu_roll * fn * std::tanh(law.alpha * 0.11 * v.z());
+  const double tau =
+      r.x() * f.y() - r.y() * f.x() - law.mu_roll * fn * std::tanh(law.alpha * 0.11 * v.z());
   EXPECT_NEAR(force.x(), f.x(), 1e-12 * fn);
   EXPECT_NEAR(force.y(), f.y(), 1e-12 * fn);
   EXPECT_NEAR(torque, tau, 1e-12 * fn);
@@ -388,15 +395,20 @@ INSTANTIATE_TEST_SUITE_P(
                     "obstacle[0].x = nan is out of range: must be finite"},
         BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = 1\n",
                     "obstacle[0].height is required"},
-        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = 1\nheight = 1\nradius = 2\n",
-                    "unknown key 'obstacle[0].radius' (allowed here: type, x, y, width, height)"},
+        BadObstacle{
+            "[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = 1\nheight = 1\nradius = 2\n",
+            "unknown key 'obstacle[0].radius' (allowed here: type, x, y, width, height)"},
         BadObstacle{"[[obstacle]]\nx = 0\n", "obstacle[0].type is required"},
-        BadObstacle{"[[obstacle]]\ntype = \"circle\"\n", "obstacle[0].type = \"circle\" is not an obstacle type"},
-        BadObstacle{"[[obstacle]]\ntype = \"segment\"\nx1 = 0\ny1 = 0\nx2 = 1\ny2 = 1\nradius = -0.1\n",
-                    "obstacle[0].radius = -0.1 is out of range: must be in [0, 1e3] m"},
-        BadObstacle{"[[obstacle]]\ntype = \"segment\"\nx1 = 1\ny1 = 1\nx2 = 1\ny2 = 1\n",
-                    "obstacle[0].radius = 0 is out of range: must be > 0 when the two ends coincide"},
-        BadObstacle{"[[obstacle]]\ntype = \"segment\"\nx1 = \"a\"\n", "obstacle[0].x1 must be a number"},
+        BadObstacle{"[[obstacle]]\ntype = \"circle\"\n",
+                    "obstacle[0].type = \"circle\" is not an obstacle type"},
+        BadObstacle{
+            "[[obstacle]]\ntype = \"segment\"\nx1 = 0\ny1 = 0\nx2 = 1\ny2 = 1\nradius = -0.1\n",
+            "obstacle[0].radius = -0.1 is out of range: must be in [0, 1e3] m"},
+        BadObstacle{
+            "[[obstacle]]\ntype = \"segment\"\nx1 = 1\ny1 = 1\nx2 = 1\ny2 = 1\n",
+            "obstacle[0].radius = 0 is out of range: must be > 0 when the two ends coincide"},
+        BadObstacle{"[[obstacle]]\ntype = \"segment\"\nx1 = \"a\"\n",
+                    "obstacle[0].x1 must be a number"},
         BadObstacle{"obstacle = 3\n", "obstacle must be an array of tables"},
         BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = 1\nheight = 1\n"
                     "[[obstacle]]\ntype = \"box\"\nx = 0\ny = 2e6\nwidth = 1\nheight = 1\n",

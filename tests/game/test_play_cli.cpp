@@ -34,8 +34,8 @@ std::string slurp(const fs::path& path) {
 
 Result run(const std::string& args) {
   const fs::path out = temp("stdout"), err = temp("stderr");
-  const std::string command =
-      std::string("'") + CONTACT2D_EXE + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const std::string command = std::string("'") + CONTACT2D_EXE + "' " + args + " >'" +
+                              out.string() + "' 2>'" + err.string() + "'";
   const int raw = std::system(command.c_str());
   Result r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -49,7 +49,9 @@ Result run(const std::string& args) {
 const std::string kGoalReplay = CONTACT2D_SOURCE_DIR "/validation/replays/goal.replay";
 const std::string kPitch = CONTACT2D_SOURCE_DIR "/validation/scenes/game/pitch.toml";
 
-bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 TEST(PlayCli, TheShippedGoalReplayScoresWithTheReferenceEngine) {
   const Result r = run("play --headless --replay '" + kGoalReplay + "'");
@@ -81,7 +83,8 @@ TEST(PlayCli, RecordingAReplayAndPlayingItBackGivesTheSameJson) {
   // --record-input on a replayed session writes the inputs it applied; that
   // file replays to the same outcome and is the same file.
   const fs::path copy = temp("copy.replay");
-  const Result a = run("play --headless --replay '" + kGoalReplay + "' --record-input '" + copy.string() + "'");
+  const Result a =
+      run("play --headless --replay '" + kGoalReplay + "' --record-input '" + copy.string() + "'");
   ASSERT_EQ(a.status, 0) << a.err;
   const Result b = run("play --headless --replay '" + copy.string() + "'");
   ASSERT_EQ(b.status, 0) << b.err;
@@ -123,10 +126,10 @@ TEST(PlayCli, ADivergingPitchExitsThreeWithTheDiagnosis) {
 
 struct BadPlay {
   const char* name;
-  const char* pitch_extra;   // appended to a copy of the shipped pitch ("" = no pitch file)
-  const char* replay_text;   // a replay file's contents ("" = none)
-  const char* args;          // further arguments
-  const char* expected;      // part of the one-line message
+  const char* pitch_extra;  // appended to a copy of the shipped pitch ("" = no pitch file)
+  const char* replay_text;  // a replay file's contents ("" = none)
+  const char* args;         // further arguments
+  const char* expected;     // part of the one-line message
 };
 
 class PlayBadInput : public ::testing::TestWithParam<BadPlay> {};
@@ -134,7 +137,8 @@ class PlayBadInput : public ::testing::TestWithParam<BadPlay> {};
 TEST_P(PlayBadInput, ExitsTwoWithOneLineNamingTheProblem) {
   const BadPlay& c = GetParam();
   std::string args = "play --headless ";
-  const fs::path pitch = temp(std::string(c.name) + ".toml"), replay = temp(std::string(c.name) + ".replay");
+  const fs::path pitch = temp(std::string(c.name) + ".toml"),
+                 replay = temp(std::string(c.name) + ".replay");
   if (*c.pitch_extra) {
     std::string text = slurp(kPitch);
     // Replace a [game] key by appending a second [game]-free override: TOML
@@ -174,13 +178,17 @@ INSTANTIATE_TEST_SUITE_P(
                 "game.kick_impulse = -1 is out of range: must be in [0, 1e4] N·s"},
         BadPlay{"crossbar_missing", "crossbar =7", "", "",
                 "game.crossbar = 7 is out of range: must be the index of a box in [[obstacle]]"},
-        BadPlay{"pass_order", "pass_speed_max =1.0", "", "",
-                "game.pass_speed_max = 1 is out of range: must be >= game.pass_speed_min = 2.5 m/s"},
-        BadPlay{"angle_outside", "kick_angle =75.0", "", "", "game.kick_angle = 75 is out of range"},
+        BadPlay{
+            "pass_order", "pass_speed_max =1.0", "", "",
+            "game.pass_speed_max = 1 is out of range: must be >= game.pass_speed_min = 2.5 m/s"},
+        BadPlay{"angle_outside", "kick_angle =75.0", "", "",
+                "game.kick_angle = 75 is out of range"},
         BadPlay{"replay_garbage", "", "hello\n", "", ":1: not a replay file"},
         BadPlay{"replay_bad_key", "", "contact2d-replay 1\nseed 1\ndt 1e-05\n10 jump down\n", "",
-                ":4: key 'jump' is not one of left, right, up, down, kick, angle_up, angle_down, reset"},
-        BadPlay{"replay_bad_order", "", "contact2d-replay 1\nseed 1\ndt 1e-05\n10 kick down\n5 kick up\n", "",
+                ":4: key 'jump' is not one of left, right, up, down, kick, angle_up, angle_down, "
+                "reset"},
+        BadPlay{"replay_bad_order", "",
+                "contact2d-replay 1\nseed 1\ndt 1e-05\n10 kick down\n5 kick up\n", "",
                 ":5: step 5 is earlier than the line before"},
         BadPlay{"replay_no_seed", "", "contact2d-replay 1\ndt 1e-05\n", "", "missing 'seed' line"},
         BadPlay{"replay_dt_mismatch", "", "contact2d-replay 1\nseed 1\ndt 1e-4\n", "",
@@ -189,9 +197,12 @@ INSTANTIATE_TEST_SUITE_P(
                 "--seed 2 conflicts with the replay's seed 1"},
         BadPlay{"record_headless", "", "", "--record /tmp/x.mp4", "--record needs the window"},
         BadPlay{"missing_pitch", "", "", "/nonexistent/pitch.toml", "cannot read pitch file"},
-        BadPlay{"missing_replay", "", "", "--replay /nonexistent/x.replay", "cannot read replay file"},
-        BadPlay{"bad_seed", "", "", "--seed -3", "--seed -3: must be an integer in [0, 18446744073709551615]"},
-        BadPlay{"huge_seed", "", "", "--seed 18446744073709551616", "--seed 18446744073709551616: must be an integer"}),
+        BadPlay{"missing_replay", "", "", "--replay /nonexistent/x.replay",
+                "cannot read replay file"},
+        BadPlay{"bad_seed", "", "", "--seed -3",
+                "--seed -3: must be an integer in [0, 18446744073709551615]"},
+        BadPlay{"huge_seed", "", "", "--seed 18446744073709551616",
+                "--seed 18446744073709551616: must be an integer"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

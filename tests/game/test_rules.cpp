@@ -29,9 +29,9 @@ Pitch still_ball(double x0, double angle = 0.0) {
 struct Watch {
   bool crossed_wholly = false;  // the whole ball got beyond the goal line at some point
   bool touched_bar = false;
-  double vx_into_bar = 0.0;     // vx the step before the first contact with the crossbar
-  double vx_off_bar = 0.0;      // vx the first step after it ended
-  double y_at_line = -1.0;      // highest centre height within 1 cm of the goal line
+  double vx_into_bar = 0.0;  // vx the step before the first contact with the crossbar
+  double vx_off_bar = 0.0;   // vx the first step after it ended
+  double y_at_line = -1.0;   // highest centre height within 1 cm of the goal line
 };
 
 Watch play_round(Game& game) {
@@ -214,7 +214,8 @@ TEST(Rules, TheKickDeliversItsImpulse) {
   Game game(pitch, make_engine("ref", pitch.scene), 1);
   game.handle(Key::Kick, true);
   for (int i = 0; i < 10000; ++i) game.step();  // 0.1 s > kick_duration
-  const double m = pitch.scene.mass, J = pitch.rules.kick_impulse, a = 30.0 * 3.14159265358979323846 / 180.0;
+  const double m = pitch.scene.mass, J = pitch.rules.kick_impulse,
+               a = 30.0 * 3.14159265358979323846 / 180.0;
   // With g = 0 the ball starts just touching the grass (no spring force),
   // the kick lifts it at once (no damper: compression only, no friction:
   // Fn = 0), so only rounding remains: tolerance 1e-9 m/s on ~11.6 m/s.
@@ -250,7 +251,8 @@ TEST(PitchFile, TheGameNeedsACircle) {
     parse_pitch("scene = \"box\"\n", "box.toml");
     FAIL() << "a box was accepted as a ball";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("the game needs scene = \"circle\""), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("the game needs scene = \"circle\""), std::string::npos)
+        << e.what();
   }
 }
 

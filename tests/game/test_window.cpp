@@ -32,7 +32,8 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path temp(const std::string& name) {
-  return fs::temp_directory_path() / ("contact2d_window_" + std::to_string(::getpid()) + "_" + name);
+  return fs::temp_directory_path() /
+         ("contact2d_window_" + std::to_string(::getpid()) + "_" + name);
 }
 
 std::string slurp(const fs::path& path) {
@@ -62,7 +63,8 @@ struct Image {
   int width = 0, height = 0;
   std::vector<unsigned char> rgb;
   unsigned pixel(int x, int y) const {
-    const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
+    const size_t i =
+        3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
     return (unsigned(rgb[i]) << 16) | (unsigned(rgb[i + 1]) << 8) | unsigned(rgb[i + 2]);
   }
 };
@@ -81,7 +83,8 @@ Image screenshot(const std::string& name, const std::string& screen_size) {
   in.get();
   if (magic != "P6" || maxval != 255) return {};
   image.rgb.resize(static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 3);
-  in.read(reinterpret_cast<char*>(image.rgb.data()), static_cast<std::streamsize>(image.rgb.size()));
+  in.read(reinterpret_cast<char*>(image.rgb.data()),
+          static_cast<std::streamsize>(image.rgb.size()));
   fs::remove(file);
   return image;
 }
@@ -105,8 +108,9 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
   // (the ball at rest or the clock would end it after ~4 s; a slow machine
   // must not turn the kick into a key press between rounds).
   std::string pitch_text = slurp(CONTACT2D_SOURCE_DIR "/validation/scenes/game/pitch.toml");
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"\nrest_time = 0.5", "\nrest_time = 60.0"},
-                                 {"\nround_time = 20.0", "\nround_time = 60.0"}}) {
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"\nrest_time = 0.5", "\nrest_time = 60.0"},
+        {"\nround_time = 20.0", "\nround_time = 60.0"}}) {
     const size_t at = pitch_text.find(from);
     ASSERT_NE(at, std::string::npos) << from;
     pitch_text.replace(at, from.size(), to);
@@ -116,8 +120,8 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
 
   const fs::path out = temp("out.json"), err = temp("err.txt"), replay = temp("live.replay");
   const std::string command = std::string("exec '") + CONTACT2D_EXE + "' play '" + pitch.string() +
-                              "' --seed 5 --record-input '" + replay.string() + "' >'" + out.string() + "' 2>'" +
-                              err.string() + "'";
+                              "' --seed 5 --record-input '" + replay.string() + "' >'" +
+                              out.string() + "' 2>'" + err.string() + "'";
   pid_t pid = -1;
   const char* argv[] = {"sh", "-c", command.c_str(), nullptr};
   ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
@@ -192,7 +196,8 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
     for (int xx = 0; xx < 800; ++xx) {
       const unsigned p = after.pixel(xx, yy);
       ++histogram[p];
-      const int r = static_cast<int>(p >> 16), g = static_cast<int>((p >> 8) & 255), b = static_cast<int>(p & 255);
+      const int r = static_cast<int>(p >> 16), g = static_cast<int>((p >> 8) & 255),
+                b = static_cast<int>(p & 255);
       for (Expected& e : expected) {
         if (std::abs(r - e.r) <= 2 && std::abs(g - e.g) <= 2 && std::abs(b - e.b) <= 2) ++e.count;
       }
@@ -209,11 +214,13 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
 
   // What the live window recorded replays headless to the same kick.
   const fs::path replay_out = temp("replay.json");
-  ASSERT_EQ(sh(std::string("'") + CONTACT2D_EXE + "' play '" + pitch.string() + "' --headless --replay '" +
-               replay.string() + "' >'" + replay_out.string() + "'"),
+  ASSERT_EQ(sh(std::string("'") + CONTACT2D_EXE + "' play '" + pitch.string() +
+               "' --headless --replay '" + replay.string() + "' >'" + replay_out.string() + "'"),
             0);
   const std::string replayed = slurp(replay_out);
-  const auto kicks = [](const std::string& j) { return j.substr(j.find("\"kicks\""), j.find("\"rounds\"") - j.find("\"kicks\"")); };
+  const auto kicks = [](const std::string& j) {
+    return j.substr(j.find("\"kicks\""), j.find("\"rounds\"") - j.find("\"kicks\""));
+  };
   EXPECT_EQ(kicks(replayed), kicks(json));
   fs::remove(out);
   fs::remove(err);
@@ -230,10 +237,11 @@ TEST(Window, RecordingTheGoalReplayWritesAVideoOfEveryFrame) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
   ASSERT_EQ(sh("command -v ffprobe >/dev/null"), 0) << "needs ffmpeg's ffprobe";
   const fs::path video = temp("goal.mp4"), out = temp("goal.json"), err = temp("goal.err");
-  ASSERT_EQ(sh(std::string("'") + CONTACT2D_EXE + "' play --replay '" CONTACT2D_SOURCE_DIR
-               "/validation/replays/goal.replay' --record '" + video.string() + "' >'" + out.string() + "' 2>'" +
-               err.string() + "'"),
-            0)
+  ASSERT_EQ(
+      sh(std::string("'") + CONTACT2D_EXE +
+         "' play --replay '" CONTACT2D_SOURCE_DIR "/validation/replays/goal.replay' --record '" +
+         video.string() + "' >'" + out.string() + "' 2>'" + err.string() + "'"),
+      0)
       << slurp(err);
   const std::string json = slurp(out), log = slurp(err);
   EXPECT_NE(json.find("\"goal\":true"), std::string::npos) << json;
@@ -241,14 +249,18 @@ TEST(Window, RecordingTheGoalReplayWritesAVideoOfEveryFrame) {
   ASSERT_TRUE(fs::exists(video));
   const long frames_drawn = std::atol(log.substr(log.find("play: ") + 6).c_str());
   const long frames_in_video = std::atol(
-      capture("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
-              "-of default=nokey=1:noprint_wrappers=1 '" + video.string() + "'")
+      capture(
+          "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+          "-of default=nokey=1:noprint_wrappers=1 '" +
+          video.string() + "'")
           .c_str());
-  const std::string size = capture("ffprobe -v error -select_streams v:0 -show_entries stream=width,height "
-                                   "-of csv=p=0 '" + video.string() + "'");
+  const std::string size = capture(
+      "ffprobe -v error -select_streams v:0 -show_entries stream=width,height "
+      "-of csv=p=0 '" +
+      video.string() + "'");
   const double goal_time = json_number(json, "end_time");
-  std::printf("video: %ld frames drawn, %ld in the video, %s, goal at %.3f s\n", frames_drawn, frames_in_video,
-              size.c_str(), goal_time);
+  std::printf("video: %ld frames drawn, %ld in the video, %s, goal at %.3f s\n", frames_drawn,
+              frames_in_video, size.c_str(), goal_time);
   EXPECT_EQ(size, "800,600");
   EXPECT_EQ(frames_in_video, frames_drawn);
   EXPECT_NEAR(static_cast<double>(frames_in_video), (goal_time + 2.0) * 60.0, 1.0);
