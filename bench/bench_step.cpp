@@ -11,6 +11,7 @@
 //   build-dir/bench/contact2d_bench [--benchmark_min_time=0.2]
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -93,6 +94,44 @@ void mujoco_step(benchmark::State& state, const Case& c) {
 }
 #endif
 
+// The floor under a step: a step is one chain of dependent operations (the
+// next state needs this one), so its cost is the latency of that chain. The
+// accurate libm calls on it are measured here the same way, each call
+// feeding the next: one sincos per force evaluation of a rotating body, one
+// tanh per touching point that slips slower than 22/α (one more for a
+// rolling contact spinning slower than 22/(α·R)). "step/free_flight" is a
+// body without contact points in flight: the call, the gravity update and
+// the harness, nothing else.
+void libm_sincos(benchmark::State& state) {
+  double x = 0.3;
+  for (auto _ : state) {
+    x = 0.3 + 1e-3 * (std::sin(x) + std::cos(x));  // GCC fuses the pair into one sincos
+    benchmark::DoNotOptimize(x);
+  }
+}
+
+void libm_tanh(benchmark::State& state) {
+  double x = 0.3;
+  for (auto _ : state) {
+    x = 0.1 + 0.5 * std::tanh(x);
+    benchmark::DoNotOptimize(x);
+  }
+}
+
+void free_flight_step(benchmark::State& state) {
+  const Model model;  // default body: 1 kg, no contact points
+  State s;
+  long long i = 0;
+  for (auto _ : state) {
+    step(model, Integrator::SemiImplicitEuler, 1e-4, s);
+    if (++i == 20000) {
+      i = 0;
+      s = State{};
+    }
+    benchmark::DoNotOptimize(s);
+  }
+}
+
 // Collects the per-step real time of every run for the ratio table.
 class RatioReporter : public benchmark::ConsoleReporter {
  public:
@@ -131,6 +170,9 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("mj_step/" + case_name(c)).c_str(), mujoco_step, c);
 #endif
   }
+  benchmark::RegisterBenchmark("floor/libm_sincos", libm_sincos);
+  benchmark::RegisterBenchmark("floor/libm_tanh", libm_tanh);
+  benchmark::RegisterBenchmark("floor/step_free_flight", free_flight_step);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   RatioReporter reporter;
@@ -157,5 +199,13 @@ int main(int argc, char** argv) {
                   mj->second.cpu_ns / ref->second.cpu_ns, ref->second.real_ns, mj->second.real_ns);
     }
   }
+  const auto floor_ns = [&](const char* name) {
+    const auto it = reporter.times().find(std::string("floor/") + name);
+    return it == reporter.times().end() ? -1.0 : it->second.cpu_ns;
+  };
+  std::printf(
+      "\nfloor (CPU, each call feeding the next): sincos %.1fns, tanh %.1fns, a step with no "
+      "contact points %.1fns\n",
+      floor_ns("libm_sincos"), floor_ns("libm_tanh"), floor_ns("step_free_flight"));
   return 0;
 }

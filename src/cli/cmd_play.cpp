@@ -22,7 +22,7 @@ namespace {
 // 1.0000000000000001e-05).
 std::string shortest(double v) {
   for (int digits = 6; digits < 17; ++digits) {
-    const std::string text = format_number(v, digits);
+    std::string text = format_number(v, digits);
     if (std::strtod(text.c_str(), nullptr) == v) return text;
   }
   return format_number(v, 17);

@@ -72,6 +72,7 @@ std::function<void(size_t, size_t, const std::string&)> terminal_progress(const 
 Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
                       const std::optional<double>& duration) {
   std::vector<Override> overrides;
+  overrides.reserve(sets.size() + 1);
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
   if (duration) overrides.push_back({"sim.duration", format_number(*duration, 17)});
   return load_scene(path, overrides);

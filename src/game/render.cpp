@@ -146,8 +146,8 @@ struct TextBatch {
       const int cx = ((c - 32) % kAtlasColumns) * kCellW, cy = ((c - 32) / kAtlasColumns) * kCellH;
       for (int q = 0; q < n; ++q) {
         float p0[2], p2[2];  // corners 0 and 2 of the rectangle
-        std::memcpy(p0, quads + 64 * q, sizeof p0);
-        std::memcpy(p2, quads + 64 * q + 32, sizeof p2);
+        std::memcpy(p0, quads + 64L * q, sizeof p0);
+        std::memcpy(p2, quads + 64L * q + 32, sizeof p2);
         const int x0 = static_cast<int>(p0[0]), y0 = static_cast<int>(p0[1]);
         const int x1 = std::min(static_cast<int>(p2[0]), kCellW),
                   y1 = std::min(static_cast<int>(p2[1]), kCellH);
@@ -263,9 +263,9 @@ void draw_world(const Game& game, const View& v) {
   // stripes one metre wide, opaque, drawn without blending.
   glClearColor(kSky.r, kSky.g, kSky.b, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
-  for (double x = std::floor(v.x0); x < v.x1; x += 1.0) {
-    rect(x, v.y0, x + 1.0, 0.0,
-         (static_cast<long long>(std::floor(x)) % 2 == 0) ? kGrassA : kGrassB);
+  for (auto i = static_cast<long long>(std::floor(v.x0)); static_cast<double>(i) < v.x1; ++i) {
+    const auto x = static_cast<double>(i);
+    rect(x, v.y0, x + 1.0, 0.0, i % 2 == 0 ? kGrassA : kGrassB);
   }
   rect(v.x0, v.y0, v.x1, v.y0 + 0.35 * (0.0 - v.y0), kTurfShade);
   glDisable(GL_BLEND);
@@ -296,8 +296,10 @@ void draw_world(const Game& game, const View& v) {
 
   // The line beyond which kicks do not count.
   const double zone = r.goal_line - dir * r.min_kick_distance;
-  for (double y = 0.0; y < 2.8; y += 0.2)
+  for (int dash = 0; dash < 14; ++dash) {  // 0.12 m dashes every 0.2 m up to 2.8 m
+    const double y = 0.2 * dash;
     thick_line(Vec2(zone, y), Vec2(zone, y + 0.12), 0.03, kZone);
+  }
   rect(std::min(zone, r.goal_line), -0.05, std::max(zone, r.goal_line), 0.0,
        Color{1.0f, 0.85f, 0.1f, 0.35f});
 
@@ -408,8 +410,7 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
         "",
         "A teammate passes: the ball rolls in towards the goal.",
         "Kick it into the goal. A kick counts only if the ball",
-        "is at least "
-        "1 m from the goal line (the yellow line).",
+        "is at least 1 m from the goal line (the yellow line).",
         "The whole ball must cross the line under the crossbar,",
         "and the last touch must be a counted kick.",
         "The crossbar, the roof and the back of the goal are solid.",

@@ -10,8 +10,6 @@
 
 #include "io/scene_file.hpp"
 
-extern char** environ;
-
 namespace contact2d::game {
 
 VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps) : path_(path) {
@@ -52,6 +50,7 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps
                                    "mp4",
                                    path + ".tmp"};
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
