@@ -2,10 +2,26 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 
 #include "io/scene_file.hpp"
 
 namespace contact2d::cli {
+
+namespace {
+
+// The text of a numeric option, checked to be one number ("inf" and "nan"
+// pass here and are refused, with their range, by the scene's validation).
+std::string number_option(const char* name, const std::string& text, const char* what) {
+  char* end = nullptr;
+  std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) {
+    throw InputError(std::string(name) + " = " + text + " is not a number: expected " + what);
+  }
+  return text;
+}
+
+}  // namespace
 
 void SceneOptions::add_to(CLI::App& cmd) {
   cmd.add_option("scene", path, "Scene file (TOML)")->required();
@@ -21,8 +37,10 @@ Scene SceneOptions::load() const {
   std::vector<Override> overrides;
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
   if (!integrator.empty()) overrides.push_back({"sim.integrator", "\"" + integrator + "\""});
-  if (dt) overrides.push_back({"sim.dt", format_number(*dt, 17)});
-  if (duration) overrides.push_back({"sim.duration", format_number(*duration, 17)});
+  if (dt) overrides.push_back({"sim.dt", number_option("--dt", *dt, "a time step in s")});
+  if (duration) {
+    overrides.push_back({"sim.duration", number_option("--duration", *duration, "a time in s")});
+  }
   return load_scene(path, overrides);
 }
 

@@ -18,8 +18,10 @@ constexpr int kExitDiverged = 3;
 struct SceneOptions {
   std::string path;
   std::string integrator;
-  std::optional<double> dt;
-  std::optional<double> duration;
+  // Kept as text and applied as overrides of sim.dt / sim.duration, so a bad
+  // value gets the scene reader's message (key, type, allowed range).
+  std::optional<std::string> dt;
+  std::optional<std::string> duration;
   std::vector<std::string> sets;
 
   void add_to(CLI::App& cmd);
