@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 #include "io/scene_file.hpp"
+#include "io/toml_table.hpp"
 
 namespace contact2d::game {
 
@@ -19,36 +19,21 @@ namespace {
 
 std::string format_value(double v) { return format_number("%g", v); }
 
-// Reads the [game] table: numbers only, every key checked against its range,
-// unknown keys rejected.
+// Reads the [game] table: numbers only, every key checked against its range
+// as it is read, unknown keys rejected (io's TableReader does the typing).
 class GameTable {
  public:
   GameTable(const toml::table* table, std::string origin)
-      : table_(table), origin_(std::move(origin)) {}
+      : reader_(table, "game.", origin), origin_(std::move(origin)) {}
 
   void number(const char* key, double& out, double lo, double hi, const char* range) {
-    used_.insert(key);
-    if (!table_) return;
-    const toml::node* node = table_->get(key);
-    if (!node) return;
-    if (const auto* f = node->as_floating_point()) {
-      out = f->get();
-    } else if (const auto* i = node->as_integer()) {
-      out = static_cast<double>(i->get());
-    } else {
-      fail(key, "must be a number");
-    }
+    reader_.number(key, out);
     check(key, out, std::isfinite(out) && out >= lo && out <= hi, range);
   }
 
   void integer(const char* key, int& out, int lo, int hi, const char* range) {
-    used_.insert(key);
-    if (!table_) return;
-    const toml::node* node = table_->get(key);
-    if (!node) return;
-    const auto* i = node->as_integer();
-    if (!i) fail(key, "must be an integer");
-    const long long v = i->get();
+    long long v = out;
+    reader_.integer(key, v);
     check(key, static_cast<double>(v), v >= lo && v <= hi, range);
     out = static_cast<int>(v);
   }
@@ -60,26 +45,11 @@ class GameTable {
     }
   }
 
-  [[noreturn]] void fail(const std::string& key, const std::string& why) const {
-    throw InputError(origin_ + ": game." + key + " " + why);
-  }
-
-  void reject_unknown() const {
-    if (!table_) return;
-    for (const auto& [key, node] : *table_) {
-      if (!used_.count(std::string(key.str()))) {
-        std::string allowed;
-        for (const std::string& k : used_) allowed += (allowed.empty() ? "" : ", ") + k;
-        throw InputError(origin_ + ": unknown key 'game." + std::string(key.str()) +
-                         "' (allowed here: " + allowed + ")");
-      }
-    }
-  }
+  void reject_unknown() const { reader_.reject_unknown(); }
 
  private:
-  const toml::table* table_;
+  TableReader reader_;
   std::string origin_;
-  std::set<std::string> used_;
 };
 
 Rules read_rules(const toml::table* table, const Scene& scene, const std::string& origin) {

@@ -1,97 +1,18 @@
 #include "io/scene_file.hpp"
 #include "core/format.hpp"
+#include "io/toml_table.hpp"
 
 #include <toml++/toml.h>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 namespace contact2d {
 namespace {
 
 std::string format_value(double v) { return format_number("%g", v); }
-
-// Reads keys out of one TOML table, remembering which were used so that the
-// rest can be reported as unknown.
-class TableReader {
- public:
-  TableReader(const toml::table* table, std::string prefix, std::string origin)
-      : table_(table), prefix_(std::move(prefix)), origin_(std::move(origin)) {}
-
-  void number(const char* key, double& out) {
-    const toml::node* node = find(key);
-    if (!node) return;
-    if (const auto* f = node->as_floating_point()) {
-      out = f->get();
-    } else if (const auto* i = node->as_integer()) {
-      out = static_cast<double>(i->get());
-    } else {
-      fail(key, "must be a number, got " + type_name(*node));
-    }
-    // Non-finite values pass through to validate(), whose message names the range.
-  }
-
-  void string(const char* key, std::string& out) {
-    const toml::node* node = find(key);
-    if (!node) return;
-    if (const auto* s = node->as_string()) {
-      out = s->get();
-    } else {
-      fail(key, "must be a string, got " + type_name(*node));
-    }
-  }
-
-  const toml::array* array(const char* key) {
-    const toml::node* node = find(key);
-    if (!node) return nullptr;
-    if (!node->is_array()) fail(key, "must be an array, got " + type_name(*node));
-    return node->as_array();
-  }
-
-  void mark_used(const char* key) { used_.insert(key); }
-
-  // Every key not read so far is unknown.
-  void reject_unknown(const std::string& allowed) const {
-    if (!table_) return;
-    for (const auto& [key, node] : *table_) {
-      if (!used_.count(std::string(key.str()))) {
-        throw InputError(origin_ + ": unknown key '" + prefix_ + std::string(key.str()) +
-                         "' (allowed here: " + allowed + ")");
-      }
-    }
-  }
-
-  [[noreturn]] void fail(const std::string& key, const std::string& why) const {
-    throw InputError(origin_ + ": " + prefix_ + key + " " + why);
-  }
-
- private:
-  const toml::node* find(const char* key) {
-    if (!table_) return nullptr;
-    used_.insert(key);
-    return table_->get(key);
-  }
-
-  static std::string type_name(const toml::node& node) {
-    switch (node.type()) {
-      case toml::node_type::string: return "a string";
-      case toml::node_type::integer: return "an integer";
-      case toml::node_type::floating_point: return "a number";
-      case toml::node_type::boolean: return "a boolean";
-      case toml::node_type::array: return "an array";
-      case toml::node_type::table: return "a table";
-      default: return "a date or time";
-    }
-  }
-
-  const toml::table* table_;
-  std::string prefix_;
-  std::string origin_;
-  std::set<std::string> used_;
-};
 
 const toml::table* subtable(const toml::table& root, const char* name, const std::string& origin) {
   const toml::node* node = root.get(name);

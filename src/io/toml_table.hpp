@@ -1,0 +1,46 @@
+// Typed reads from one TOML table with one-line messages that name the
+// source, the key and what was wrong; shared by the scene reader and the
+// game's [game] table. Internal to the project (needs toml++).
+#pragma once
+
+#include <toml++/toml.h>
+#include <set>
+#include <string>
+
+namespace contact2d {
+
+// Reads keys out of one TOML table, remembering which were read so that the
+// rest can be reported as unknown. A missing key leaves `out` unchanged (the
+// caller's default); a key of the wrong type throws InputError. `prefix` is
+// prepended to keys in messages ("body.", "game."), `origin` names the file.
+class TableReader {
+ public:
+  TableReader(const toml::table* table, std::string prefix, std::string origin)
+      : table_(table), prefix_(std::move(prefix)), origin_(std::move(origin)) {}
+
+  // A number (integer or floating point). Non-finite values pass through:
+  // the caller's range check names them.
+  void number(const char* key, double& out);
+  void integer(const char* key, long long& out);
+  void string(const char* key, std::string& out);
+  const toml::array* array(const char* key);  // nullptr when missing
+
+  void mark_used(const char* key) { used_.insert(key); }
+
+  // Every key not read so far is unknown; `allowed` lists the valid ones.
+  void reject_unknown(const std::string& allowed) const;
+  // Same, listing the keys read so far as the allowed ones.
+  void reject_unknown() const;
+
+  [[noreturn]] void fail(const std::string& key, const std::string& why) const;
+
+ private:
+  const toml::node* find(const char* key);
+
+  const toml::table* table_;
+  std::string prefix_;
+  std::string origin_;
+  std::set<std::string> used_;
+};
+
+}  // namespace contact2d
