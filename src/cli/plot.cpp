@@ -1,8 +1,6 @@
 #include "cli/plot.hpp"
 
-#include <sys/stat.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -10,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "io/csv.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d::cli {
@@ -56,37 +55,6 @@ std::string script(const std::string& data, const std::string& png, const std::s
          "unset multiplot\n";
 }
 
-// A temporary file beside `target` (same file system, so rename is atomic),
-// removed on destruction unless renamed onto the target.
-class TempFile {
- public:
-  explicit TempFile(const std::string& target) : target_(target) {
-    std::string pattern = target + ".tmp.XXXXXX";
-    const int fd = ::mkstemp(pattern.data());
-    if (fd < 0)
-      throw InputError(target + ": cannot create output file (" + std::strerror(errno) + ")");
-    ::close(fd);
-    path_ = pattern;
-  }
-  ~TempFile() {
-    if (!path_.empty()) std::remove(path_.c_str());
-  }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
-  const std::string& path() const { return path_; }
-  void commit() {
-    ::chmod(path_.c_str(), 0644);
-    if (std::rename(path_.c_str(), target_.c_str()) != 0) {
-      throw InputError(target_ + ": cannot write output file (" + std::strerror(errno) + ")");
-    }
-    path_.clear();
-  }
-
- private:
-  std::string target_;
-  std::string path_;
-};
-
 void require_quotable(const std::string& text, const std::string& what) {
   if (text.find('\'') != std::string::npos || text.find('\n') != std::string::npos) {
     throw InputError(what + " '" + text +
@@ -109,13 +77,11 @@ void plot_comparison(const std::string& png_path, const std::string& title, cons
                      const Trajectory& mujoco) {
   require_quotable(png_path, "--plot");
   require_quotable(title, "plot title");
-  TempFile png(png_path);             // gnuplot writes here; renamed on success
-  TempFile data(png_path + ".data");  // never committed
-  std::FILE* out = std::fopen(data.path().c_str(), "w");
-  if (!out) throw InputError(data.path() + ": cannot write plot data");
-  write_data(out, ref, mujoco);
-  std::fclose(out);
-  const int status = run_gnuplot(script(data.path(), png.path(), title));
+  AtomicFile png(png_path);             // gnuplot writes here; renamed on success
+  AtomicFile data(png_path + ".data");  // never committed: removed on return
+  write_data(data.get(), ref, mujoco);
+  if (std::fflush(data.get()) != 0) throw InputError(data.temp_path() + ": cannot write plot data");
+  const int status = run_gnuplot(script(data.temp_path(), png.temp_path(), title));
   if (status == 127)
     throw InputError("--plot: gnuplot not found (install Debian package gnuplot-nox)");
   if (status != 0)

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/csv.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d::game {
@@ -146,18 +147,12 @@ std::string format_replay(const Replay& replay) {
 }
 
 void write_replay(const Replay& replay, const std::string& path) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path + ": cannot write replay file (" + std::strerror(errno) + ")");
-    out << format_replay(replay);
-    out.flush();
-    if (!out) throw InputError(path + ": cannot write replay file (write error)");
+  AtomicFile out(path);
+  const std::string text = format_replay(replay);
+  if (std::fwrite(text.data(), 1, text.size(), out.get()) != text.size()) {
+    throw InputError(path + ": cannot write replay file (write error)");
   }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw InputError(path + ": cannot write replay file (" + std::strerror(errno) + ")");
-  }
+  out.commit();
 }
 
 }  // namespace contact2d::game

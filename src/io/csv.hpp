@@ -20,6 +20,9 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   std::FILE* get() const { return file_; }
+  // The temporary file's path, for a writer that opens it by name (gnuplot);
+  // flush get() first if it was written through too.
+  const std::string& temp_path() const { return temp_path_; }
   void commit();  // flush, close, rename; throws InputError on failure
 
  private:
