@@ -113,6 +113,19 @@ SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_m
   require_spring_and_damper(scene, mapping);
   const double dampratio = c / (2.0 * std::sqrt(m * k));
   const double timeconst = mapping == Mapping::Seed ? std::sqrt(m / k) : 2.0 * m / c;
+  // Extreme k, c or m overflow or underflow them (√(m/k) or 2m/c = inf,
+  // dampratio = 0, subnormal or inf): MuJoCo would read "inf" and lose the
+  // spring, read a timeconst of 0 as the direct form, or mix a subnormal
+  // dampratio with the ground's (0.5·ζ + 0.5·ζ) to 0 and warn "mixed solref
+  // format".
+  auto usable = [](double v) { return v > 0.0 && std::isnormal(v); };
+  if (!usable(timeconst) || !usable(dampratio)) {
+    throw InputError(
+        "contact.k = " + number(k) + ", contact.c = " + number(c) + " with mass " + number(m) +
+        " kg give timeconst " + number(timeconst) + " s, dampratio " + number(dampratio) +
+        " for --mapping " + std::string(mapping_name(mapping)) +
+        ": MuJoCo's solref needs both > 0, finite and not subnormal; use --mapping calibrated");
+  }
   s.solref = {timeconst, dampratio};
   s.refsafe_clamped = timeconst < 2.0 * scene.sim.dt;
   return s;

@@ -93,7 +93,8 @@ struct SolverSettings {
 // Solver settings of a mapping. `inv_mass` is MuJoCo's body_invweight0 of
 // the body (read from the compiled model; only calibrated uses it). Throws
 // InputError when the scene's k, c cannot be expressed by the mapping
-// (seed and exact need k > 0 and c > 0).
+// (seed and exact need k > 0 and c > 0, and a timeconst and dampratio that
+// are positive normal floating-point numbers: not 0, subnormal or inf).
 SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_mass, int split);
 
 // MuJoCo's contact spring and damper per unit of approximate inverse mass

@@ -54,6 +54,22 @@ std::vector<BoxPart> parts_of(const Scene& scene) {
   return scene.parts.empty() ? default_tshape_parts() : scene.parts;
 }
 
+// MuJoCo rejects a moving body with a principal inertia below mjMINVAL or with
+// A + B < C in any order (compared exactly). Only the hinge axis (MuJoCo y) is
+// physics; the other two carry no joint and are raised just enough to pass: a
+// thin part makes them smaller than mjMINVAL, and rounding can make the
+// prism's Ix + Iz = Iy + Σ m·D²/6 fall short of Iy when D is small (exactly,
+// Ix ≤ Iy and Iz ≤ Iy, so a larger value is rounding too).
+std::array<double, 3> loadable_inertia(std::array<double, 3> inertia) {
+  double& x = inertia[0];
+  const double y = inertia[1];
+  double& z = inertia[2];
+  x = std::clamp(x, mjMINVAL, std::max(y, mjMINVAL));
+  z = std::clamp(z, mjMINVAL, std::max(y, mjMINVAL));
+  if (x + z < y) (x < z ? z : x) = y;
+  return inertia;
+}
+
 // Prism of depth D: inertia about MuJoCo x (lever arms in z) and z (in x).
 Layout box_layout(const Scene& scene, Geometry geometry) {
   const std::vector<BoxPart> parts = parts_of(scene);
@@ -76,7 +92,7 @@ Layout box_layout(const Scene& scene, Geometry geometry) {
               geometry == Geometry::CornerSpheres};
     layout.geoms.push_back(part);
   }
-  layout.inertia = {ix, props.inertia, iz};
+  layout.inertia = loadable_inertia({ix, props.inertia, iz});
   if (geometry == Geometry::BoxGeoms) {
     layout.max_contacts = 4 * static_cast<int>(parts.size());
     return layout;
@@ -93,9 +109,10 @@ Layout box_layout(const Scene& scene, Geometry geometry) {
 Layout point_mass_layout(const Scene& scene) {
   const double rho = std::max(scene.half_height, kCornerRadius);
   // No hinge: the inertia is never used; it is a solid sphere's, of a radius
-  // of at least 1 cm so that MuJoCo's "inertia > mjMINVAL" check passes.
+  // of at least 1 cm, and at least mjMINVAL (MuJoCo's check on moving bodies,
+  // which a light mass, < 2.5e-11 kg, would fail).
   const double r_inertia = std::max(scene.half_height, 0.01);
-  const double i = 0.4 * scene.mass * r_inertia * r_inertia;
+  const double i = std::max(0.4 * scene.mass * r_inertia * r_inertia, mjMINVAL);
   Layout layout;
   layout.mass = scene.mass;
   layout.inertia = {i, i, i};
@@ -235,12 +252,14 @@ void add_keyframe(XMLDocument& doc, XMLElement* root, const Scene& scene, const 
 }
 
 double read_inv_mass(const Scene& scene, const MjcfOptions& options, int split) {
-  // First pass: any valid solref; body_invweight0 depends only on the mass
-  // matrix and the joints.
-  SolverSettings probe = solver_settings(scene, Mapping::Calibrated, 1.0, split);
+  // First pass: body_invweight0 depends only on the mass matrix and the
+  // joints. The contact gets no spring and no damper (Â = 0): MuJoCo's
+  // compiler takes a test step, and the scene's k, c at a wrong Â (it was 1)
+  // made a heavy body resting on a stiff contact fail it (huge qacc).
+  SolverSettings probe = solver_settings(scene, Mapping::Calibrated, 0.0, split);
   const ModelPtr model =
       load_model(write_mjcf(scene, options, probe), generated_origin(options.source));
-  return model->body_invweight0[2 * 1];  // body 1, translational
+  return model->body_invweight0[2];  // body 1 (2 entries per body), translational
 }
 
 }  // namespace

@@ -26,7 +26,8 @@
 // Inertia (explicit <inertial>, inertiafromgeom="false"): the 2D value on the
 // hinge axis (MuJoCo y). The other two axes carry no joint; they are the
 // values of a prism of depth D (box, T: D = smallest side of any part) or,
-// for the circle, of a cylinder of length 2R: Ix = Iz = m·R²/4 + m·(2R)²/12.
+// for the circle, of a cylinder of length 2R: Ix = Iz = m·R²/4 + m·(2R)²/12,
+// raised where MuJoCo's checks need it (each ≥ mjMINVAL, A + B ≥ C).
 #pragma once
 
 #include <string>
@@ -55,9 +56,10 @@ struct GeneratedModel {
 // The MJCF of a scene. For the calibrated mapping it compiles a first pass
 // to read body_invweight0 (the effective-mass factor Â) from MuJoCo, then
 // writes the final model. Throws InputError when the scene cannot be mapped
-// (explicit Euler; seed/exact with k or c = 0; obstacles, which the model
-// does not carry) or MuJoCo rejects the final
-// model or warns while loading it (it is loaded once to check).
+// (explicit Euler; seed/exact with k or c = 0 or a timeconst or dampratio
+// that overflows or underflows; obstacles, which the model does not carry)
+// or MuJoCo rejects the final model or warns while loading it (it is loaded
+// once to check).
 GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options);
 
 // The MJCF with given solver settings (no MuJoCo involved).
