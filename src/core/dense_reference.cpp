@@ -8,7 +8,8 @@ namespace contact2d {
 namespace {
 
 // Dormand–Prince 5(4) (Hairer, Nørsett & Wanner, Solving ODEs I, §II.5/II.6).
-constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
+// The nodes c = (1/5, 3/10, 4/5, 8/9, 1, 1) are not needed: the right-hand
+// side does not depend on t (applied forces are constant over a run).
 constexpr double a21 = 1.0 / 5;
 constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
 constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
