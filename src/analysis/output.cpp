@@ -1,11 +1,9 @@
 #include "analysis/output.hpp"
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +11,8 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+
+#include "io/csv.hpp"
 
 namespace contact2d::analysis {
 namespace {
@@ -51,16 +51,6 @@ std::string csv_text(std::string text) {
     if (c == '\n') c = ' ';
   }
   return "\"" + text + "\"";
-}
-
-// A temporary path beside `target`: same file system, so rename is atomic.
-std::string temp_beside(const std::string& target, const char* suffix) {
-  std::string pattern = target + ".tmp.XXXXXX" + suffix;
-  const int fd = ::mkstemps(pattern.data(), static_cast<int>(std::strlen(suffix)));
-  if (fd < 0)
-    throw std::runtime_error(target + ": cannot create output file (" + std::strerror(errno) + ")");
-  ::close(fd);
-  return pattern;
 }
 
 std::string quoted(const std::string& path) {
@@ -233,13 +223,11 @@ void write_orders_csv(std::FILE* out, const SweepResult& r) {
 }
 
 void plot_sweep(const std::string& png_path, const SweepResult& r) {
-  const std::string data = temp_beside(png_path, ".dat");
-  struct Remove {
-    std::string path;
-    ~Remove() { std::remove(path.c_str()); }
-  } remove_data{data};
-  std::FILE* f = std::fopen(data.c_str(), "w");
-  if (!f) throw std::runtime_error(data + ": cannot write plot data");
+  AtomicFile png(png_path);  // gnuplot writes the temporary file; renamed on success
+  const std::string& png_tmp = png.temp_path();
+  AtomicFile data_file(png_path + ".dat");  // never committed: removed on return
+  std::FILE* f = data_file.get();
+  const std::string& data = data_file.temp_path();
   // One block per engine/integrator: dt, seconds, max position error.
   std::vector<std::string> titles;
   std::vector<std::pair<std::string, Integrator>> keys;
@@ -272,10 +260,9 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
     ++dense_points;
   }
   std::fprintf(f, "\n\n");
-  std::fclose(f);
+  if (std::fflush(f) != 0) throw std::runtime_error(data + ": cannot write plot data");
   if (blocks == 0) throw std::runtime_error(png_path + ": no run finished, nothing to plot");
 
-  const std::string png_tmp = temp_beside(png_path, ".png");
   std::ostringstream s;
   s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1400,600 font "
        "',11' } "
@@ -309,16 +296,8 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
   s << "set xlabel 'time step dt (s)'\nset title 'error against dt (slope = observed order)'\n";
   plot_lines("1:3", false);
   s << "unset multiplot\n";
-  try {
-    run_gnuplot(s.str(), png_tmp);
-  } catch (...) {
-    std::remove(png_tmp.c_str());
-    throw;
-  }
-  if (std::rename(png_tmp.c_str(), png_path.c_str()) != 0) {
-    std::remove(png_tmp.c_str());
-    throw std::runtime_error(png_path + ": cannot write (" + std::strerror(errno) + ")");
-  }
+  run_gnuplot(s.str(), png_tmp);
+  png.commit();
 }
 
 // ------------------------------------------------------ reference study
@@ -439,13 +418,11 @@ void write_stability_csv(std::FILE* out, const StabilityResult& r) {
 }
 
 void plot_stability(const std::string& png_path, const StabilityResult& r) {
-  const std::string data = temp_beside(png_path, ".dat");
-  struct Remove {
-    std::string path;
-    ~Remove() { std::remove(path.c_str()); }
-  } remove_data{data};
-  std::FILE* f = std::fopen(data.c_str(), "w");
-  if (!f) throw std::runtime_error(data + ": cannot write plot data");
+  AtomicFile png(png_path);  // gnuplot writes the temporary file; renamed on success
+  const std::string& png_tmp = png.temp_path();
+  AtomicFile data_file(png_path + ".dat");  // never committed: removed on return
+  std::FILE* f = data_file.get();
+  const std::string& data = data_file.temp_path();
   std::vector<std::pair<std::string, Integrator>> keys;
   for (const StabilityRow& row : r.rows) {
     const auto key = std::make_pair(row.engine, row.integrator);
@@ -479,9 +456,8 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
     titles.push_back(series_title(key.first, key.second));
     has_theory.push_back(theory);
   }
-  std::fclose(f);
+  if (std::fflush(f) != 0) throw std::runtime_error(data + ": cannot write plot data");
 
-  const std::string png_tmp = temp_beside(png_path, ".png");
   std::ostringstream s;
   s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1000,650 font "
        "',11' } "
@@ -522,16 +498,8 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
        "'stable up to the largest dt tried', NaN with points pt 10 lc 'black' title 'unstable at "
        "the smallest dt tried'";
   s << "\n";
-  try {
-    run_gnuplot(s.str(), png_tmp);
-  } catch (...) {
-    std::remove(png_tmp.c_str());
-    throw;
-  }
-  if (std::rename(png_tmp.c_str(), png_path.c_str()) != 0) {
-    std::remove(png_tmp.c_str());
-    throw std::runtime_error(png_path + ": cannot write (" + std::strerror(errno) + ")");
-  }
+  run_gnuplot(s.str(), png_tmp);
+  png.commit();
 }
 
 // ---------------------------------------------------------------- gnuplot
