@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "core/integrators.hpp"
-#include "core/simulate.hpp"
+#include "core/run.hpp"
 #include "io/scene_file.hpp"
 
 #ifdef CONTACT2D_WITH_MUJOCO
@@ -42,18 +42,18 @@ std::string case_name(const Case& c) {
 
 void reference_step(benchmark::State& state, const Case& c) {
   Scene scene = load_scene(std::string(CONTACT2D_SCENES_DIR) + "/" + c.scene + ".toml");
-  const Model model = make_model(scene);
+  scene.sim.integrator = c.integrator;
+  ReferenceStepper stepper(scene);
   const State initial = initial_state(scene);
   const long long steps = step_count(scene.sim);
-  State s = initial;
   long long i = 0;
   for (auto _ : state) {
-    step(model, c.integrator, scene.sim.dt, s);
+    stepper.step();
     if (++i == steps) {
       i = 0;
-      s = initial;
+      stepper.reset(initial);
     }
-    benchmark::DoNotOptimize(s);
+    benchmark::DoNotOptimize(stepper.state());
   }
   state.SetLabel("ref");
 }
@@ -121,9 +121,10 @@ void libm_tanh(benchmark::State& state) {
 void free_flight_step(benchmark::State& state) {
   const Model model;  // default body: 1 kg, no contact points
   State s;
+  StepWorkspace ws(model);
   long long i = 0;
   for (auto _ : state) {
-    step(model, Integrator::SemiImplicitEuler, 1e-4, s);
+    step(model, Integrator::SemiImplicitEuler, 1e-4, s, ws);
     if (++i == 20000) {
       i = 0;
       s = State{};

@@ -23,5 +23,5 @@
 #include "core/divergence.hpp"
 #include "core/dynamics.hpp"
 #include "core/integrators.hpp"
+#include "core/run.hpp"
 #include "core/scene.hpp"
-#include "core/simulate.hpp"

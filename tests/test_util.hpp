@@ -4,15 +4,17 @@
 #include <cmath>
 
 #include "core/integrators.hpp"
+#include "core/run.hpp"
 #include "core/scene.hpp"
-#include "core/simulate.hpp"
 
 namespace contact2d::test {
 
 // Steps a model n times from s with the core's step() (no divergence rule,
 // so a test can watch an unstable method grow).
 inline State advance(const Model& model, Integrator integrator, double dt, State s, long long n) {
-  for (long long i = 0; i < n; ++i) step(model, integrator, dt, s);
+  StepWorkspace ws(model);
+  find_contacts(model, s.q, ws.contacts);
+  for (long long i = 0; i < n; ++i) step(model, integrator, dt, s, ws);
   return s;
 }
 

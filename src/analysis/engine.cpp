@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <exception>
 #include <mutex>
 #include <stdexcept>
@@ -10,27 +9,13 @@
 
 namespace contact2d::analysis {
 
-EngineResult run_reference_engine(const Scene& scene) {
-  EngineResult result;
-  const auto start = std::chrono::steady_clock::now();
-  result.trajectory = simulate(scene);
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return result;
-}
-
-EngineRunner reference_runner() {
+EngineRunner registry_runner() {
   return [](const std::string& engine, const Scene& scene) {
-    if (engine != "ref")
-      throw std::invalid_argument("engine '" + engine + "' is not available here");
-    return run_reference_engine(scene);
+    return engines::run_engine(engine, scene);
   };
 }
 
 double nominal_order(Integrator integrator) { return integrator == Integrator::RK4 ? 4.0 : 1.0; }
-
-bool engine_offers(const std::string& engine, Integrator integrator) {
-  return engine == "ref" || integrator != Integrator::ExplicitEuler;
-}
 
 unsigned default_threads() {
   const unsigned n = std::thread::hardware_concurrency();

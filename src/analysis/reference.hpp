@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/dense_reference.hpp"
-#include "core/simulate.hpp"
+#include "core/run.hpp"
+#include "reference/dense_reference.hpp"
 
 namespace contact2d::analysis {
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "analysis/reference.hpp"
-#include "core/dense_reference.hpp"
+#include "reference/dense_reference.hpp"
 
 namespace contact2d::analysis {
 namespace {
@@ -30,25 +30,15 @@ struct Probe {
   bool refsafe = false;
 };
 
-// The reference's run loop checks the rule after every step itself; another
-// engine is sampled every step (output_dt = dt), so that the rule sees every
-// state and the penetration is the deepest over all steps.
+// The run loop checks the rule after every step for every engine. The
+// reference is sampled at the scene's output_dt; another engine every step
+// (output_dt = dt), so that the penetration is the deepest over all steps
+// (MuJoCo's stiff runs are short).
 Probe probe(Scene scene, const std::string& engine, const EngineRunner& runner) {
   Probe p;
   if (engine != "ref") scene.sim.output_dt = scene.sim.dt;
   const Model model = make_model(scene);
-  if (engine == "ref") {
-    // The core's run loop checks the rule after every step; no trajectory kept.
-    const RunResult run = contact2d::run(scene, [&](const Sample& s) {
-      p.penetration = std::max(p.penetration, contact2d::max_penetration(model, s.state.q));
-    });
-    p.stable = !run.divergence;
-    if (run.divergence)
-      p.failure =
-          kind_name(run.divergence->kind) + format_number(" at t = %.3g s", run.divergence->time);
-    return p;
-  }
-  const EngineResult run = runner(engine, scene);
+  const EngineRun run = runner(engine, scene);
   p.refsafe = std::find(run.notes.begin(), run.notes.end(), "refsafe") != run.notes.end();
   for (const Sample& s : run.trajectory.samples) {
     p.penetration = std::max(p.penetration, contact2d::max_penetration(model, s.state.q));
@@ -58,11 +48,15 @@ Probe probe(Scene scene, const std::string& engine, const EngineRunner& runner) 
                 format_number(" at t = %.3g s", run.trajectory.divergence->time);
     return p;
   }
-  // Samples are checked again here, so the rule is the same whatever the
-  // adapter does internally.
-  const DivergenceMonitor monitor(model, initial_state(scene));
+  // Samples are checked again here, so the rule is the same for a runner
+  // that does not go through the run loop (a test's fake engine).
+  const State initial = initial_state(scene);
+  ContactSet contacts(model);
+  find_contacts(model, initial.q, contacts);
+  const DivergenceMonitor monitor(model, initial, contacts);
   for (const Sample& s : run.trajectory.samples) {
-    if (const auto d = monitor.check(s.state, s.t)) {
+    find_contacts(model, s.state.q, contacts);
+    if (const auto d = monitor.check(s.state, contacts, s.t)) {
       p.failure = kind_name(d->kind) + format_number(" at t = %.3g s", d->time);
       return p;
     }
@@ -127,7 +121,7 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
   std::vector<StabilityRow>& rows = result.rows;
   for (const std::string& engine : config.engines) {
     for (Integrator integrator : config.integrators) {
-      if (!engine_offers(engine, integrator)) continue;
+      if (!engines::engine_offers(engine, integrator)) continue;
       for (double k : config.ks) {
         StabilityRow row;
         row.engine = engine;

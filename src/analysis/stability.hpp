@@ -90,7 +90,7 @@ struct StabilityResult {
 
 // Throws std::invalid_argument for an empty or invalid list.
 StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
-                              const EngineRunner& runner);
+                              const EngineRunner& runner = registry_runner());
 
 // The scene with contact stiffness k (and c from ζ when given).
 Scene scene_with_stiffness(const Scene& scene, double k, std::optional<double> zeta);

@@ -182,7 +182,7 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
                                                      ? *config.other_integrators
                                                      : config.integrators;
     for (Integrator integrator : integrators) {
-      if (!engine_offers(engine, integrator)) continue;
+      if (!engines::engine_offers(engine, integrator)) continue;
       const std::vector<double>& dts =
           (engine != "ref" && config.other_dts) ? *config.other_dts : config.dts;
       for (double dt : dts) {
@@ -245,7 +245,7 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
       try {
         double best = INFINITY;
         for (int r = 0; r < result.repeats; ++r) {
-          EngineResult run = runner(row.engine, s);
+          EngineRun run = runner(row.engine, s);
           best = std::min(best, run.seconds);
           row.repeats = r + 1;
           if (r == 0) {

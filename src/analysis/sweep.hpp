@@ -94,7 +94,8 @@ struct SweepResult {
 };
 
 // Throws std::invalid_argument for an empty or invalid list.
-SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const EngineRunner& runner);
+SweepResult run_sweep(const Scene& scene, const SweepConfig& config,
+                      const EngineRunner& runner = registry_runner());
 
 // Fits the observed orders of a finished sweep (run_sweep calls it).
 std::vector<OrderFit> fit_orders(const Scene& scene, const std::vector<SweepRow>& rows,

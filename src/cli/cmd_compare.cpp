@@ -12,11 +12,11 @@
 #include <utility>
 
 #include "cli/common.hpp"
-#include "cli/mujoco_engine.hpp"
 #include "cli/plot.hpp"
+#include "core/input_error.hpp"
 #include "io/csv.hpp"
-#include "io/scene_file.hpp"
 #include "mujoco/comparison.hpp"
+#include "mujoco/mjcf.hpp"
 
 namespace contact2d::cli {
 namespace {
@@ -34,9 +34,8 @@ struct CompareOptions {
 struct Comparison {
   Scene scene;
   mj::MjcfOptions mjcf;
-  mj::SolverSettings settings;
-  EngineRun ref;
-  EngineRun mujoco;
+  engines::EngineRun ref;
+  engines::EngineRun mujoco;
   mj::TrajectoryErrors errors;
 };
 
@@ -90,8 +89,8 @@ void print_json(const Comparison& c, const std::string& path) {
     << ", \"mujoco_energy\": [" << json_number(em.initial) << ", " << json_number(em.final) << "]"
     << ", \"ref_seconds\": " << json_number(c.ref.seconds)
     << ", \"mujoco_seconds\": " << json_number(c.mujoco.seconds) << ", \"solref\": ["
-    << json_number(c.settings.solref[0]) << ", " << json_number(c.settings.solref[1]) << "]"
-    << ", \"impratio\": " << json_number(c.settings.impratio) << ", \"mujoco_warnings\": [";
+    << json_number(c.mujoco.solref[0]) << ", " << json_number(c.mujoco.solref[1]) << "]"
+    << ", \"impratio\": " << json_number(c.mujoco.impratio) << ", \"mujoco_warnings\": [";
   for (size_t i = 0; i < c.mujoco.warnings.size(); ++i)
     o << (i ? ", " : "") << json_string(c.mujoco.warnings[i]);
   o << "]}\n";
@@ -153,12 +152,13 @@ bool report_divergence(const Comparison& c, const std::string& path) {
 int compare(const CompareOptions& options) {
   Comparison c;
   c.scene = options.scene.load();
-  c.mjcf = options.mujoco.resolve(options.scene.path);
+  const engines::EngineSpec spec = options.mujoco.spec(options.scene.path);
+  c.mjcf = mj::mjcf_options(spec.mapping, spec.geometry, spec.source);
   mj::mujoco_integrator(c.scene.sim.integrator);  // explicit Euler: fail before any work
   std::unique_ptr<AtomicFile> csv;
   if (!options.csv.empty()) csv = std::make_unique<AtomicFile>(options.csv);
-  c.mujoco = run_mujoco_engine(c.scene, c.mjcf, &c.settings);
-  c.ref = run_reference(c.scene);
+  c.mujoco = engines::run_engine(spec, c.scene);
+  c.ref = engines::run_engine(engines::parse_engine("ref"), c.scene);
   for (const std::string& w : c.mujoco.warnings)
     std::cerr << "contact2d: MuJoCo warning: " << w << "\n";
   if (report_divergence(c, options.scene.path)) return kExitDiverged;

@@ -3,9 +3,9 @@
 #include <memory>
 
 #include "cli/common.hpp"
-#include "cli/mujoco_engine.hpp"
+#include "core/input_error.hpp"
 #include "io/csv.hpp"
-#include "io/scene_file.hpp"
+#include "mujoco/mjcf.hpp"
 
 namespace contact2d::cli {
 namespace {
@@ -20,8 +20,9 @@ int generate(const GenerateOptions& options) {
   const Scene scene = options.scene.load();
   std::unique_ptr<AtomicFile> out;
   if (!options.output.empty()) out = std::make_unique<AtomicFile>(options.output);
-  const auto model =
-      contact2d::mujoco::generate_mjcf(scene, options.mujoco.resolve(options.scene.path));
+  const auto model = contact2d::mujoco::generate_mjcf(
+      scene, contact2d::mujoco::mjcf_options(options.mujoco.mapping, options.mujoco.geometry,
+                                             options.scene.path));
   if (model.settings.refsafe_clamped) {
     std::cerr << "contact2d: note: timeconst " << format_number(model.settings.solref[0])
               << " s < 2 dt: MuJoCo raises it to 2 dt (refsafe), a softer contact than contact.k\n";

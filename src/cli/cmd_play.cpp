@@ -7,10 +7,10 @@
 #include <random>
 
 #include "cli/common.hpp"
+#include "core/input_error.hpp"
 #include "game/game.hpp"
 #include "game/pitch.hpp"
 #include "game/session.hpp"
-#include "io/scene_file.hpp"
 #ifdef CONTACT2D_WITH_WINDOW
 #include "game/window.hpp"
 #endif
@@ -88,7 +88,7 @@ int play(const PlayOptions& o) {
             : (static_cast<std::uint64_t>(std::random_device{}()) << 32 | std::random_device{}());
   }
 
-  Game game(pitch, make_engine(o.engine, pitch.scene), seed);
+  Game game(pitch, o.engine, seed);
   InputFeed feed(game, replay ? &*replay : nullptr);
 
   if (o.headless) {

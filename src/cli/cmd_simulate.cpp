@@ -3,12 +3,8 @@
 #include <memory>
 
 #include "cli/common.hpp"
-#include "cli/engines.hpp"
-#ifdef CONTACT2D_WITH_MUJOCO
-#include "cli/mujoco_engine.hpp"
-#endif
+#include "core/input_error.hpp"
 #include "io/csv.hpp"
-#include "io/scene_file.hpp"
 
 namespace contact2d::cli {
 namespace {
@@ -17,21 +13,16 @@ struct SimulateOptions {
   SceneOptions scene;
   std::string engine = "ref";
   std::string csv;
-#ifdef CONTACT2D_WITH_MUJOCO
-  MujocoOptions mujoco;  // --mapping, --geometry
-#endif
+  MujocoOptions mujoco;  // --mapping, --geometry (when built with MuJoCo)
 };
 
-EngineRun run_chosen_engine(const SimulateOptions& options, const Scene& scene) {
-#ifdef CONTACT2D_WITH_MUJOCO
-  if (options.engine == "mujoco") {
-    return run_mujoco_engine(scene, options.mujoco.resolve(options.scene.path));
-  }
-#endif
-  return run_engine(options.engine, scene);
+engines::EngineRun run_chosen_engine(const SimulateOptions& options, const Scene& scene) {
+  if (options.engine == "mujoco")
+    return engines::run_engine(options.mujoco.spec(options.scene.path), scene);
+  return engines::run_engine(engines::parse_engine(options.engine), scene);
 }
 
-void print_summary(const Scene& scene, const std::string& engine, const EngineRun& run) {
+void print_summary(const Scene& scene, const std::string& engine, const engines::EngineRun& run) {
   const Model model = make_model(scene);
   const auto& samples = run.trajectory.samples;
   double deepest = 0.0;
@@ -57,7 +48,7 @@ int simulate(const SimulateOptions& options) {
   // only appears (renamed from a temporary) once the run has succeeded.
   std::unique_ptr<AtomicFile> out;
   if (!options.csv.empty()) out = std::make_unique<AtomicFile>(options.csv);
-  const EngineRun run = run_chosen_engine(options, scene);
+  const engines::EngineRun run = run_chosen_engine(options, scene);
   for (const std::string& warning : run.warnings) {
     std::cerr << "contact2d: " << options.engine << " warning: " << warning << "\n";
   }
@@ -86,9 +77,7 @@ Command add_simulate(CLI::App& app) {
       ->check(CLI::IsMember({"ref", "mujoco"}));
   cmd->add_option("--csv", options->csv,
                   "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file");
-#ifdef CONTACT2D_WITH_MUJOCO
-  options->mujoco.add_to(*cmd);
-#endif
+  if (engines::mujoco_available()) options->mujoco.add_to(*cmd);
   return {cmd, [options] { return simulate(*options); }};
 }
 

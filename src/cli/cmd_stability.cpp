@@ -13,14 +13,6 @@
 
 namespace contact2d::cli {
 
-// Defined in cmd_sweep.cpp.
-extern const std::vector<std::string> kAnalysisEngines;
-analysis::EngineRunner cli_engine_runner();
-std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label,
-                                                                          bool quiet);
-Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
-                      const std::optional<double>& duration);
-
 namespace {
 
 struct StabilityOptions {
@@ -55,7 +47,7 @@ int stability(const StabilityOptions& o) {
     config.threads = o.threads;
     config.progress =
         terminal_progress("stability " + std::string(shape_name(scene.shape)), o.quiet);
-    result = analysis::run_stability(scene, config, cli_engine_runner());
+    result = analysis::run_stability(scene, config);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -92,7 +84,7 @@ Command add_stability(CLI::App& app) {
                   "its default) "
                   "(default: ref)")
       ->delimiter(',')
-      ->check(CLI::IsMember(kAnalysisEngines));
+      ->check(CLI::IsMember(engines::engine_names()));
   cmd->add_option(
       "--zeta", o->zeta,
       "Damping ratio held at every k: c = 2*zeta*sqrt(k*m_eff) (default: keep the scene's c)");

@@ -12,71 +12,10 @@
 #include "analysis/output.hpp"
 #include "analysis/sweep.hpp"
 #include "cli/common.hpp"
-#include "cli/engines.hpp"
 #include "io/csv.hpp"
 #include "io/scene_file.hpp"
-#ifdef CONTACT2D_WITH_MUJOCO
-#include "cli/mujoco_engine.hpp"
-#endif
 
 namespace contact2d::cli {
-
-// The engines sweep and stability accept: run_engine()'s, plus MuJoCo under
-// a named solref/solimp mapping ("mujoco:exact"): the standard-form
-// mappings show what MuJoCo's refsafe does to a stiff contact.
-extern const std::vector<std::string> kAnalysisEngines;
-const std::vector<std::string> kAnalysisEngines{"ref", "mujoco", "mujoco:seed", "mujoco:exact",
-                                                "mujoco:calibrated"};
-
-// Shared by sweep and stability: the CLI's engines as an analysis runner.
-analysis::EngineRunner cli_engine_runner() {
-  return [](const std::string& engine, const Scene& scene) {
-    EngineRun run;
-    analysis::EngineResult result;
-#ifdef CONTACT2D_WITH_MUJOCO
-    if (engine.rfind("mujoco", 0) == 0) {
-      contact2d::mujoco::MjcfOptions options;  // "mujoco": the default mapping
-      if (engine.size() > 6) {
-        const auto mapping = contact2d::mujoco::parse_mapping(engine.substr(7));
-        if (!mapping)
-          throw InputError("--engines " + engine + ": unknown mapping (seed, exact, calibrated)");
-        options.mapping = *mapping;
-      }
-      contact2d::mujoco::SolverSettings settings;
-      run = run_mujoco_engine(scene, options, &settings);
-      if (settings.refsafe_clamped) result.notes.push_back("refsafe");
-    } else {
-      run = run_engine(engine, scene);
-    }
-#else
-    run = run_engine(engine, scene);
-#endif
-    result.trajectory = std::move(run.trajectory);
-    result.seconds = run.seconds;
-    result.warnings = std::move(run.warnings);
-    return result;
-  };
-}
-
-// Progress on stderr, rewritten in place, only when stderr is a terminal.
-std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label,
-                                                                          bool quiet) {
-  if (quiet || !::isatty(2)) return {};
-  return [label](size_t done, size_t total, const std::string& what) {
-    std::fprintf(stderr, "\r\033[K%s: %zu/%zu %s", label.c_str(), done, total, what.c_str());
-    if (done == total) std::fprintf(stderr, "\r\033[K");
-    std::fflush(stderr);
-  };
-}
-
-Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
-                      const std::optional<double>& duration) {
-  std::vector<Override> overrides;
-  overrides.reserve(sets.size() + 1);
-  for (const std::string& s : sets) overrides.push_back(parse_override(s));
-  if (duration) overrides.push_back({"sim.duration", format_number(*duration, 17)});
-  return load_scene(path, overrides);
-}
 
 namespace {
 
@@ -144,7 +83,7 @@ int sweep(const SweepOptions& o) {
 
   analysis::SweepResult result;
   try {
-    result = analysis::run_sweep(scene, config, cli_engine_runner());
+    result = analysis::run_sweep(scene, config);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   } catch (const std::runtime_error& e) {
@@ -204,7 +143,7 @@ Command add_sweep(CLI::App& app) {
                   "its default) "
                   "(default: ref)")
       ->delimiter(',')
-      ->check(CLI::IsMember(kAnalysisEngines));
+      ->check(CLI::IsMember(engines::engine_names()));
   cmd->add_option("--csv", o->csv, "Write one row per run to this CSV file");
   cmd->add_option("--orders-csv", o->orders_csv, "Write the observed orders to this CSV file");
   cmd->add_option("--plot", o->plot, "Write the work-precision diagram (PNG, gnuplot)");

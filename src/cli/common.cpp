@@ -1,6 +1,6 @@
 #include "cli/common.hpp"
 
-#include <chrono>
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 
@@ -50,12 +50,43 @@ std::string format_number(double v, int digits) {
   return buffer;  // "%g" output is also a valid TOML number (inf and nan included)
 }
 
-EngineRun run_reference(const Scene& scene) {
-  EngineRun run;
-  const auto start = std::chrono::steady_clock::now();
-  run.trajectory = simulate(scene);
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return run;
+void MujocoOptions::add_to(CLI::App& cmd) {
+  cmd.add_option("--mapping", mapping,
+                 "solref/solimp mapping: seed | exact | calibrated (default calibrated)")
+      ->check(CLI::IsMember({"seed", "exact", "calibrated"}));
+  cmd.add_option("--geometry", geometry,
+                 "MuJoCo geoms of a box or T: corners (a small sphere per 2D contact point, "
+                 "default) | boxes")
+      ->check(CLI::IsMember({"corners", "boxes"}));
+}
+
+engines::EngineSpec MujocoOptions::spec(const std::string& source) const {
+  engines::EngineSpec spec;
+  spec.kind = "mujoco";
+  spec.mapping = mapping;
+  spec.geometry = geometry;
+  spec.source = source;
+  return spec;
+}
+
+// Progress on stderr, rewritten in place, only when stderr is a terminal.
+std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label,
+                                                                          bool quiet) {
+  if (quiet || !::isatty(2)) return {};
+  return [label](size_t done, size_t total, const std::string& what) {
+    std::fprintf(stderr, "\r\033[K%s: %zu/%zu %s", label.c_str(), done, total, what.c_str());
+    if (done == total) std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+  };
+}
+
+Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
+                      const std::optional<double>& duration) {
+  std::vector<Override> overrides;
+  overrides.reserve(sets.size() + 1);
+  for (const std::string& s : sets) overrides.push_back(parse_override(s));
+  if (duration) overrides.push_back({"sim.duration", format_number(*duration, 17)});
+  return load_scene(path, overrides);
 }
 
 }  // namespace contact2d::cli

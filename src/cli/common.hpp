@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/simulate.hpp"
+#include "core/run.hpp"
+#include "engines/engines.hpp"
 
 namespace contact2d::cli {
 
@@ -30,15 +31,24 @@ struct SceneOptions {
 
 std::string format_number(double v, int digits = 6);
 
-// A run of one engine: the sampled trajectory, wall-clock time of the
-// stepping alone, and anything the engine warned about.
-struct EngineRun {
-  Trajectory trajectory;
-  double seconds = 0.0;
-  std::vector<std::string> warnings;
-};
+// sweep and stability: progress on stderr, rewritten in place, only when
+// stderr is a terminal and not quiet (else an empty function).
+std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label,
+                                                                          bool quiet);
+// The scene with --set overrides and an optional --duration.
+Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
+                      const std::optional<double>& duration);
 
-EngineRun run_reference(const Scene& scene);
+// --mapping and --geometry: the MuJoCo model of a scene (simulate, compare).
+// Empty means the generator's default (calibrated, corners).
+struct MujocoOptions {
+  std::string mapping;
+  std::string geometry;
+
+  void add_to(CLI::App& cmd);
+  // The MuJoCo engine with these options; `source` is the scene file.
+  engines::EngineSpec spec(const std::string& source) const;
+};
 
 // A subcommand: adds itself to the app and returns the action to run if it
 // was chosen. The action returns the exit status.

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "io/scene_file.hpp"
+#include "core/input_error.hpp"
 
 int main(int argc, char** argv) {
   using namespace contact2d::cli;

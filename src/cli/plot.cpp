@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/input_error.hpp"
 #include "io/csv.hpp"
-#include "io/scene_file.hpp"
 
 namespace contact2d::cli {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "core/simulate.hpp"
+#include "core/run.hpp"
 
 namespace contact2d::cli {
 

@@ -17,7 +17,9 @@ ContactStiffness contact_stiffness(const Model& model) {
   return cs;
 }
 
-DivergenceMonitor::DivergenceMonitor(const Model& model, const State& initial) : model_(&model) {
+DivergenceMonitor::DivergenceMonitor(const Model& model, const State& initial,
+                                     const ContactSet& contacts)
+    : model_(&model) {
   const RigidBody& body = model.body;
   const double mg = body.mass * model.gravity;
   // Height of the lowest contact point above the ground.
@@ -29,7 +31,7 @@ DivergenceMonitor::DivergenceMonitor(const Model& model, const State& initial) :
   const double h0 = std::isfinite(lowest) ? std::max(0.0, lowest) : 0.0;
   const double kinetic = 0.5 * body.mass * initial.v.head<2>().squaredNorm() +
                          0.5 * body.inertia * initial.v.z() * initial.v.z();
-  initial_energy_ = energy(model, initial);
+  initial_energy_ = energy(model, contacts, initial);
   const double spring = initial_energy_ - kinetic - mg * initial.q.y();
   available_ = kinetic + mg * (h0 + body_extent(body)) + spring;
   // A body with no weight and no motion still gets a tiny positive scale.
@@ -44,15 +46,15 @@ double DivergenceMonitor::depth_limit(double energy) const {
                  : std::numeric_limits<double>::infinity();
 }
 
-std::optional<Divergence> DivergenceMonitor::check(const State& s, double t,
-                                                   double applied_work) const {
+std::optional<Divergence> DivergenceMonitor::check(const State& s, const ContactSet& contacts,
+                                                   double t, double applied_work) const {
   if (!s.q.allFinite() || !s.v.allFinite()) {
     return Divergence{DivergenceKind::NonFinite, t, std::numeric_limits<double>::quiet_NaN(), 0.0};
   }
-  const double gain = energy(*model_, s) - initial_energy_;
+  const double gain = energy(*model_, contacts, s) - initial_energy_;
   const double allowed = available_ + std::abs(applied_work);
   if (gain > allowed) return Divergence{DivergenceKind::EnergyGain, t, gain, allowed};
-  const double depth = max_penetration(*model_, s.q);
+  const double depth = max_penetration(contacts);
   // Work put in by applied forces can end up in one spring too.
   const double depth_allowed = applied_work == 0.0 ? max_depth_ : depth_limit(allowed);
   if (depth > depth_allowed)

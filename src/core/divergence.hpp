@@ -23,6 +23,7 @@
 #include <optional>
 #include <string>
 
+#include "core/contacts.hpp"
 #include "core/scene.hpp"
 
 namespace contact2d {
@@ -46,10 +47,12 @@ ContactStiffness contact_stiffness(const Model& model);
 
 class DivergenceMonitor {
  public:
-  DivergenceMonitor(const Model& model, const State& initial);
-  // Checks a state after a step ending at time t; applied_work is the work
-  // done by Model::applied so far (0 without a player).
-  std::optional<Divergence> check(const State& s, double t, double applied_work = 0.0) const;
+  // `contacts`: the contact stage's output at initial.q (core/contacts.hpp).
+  DivergenceMonitor(const Model& model, const State& initial, const ContactSet& contacts);
+  // Checks a state after a step ending at time t, with its contacts;
+  // applied_work is the work done by Model::applied so far (0 without a player).
+  std::optional<Divergence> check(const State& s, const ContactSet& contacts, double t,
+                                  double applied_work = 0.0) const;
   double available_energy() const { return available_; }
 
  private:

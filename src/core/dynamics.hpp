@@ -1,17 +1,20 @@
-// Forces and accelerations of one planar body on the ground (SPEC §2–3).
+// Forces and accelerations of one planar body (SPEC §2–3): the force stage,
+// which reads the contacts found by the position stage (core/contacts.hpp).
 //
-// With q = (x, y, θ) and v = (vx, vy, ω), one evaluation does:
+// With q = (x, y, θ), v = (vx, vy, ω) and the contacts found at q:
 //   F = (0, −m·g) + F_applied,  τ = τ_applied
-//   for every contact point r (body frame, rotated by θ unless the point keeps
-//   its world offset): c = p + r; if c_y < 0, v_c = v + ω·(−r_y, r_x),
-//   (Ft, Fn) from the contact law, F += (Ft, Fn), τ += r × (Ft, Fn),
-//   and for a rolling contact τ += −μ_roll·Fn·tanh(α·R·ω)
-//   then the same law against every static obstacle (core/obstacles.hpp)
+//   for every contact (depth d, normal n, tangent t = (n_y, −n_x), lever arm r):
+//     v_c = v + ω·(−r_y, r_x)                    velocity of the contact point
+//     Fn  = normal law (d, v_c·n)                core/contact.hpp
+//     Ft  = −μ·Fn·tanh(α·v_c·t)
+//     f   = Fn·n + Ft·t,   F += f,   τ += r × f − μ_roll·Fn·tanh(α·R·ω)
 //   a = (F/m, τ/I)
+// The rolling term is there only for a rolling body (R > 0, μ_roll > 0).
 #pragma once
 
 #include "core/body.hpp"
 #include "core/contact.hpp"
+#include "core/contacts.hpp"
 #include "core/obstacles.hpp"
 
 namespace contact2d {
@@ -29,14 +32,17 @@ struct Model {
   std::vector<Obstacle> obstacles;  // static geometry with the ground's contact law
 };
 
-// a = M⁻¹·F(q, v). Allocation-free.
+// a = M⁻¹·F(q, v) with `contacts` found at q (q enters only through them).
+// Allocation-free.
+Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v);
+
+// Mechanical energy: ½m|v|² + ½Iω² + m·g·y + Σ ½·k·d² over the contacts.
+double energy(const Model& model, const ContactSet& contacts, const State& s);
+
+// Conveniences that run the contact stage themselves (they allocate a
+// ContactSet: for summaries and tests, not for a step).
 Vec3 acceleration(const Model& model, const Vec3& q, const Vec3& v);
-
-// Penetration of the deepest contact point, ground or obstacle (0 when none touches).
-double max_penetration(const Model& model, const Vec3& q);
-
-// Mechanical energy: ½m|v|² + ½Iω² + m·g·y + Σ ½·k·d² over the contacts
-// with the ground and the obstacles.
 double energy(const Model& model, const State& s);
+double max_penetration(const Model& model, const Vec3& q);
 
 }  // namespace contact2d

@@ -41,58 +41,66 @@ constexpr int kNewtonMaxIterations = 30;
 constexpr int kMaxSplitDepth = 6;
 constexpr double kNewtonTolerance = 1e-10;
 
-void explicit_euler(const Model& model, double dt, State& s) {
-  const Vec3 a = acceleration(model, s.q, s.v);
+// The force stage at an intermediate configuration q (contacts into scratch).
+Vec3 acceleration_at(const Model& model, StepWorkspace& ws, const Vec3& q, const Vec3& v) {
+  find_contacts(model, q, ws.scratch);
+  return acceleration(model, ws.scratch, v);
+}
+
+void explicit_euler(const Model& model, double dt, State& s, StepWorkspace& ws) {
+  const Vec3 a = acceleration(model, ws.contacts, s.v);
   s.q += dt * s.v;
   s.v += dt * a;
 }
 
-void semi_implicit_euler(const Model& model, double dt, State& s) {
-  s.v += dt * acceleration(model, s.q, s.v);
+void semi_implicit_euler(const Model& model, double dt, State& s, StepWorkspace& ws) {
+  s.v += dt * acceleration(model, ws.contacts, s.v);
   s.q += dt * s.v;
 }
 
-void rk4(const Model& model, double dt, State& s) {
+void rk4(const Model& model, double dt, State& s, StepWorkspace& ws) {
   const Vec3 q0 = s.q;
   const Vec3 v0 = s.v;
   const Vec3& k1q = v0;
-  const Vec3 k1v = acceleration(model, q0, v0);
+  const Vec3 k1v = acceleration(model, ws.contacts, v0);
   const Vec3 k2q = v0 + 0.5 * dt * k1v;
-  const Vec3 k2v = acceleration(model, q0 + 0.5 * dt * k1q, k2q);
+  const Vec3 k2v = acceleration_at(model, ws, q0 + 0.5 * dt * k1q, k2q);
   const Vec3 k3q = v0 + 0.5 * dt * k2v;
-  const Vec3 k3v = acceleration(model, q0 + 0.5 * dt * k2q, k3q);
+  const Vec3 k3v = acceleration_at(model, ws, q0 + 0.5 * dt * k2q, k3q);
   const Vec3 k4q = v0 + dt * k3v;
-  const Vec3 k4v = acceleration(model, q0 + dt * k3q, k4q);
+  const Vec3 k4v = acceleration_at(model, ws, q0 + dt * k3q, k4q);
   s.q = q0 + dt / 6.0 * (k1q + 2.0 * k2q + 2.0 * k3q + k4q);
   s.v = v0 + dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
 }
 
 // G(v') = v' − v − Δt·a(q + Δt·v', v')
-Vec3 implicit_residual(const Model& model, double dt, const State& s, const Vec3& v_next) {
-  return v_next - s.v - dt * acceleration(model, s.q + dt * v_next, v_next);
+Vec3 implicit_residual(const Model& model, double dt, const State& s, const Vec3& v_next,
+                       StepWorkspace& ws) {
+  return v_next - s.v - dt * acceleration_at(model, ws, s.q + dt * v_next, v_next);
 }
 
-bool implicit_euler_newton(const Model& model, double dt, State& s) {
-  Vec3 v_next = s.v + dt * acceleration(model, s.q, s.v);  // semi-implicit predictor
-  Vec3 g = implicit_residual(model, dt, s, v_next);
+// ws.contacts are those of s.q throughout (s is only written on success).
+bool implicit_euler_newton(const Model& model, double dt, State& s, StepWorkspace& ws) {
+  Vec3 v_next = s.v + dt * acceleration(model, ws.contacts, s.v);  // semi-implicit predictor
+  Vec3 g = implicit_residual(model, dt, s, v_next, ws);
   for (int iteration = 0; iteration < kNewtonMaxIterations; ++iteration) {
     Eigen::Matrix3d jacobian;
     for (int j = 0; j < 3; ++j) {
       const double h = 1e-7 * std::max(1.0, std::abs(v_next[j]));
       Vec3 probe = v_next;
       probe[j] += h;
-      jacobian.col(j) = (implicit_residual(model, dt, s, probe) - g) / h;
+      jacobian.col(j) = (implicit_residual(model, dt, s, probe, ws) - g) / h;
     }
     const Vec3 delta = jacobian.partialPivLu().solve(-g);
     if (!delta.allFinite()) return false;
     // Backtracking: accept the first fraction of the step that lowers |G|∞.
     double fraction = 1.0;
     Vec3 trial = v_next + delta;
-    Vec3 g_trial = implicit_residual(model, dt, s, trial);
+    Vec3 g_trial = implicit_residual(model, dt, s, trial, ws);
     while (g_trial.lpNorm<Eigen::Infinity>() > g.lpNorm<Eigen::Infinity>() && fraction > 1e-3) {
       fraction *= 0.5;
       trial = v_next + fraction * delta;
-      g_trial = implicit_residual(model, dt, s, trial);
+      g_trial = implicit_residual(model, dt, s, trial, ws);
     }
     v_next = trial;
     g = g_trial;
@@ -106,15 +114,18 @@ bool implicit_euler_newton(const Model& model, double dt, State& s) {
   return false;
 }
 
-bool implicit_euler(const Model& model, double dt, State& s, int depth) {
+// Newton, and on failure two half steps (recursively). Each successful
+// (sub)step leaves ws.contacts at the new state, as step() promises.
+bool implicit_euler(const Model& model, double dt, State& s, int depth, StepWorkspace& ws) {
   State trial = s;
-  if (implicit_euler_newton(model, dt, trial)) {
+  if (implicit_euler_newton(model, dt, trial, ws)) {
     s = trial;
+    find_contacts(model, s.q, ws.contacts);
     return true;
   }
   if (depth >= kMaxSplitDepth) return false;
-  return implicit_euler(model, 0.5 * dt, s, depth + 1) &&
-         implicit_euler(model, 0.5 * dt, s, depth + 1);
+  return implicit_euler(model, 0.5 * dt, s, depth + 1, ws) &&
+         implicit_euler(model, 0.5 * dt, s, depth + 1, ws);
 }
 
 // Largest h·|λ| such that |R(h·λ)| ≤ 1 for both roots λ of s² + 2ζs + 1
@@ -143,15 +154,17 @@ double scalar_stability_limit(double zeta, Amplification amplification) {
 
 }  // namespace
 
-StepStatus step(const Model& model, Integrator integrator, double dt, State& state) {
+StepStatus step(const Model& model, Integrator integrator, double dt, State& state,
+                StepWorkspace& ws) {
   switch (integrator) {
-    case Integrator::ExplicitEuler: explicit_euler(model, dt, state); break;
-    case Integrator::SemiImplicitEuler: semi_implicit_euler(model, dt, state); break;
-    case Integrator::RK4: rk4(model, dt, state); break;
+    case Integrator::ExplicitEuler: explicit_euler(model, dt, state, ws); break;
+    case Integrator::SemiImplicitEuler: semi_implicit_euler(model, dt, state, ws); break;
+    case Integrator::RK4: rk4(model, dt, state, ws); break;
     case Integrator::ImplicitEuler:
-      if (!implicit_euler(model, dt, state, 0)) return StepStatus::NewtonFailed;
-      break;
+      // Refreshes ws.contacts itself after every accepted (sub)step.
+      return implicit_euler(model, dt, state, 0, ws) ? StepStatus::Ok : StepStatus::NewtonFailed;
   }
+  find_contacts(model, state.q, ws.contacts);  // the position stage of the new state
   return StepStatus::Ok;
 }
 

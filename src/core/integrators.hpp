@@ -33,9 +33,27 @@ std::string_view integrator_name(Integrator integrator);   // "explicit_euler", 
 std::string_view integrator_title(Integrator integrator);  // "explicit Euler", …
 std::optional<Integrator> parse_integrator(std::string_view name);
 
-enum class StepStatus { Ok, NewtonFailed };
+// What a step reports. NonFinite is for engines that detect bad numbers
+// themselves (MuJoCo); the reference leaves that to the divergence monitor.
+enum class StepStatus { Ok, NewtonFailed, NonFinite };
 
-StepStatus step(const Model& model, Integrator integrator, double dt, State& state);
+// The contacts an integrator works with: `contacts` holds those of the
+// state being stepped — valid on entry, refreshed for the new state on exit,
+// so the next step and the divergence monitor read them instead of finding
+// them again — and `scratch` those of intermediate configurations (RK4's
+// stages, Newton's trial states). Sized once for the model: no allocation
+// in a step.
+struct StepWorkspace {
+  StepWorkspace() = default;
+  explicit StepWorkspace(const Model& model) : contacts(model), scratch(model) {}
+  ContactSet contacts;
+  ContactSet scratch;
+};
+
+// One step of Δt from `state`. On entry ws.contacts must be the contacts at
+// state.q (find_contacts); on exit they are those of the new state.
+StepStatus step(const Model& model, Integrator integrator, double dt, State& state,
+                StepWorkspace& ws);
 
 // Largest stable ω·Δt of the integrator on the damped linear oscillator
 // x'' + 2ζω·x' + ω²·x = 0 (the contact in its linear regime). Infinity for

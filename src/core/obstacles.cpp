@@ -75,32 +75,6 @@ bool inside_box(const Obstacle& box, const Vec2& c) {
   return c.x() > box.a.x() && c.x() < box.b.x() && c.y() > box.a.y() && c.y() < box.b.y();
 }
 
-// Calls visit(contact) for every contact of the body with the obstacles.
-template <typename Visit>
-void for_each_contact(const std::vector<Obstacle>& obstacles, const RigidBody& body, const Vec3& q,
-                      Visit&& visit) {
-  const Vec2 p(q.x(), q.y());
-  ObstacleContact contact;
-  if (body.roll_radius > 0.0) {
-    for (const Obstacle& o : obstacles) {
-      if (disc_contact(o, p, body.roll_radius, contact)) visit(contact);
-    }
-    return;
-  }
-  const double ct = body.points_rotate ? std::cos(q.z()) : 1.0;
-  const double st = body.points_rotate ? std::sin(q.z()) : 0.0;
-  for (const Vec2& local : body.points) {
-    const Vec2 r(ct * local.x() - st * local.y(), st * local.x() + ct * local.y());
-    const Vec2 c = p + r;
-    for (const Obstacle& o : obstacles) {
-      if (point_contact(o, c, contact)) {
-        contact.r = r;
-        visit(contact);
-      }
-    }
-  }
-}
-
 }  // namespace
 
 bool disc_contact(const Obstacle& o, const Vec2& centre, double radius, ObstacleContact& out) {
@@ -146,43 +120,6 @@ bool point_contact(const Obstacle& o, const Vec2& c, ObstacleContact& out) {
   out.depth = depth;
   out.normal = n;
   return true;
-}
-
-void add_obstacle_forces(const std::vector<Obstacle>& obstacles, const RigidBody& body,
-                         const ContactParams& law, const Vec3& q, const Vec3& v, Vec2& force,
-                         double& torque) {
-  if (obstacles.empty()) return;
-  for_each_contact(obstacles, body, q, [&](const ObstacleContact& contact) {
-    const Vec2& n = contact.normal;
-    const Vec2& r = contact.r;
-    const Vec2 t(n.y(), -n.x());
-    const double omega = body.rotates ? v.z() : 0.0;
-    const Vec2 vc(v.x() - omega * r.y(), v.y() + omega * r.x());
-    const double fn = normal_force(law, contact.depth, vc.dot(n));
-    const double ft = friction_force(law, fn, vc.dot(t));
-    const Vec2 f = fn * n + ft * t;
-    force += f;
-    torque += r.x() * f.y() - r.y() * f.x();
-    torque += rolling_torque(law, fn, body.roll_radius, v.z());
-  });
-}
-
-double obstacle_max_penetration(const std::vector<Obstacle>& obstacles, const RigidBody& body,
-                                const Vec3& q) {
-  double deepest = 0.0;
-  for_each_contact(obstacles, body, q, [&](const ObstacleContact& contact) {
-    deepest = std::max(deepest, contact.depth);
-  });
-  return deepest;
-}
-
-double obstacle_spring_energy(const std::vector<Obstacle>& obstacles, const RigidBody& body,
-                              double k, const Vec3& q) {
-  double e = 0.0;
-  for_each_contact(obstacles, body, q, [&](const ObstacleContact& contact) {
-    e += 0.5 * k * contact.depth * contact.depth;
-  });
-  return e;
 }
 
 }  // namespace contact2d

@@ -1,5 +1,8 @@
 // Static obstacles: fixed geometry the body touches with the ground's contact
 // law (SPEC §2), applied along the obstacle's outward normal n instead of +y.
+// This file is the geometry (depth and normal of one point or disc against one
+// obstacle); core/contacts.hpp enumerates the contacts and core/dynamics.hpp
+// applies the law to them.
 //
 // Two shapes, both general (the game's crossbar, goal roof and back wall are
 // just boxes in its scene file):
@@ -37,7 +40,6 @@
 #include <vector>
 
 #include "core/body.hpp"
-#include "core/contact.hpp"
 
 namespace contact2d {
 
@@ -71,19 +73,5 @@ bool disc_contact(const Obstacle& obstacle, const Vec2& centre, double radius,
 // Contact of a point at world position c with the obstacle (out.r is left
 // for the caller); false when outside.
 bool point_contact(const Obstacle& obstacle, const Vec2& c, ObstacleContact& out);
-
-// Adds every obstacle's contact force on a body at (q, v) to force and torque
-// (world frame). Allocation-free; does nothing for an empty list.
-void add_obstacle_forces(const std::vector<Obstacle>& obstacles, const RigidBody& body,
-                         const ContactParams& law, const Vec3& q, const Vec3& v, Vec2& force,
-                         double& torque);
-
-// Deepest penetration into any obstacle (0 when none touches).
-double obstacle_max_penetration(const std::vector<Obstacle>& obstacles, const RigidBody& body,
-                                const Vec3& q);
-
-// Σ ½·k·d² over the obstacle contacts (their springs' stored energy).
-double obstacle_spring_energy(const std::vector<Obstacle>& obstacles, const RigidBody& body,
-                              double k, const Vec3& q);
 
 }  // namespace contact2d

@@ -1,5 +1,8 @@
 #include "game/game.hpp"
 
+#include "core/input_error.hpp"
+#include "engines/engines.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -58,8 +61,26 @@ std::string outcome_text(Outcome outcome, double min_kick_distance) {
   return "";
 }
 
-Game::Game(Pitch pitch, std::unique_ptr<Engine> engine, std::uint64_t seed)
-    : pitch_(std::move(pitch)), engine_(std::move(engine)), seed_(seed), rng_(seed) {
+namespace {
+
+std::unique_ptr<Stepper> make_game_stepper(const std::string& engine, const Scene& scene) {
+  const engines::EngineSpec spec = engines::parse_engine(engine);
+  if (spec.kind != "ref") {
+    throw InputError(
+        "--engine " + engine +
+        ": not available for play (the MuJoCo model has no obstacles yet); use --engine ref");
+  }
+  return engines::make_stepper(spec, scene);
+}
+
+}  // namespace
+
+Game::Game(Pitch pitch, const std::string& engine, std::uint64_t seed)
+    : pitch_(std::move(pitch)),
+      engine_name_(engine),
+      stepper_(make_game_stepper(engine, pitch_.scene)),
+      seed_(seed),
+      rng_(seed) {
   const Rules& r = pitch_.rules;
   const double h = dt();
   kick_steps_ = std::max(1LL, steps_for(r.kick_duration, h));
@@ -109,8 +130,8 @@ void Game::start_round() {
   // Rolling towards +x turns clockwise: ω = −v/R.
   s.v = Vec3(dir * record.pass_speed, 0.0,
              -dir * record.pass_spin * record.pass_speed / scene.radius);
-  engine_->reset(s);
-  monitor_ = std::make_unique<DivergenceMonitor>(engine_->model(), s);
+  stepper_->reset(s);
+  monitor_ = std::make_unique<DivergenceMonitor>(stepper_->model(), s, stepper_->contacts());
   round_start_ = steps_;
   work_ = 0.0;
   kick_steps_left_ = 0;
@@ -183,20 +204,16 @@ void Game::step() {
     --kick_steps_left_;
   }
   applied_ = force;
-  engine_->set_applied(force);
-  const State before = engine_->state();
-  const bool ok = engine_->step();
+  stepper_->set_applied(force);
+  const State before = stepper_->state();
+  const StepStatus status = stepper_->step();
   ++steps_;
-  const State& s = engine_->state();
+  const State& s = stepper_->state();
   // |work| of the applied force over the step, summed as an upper bound of
   // the net work the divergence rule may credit.
   work_ += std::abs(force.x() * (s.q.x() - before.q.x()) + force.y() * (s.q.y() - before.q.y()) +
                     force.z() * (s.q.z() - before.q.z()));
-  if (!ok) {
-    divergence_ = Divergence{DivergenceKind::NewtonFailed, round_time(), 0.0, 0.0};
-  } else {
-    divergence_ = monitor_->check(s, round_time(), work_);
-  }
+  divergence_ = check_step(status, *stepper_, *monitor_, round_time(), work_);
   if (divergence_) {
     if (phase_ == Phase::Playing) end_round(Outcome::Diverged);
     return;

@@ -39,7 +39,7 @@
 #include <vector>
 
 #include "core/divergence.hpp"
-#include "game/engine.hpp"
+#include "core/run.hpp"
 #include "game/pitch.hpp"
 #include "game/replay.hpp"
 
@@ -85,7 +85,9 @@ struct RoundRecord {
 
 class Game {
  public:
-  Game(Pitch pitch, std::unique_ptr<Engine> engine, std::uint64_t seed);
+  // `engine`: a name of the engine registry (engines/engines.hpp); play
+  // refuses MuJoCo for now (its MJCF has no obstacles). Throws InputError.
+  Game(Pitch pitch, const std::string& engine, std::uint64_t seed);
 
   // Input between steps (applies from the next step on).
   void handle(Key key, bool down);
@@ -93,13 +95,13 @@ class Game {
   void step();
 
   const Pitch& pitch() const { return pitch_; }
-  std::string_view engine_name() const { return engine_->name(); }
+  std::string_view engine_name() const { return engine_name_; }
   std::uint64_t seed() const { return seed_; }
   long long steps() const { return steps_; }
   double dt() const { return pitch_.scene.sim.dt; }
   double time() const { return static_cast<double>(steps_) * dt(); }
   double round_time() const { return static_cast<double>(steps_ - round_start_) * dt(); }
-  const State& ball() const { return engine_->state(); }
+  const State& ball() const { return stepper_->state(); }
   double radius() const { return pitch_.scene.radius; }
   double distance_to_goal() const;           // ball centre to the goal line, m
   Vec3 applied() const { return applied_; }  // the force of the last step
@@ -125,7 +127,8 @@ class Game {
   double next_uniform();
 
   Pitch pitch_;
-  std::unique_ptr<Engine> engine_;
+  std::string engine_name_;
+  std::unique_ptr<Stepper> stepper_;
   std::uint64_t seed_;
   std::uint64_t rng_;
   long long steps_ = 0;

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/input_error.hpp"
 #include "io/csv.hpp"
-#include "io/scene_file.hpp"
 
 namespace contact2d::game {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "io/scene_file.hpp"
+#include "core/input_error.hpp"
 
 namespace contact2d::game {
 

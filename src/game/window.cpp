@@ -10,9 +10,9 @@
 #include <optional>
 #include <vector>
 
+#include "core/input_error.hpp"
 #include "game/render.hpp"
 #include "game/video.hpp"
-#include "io/scene_file.hpp"
 
 namespace contact2d::game {
 namespace {

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "core/simulate.hpp"
+#include "core/run.hpp"
 
 namespace contact2d {
 

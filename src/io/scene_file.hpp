@@ -1,19 +1,13 @@
 // Scene files (TOML, SPEC §6) and command-line overrides.
 #pragma once
 
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "core/input_error.hpp"
 #include "core/scene.hpp"
 
 namespace contact2d {
-
-// Bad input: the message is one line naming the file, the key and the
-// allowed range. The CLI prints it and exits with status 2.
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // "key=value" assignments applied on top of the file, e.g. "contact.k=1e6" or
 // "sim.integrator=rk4". The value is read as a TOML value (a bare word is a

@@ -6,7 +6,7 @@
 // √(Σ e_i² / N), and the errors at the last common sample.
 #pragma once
 
-#include "core/simulate.hpp"
+#include "core/run.hpp"
 
 namespace contact2d::mujoco {
 

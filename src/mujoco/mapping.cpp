@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/scene_file.hpp"
+#include "core/input_error.hpp"
 
 namespace contact2d::mujoco {
 namespace {

@@ -9,7 +9,7 @@
 #include <initializer_list>
 #include <vector>
 
-#include "io/scene_file.hpp"
+#include "core/input_error.hpp"
 #include "mujoco/model.hpp"
 
 namespace contact2d::mujoco {
@@ -316,6 +316,23 @@ GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options) {
   load_model(out.xml, generated_origin(
                           options.source));  // never hand out a model MuJoCo rejects or warns on
   return out;
+}
+
+MjcfOptions mjcf_options(const std::string& mapping, const std::string& geometry,
+                         const std::string& source) {
+  MjcfOptions options;
+  if (!mapping.empty()) {
+    const auto parsed = parse_mapping(mapping);
+    if (!parsed) throw InputError("mapping " + mapping + ": unknown (seed, exact, calibrated)");
+    options.mapping = *parsed;
+  }
+  if (!geometry.empty()) {
+    const auto parsed = parse_geometry(geometry);
+    if (!parsed) throw InputError("geometry " + geometry + ": unknown (corners, boxes)");
+    options.geometry = *parsed;
+  }
+  options.source = source;
+  return options;
 }
 
 }  // namespace contact2d::mujoco

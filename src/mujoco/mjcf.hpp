@@ -48,6 +48,11 @@ struct MjcfOptions {
   std::string source;  // the scene file named in the header comment
 };
 
+// Options from their names (empty: the default); throws InputError naming
+// an unknown mapping or geometry.
+MjcfOptions mjcf_options(const std::string& mapping, const std::string& geometry,
+                         const std::string& source);
+
 struct GeneratedModel {
   std::string xml;
   SolverSettings settings;

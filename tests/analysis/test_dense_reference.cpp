@@ -9,9 +9,9 @@
 #include <random>
 #include <vector>
 
-#include "core/dense_reference.hpp"
-#include "core/simulate.hpp"
+#include "core/run.hpp"
 #include "io/scene_file.hpp"
+#include "reference/dense_reference.hpp"
 
 namespace contact2d {
 namespace {

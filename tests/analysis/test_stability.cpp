@@ -37,7 +37,7 @@ TEST(Stability, BisectionBracketsTheThreshold) {
   const Scene scene = point_mass(DampingLaw::Compression);
   const double threshold = 3.3e-4;
   const EngineRunner runner = [&](const std::string&, const Scene& s) {
-    EngineResult result = run_reference_engine(s);
+    EngineRun result = engines::run_engine("ref", s);
     if (s.sim.dt > threshold) result.trajectory.samples.back().state.v.y() = 1e6;  // energy gain
     return result;
   };
@@ -73,7 +73,7 @@ TEST(Stability, MatchesTheLinearBoundWhereItApplies) {
   config.integrators = {Integrator::SemiImplicitEuler, Integrator::RK4};
   config.ks = {1e4, 1e6, 1e8};
   config.zeta = 1.0;
-  const StabilityResult r = run_stability(scene, config, reference_runner());
+  const StabilityResult r = run_stability(scene, config);
   for (const StabilityRow& row : r.rows) {
     if (row.integrator == Integrator::RK4 && row.k == 1e4)
       continue;  // stable up to dt_max = 0.01 s
@@ -99,7 +99,7 @@ TEST(Stability, ExplicitEulerFailsBelowItsLinearBoundWithCompressionDamping) {
   config.integrators = {Integrator::ExplicitEuler};
   config.ks = {1e4, 1e6, 1e8};
   config.zeta = 1.0;
-  const StabilityResult r = run_stability(scene, config, reference_runner());
+  const StabilityResult r = run_stability(scene, config);
   for (const StabilityRow& row : r.rows) {
     ASSERT_EQ(row.verdict, StabilityVerdict::Bracketed);
     EXPECT_NEAR(row.theory, 2.0, 1e-6);
@@ -120,7 +120,7 @@ TEST(Stability, ReportsBoundsOutsideTheSearchRange) {
   config.integrators = {Integrator::ImplicitEuler, Integrator::ExplicitEuler};
   config.ks = {1e4, 1e9};
   config.max_steps = 4000;
-  const StabilityResult r = run_stability(scene, config, reference_runner());
+  const StabilityResult r = run_stability(scene, config);
   EXPECT_EQ(row_of(r, Integrator::ImplicitEuler, 1e4).verdict, StabilityVerdict::StableAtMax);
   const StabilityRow& explicit_stiff = row_of(r, Integrator::ExplicitEuler, 1e9);
   EXPECT_EQ(explicit_stiff.verdict, StabilityVerdict::UnstableAtMin);

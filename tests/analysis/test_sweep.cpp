@@ -65,7 +65,7 @@ TEST(Sweep, ErrorsAreTheRunsDistanceToTheReference) {
   config.dts = {4e-4, 2e-4, 1e-4};
   config.repeats = 1;
   config.dense_tols = {1e-6};
-  const SweepResult r = run_sweep(scene, config, reference_runner());
+  const SweepResult r = run_sweep(scene, config);
   ASSERT_EQ(r.rows.size(), 6u);
   EXPECT_LT(r.reference_error, 1e-9);  // measured 1.1e-10 m
   for (const SweepRow& row : r.rows) {
@@ -105,7 +105,7 @@ TEST(Sweep, SmoothSceneShowsNominalOrders) {
   config.dts = {1e-3, 5e-4, 2e-4, 1e-4};
   config.repeats = 1;
   config.dense_tols = {};
-  const SweepResult r = run_sweep(scene, config, reference_runner());
+  const SweepResult r = run_sweep(scene, config);
   for (Integrator integrator :
        {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::ImplicitEuler}) {
     const OrderFit& f = fit_of(r, integrator);
@@ -133,14 +133,14 @@ TEST(Sweep, ImpactsCostRK4ItsOrder) {
   config.integrators = {Integrator::RK4};
   config.repeats = 1;
   config.dense_tols = {};
-  const SweepResult damped = run_sweep(scene, config, reference_runner());
+  const SweepResult damped = run_sweep(scene, config);
   const OrderFit& f1 = fit_of(damped, Integrator::RK4);
   ASSERT_TRUE(f1.order) << f1.note;
   EXPECT_LT(*f1.order, 1.6);
   EXPECT_NE(f1.note.find("jumps"), std::string::npos) << f1.note;
 
   scene.contact.c = 0.0;
-  const SweepResult undamped = run_sweep(scene, config, reference_runner());
+  const SweepResult undamped = run_sweep(scene, config);
   const OrderFit& f2 = fit_of(undamped, Integrator::RK4);
   ASSERT_TRUE(f2.order) << f2.note;
   EXPECT_GT(*f2.order, 1.6);
@@ -161,9 +161,9 @@ TEST(Sweep, DivergedAndFailedRunsAreReportedNotMeasured) {
   config.dts = {1e-3, 1e-4};
   config.repeats = 1;
   config.dense_tols = {1e-5};
-  const EngineRunner runner = [](const std::string& engine, const Scene& s) -> EngineResult {
+  const EngineRunner runner = [](const std::string& engine, const Scene& s) -> EngineRun {
     if (engine == "other") throw std::runtime_error("other engine: not installed");
-    return run_reference_engine(s);
+    return engines::run_engine("ref", s);
   };
   const SweepResult r = run_sweep(scene, config, runner);
   ASSERT_EQ(r.rows.size(), 6u);  // "other" offers no explicit Euler (like MuJoCo)
@@ -195,12 +195,12 @@ TEST(Sweep, RejectsBadLists) {
   const Scene scene = built_in("point_mass");
   SweepConfig config;
   config.dts = {};
-  EXPECT_THROW(run_sweep(scene, config, reference_runner()), std::invalid_argument);
+  EXPECT_THROW(run_sweep(scene, config), std::invalid_argument);
   config.dts = {1e-4, 5.0};  // longer than the 2 s run
-  EXPECT_THROW(run_sweep(scene, config, reference_runner()), std::invalid_argument);
+  EXPECT_THROW(run_sweep(scene, config), std::invalid_argument);
   config.dts = {1e-4};
   config.integrators = {};
-  EXPECT_THROW(run_sweep(scene, config, reference_runner()), std::invalid_argument);
+  EXPECT_THROW(run_sweep(scene, config), std::invalid_argument);
   EXPECT_THROW(parse_integrators({"rk4", "leapfrog"}), std::invalid_argument);
   EXPECT_EQ(parse_integrators({"rk4", "rk4", "implicit_euler"}).size(), 2u);
 }

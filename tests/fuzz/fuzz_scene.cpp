@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/simulate.hpp"
+#include "core/run.hpp"
 #include "io/scene_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -8,8 +8,8 @@
 #include "core/divergence.hpp"
 #include "core/integrators.hpp"
 #include "core/obstacles.hpp"
+#include "core/run.hpp"
 #include "core/scene.hpp"
-#include "core/simulate.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d {
@@ -236,19 +236,24 @@ TEST(ObstacleGeometry, ForceAndTorqueOfOneContactFollowTheLaw) {
   // A disc pressed into the corner region, moving: normal force along n with
   // the damper on the normal velocity, friction along t = (n_y, −n_x), torque
   // r × F plus rolling resistance.
-  RigidBody ball = make_circle(0.5, 0.11);
-  ContactParams law;
+  Model model;
+  model.body = make_circle(0.5, 0.11);
+  model.gravity = 0.0;  // the contact force alone
+  ContactParams& law = model.contact;
   law.k = 1e4;
   law.c = 30.0;
   law.mu = 0.4;
   law.alpha = 50.0;
   law.mu_roll = 0.02;
-  const std::vector<Obstacle> obstacles = {make_box_obstacle(0.0, 0.0, 2.0, 2.0)};
-  const Vec3 q(1.06, 1.08, 0.7);
+  model.obstacles = {make_box_obstacle(0.0, 0.0, 2.0, 2.0)};
+  const Vec3 q(1.06, 1.08, 0.7);  // far above the ground
   const Vec3 v(-0.3, -0.2, 4.0);
-  Vec2 force = Vec2::Zero();
-  double torque = 0.0;
-  add_obstacle_forces(obstacles, ball, law, q, v, force, torque);
+  ContactSet contacts(model);
+  find_contacts(model, q, contacts);
+  ASSERT_EQ(contacts.size(), 1u);
+  const Vec3 a = acceleration(model, contacts, v);
+  const Vec2 force = model.body.mass * a.head<2>();
+  const double torque = model.body.inertia * a.z();
 
   const Vec2 n(0.6, 0.8), t(0.8, -0.6), r = -0.11 * n;
   const Vec2 vc(v.x() - v.z() * r.y(), v.y() + v.z() * r.x());
@@ -293,7 +298,8 @@ TEST(ObstacleEnergy, SpringEnergyIsCountedDuringAnElasticBounce) {
   const Model model = make_model(scene);
   const double e0 = energy(model, initial_state(scene));
   double deepest = 0.0, energy_there = 0.0;
-  run(scene, [&](const Sample& s) {
+  ReferenceStepper stepper(scene);
+  run(stepper, scene.sim, [&](const Sample& s) {
     const double depth = max_penetration(model, s.state.q);
     if (depth > deepest) {
       deepest = depth;
@@ -320,17 +326,19 @@ TEST(ObstacleDivergence, AppliedWorkExplainsAPushIntoAWall) {
   const double push = 1000.0;
   model.applied = Vec3(push, 0.0, 0.0);
   State s = initial_state(scene);
-  const DivergenceMonitor monitor(model, s);
+  StepWorkspace ws(model);
+  find_contacts(model, s.q, ws.contacts);
+  const DivergenceMonitor monitor(model, s, ws.contacts);
   double work = 0.0;
   for (int i = 0; i < 20000; ++i) {  // 0.2 s = 20 periods of the critically damped contact
     const double x0 = s.q.x();
-    step(model, Integrator::RK4, scene.sim.dt, s);
+    step(model, Integrator::RK4, scene.sim.dt, s, ws);
     work += push * (s.q.x() - x0);
   }
   const double d = push / scene.contact.k;
   EXPECT_NEAR(max_penetration(model, s.q), d, 1e-6 * d);
-  EXPECT_FALSE(monitor.check(s, 0.2, work)) << "the push explains the depth";
-  const auto flagged = monitor.check(s, 0.2, 0.0);
+  EXPECT_FALSE(monitor.check(s, ws.contacts, 0.2, work)) << "the push explains the depth";
+  const auto flagged = monitor.check(s, ws.contacts, 0.2, 0.0);
   ASSERT_TRUE(flagged);
   EXPECT_NE(flagged->kind, DivergenceKind::NonFinite);
 }

@@ -8,10 +8,10 @@
 
 #include <string>
 
-#include "core/simulate.hpp"
+#include "core/run.hpp"
 #include "io/scene_file.hpp"
-#include "mujoco/adapter.hpp"
 #include "mujoco/comparison.hpp"
+#include "mujoco/stepper.hpp"
 
 namespace contact2d::test {
 
@@ -45,9 +45,35 @@ inline Scene drop_scene(Shape shape, double c, double mu) {
   return {};
 }
 
+// A MuJoCo run through the one run loop, with what the tests read of it.
+struct MujocoRun {
+  Trajectory trajectory;
+  std::vector<std::string> warnings;
+  mujoco::SolverSettings settings;
+};
+
+inline MujocoRun finish(mujoco::MujocoStepper& stepper, const Scene& scene) {
+  MujocoRun run;
+  run.trajectory = simulate(stepper, scene.sim);
+  run.warnings = stepper.warnings();
+  run.settings = stepper.settings();
+  return run;
+}
+
+inline MujocoRun run_mujoco(const Scene& scene, const mujoco::MjcfOptions& options) {
+  mujoco::MujocoStepper stepper(scene, options);
+  return finish(stepper, scene);
+}
+
+inline MujocoRun run_mujoco_xml(const Scene& scene, const std::string& xml,
+                                const std::string& origin) {
+  mujoco::MujocoStepper stepper(scene, xml, origin);
+  return finish(stepper, scene);
+}
+
 struct BothRuns {
   Trajectory ref;
-  mujoco::MujocoRun mj;
+  MujocoRun mj;
   mujoco::TrajectoryErrors errors;
 };
 
@@ -56,7 +82,7 @@ inline BothRuns run_both(const Scene& scene,
   BothRuns out;
   mujoco::MjcfOptions options;
   options.mapping = mapping;
-  out.mj = mujoco::run_mujoco(scene, options);
+  out.mj = run_mujoco(scene, options);
   out.ref = simulate(scene);
   EXPECT_FALSE(out.ref.divergence.has_value());
   EXPECT_FALSE(out.mj.trajectory.divergence.has_value());

@@ -87,7 +87,7 @@ TEST(Adapter, RuntimeWarningsAreSurfaced) {
   const std::string size = "nconmax=\"4\"";
   ASSERT_NE(xml.find(size), std::string::npos);
   xml.replace(xml.find(size), size.size(), "nconmax=\"1\"");
-  const mujoco::MujocoRun run = mujoco::run_mujoco_xml(scene, xml, "one contact");
+  const test::MujocoRun run = test::run_mujoco_xml(scene, xml, "one contact");
   ASSERT_EQ(run.warnings.size(), 2u);
   EXPECT_NE(run.warnings[0].find("contact"), std::string::npos) << run.warnings[0];
   EXPECT_NE(run.warnings[1].find("mjData.warning: too many contacts (nconmax)"), std::string::npos)
@@ -101,7 +101,7 @@ TEST(Adapter, DivergenceStopsTheRunWithoutNonFiniteSamples) {
   const Scene scene = test::scene_from(
       "scene = \"point_mass\"\n[contact]\nk = 1e8\nc = 0\ndamping = \"kelvin_voigt\"\n"
       "[initial]\ny = 0.06\n[sim]\ndt = 1e-3\nduration = 1\n");
-  const mujoco::MujocoRun run = mujoco::run_mujoco(scene, {});
+  const test::MujocoRun run = test::run_mujoco(scene, {});
   ASSERT_TRUE(run.trajectory.divergence.has_value());
   EXPECT_LT(run.trajectory.divergence->time, 0.1);
   for (const Sample& s : run.trajectory.samples) {

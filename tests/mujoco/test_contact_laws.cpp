@@ -24,7 +24,7 @@ double final_penetration(const Scene& scene, const Trajectory& t) {
 void expect_static_penetration(const std::string& toml, double load_per_contact, double k,
                                double sphere_offset) {
   const Scene scene = test::scene_from(toml);
-  const mujoco::MujocoRun run = mujoco::run_mujoco(scene, {});
+  const test::MujocoRun run = test::run_mujoco(scene, {});
   ASSERT_FALSE(run.trajectory.divergence.has_value());
   const double p = final_penetration(scene, run.trajectory);
   const double nominal = load_per_contact / k;
@@ -91,7 +91,7 @@ TEST_P(RollingStop, StopsNearTheAnalyticDistance) {
                 "[sim]\ndt = 1e-4\nduration = 6\n",
                 rc.mass, rc.radius, rc.mu_roll, rest, rc.v0, -rc.v0 / rc.radius);
   const Scene scene = test::scene_from(toml);
-  const mujoco::MujocoRun run = mujoco::run_mujoco(scene, {});
+  const test::MujocoRun run = test::run_mujoco(scene, {});
   ASSERT_FALSE(run.trajectory.divergence.has_value());
   const State& end = run.trajectory.samples.back().state;
   EXPECT_LT(std::abs(end.v.x()), 1e-3);  // it has stopped

@@ -147,8 +147,8 @@ TEST(Mapping, ExactAndDirectFormStepIdenticallyInMujoco) {
   options.mapping = Mapping::Exact;
   mujoco::SolverSettings direct = mujoco::solver_settings(s, Mapping::Exact, 0.0, 1);
   direct.solref = {-s.contact.k / s.mass, -s.contact.c / s.mass};
-  const auto a = mujoco::run_mujoco(s, options);
-  const auto b = mujoco::run_mujoco_xml(s, mujoco::write_mjcf(s, options, direct), "direct");
+  const auto a = test::run_mujoco(s, options);
+  const auto b = test::run_mujoco_xml(s, mujoco::write_mjcf(s, options, direct), "direct");
   const auto e = mujoco::compare_trajectories(a.trajectory, b.trajectory);
   EXPECT_EQ(e.samples, 801);
   EXPECT_LT(e.max_pos, 1e-12);  // rounding of K and B computed two ways

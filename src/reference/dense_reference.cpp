@@ -1,4 +1,4 @@
-#include "core/dense_reference.hpp"
+#include "reference/dense_reference.hpp"
 
 #include <algorithm>
 #include <cmath>

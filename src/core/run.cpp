@@ -1,0 +1,52 @@
+#include "core/run.hpp"
+
+#include <limits>
+
+namespace contact2d {
+
+std::optional<Divergence> check_step(StepStatus status, const Stepper& stepper,
+                                     const DivergenceMonitor& monitor, double t,
+                                     double applied_work) {
+  switch (status) {
+    case StepStatus::NewtonFailed: return Divergence{DivergenceKind::NewtonFailed, t, 0.0, 0.0};
+    case StepStatus::NonFinite:
+      return Divergence{DivergenceKind::NonFinite, t, std::numeric_limits<double>::quiet_NaN(),
+                        0.0};
+    case StepStatus::Ok: break;
+  }
+  return monitor.check(stepper.state(), stepper.contacts(), t, applied_work);
+}
+
+RunResult run(Stepper& stepper, const SimParams& sim,
+              const std::function<void(const Sample&)>& on_sample) {
+  const long long steps = step_count(sim);
+  const long long stride = sample_stride(sim);
+  const DivergenceMonitor monitor(stepper.model(), stepper.state(), stepper.contacts());
+
+  RunResult result;
+  on_sample({0.0, stepper.state()});
+  for (long long i = 1; i <= steps; ++i) {
+    const double t = static_cast<double>(i) * sim.dt;
+    result.divergence = check_step(stepper.step(), stepper, monitor, t);
+    result.steps = i;
+    if (result.divergence) return result;
+    if (i % stride == 0 || i == steps) on_sample({t, stepper.state()});
+  }
+  return result;
+}
+
+Trajectory simulate(Stepper& stepper, const SimParams& sim) {
+  Trajectory trajectory;
+  trajectory.samples.reserve(static_cast<size_t>(step_count(sim) / sample_stride(sim) + 2));
+  const RunResult result =
+      run(stepper, sim, [&](const Sample& s) { trajectory.samples.push_back(s); });
+  trajectory.divergence = result.divergence;
+  return trajectory;
+}
+
+Trajectory simulate(const Scene& scene) {
+  ReferenceStepper stepper(scene);
+  return simulate(stepper, scene.sim);
+}
+
+}  // namespace contact2d

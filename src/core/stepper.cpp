@@ -1,0 +1,28 @@
+#include "core/stepper.hpp"
+
+namespace contact2d {
+
+State initial_state(const Scene& scene) {
+  State s = scene.initial;
+  if (scene.shape == Shape::PointMass) {
+    s.q.z() = 0.0;
+    s.v.z() = 0.0;
+  }
+  return s;
+}
+
+ReferenceStepper::ReferenceStepper(const Scene& scene)
+    : model_(make_model(scene)), integrator_(scene.sim.integrator), dt_(scene.sim.dt), ws_(model_) {
+  reset(initial_state(scene));
+}
+
+void ReferenceStepper::reset(const State& state) {
+  state_ = state;
+  find_contacts(model_, state_.q, ws_.contacts);
+}
+
+std::string ReferenceStepper::describe() const {
+  return "ref " + std::string(integrator_name(integrator_));
+}
+
+}  // namespace contact2d

@@ -1,0 +1,61 @@
+// One interface for every engine that advances the planar body: the
+// reference solver (one per integrator, here) and MuJoCo
+// (mujoco/stepper.hpp). The run loop (core/run.hpp), the game and the
+// benchmarks drive engines only through it, so "run a scene" means the same
+// thing for all of them.
+//
+// A stepper starts at the scene's initial state. After every step it holds
+// the new state and the contacts of that state found by the reference's
+// contact stage (core/contacts.hpp) on the scene's model — the divergence
+// monitor reads those, whatever the engine.
+#pragma once
+
+#include <string>
+
+#include "core/integrators.hpp"
+#include "core/scene.hpp"
+
+namespace contact2d {
+
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  virtual void reset(const State& state) = 0;
+  // (Fx, Fy, τ) at the COM, held until changed (the game's player).
+  virtual void set_applied(const Vec3& force) = 0;
+  virtual StepStatus step() = 0;  // one Δt
+  virtual const State& state() const = 0;
+  virtual const ContactSet& contacts() const = 0;  // at state().q
+  // The scene's model (the divergence rule and energies use it).
+  virtual const Model& model() const = 0;
+  virtual double dt() const = 0;
+  // "ref semi_implicit_euler", "mujoco calibrated Euler", …
+  virtual std::string describe() const = 0;
+};
+
+// The reference solver: core step() with the scene's integrator and Δt.
+// Allocation-free per step.
+class ReferenceStepper final : public Stepper {
+ public:
+  explicit ReferenceStepper(const Scene& scene);
+  void reset(const State& state) override;
+  void set_applied(const Vec3& force) override { model_.applied = force; }
+  StepStatus step() override { return contact2d::step(model_, integrator_, dt_, state_, ws_); }
+  const State& state() const override { return state_; }
+  const ContactSet& contacts() const override { return ws_.contacts; }
+  const Model& model() const override { return model_; }
+  double dt() const override { return dt_; }
+  std::string describe() const override;
+
+ private:
+  Model model_;
+  Integrator integrator_;
+  double dt_;
+  State state_;
+  StepWorkspace ws_;
+};
+
+// The scene's initial state (a point mass keeps θ = ω = 0 whatever was given).
+State initial_state(const Scene& scene);
+
+}  // namespace contact2d

@@ -1,0 +1,70 @@
+// The engine registry: the one place that turns an engine's name into a
+// Stepper (core/stepper.hpp) and runs it through the one run loop
+// (core/run.hpp) into one result type. Every command, the analysis, the
+// report and the game get their engines here; it is the only code outside
+// CMake that knows whether MuJoCo was built in.
+//
+//   ref                        the reference solver with the scene's integrator
+//   mujoco                     MuJoCo, default mapping (calibrated) and geometry (corners)
+//   mujoco:MAPPING             MAPPING = seed | exact | calibrated (mujoco/mapping.hpp)
+//   mujoco:MAPPING:GEOMETRY    GEOMETRY = corners | boxes (mujoco/mjcf.hpp)
+#pragma once
+
+#include <array>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/run.hpp"
+
+namespace contact2d::engines {
+
+struct EngineSpec {
+  std::string kind = "ref";  // "ref" or "mujoco"
+  std::string mapping;       // MuJoCo: empty = the default mapping
+  std::string geometry;      // MuJoCo: empty = the default geometry
+  std::string source;        // the scene file, named in a generated model's header
+
+  std::string name() const;  // back to "mujoco:exact" etc.
+};
+
+// Parses a name of the table above. `option` names where it came from in
+// the error ("--engine", "--engines"). Throws InputError for an unknown
+// name, mapping or geometry, or MuJoCo when it was not built in.
+EngineSpec parse_engine(const std::string& name, const std::string& option = "--engine");
+
+bool mujoco_available();
+
+// The names a user can give: ref, and with MuJoCo mujoco and mujoco:MAPPING
+// for every mapping (geometry variants left out of the list).
+std::vector<std::string> engine_names();
+
+// The result of running one engine on one scene.
+struct EngineRun {
+  std::string engine;                 // EngineSpec::name()
+  std::string description;            // Stepper::describe(), e.g. "mujoco calibrated Euler"
+  Trajectory trajectory;              // samples every output_dt; divergence if it stopped
+  double seconds = 0.0;               // wall clock of the run loop (model building excluded)
+  std::vector<std::string> warnings;  // anything the engine warned about
+  // Facts about the run that are not failures, e.g. "refsafe" when MuJoCo
+  // raised a standard-form timeconst to 2·Δt (a softer contact than asked).
+  std::vector<std::string> notes;
+  // MuJoCo: solref and impratio of the generated model; NaN for the reference.
+  std::array<double, 2> solref{std::numeric_limits<double>::quiet_NaN(),
+                               std::numeric_limits<double>::quiet_NaN()};
+  double impratio = std::numeric_limits<double>::quiet_NaN();
+};
+
+// A stepper at the scene's initial state. Throws InputError when the engine
+// cannot run the scene (MuJoCo: a model it cannot load, explicit Euler).
+std::unique_ptr<Stepper> make_stepper(const EngineSpec& spec, const Scene& scene);
+
+// make_stepper + run loop, timed.
+EngineRun run_engine(const EngineSpec& spec, const Scene& scene);
+EngineRun run_engine(const std::string& name, const Scene& scene);
+
+// Whether an engine offers the integrator: MuJoCo 2.2 has no explicit Euler.
+bool engine_offers(const std::string& name, Integrator integrator);
+
+}  // namespace contact2d::engines

@@ -1,0 +1,88 @@
+#include "mujoco/stepper.hpp"
+
+namespace contact2d::mujoco {
+namespace {
+
+bool bad_numbers(const mjData* d) {
+  return d->warning[mjWARN_BADQPOS].number > 0 || d->warning[mjWARN_BADQVEL].number > 0 ||
+         d->warning[mjWARN_BADQACC].number > 0;
+}
+
+}  // namespace
+
+MujocoStepper::MujocoStepper(const Scene& scene, const MjcfOptions& options)
+    : MujocoStepper(scene, generate_mjcf(scene, options), options.source) {}
+
+MujocoStepper::MujocoStepper(const Scene& scene, const GeneratedModel& generated,
+                             const std::string& source)
+    : MujocoStepper(scene, generated.xml, generated_origin(source)) {
+  settings_ = generated.settings;
+}
+
+MujocoStepper::MujocoStepper(const Scene& scene, const std::string& xml, const std::string& origin)
+    : model_(make_model(scene)),
+      integrator_(scene.sim.integrator),
+      model_ptr_(load_model(xml, origin)),
+      data_(make_data(model_ptr_.get())),
+      contacts_(model_) {
+  const mjModel* m = model_ptr_.get();
+  x0_ = m->body_pos[3];
+  y0_ = m->body_pos[5];
+  hinge_ = m->nq == 3;
+  mj_resetDataKeyframe(m, data_.get(), 0);
+  read_state();
+}
+
+void MujocoStepper::read_state() {
+  const mjData* d = data_.get();
+  state_.q = Vec3(x0_ + d->qpos[0], y0_ + d->qpos[1], hinge_ ? d->qpos[2] : 0.0);
+  state_.v = Vec3(d->qvel[0], d->qvel[1], hinge_ ? d->qvel[2] : 0.0);
+  find_contacts(model_, state_.q, contacts_);
+}
+
+void MujocoStepper::reset(const State& state) {
+  mjData* d = data_.get();
+  mj_resetData(model_ptr_.get(), d);
+  d->qpos[0] = state.q.x() - x0_;
+  d->qpos[1] = state.q.y() - y0_;
+  d->qvel[0] = state.v.x();
+  d->qvel[1] = state.v.y();
+  if (hinge_) {
+    d->qpos[2] = state.q.z();
+    d->qvel[2] = state.v.z();
+  }
+  read_state();
+}
+
+void MujocoStepper::set_applied(const Vec3& force) {
+  // xfrc_applied of body 1 (the only moving body): force (x, y, z), torque
+  // (x, y, z); the plane is x–z, rotation about −y (θ = qpos of the hinge).
+  mjtNum* f = data_->xfrc_applied + 6;
+  f[0] = force.x();
+  f[2] = force.y();
+  f[4] = -force.z();
+  model_.applied = force;
+}
+
+StepStatus MujocoStepper::step() {
+  {
+    WarningCapture capture(messages_);
+    mj_step(model_ptr_.get(), data_.get());
+  }
+  read_state();
+  return bad_numbers(data_.get()) ? StepStatus::NonFinite : StepStatus::Ok;
+}
+
+std::string MujocoStepper::describe() const {
+  return "mujoco " + std::string(mapping_name(settings_.mapping)) + " " +
+         std::string(mujoco_integrator(integrator_));
+}
+
+std::vector<std::string> MujocoStepper::warnings() const {
+  std::vector<std::string> out = messages_;
+  // Counters of warnings whose text was already captured add the count.
+  for (const std::string& w : warning_counters(data_.get())) out.push_back("mjData.warning: " + w);
+  return out;
+}
+
+}  // namespace contact2d::mujoco

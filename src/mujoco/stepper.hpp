@@ -1,0 +1,62 @@
+// MuJoCo as a Stepper (core/stepper.hpp): a scene run through its generated
+// MJCF, driven by the same run loop as the reference.
+//
+// mj_step advances the model with the scene's integrator (Euler, RK4 or
+// implicit, mujoco_integrator()) from the keyframe "initial". The planar
+// state is read from qpos and qvel: x = x0 + qpos[0], y = y0 + qpos[1] (x0,
+// y0 the body's model position), θ = qpos[2], (vx, vy, ω) = qvel (0 for θ, ω
+// without a hinge). After each step the reference's contact stage is run on
+// that state for the divergence monitor.
+//
+// Divergence: MuJoCo resets mjData silently when qacc goes bad (it only
+// counts a warning), so step() reports StepStatus::NonFinite when one of the
+// bad-number counters moved; the run loop then stops, as it does for the
+// reference's own rule. MuJoCo's text warnings are collected while stepping.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/stepper.hpp"
+#include "mujoco/mjcf.hpp"
+#include "mujoco/model.hpp"
+
+namespace contact2d::mujoco {
+
+class MujocoStepper final : public Stepper {
+ public:
+  // Generates the model and loads it (InputError on a load error or warning).
+  MujocoStepper(const Scene& scene, const MjcfOptions& options);
+  // Already generated MJCF text (`origin` names it in messages).
+  MujocoStepper(const Scene& scene, const std::string& xml, const std::string& origin);
+
+  void reset(const State& state) override;
+  void set_applied(const Vec3& force) override;
+  StepStatus step() override;
+  const State& state() const override { return state_; }
+  const ContactSet& contacts() const override { return contacts_; }
+  const Model& model() const override { return model_; }
+  double dt() const override { return model_ptr_->opt.timestep; }
+  std::string describe() const override;
+
+  const SolverSettings& settings() const { return settings_; }
+  // MuJoCo's text warnings so far, then its non-zero warning counters.
+  std::vector<std::string> warnings() const;
+
+ private:
+  MujocoStepper(const Scene& scene, const GeneratedModel& generated, const std::string& source);
+  void read_state();
+
+  Model model_;
+  Integrator integrator_;
+  SolverSettings settings_;
+  ModelPtr model_ptr_;
+  DataPtr data_;
+  double x0_ = 0.0, y0_ = 0.0;
+  bool hinge_ = false;
+  State state_;
+  ContactSet contacts_;
+  std::vector<std::string> messages_;
+};
+
+}  // namespace contact2d::mujoco
