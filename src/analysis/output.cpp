@@ -1,5 +1,7 @@
 #include "analysis/output.hpp"
 
+#include "core/format.hpp"
+
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -13,6 +15,7 @@
 #include <stdexcept>
 
 #include "io/csv.hpp"
+#include "io/plot.hpp"
 
 namespace contact2d::analysis {
 namespace {
@@ -53,13 +56,6 @@ std::string csv_text(std::string text) {
   return "\"" + text + "\"";
 }
 
-std::string quoted(const std::string& path) {
-  if (path.find('\'') != std::string::npos || path.find('\n') != std::string::npos) {
-    throw std::runtime_error(path + ": a plot path must not contain a quote or newline");
-  }
-  return "'" + path + "'";
-}
-
 // "RK4" for the reference, "MuJoCo Euler" etc. for MuJoCo (its Euler is
 // semi-implicit; it has no explicit Euler).
 std::string series_title(const std::string& engine, Integrator integrator) {
@@ -79,26 +75,12 @@ std::string series_title(const std::string& engine, Integrator integrator) {
 
 // Text for gnuplot's enhanced mode inside single quotes: '_' and '^' would
 // start a subscript or superscript.
-std::string gp_text(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '_' || c == '^' || c == '{' || c == '}' || c == '@' || c == '&') out += '\\';
-    if (c == '\'') {
-      out += "''";
-      continue;
-    }
-    out += c;
-  }
-  return out;
-}
 
 }  // namespace
 
 std::string number(double value, int digits, const char* missing) {
   if (!std::isfinite(value)) return missing;
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
+  return format_number(value, digits);
 }
 
 // ---------------------------------------------------------------- sweep
@@ -267,8 +249,9 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
   s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1400,600 font "
        "',11' } "
        "else { set terminal png size 1400,600 }\n"
-    << "set output " << quoted(png_tmp) << "\n"
-    << "set multiplot layout 1,2 title '" << gp_text(r.scene_name) << " (" << number(r.duration, 3)
+    << "set output " << gnuplot_quoted(png_tmp) << "\n"
+    << "set multiplot layout 1,2 title '" << gnuplot_text(r.scene_name) << " ("
+    << number(r.duration, 3)
     << " s): max position error against the converged reference (its own error: "
     << number(floor, 2) << " m)'\n"
     << "set logscale xy\nset grid\nset format y '10^{%L}'\nset key bottom right font ',9'\n"
@@ -280,12 +263,12 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
     for (int i = 0; i < blocks; ++i) {
       // MuJoCo dashed, the reference solid.
       const bool mujoco = titles[i].rfind("MuJoCo", 0) == 0;
-      s << (i ? ", " : "") << quoted(data) << " index " << i << " using " << using_cols
+      s << (i ? ", " : "") << gnuplot_quoted(data) << " index " << i << " using " << using_cols
         << " with linespoints lw 2 pt " << (i % 7) + 1 << (mujoco ? " dt 2" : "") << " title '"
-        << gp_text(titles[i]) << "'";
+        << gnuplot_text(titles[i]) << "'";
     }
     if (with_dense && dense_points > 0) {
-      s << ", " << quoted(data) << " index " << blocks
+      s << ", " << gnuplot_quoted(data) << " index " << blocks
         << " using 2:3 with linespoints lw 2 lc 'black' pt 7 ps 0.7 title 'adaptive DOPRI5 + "
            "events (tol 1e-4..1e-10)'";
     }
@@ -462,8 +445,8 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
   s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1000,650 font "
        "',11' } "
        "else { set terminal png size 1000,650 }\n"
-    << "set output " << quoted(png_tmp) << "\n"
-    << "set title '" << gp_text(r.scene_name)
+    << "set output " << gnuplot_quoted(png_tmp) << "\n"
+    << "set title '" << gnuplot_text(r.scene_name)
     << ": largest stable {/Symbol w}{/Symbol D}t against contact stiffness"
     << (r.zeta ? " ({/Symbol z} = " + number(*r.zeta, 3) + " at every k)"
                : std::string(" (c of the scene file at every k)"))
@@ -476,9 +459,10 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
   bool first = true;
   for (size_t i = 0; i < keys.size(); ++i) {
     // The first plotted element of each series carries its title.
-    std::string title = " title '" + gp_text(titles[i]) + "'";
+    std::string title = " title '" + gnuplot_text(titles[i]) + "'";
     auto element = [&](const std::string& spec) {
-      s << (first ? "" : ", ") << quoted(data) << " index " << i << " using " << spec << title;
+      s << (first ? "" : ", ") << gnuplot_quoted(data) << " index " << i << " using " << spec
+        << title;
       first = false;
       title = " notitle";
     };
@@ -503,17 +487,5 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
 }
 
 // ---------------------------------------------------------------- gnuplot
-
-void run_gnuplot(const std::string& script, const std::string& png_path) {
-  std::FILE* pipe = ::popen("gnuplot", "w");
-  if (!pipe) throw std::runtime_error("cannot start gnuplot (install gnuplot-nox)");
-  std::fwrite(script.data(), 1, script.size(), pipe);
-  const int status = ::pclose(pipe);
-  if (status != 0) {
-    throw std::runtime_error("gnuplot failed (exit " +
-                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-                             ") writing " + png_path + "; is gnuplot-nox installed?");
-  }
-}
 
 }  // namespace contact2d::analysis

@@ -35,8 +35,4 @@ void write_stability_csv(std::FILE* out, const StabilityResult& result);
 // bounds as lines. Throws std::runtime_error when gnuplot fails.
 void plot_stability(const std::string& png_path, const StabilityResult& result);
 
-// Runs gnuplot on `script` (which sets its own output file); `png_path` names
-// that output in the message. Throws std::runtime_error when gnuplot fails.
-void run_gnuplot(const std::string& script, const std::string& png_path);
-
 }  // namespace contact2d::analysis

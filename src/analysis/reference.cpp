@@ -7,47 +7,6 @@
 #include "analysis/engine.hpp"
 
 namespace contact2d::analysis {
-namespace {
-
-void accumulate(TrajectoryError& e, double t, const State& a, const State& b) {
-  const double pos = (a.q.head<2>() - b.q.head<2>()).norm();
-  const double angle = std::abs(a.q.z() - b.q.z());
-  e.max_pos = std::max(e.max_pos, pos);
-  e.max_angle = std::max(e.max_angle, angle);
-  e.end_pos = pos;
-  e.end_angle = angle;
-  e.end_time = t;
-  ++e.samples;
-}
-
-}  // namespace
-
-TrajectoryError error_against(const Trajectory& run, const DenseTrajectory& reference) {
-  TrajectoryError e;
-  for (const Sample& s : run.samples) accumulate(e, s.t, s.state, reference.at(s.t));
-  return e;
-}
-
-TrajectoryError error_between(const DenseTrajectory& a, const DenseTrajectory& b,
-                              const std::vector<double>& times) {
-  TrajectoryError e;
-  for (double t : times) accumulate(e, t, a.at(t), b.at(t));
-  return e;
-}
-
-TrajectoryError error_between(const Trajectory& a, const Trajectory& b) {
-  TrajectoryError e;
-  size_t j = 0;
-  for (const Sample& s : a.samples) {
-    while (j < b.samples.size() && b.samples[j].t < s.t - 1e-12 * std::max(1.0, s.t)) ++j;
-    if (j == b.samples.size()) break;
-    if (std::abs(b.samples[j].t - s.t) <= 1e-12 * std::max(1.0, s.t)) {
-      accumulate(e, s.t, s.state, b.samples[j].state);
-    }
-  }
-  return e;
-}
-
 std::vector<double> output_times(const SimParams& sim) {
   std::vector<double> times;
   const long long n = static_cast<long long>(std::floor(sim.duration / sim.output_dt + 1e-9));

@@ -5,31 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "analysis/trajectory_error.hpp"
 #include "core/run.hpp"
 #include "reference/dense_reference.hpp"
 
 namespace contact2d::analysis {
-
-// Position error ‖Δ(x, y)‖ of the COM and angle error |Δθ|, maximum over the
-// sampled times and at the last sample.
-struct TrajectoryError {
-  double max_pos = 0.0;
-  double end_pos = 0.0;
-  double max_angle = 0.0;
-  double end_angle = 0.0;
-  double end_time = 0.0;
-  size_t samples = 0;
-};
-
-// A fixed-step run's samples against the dense reference at the same times.
-TrajectoryError error_against(const Trajectory& run, const DenseTrajectory& reference);
-
-// Two dense trajectories compared at the given times.
-TrajectoryError error_between(const DenseTrajectory& a, const DenseTrajectory& b,
-                              const std::vector<double>& times);
-
-// Two sampled runs compared at the sample times they share (|Δt| ≤ 1e-9·dt).
-TrajectoryError error_between(const Trajectory& a, const Trajectory& b);
 
 // 0, output_dt, 2·output_dt, …, and the end of the run.
 std::vector<double> output_times(const SimParams& sim);

@@ -2,7 +2,7 @@
 // FILE.png] [overrides]
 //
 // Runs the reference solver and MuJoCo on the same scene (same Δt, same
-// sample times) and reports their differences (mujoco/comparison.hpp).
+// sample times) and reports their differences (analysis/trajectory_error.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,11 +11,11 @@
 #include <sstream>
 #include <utility>
 
+#include "analysis/trajectory_error.hpp"
 #include "cli/common.hpp"
-#include "cli/plot.hpp"
 #include "core/input_error.hpp"
 #include "io/csv.hpp"
-#include "mujoco/comparison.hpp"
+#include "io/plot.hpp"
 #include "mujoco/mjcf.hpp"
 
 namespace contact2d::cli {
@@ -36,7 +36,7 @@ struct Comparison {
   mj::MjcfOptions mjcf;
   engines::EngineRun ref;
   engines::EngineRun mujoco;
-  mj::TrajectoryErrors errors;
+  analysis::TrajectoryError errors;
 };
 
 struct Energies {
@@ -67,7 +67,7 @@ std::string json_number(double v) { return std::isfinite(v) ? format_number(v, 1
 void print_json(const Comparison& c, const std::string& path) {
   const Energies er = energies(c.scene, c.ref.trajectory);
   const Energies em = energies(c.scene, c.mujoco.trajectory);
-  const mj::TrajectoryErrors& e = c.errors;
+  const analysis::TrajectoryError& e = c.errors;
   std::ostringstream o;
   o << "{\"scene\": " << json_string(path) << ", \"shape\": \"" << shape_name(c.scene.shape) << "\""
     << ", \"mapping\": \"" << mj::mapping_name(c.mjcf.mapping) << "\", \"geometry\": \""
@@ -100,7 +100,7 @@ void print_json(const Comparison& c, const std::string& path) {
 void print_table(const Comparison& c) {
   const Energies er = energies(c.scene, c.ref.trajectory);
   const Energies em = energies(c.scene, c.mujoco.trajectory);
-  const mj::TrajectoryErrors& e = c.errors;
+  const analysis::TrajectoryError& e = c.errors;
   auto f = [](double v) { return format_number(v, 4); };
   std::cout << shape_name(c.scene.shape) << ": ref " << integrator_name(c.scene.sim.integrator)
             << " vs MuJoCo " << mj::mujoco_integrator(c.scene.sim.integrator) << ", mapping "
@@ -162,7 +162,7 @@ int compare(const CompareOptions& options) {
   for (const std::string& w : c.mujoco.warnings)
     std::cerr << "contact2d: MuJoCo warning: " << w << "\n";
   if (report_divergence(c, options.scene.path)) return kExitDiverged;
-  c.errors = mj::compare_trajectories(c.ref.trajectory, c.mujoco.trajectory);
+  c.errors = analysis::error_between(c.ref.trajectory, c.mujoco.trajectory);
   if (csv) write_csv(*csv, c);
   if (!options.plot.empty()) {
     const std::string title =

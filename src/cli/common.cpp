@@ -44,12 +44,6 @@ Scene SceneOptions::load() const {
   return load_scene(path, overrides);
 }
 
-std::string format_number(double v, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-  return buffer;  // "%g" output is also a valid TOML number (inf and nan included)
-}
-
 void MujocoOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--mapping", mapping,
                  "solref/solimp mapping: seed | exact | calibrated (default calibrated)")

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/format.hpp"
 #include "core/run.hpp"
 #include "engines/engines.hpp"
 
@@ -28,8 +29,6 @@ struct SceneOptions {
   void add_to(CLI::App& cmd);
   Scene load() const;  // throws InputError
 };
-
-std::string format_number(double v, int digits = 6);
 
 // sweep and stability: progress on stderr, rewritten in place, only when
 // stderr is a terminal and not quiet (else an empty function).

@@ -1,5 +1,7 @@
 #include "core/divergence.hpp"
 
+#include "core/format.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -65,9 +67,7 @@ std::optional<Divergence> DivergenceMonitor::check(const State& s, const Contact
 namespace {
 
 std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer, fmt, a, b, c);
-  return buffer;
+  return format_text(fmt, a, b, c);
 }
 
 }  // namespace

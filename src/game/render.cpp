@@ -1,5 +1,7 @@
 #include "game/render.hpp"
 
+#include "core/format.hpp"
+
 #include <GL/gl.h>
 
 #include <algorithm>
@@ -230,9 +232,7 @@ double text_width(const std::string& s, double scale) {
 }
 
 std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
-  char buffer[160];
-  std::snprintf(buffer, sizeof buffer, format, a, b, c);
-  return buffer;
+  return format_text(format, a, b, c);
 }
 
 // World-to-screen mapping: the pitch's width fills the window, the grass

@@ -1,5 +1,7 @@
 #include "game/replay.hpp"
 
+#include "core/format.hpp"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -130,11 +132,7 @@ std::string format_replay(const Replay& replay) {
   std::snprintf(fingerprint, sizeof fingerprint, "%016llx",
                 static_cast<unsigned long long>(replay.pitch_fingerprint));
   // The shortest decimal that reads back as the same double.
-  char dt[64];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(dt, sizeof dt, "%.*g", digits, replay.dt);
-    if (std::strtod(dt, nullptr) == replay.dt) break;
-  }
+  const std::string dt = format_shortest(replay.dt, 6);
   out << "contact2d-replay 1\n"
       << "# inputs of contact2d play, stamped with the physics step they apply before\n"
       << "seed " << replay.seed << "\n"

@@ -1,5 +1,7 @@
 #include "game/session.hpp"
 
+#include "core/format.hpp"
+
 #include <cstdio>
 
 namespace contact2d::game {
@@ -50,11 +52,7 @@ void run_headless(Game& game, InputFeed& feed) {
 
 namespace {
 
-std::string number(double v, int digits = 9) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-  return buffer;
-}
+std::string number(double v) { return format_number(v, 9); }
 
 }  // namespace
 

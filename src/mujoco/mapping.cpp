@@ -1,5 +1,7 @@
 #include "mujoco/mapping.hpp"
 
+#include "core/format.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -14,11 +16,7 @@ constexpr double kMinImpratio = 1e-15;
 constexpr double kMaxImpratio = 1e10;
 constexpr double kMinMu = 1e-5;  // MuJoCo's mjMINMU
 
-std::string number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
+std::string number(double v) { return format_number("%g", v); }
 
 void require_spring_and_damper(const Scene& scene, Mapping mapping) {
   const std::string why =

@@ -1,5 +1,7 @@
 #include "mujoco/mjcf.hpp"
 
+#include "core/format.hpp"
+
 #include <tinyxml2.h>
 
 #include <algorithm>
@@ -269,17 +271,11 @@ std::string generated_origin(const std::string& source) {
 }
 
 std::string format_exact(double value) {
-  char buffer[40];
   if (value == std::trunc(value) &&
       std::abs(value) < 1e15) {  // integers as integers: 10000, not 1e+04
-    std::snprintf(buffer, sizeof buffer, "%.0f", value);
-    return buffer;
+    return format_number("%.0f", value);
   }
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return buffer;
+  return format_shortest(value);
 }
 
 std::string write_mjcf(const Scene& scene, const MjcfOptions& options,

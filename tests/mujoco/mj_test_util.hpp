@@ -8,9 +8,9 @@
 
 #include <string>
 
+#include "analysis/trajectory_error.hpp"
 #include "core/run.hpp"
 #include "io/scene_file.hpp"
-#include "mujoco/comparison.hpp"
 #include "mujoco/stepper.hpp"
 
 namespace contact2d::test {
@@ -74,7 +74,7 @@ inline MujocoRun run_mujoco_xml(const Scene& scene, const std::string& xml,
 struct BothRuns {
   Trajectory ref;
   MujocoRun mj;
-  mujoco::TrajectoryErrors errors;
+  analysis::TrajectoryError errors;
 };
 
 inline BothRuns run_both(const Scene& scene,
@@ -88,7 +88,7 @@ inline BothRuns run_both(const Scene& scene,
   EXPECT_FALSE(out.mj.trajectory.divergence.has_value());
   EXPECT_TRUE(out.mj.warnings.empty()) << out.mj.warnings.front();
   EXPECT_EQ(out.ref.samples.size(), out.mj.trajectory.samples.size());
-  out.errors = mujoco::compare_trajectories(out.ref, out.mj.trajectory);
+  out.errors = analysis::error_between(out.ref, out.mj.trajectory);
   return out;
 }
 

@@ -149,7 +149,7 @@ TEST(Mapping, ExactAndDirectFormStepIdenticallyInMujoco) {
   direct.solref = {-s.contact.k / s.mass, -s.contact.c / s.mass};
   const auto a = test::run_mujoco(s, options);
   const auto b = test::run_mujoco_xml(s, mujoco::write_mjcf(s, options, direct), "direct");
-  const auto e = mujoco::compare_trajectories(a.trajectory, b.trajectory);
+  const auto e = analysis::error_between(a.trajectory, b.trajectory);
   EXPECT_EQ(e.samples, 801);
   EXPECT_LT(e.max_pos, 1e-12);  // rounding of K and B computed two ways
   EXPECT_LT(e.max_angle, 1e-12);

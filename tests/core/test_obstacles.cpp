@@ -10,31 +10,10 @@
 #include "core/obstacles.hpp"
 #include "core/run.hpp"
 #include "core/scene.hpp"
-#include "io/scene_file.hpp"
+#include "support/support.hpp"
 
 namespace contact2d {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-// A critically damped Kelvin–Voigt contact (as in tests/test_static.cpp):
-// the body settles within a few 1/ω = 10 ms of its 2 s run.
-Scene resting_scene(Shape shape, Integrator integrator) {
-  Scene scene = default_scene(shape);
-  scene.contact.k = 1e4;
-  scene.contact.c = 2.0 * std::sqrt(scene.contact.k * scene.mass);
-  scene.contact.damping = DampingLaw::KelvinVoigt;
-  scene.sim.integrator = integrator;
-  scene.sim.duration = 2.0;
-  scene.sim.dt = 1e-4;
-  return scene;
-}
-
-State final_state(const Scene& scene) {
-  const Trajectory trajectory = simulate(scene);
-  EXPECT_FALSE(trajectory.divergence);
-  return trajectory.samples.back().state;
-}
 
 // ---------------------------------------------------------------------------
 // Resting on an obstacle: the spring carries the weight, d = m·g/k, exactly
@@ -45,7 +24,7 @@ State final_state(const Scene& scene) {
 class RestOnObstacle : public ::testing::TestWithParam<Integrator> {};
 
 TEST_P(RestOnObstacle, BallOnBoxSinksByWeightOverStiffness) {
-  Scene scene = resting_scene(Shape::Circle, GetParam());
+  Scene scene = test::resting_scene(Shape::Circle, GetParam());
   scene.contact.mu = 0.5;
   scene.contact.mu_roll = 0.01;
   const double top = 0.5;
@@ -53,30 +32,30 @@ TEST_P(RestOnObstacle, BallOnBoxSinksByWeightOverStiffness) {
       make_box_obstacle(0.0, 0.5 * top, 1.0, top)};             // a table standing on the ground
   scene.initial.q = Vec3(0.1, top + scene.radius + 0.02, 0.0);  // dropped from 2 cm
   const double d = scene.mass * scene.sim.gravity / scene.contact.k;
-  const State s = final_state(scene);
+  const State s = test::final_state(scene);
   EXPECT_NEAR(top + scene.radius - s.q.y(), d, 1e-9 * d);
   EXPECT_NEAR(s.q.x(), 0.1, 1e-12) << "a vertical drop on a flat top has no sideways force";
 }
 
 TEST_P(RestOnObstacle, BallOnSegmentSinksByWeightOverStiffness) {
-  Scene scene = resting_scene(Shape::Circle, GetParam());
+  Scene scene = test::resting_scene(Shape::Circle, GetParam());
   const double radius = 0.05, height = 0.4;  // a horizontal bar of thickness 0.1 at y = 0.4
   scene.obstacles = {make_segment_obstacle(Vec2(-1.0, height), Vec2(1.0, height), radius)};
   scene.initial.q = Vec3(0.3, height + radius + scene.radius, 0.0);
   const double d = scene.mass * scene.sim.gravity / scene.contact.k;
-  const State s = final_state(scene);
+  const State s = test::final_state(scene);
   EXPECT_NEAR(height + radius + scene.radius - s.q.y(), d, 1e-9 * d);
 }
 
 TEST_P(RestOnObstacle, FlatBoxOnBoxSinksByHalfTheWeightPerCorner) {
   // A body with contact points (not a disc): its two bottom corners sit on
   // the obstacle's top face.
-  Scene scene = resting_scene(Shape::Box, GetParam());
+  Scene scene = test::resting_scene(Shape::Box, GetParam());
   const double top = 0.3;
   scene.obstacles = {make_box_obstacle(0.0, 0.0, 2.0, 2.0 * top)};
   scene.initial.q = Vec3(0.0, top + 0.5 * scene.height, 0.0);
   const double d = scene.mass * scene.sim.gravity / (2.0 * scene.contact.k);
-  const State s = final_state(scene);
+  const State s = test::final_state(scene);
   EXPECT_NEAR(top + 0.5 * scene.height - s.q.y(), d, 1e-9 * d);
   EXPECT_NEAR(s.q.z(), 0.0, 1e-12);
 }
@@ -94,17 +73,6 @@ INSTANTIATE_TEST_SUITE_P(AllIntegrators, RestOnObstacle, ::testing::ValuesIn(kAl
 // contact (changes e by ~ω·1e-12/v0 = 1e-10). RK4 at ω·Δt = 1e-3: the
 // damper's kink inside one step gives the 2·(ω·Δt)²·ζ = 2e-6·ζ tolerance of
 // tests/test_rebound.cpp.
-
-double compression_restitution(double zeta) {
-  const double s = std::sqrt(1.0 - zeta * zeta);
-  return std::exp(-zeta * std::atan(s / zeta) / s);
-}
-
-double kelvin_voigt_restitution(double zeta) {
-  const double s = std::sqrt(1.0 - zeta * zeta);
-  const double phase = kPi - std::atan2(2.0 * zeta * s, 1.0 - 2.0 * zeta * zeta);
-  return std::exp(-zeta * phase / s) * std::abs(std::cos(phase) - zeta / s * std::sin(phase));
-}
 
 Scene wall_scene(DampingLaw law, double zeta) {
   Scene scene = default_scene(Shape::Circle);
@@ -135,9 +103,9 @@ TEST_P(WallRebound, BallOffABoxWallMatchesClosedForm) {
   scene.obstacles = {make_box_obstacle(wall + 0.5, 1.0, 1.0, 20.0)};  // face at x = 0.5
   scene.initial.q = Vec3(wall - scene.radius + 1e-12, 1.0, 0.0);
   scene.initial.v = Vec3(v0, 0.0, 0.0);
-  const State end = final_state(scene);
-  const double expected = law == DampingLaw::Compression ? compression_restitution(zeta)
-                                                         : kelvin_voigt_restitution(zeta);
+  const State end = test::final_state(scene);
+  const double expected = law == DampingLaw::Compression ? test::compression_restitution(zeta)
+                                                         : test::kelvin_voigt_restitution(zeta);
   EXPECT_LT(end.q.x(), wall - scene.radius) << "still in contact at the end";
   EXPECT_NEAR(-end.v.x() / v0, expected, 2e-6 * zeta * expected);
   EXPECT_DOUBLE_EQ(end.v.y(), 0.0);
@@ -148,7 +116,7 @@ TEST_P(WallRebound, BallOffASlantedSegmentReflectsTheNormalComponent) {
   // is untouched and the normal component comes back scaled by e.
   const auto [law, zeta] = GetParam();
   Scene scene = wall_scene(law, zeta);
-  const double slope = kPi / 6.0;
+  const double slope = test::kPi / 6.0;
   const Vec2 along(std::cos(slope), std::sin(slope));
   const Vec2 n(-along.y(), along.x());  // the segment's upper normal
   const double thickness = 0.02;
@@ -157,10 +125,10 @@ TEST_P(WallRebound, BallOffASlantedSegmentReflectsTheNormalComponent) {
   const Vec2 v0 = 0.8 * along - 1.0 * n;                      // 1 m/s into it, 0.8 m/s along
   scene.initial.q = Vec3(start.x(), start.y(), 0.0);
   scene.initial.v = Vec3(v0.x(), v0.y(), 0.0);
-  const State end = final_state(scene);
+  const State end = test::final_state(scene);
   const Vec2 v(end.v.x(), end.v.y());
-  const double expected = law == DampingLaw::Compression ? compression_restitution(zeta)
-                                                         : kelvin_voigt_restitution(zeta);
+  const double expected = law == DampingLaw::Compression ? test::compression_restitution(zeta)
+                                                         : test::kelvin_voigt_restitution(zeta);
   EXPECT_NEAR(v.dot(n), expected, 2e-6 * zeta * expected);
   EXPECT_NEAR(v.dot(along), 0.8, 1e-12);
   EXPECT_NEAR(end.v.z(), 0.0, 1e-12) << "no friction, no spin";
@@ -197,8 +165,8 @@ TEST(ObstacleFriction, RollingOnABoxTopMatchesRollingOnTheGround) {
   const double top = 0.5;
   table.obstacles = {make_box_obstacle(0.0, 0.5 * top, 100.0, top)};
   table.initial.q.y() += top;
-  const State a = final_state(ground);
-  const State b = final_state(table);
+  const State a = test::final_state(ground);
+  const State b = test::final_state(table);
   EXPECT_NEAR(b.q.x(), a.q.x(), 1e-9);
   EXPECT_NEAR(b.q.y() - top, a.q.y(), 1e-9);
   EXPECT_NEAR(b.q.z(), a.q.z(), 1e-8);
@@ -342,85 +310,6 @@ TEST(ObstacleDivergence, AppliedWorkExplainsAPushIntoAWall) {
   ASSERT_TRUE(flagged);
   EXPECT_NE(flagged->kind, DivergenceKind::NonFinite);
 }
-
-// ---------------------------------------------------------------------------
-// Scene files: [[obstacle]] tables and their errors.
-TEST(ObstacleSceneFile, BoxesAndSegmentsAreRead) {
-  const Scene scene = parse_scene(R"(
-scene = "circle"
-[[obstacle]]
-type = "box"
-x = 10.06
-y = 2.5
-width = 0.12
-height = 0.12
-[[obstacle]]
-type = "segment"
-x1 = 0
-y1 = 1
-x2 = 2
-y2 = 1.5
-radius = 0.05
-)",
-                                  "test.toml");
-  ASSERT_EQ(scene.obstacles.size(), 2u);
-  EXPECT_EQ(scene.obstacles[0].shape, ObstacleShape::Box);
-  EXPECT_NEAR(scene.obstacles[0].a.x(), 10.0, 1e-12);
-  EXPECT_NEAR(scene.obstacles[0].b.y(), 2.56, 1e-12);
-  EXPECT_EQ(scene.obstacles[1].shape, ObstacleShape::Segment);
-  EXPECT_EQ(scene.obstacles[1].b, Vec2(2.0, 1.5));
-  EXPECT_EQ(scene.obstacles[1].radius, 0.05);
-  EXPECT_EQ(make_model(scene).obstacles.size(), 2u);
-}
-
-struct BadObstacle {
-  const char* toml;
-  const char* expected;  // part of the one-line message
-};
-
-class ObstacleSceneFileErrors : public ::testing::TestWithParam<BadObstacle> {};
-
-TEST_P(ObstacleSceneFileErrors, NameTheKeyAndTheRange) {
-  const std::string text = std::string("scene = \"circle\"\n") + GetParam().toml;
-  try {
-    parse_scene(text, "bad.toml");
-    FAIL() << "accepted: " << GetParam().toml;
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(GetParam().expected), std::string::npos) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
-  }
-}
-
-INSTANTIATE_TEST_SUITE_P(
-    Cases, ObstacleSceneFileErrors,
-    ::testing::Values(
-        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = -1\nheight = 1\n",
-                    "obstacle[0].width = -1 is out of range: must be in (0, 1e6] m"},
-        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = inf\nheight = 1\n",
-                    "obstacle[0].width = inf is out of range"},
-        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = nan\ny = 0\nwidth = 1\nheight = 1\n",
-                    "obstacle[0].x = nan is out of range: must be finite"},
-        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = 1\n",
-                    "obstacle[0].height is required"},
-        BadObstacle{
-            "[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = 1\nheight = 1\nradius = 2\n",
-            "unknown key 'obstacle[0].radius' (allowed here: type, x, y, width, height)"},
-        BadObstacle{"[[obstacle]]\nx = 0\n", "obstacle[0].type is required"},
-        BadObstacle{"[[obstacle]]\ntype = \"circle\"\n",
-                    "obstacle[0].type = \"circle\" is not an obstacle type"},
-        BadObstacle{
-            "[[obstacle]]\ntype = \"segment\"\nx1 = 0\ny1 = 0\nx2 = 1\ny2 = 1\nradius = -0.1\n",
-            "obstacle[0].radius = -0.1 is out of range: must be in [0, 1e3] m"},
-        BadObstacle{
-            "[[obstacle]]\ntype = \"segment\"\nx1 = 1\ny1 = 1\nx2 = 1\ny2 = 1\n",
-            "obstacle[0].radius = 0 is out of range: must be > 0 when the two ends coincide"},
-        BadObstacle{"[[obstacle]]\ntype = \"segment\"\nx1 = \"a\"\n",
-                    "obstacle[0].x1 must be a number"},
-        BadObstacle{"obstacle = 3\n", "obstacle must be an array of tables"},
-        BadObstacle{"[[obstacle]]\ntype = \"box\"\nx = 0\ny = 0\nwidth = 1\nheight = 1\n"
-                    "[[obstacle]]\ntype = \"box\"\nx = 0\ny = 2e6\nwidth = 1\nheight = 1\n",
-                    "obstacle[1].y = 2e+06 is out of range: must be finite, |y| <= 1e6 m"}));
 
 }  // namespace
 }  // namespace contact2d

@@ -1,7 +1,7 @@
 // Compound-body assembly against values worked out by hand.
 #include <gtest/gtest.h>
 
-#include "test_util.hpp"
+#include "support/support.hpp"
 
 namespace contact2d {
 namespace {

@@ -1,4 +1,4 @@
-// The MuJoCo adapter: state read-back conventions (SPEC §1), sample times,
+// The MuJoCo stepper (mujoco/stepper.hpp): state read-back conventions (SPEC §1), sample times,
 // runtime warnings and divergence.
 #include <cmath>
 #include <string>
@@ -15,7 +15,7 @@ namespace {
 // q' = q + v'·Δt with a = (0, −g, 0). A slip in the read-back of x, y, θ or
 // the velocities (order, sign, the body's initial offset) would show at
 // once; the states agree to rounding (1e-12 over 5000 steps of numbers ~ 10).
-TEST(Adapter, FreeFlightReadsBackTheReferenceState) {
+TEST(MujocoStepper, FreeFlightReadsBackTheReferenceState) {
   const Scene scene = test::scene_from(
       "scene = \"tshape\"\n[initial]\nx = -1.5\ny = 10\ntheta = 0.7\nvx = 0.8\nvy = 2.5\nomega = "
       "-3.1\n"
@@ -32,7 +32,7 @@ TEST(Adapter, FreeFlightReadsBackTheReferenceState) {
 // SPEC §1: a body-fixed point c_loc is at p + R(θ)·c_loc with θ counter-
 // clockwise. MuJoCo's forward kinematics of the generated model put every
 // corner sphere there (MuJoCo z = 2D y), for any (x, y, θ).
-TEST(Adapter, CornerSpheresSitWhereTheTwoDimensionalRotationPutsThem) {
+TEST(MujocoStepper, CornerSpheresSitWhereTheTwoDimensionalRotationPutsThem) {
   const Scene scene = default_scene(Shape::TShape);
   const mujoco::ModelPtr model = mujoco::load_model(mujoco::generate_mjcf(scene, {}).xml, "T");
   const mujoco::DataPtr data = mujoco::make_data(model.get());
@@ -54,7 +54,7 @@ TEST(Adapter, CornerSpheresSitWhereTheTwoDimensionalRotationPutsThem) {
 }
 
 // A point mass has no hinge: θ and ω read back as exactly 0.
-TEST(Adapter, PointMassHasNoAngle) {
+TEST(MujocoStepper, PointMassHasNoAngle) {
   const test::BothRuns runs = test::run_both(test::drop_scene(Shape::PointMass, 200.0, 0.5));
   for (const Sample& s : runs.mj.trajectory.samples) {
     ASSERT_EQ(s.state.q.z(), 0.0);
@@ -64,7 +64,7 @@ TEST(Adapter, PointMassHasNoAngle) {
 
 // Samples at t = 0, every output_dt, and the last step when the duration is
 // not a multiple of output_dt (0.0105 s = 105 steps, stride 10).
-TEST(Adapter, SamplesAtTheReferencesTimes) {
+TEST(MujocoStepper, SamplesAtTheReferencesTimes) {
   Scene scene = test::drop_scene(Shape::Box, 200.0, 0.5);
   scene.sim.duration = 0.0105;
   const test::BothRuns runs = test::run_both(scene);
@@ -78,7 +78,7 @@ TEST(Adapter, SamplesAtTheReferencesTimes) {
 // A model whose contact buffer holds one contact, for a box landing flat on
 // two corners: MuJoCo drops the second contact and warns; the run reports
 // both the text warning and the counter.
-TEST(Adapter, RuntimeWarningsAreSurfaced) {
+TEST(MujocoStepper, RuntimeWarningsAreSurfaced) {
   const Scene scene = test::scene_from(
       "scene = \"box\"\n[contact]\nk = 1e4\nc = 200\ndamping = \"kelvin_voigt\"\n[initial]\ny = "
       "0.2\n"
@@ -97,7 +97,7 @@ TEST(Adapter, RuntimeWarningsAreSurfaced) {
 // k = 1e8 N/m on 1 kg at Δt = 1e-3 (ω·Δt = 10): MuJoCo's explicit contact
 // force blows up. The run stops at the first bad step with a divergence and
 // keeps only finite samples before it.
-TEST(Adapter, DivergenceStopsTheRunWithoutNonFiniteSamples) {
+TEST(MujocoStepper, DivergenceStopsTheRunWithoutNonFiniteSamples) {
   const Scene scene = test::scene_from(
       "scene = \"point_mass\"\n[contact]\nk = 1e8\nc = 0\ndamping = \"kelvin_voigt\"\n"
       "[initial]\ny = 0.06\n[sim]\ndt = 1e-3\nduration = 1\n");
@@ -108,6 +108,41 @@ TEST(Adapter, DivergenceStopsTheRunWithoutNonFiniteSamples) {
     EXPECT_TRUE(s.state.q.allFinite() && s.state.v.allFinite()) << "t = " << s.t;
     EXPECT_LT(s.t, run.trajectory.divergence->time);
   }
+}
+
+// set_applied reaches MuJoCo as xfrc_applied at the COM in the reference's
+// convention: +Fx along x, +Fy up (MuJoCo z), +τ turning θ positive (the
+// hinge axis is −y). In flight, with F_y = m·g cancelling gravity, a
+// constant (Fx, τ) gives vx = Fx/m·t and ω = τ/I·t; MuJoCo's Euler adds the
+// same acceleration every step, so only rounding over 1000 steps differs
+// (tolerance 1e-9 relative). vy stays at its initial value to rounding.
+TEST(MujocoStepper, AppliedForceAndTorqueFollowTheReferenceConvention) {
+  const Scene scene = test::scene_from(
+      "scene = \"box\"\n[body]\nmass = 2.0\nwidth = 0.4\nheight = 0.2\n"
+      "[initial]\ny = 5\n[sim]\ndt = 1e-3\nduration = 1\n");
+  mujoco::MujocoStepper stepper(scene, mujoco::MjcfOptions{});
+  const double fx = 3.0, tau = 0.5;
+  const double m = scene.mass, inertia = make_body(scene).inertia;
+  stepper.set_applied(Vec3(fx, m * scene.sim.gravity, tau));
+  for (int i = 0; i < 1000; ++i) ASSERT_EQ(stepper.step(), StepStatus::Ok);
+  const double t = 1.0;
+  EXPECT_NEAR(stepper.state().v.x(), fx / m * t, 1e-9 * fx / m * t);
+  EXPECT_NEAR(stepper.state().v.z(), tau / inertia * t, 1e-9 * tau / inertia * t);
+  EXPECT_NEAR(stepper.state().v.y(), 0.0, 1e-12);
+  EXPECT_TRUE(stepper.contacts().empty()) << "in flight";
+}
+
+// reset() puts MuJoCo in the given planar state (read back exactly).
+TEST(MujocoStepper, ResetSetsThePlanarState) {
+  const Scene scene = test::scene_from("scene = \"box\"\n[initial]\ny = 1\n");
+  mujoco::MujocoStepper stepper(scene, mujoco::MjcfOptions{});
+  State s;
+  s.q = Vec3(0.25, 0.08, 0.3);
+  s.v = Vec3(-1.0, 0.5, 2.0);
+  stepper.reset(s);
+  EXPECT_NEAR((stepper.state().q - s.q).norm(), 0.0, 1e-15);
+  EXPECT_EQ(stepper.state().v, s.v);
+  EXPECT_FALSE(stepper.contacts().empty()) << "a corner of the tilted box is below the ground";
 }
 
 }  // namespace

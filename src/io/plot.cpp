@@ -1,4 +1,4 @@
-#include "cli/plot.hpp"
+#include "io/plot.hpp"
 
 #include <sys/wait.h>
 
@@ -11,7 +11,7 @@
 #include "core/input_error.hpp"
 #include "io/csv.hpp"
 
-namespace contact2d::cli {
+namespace contact2d {
 namespace {
 
 // Columns: t, x, y, θ (ref), x, y, θ (MuJoCo), position error, angle error.
@@ -62,15 +62,6 @@ void require_quotable(const std::string& text, const std::string& what) {
   }
 }
 
-// Runs gnuplot on the script; returns its exit status (127: not installed).
-int run_gnuplot(const std::string& text) {
-  std::FILE* pipe = ::popen("gnuplot 2>&1", "w");
-  if (!pipe) return 127;
-  std::fputs(text.c_str(), pipe);
-  const int status = ::pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
-}
-
 }  // namespace
 
 void plot_comparison(const std::string& png_path, const std::string& title, const Trajectory& ref,
@@ -81,13 +72,42 @@ void plot_comparison(const std::string& png_path, const std::string& title, cons
   AtomicFile data(png_path + ".data");  // never committed: removed on return
   write_data(data.get(), ref, mujoco);
   if (std::fflush(data.get()) != 0) throw InputError(data.temp_path() + ": cannot write plot data");
-  const int status = run_gnuplot(script(data.temp_path(), png.temp_path(), title));
-  if (status == 127)
-    throw InputError("--plot: gnuplot not found (install Debian package gnuplot-nox)");
-  if (status != 0)
-    throw InputError("--plot " + png_path + ": gnuplot failed (exit status " +
-                     std::to_string(status) + ")");
+  run_gnuplot(script(data.temp_path(), png.temp_path(), title), png_path);
   png.commit();
 }
 
-}  // namespace contact2d::cli
+void run_gnuplot(const std::string& script, const std::string& png_path) {
+  // gnuplot's own warnings go to stderr; stdout stays the command's.
+  std::FILE* pipe = ::popen("gnuplot >/dev/null", "w");
+  if (!pipe) throw InputError(png_path + ": cannot start gnuplot");
+  std::fwrite(script.data(), 1, script.size(), pipe);
+  const int raw = ::pclose(pipe);
+  const int status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 1;
+  if (status == 127)
+    throw InputError(png_path + ": gnuplot not found (install Debian package gnuplot-nox)");
+  if (status != 0) {
+    throw InputError(png_path + ": gnuplot failed (exit status " + std::to_string(status) + ")");
+  }
+}
+
+std::string gnuplot_quoted(const std::string& path) {
+  if (path.find('\'') != std::string::npos || path.find('\n') != std::string::npos) {
+    throw InputError(path + ": a plot path must not contain a quote or newline");
+  }
+  return "'" + path + "'";
+}
+
+std::string gnuplot_text(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '_' || c == '^' || c == '{' || c == '}' || c == '@' || c == '&') out += '\\';
+    if (c == '\'') {
+      out += "''";
+      continue;
+    }
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace contact2d

@@ -10,7 +10,7 @@
 // the tolerance.
 #include <gtest/gtest.h>
 
-#include "test_util.hpp"
+#include "support/support.hpp"
 
 namespace contact2d {
 namespace {

@@ -7,55 +7,36 @@
 // ω ≥ 100 rad/s (< 1e-80), plus rounding: tolerance 1e-9 relative to d.
 #include <gtest/gtest.h>
 
-#include "test_util.hpp"
+#include "support/support.hpp"
 
 namespace contact2d {
 namespace {
 
-// Critically damped contact (ζ = 1 for the body's mass) started just
-// touching; the body settles in a few 1/ω.
-Scene resting_scene(Shape shape, Integrator integrator) {
-  Scene scene = default_scene(shape);
-  scene.contact.k = 1e4;
-  scene.contact.c = 2.0 * std::sqrt(scene.contact.k * scene.mass);
-  scene.contact.damping = DampingLaw::KelvinVoigt;
-  scene.sim.integrator = integrator;
-  scene.sim.duration = 2.0;
-  scene.sim.dt = 1e-4;
-  return scene;
-}
-
-State final_state(const Scene& scene) {
-  const Trajectory trajectory = simulate(scene);
-  EXPECT_FALSE(trajectory.divergence);
-  return trajectory.samples.back().state;
-}
-
 class StaticPenetration : public ::testing::TestWithParam<Integrator> {};
 
 TEST_P(StaticPenetration, PointMassSinksByWeightOverStiffness) {
-  Scene scene = resting_scene(Shape::PointMass, GetParam());
+  Scene scene = test::resting_scene(Shape::PointMass, GetParam());
   scene.initial.q = Vec3(0.0, scene.half_height, 0.0);
   const double d = scene.mass * scene.sim.gravity / scene.contact.k;
-  const State s = final_state(scene);
+  const State s = test::final_state(scene);
   EXPECT_NEAR(scene.half_height - s.q.y(), d, 1e-9 * d);
 }
 
 TEST_P(StaticPenetration, FlatBoxSinksByHalfTheWeightPerCorner) {
-  Scene scene = resting_scene(Shape::Box, GetParam());
+  Scene scene = test::resting_scene(Shape::Box, GetParam());
   scene.initial.q = Vec3(0.0, 0.5 * scene.height, 0.0);
   const double d = scene.mass * scene.sim.gravity / (2.0 * scene.contact.k);
-  const State s = final_state(scene);
+  const State s = test::final_state(scene);
   EXPECT_NEAR(0.5 * scene.height - s.q.y(), d, 1e-9 * d);
   EXPECT_NEAR(s.q.z(), 0.0, 1e-12);
 }
 
 TEST_P(StaticPenetration, CircleSinksByWeightOverStiffness) {
-  Scene scene = resting_scene(Shape::Circle, GetParam());
+  Scene scene = test::resting_scene(Shape::Circle, GetParam());
   scene.contact.mu_roll = 0.01;
   scene.initial.q = Vec3(0.0, scene.radius, 0.0);
   const double d = scene.mass * scene.sim.gravity / scene.contact.k;
-  const State s = final_state(scene);
+  const State s = test::final_state(scene);
   EXPECT_NEAR(scene.radius - s.q.y(), d, 1e-9 * d);
 }
 

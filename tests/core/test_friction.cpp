@@ -34,7 +34,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "test_util.hpp"
+#include "support/support.hpp"
 
 namespace contact2d {
 namespace {

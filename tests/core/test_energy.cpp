@@ -16,7 +16,7 @@
 
 #include <algorithm>
 
-#include "test_util.hpp"
+#include "support/support.hpp"
 
 namespace contact2d {
 namespace {

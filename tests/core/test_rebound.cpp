@@ -26,12 +26,11 @@
 
 #include <cmath>
 
-#include "test_util.hpp"
+#include "support/support.hpp"
 
 namespace contact2d {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kKinkError = 2e-6;  // 2·(ω·Δt)², per unit ζ
 
 double simulated_restitution(DampingLaw law, double zeta) {
@@ -55,23 +54,11 @@ double simulated_restitution(DampingLaw law, double zeta) {
   return end.v.y() / v0;
 }
 
-double compression_restitution(double zeta) {
-  const double s = std::sqrt(1.0 - zeta * zeta);
-  return std::exp(-zeta * std::atan(s / zeta) / s);
-}
-
-double kelvin_voigt_restitution(double zeta) {
-  const double s = std::sqrt(1.0 - zeta * zeta);
-  const double phase = kPi - std::atan2(2.0 * zeta * s, 1.0 - 2.0 * zeta * zeta);  // ω_d·t_e
-  const double decay = std::exp(-zeta * phase / s);  // e^(−ζω t_e)
-  return decay * std::abs(std::cos(phase) - zeta / s * std::sin(phase));
-}
-
 class Rebound : public ::testing::TestWithParam<double> {};
 
 TEST_P(Rebound, CompressionLawMatchesClosedForm) {
   const double zeta = GetParam();
-  const double expected = compression_restitution(zeta);
+  const double expected = test::compression_restitution(zeta);
   const double e = simulated_restitution(DampingLaw::Compression, zeta);
   std::printf("compression  zeta=%.2f  e_sim=%.8f  e_closed=%.8f\n", zeta, e, expected);
   EXPECT_NEAR(e, expected, kKinkError * zeta * expected);
@@ -79,7 +66,7 @@ TEST_P(Rebound, CompressionLawMatchesClosedForm) {
 
 TEST_P(Rebound, KelvinVoigtLawMatchesClosedForm) {
   const double zeta = GetParam();
-  const double expected = kelvin_voigt_restitution(zeta);
+  const double expected = test::kelvin_voigt_restitution(zeta);
   const double e = simulated_restitution(DampingLaw::KelvinVoigt, zeta);
   std::printf("kelvin_voigt zeta=%.2f  e_sim=%.8f  e_closed=%.8f\n", zeta, e, expected);
   EXPECT_NEAR(e, expected, kKinkError * zeta * expected);

@@ -17,7 +17,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "test_util.hpp"
+#include "analysis/sweep.hpp"
+#include "support/support.hpp"
 
 namespace contact2d {
 namespace {
@@ -55,7 +56,7 @@ TEST_P(ConvergenceOrder, SlopeOfLogErrorMatchesNominalOrder) {
   const OrderCase& c = GetParam();
   std::vector<double> errors;
   for (double dt : c.dts) errors.push_back(error_at_one_second(c.integrator, dt));
-  const double slope = test::log_log_slope(c.dts, errors);
+  const double slope = analysis::log_log_slope(c.dts, errors);
   std::printf("observed order %s: %.4f\n", std::string(integrator_name(c.integrator)).c_str(),
               slope);
   EXPECT_NEAR(slope, c.order, 0.1) << integrator_name(c.integrator);

@@ -1,0 +1,147 @@
+// The reference stepper and the one run loop (core/stepper.hpp, core/run.hpp):
+// the stepper is the integrator with its contacts kept for the next step and
+// the divergence monitor, and the loop samples and stops as documented.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/run.hpp"
+#include "support/support.hpp"
+
+namespace contact2d {
+namespace {
+
+// A box tumbling onto the ground: rotation, several corners, impacts.
+Scene tumbling_box(Integrator integrator) {
+  Scene scene = default_scene(Shape::Box);
+  scene.initial.q = Vec3(0.0, 0.3, 0.4);
+  scene.initial.v = Vec3(0.5, 0.0, 3.0);
+  scene.sim.integrator = integrator;
+  scene.sim.duration = 0.5;
+  return scene;
+}
+
+class StepperPerIntegrator : public ::testing::TestWithParam<Integrator> {};
+
+// The contacts the stepper keeps are those of its current state, after
+// every step: the cache never goes stale (compared bit for bit with a fresh
+// find_contacts).
+TEST_P(StepperPerIntegrator, KeptContactsAreThoseOfTheCurrentState) {
+  const Scene scene = tumbling_box(GetParam());
+  ReferenceStepper stepper(scene);
+  ContactSet fresh(stepper.model());
+  int touching_steps = 0;
+  for (int i = 0; i < 5000; ++i) {
+    ASSERT_EQ(stepper.step(), StepStatus::Ok);
+    find_contacts(stepper.model(), stepper.state().q, fresh);
+    ASSERT_EQ(stepper.contacts().size(), fresh.size()) << "step " << i;
+    auto a = stepper.contacts().begin();
+    for (const Contact& b : fresh) {
+      ASSERT_EQ(a->depth, b.depth);
+      ASSERT_EQ(a->r, b.r);
+      ++a;
+    }
+    touching_steps += fresh.empty() ? 0 : 1;
+  }
+  EXPECT_GT(touching_steps, 100) << "the case must reach the ground";
+}
+
+// The stepper is exactly the integrator: the same states, bit for bit, as
+// stepping the model with step() and a workspace of its own.
+TEST_P(StepperPerIntegrator, MatchesTheBareIntegrator) {
+  const Scene scene = tumbling_box(GetParam());
+  ReferenceStepper stepper(scene);
+  for (int i = 0; i < 3000; ++i) stepper.step();
+  const State bare =
+      test::advance(make_model(scene), GetParam(), scene.sim.dt, initial_state(scene), 3000);
+  EXPECT_EQ(stepper.state().q, bare.q);
+  EXPECT_EQ(stepper.state().v, bare.v);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllIntegrators, StepperPerIntegrator, ::testing::ValuesIn(kAllIntegrators),
+                         [](const auto& info) { return std::string(integrator_name(info.param)); });
+
+TEST(Stepper, ResetFindsTheContactsOfTheNewState) {
+  ReferenceStepper stepper(tumbling_box(Integrator::SemiImplicitEuler));
+  EXPECT_TRUE(stepper.contacts().empty());
+  State sunk;
+  sunk.q = Vec3(0.0, 0.05, 0.0);  // the 0.2 m tall box, 5 cm into the ground
+  stepper.reset(sunk);
+  ASSERT_EQ(stepper.contacts().size(), 2u);
+  EXPECT_NEAR(max_penetration(stepper.contacts()), 0.05, 1e-16);
+}
+
+// An applied force m·g upwards cancels gravity exactly (F_y = m·g − m·g = 0
+// in floating point), so a point mass in flight keeps its velocity exactly.
+TEST(Stepper, AppliedForceReachesTheBody) {
+  Scene scene = default_scene(Shape::PointMass);
+  scene.initial.q = Vec3(0.0, 10.0, 0.0);
+  scene.initial.v = Vec3(1.0, 0.5, 0.0);
+  ReferenceStepper stepper(scene);
+  stepper.set_applied(Vec3(0.0, scene.mass * scene.sim.gravity, 0.0));
+  for (int i = 0; i < 1000; ++i) stepper.step();
+  EXPECT_EQ(stepper.state().v, Vec3(1.0, 0.5, 0.0));
+}
+
+// Samples at t = 0, every output_dt and the last step; none after a divergence.
+TEST(RunLoop, SamplesEveryOutputDtAndTheEnd) {
+  Scene scene = tumbling_box(Integrator::RK4);
+  scene.sim.duration = 0.1;
+  scene.sim.output_dt = 0.01;
+  const Trajectory t = simulate(scene);
+  ASSERT_FALSE(t.divergence);
+  ASSERT_EQ(t.samples.size(), 11u);
+  for (size_t i = 0; i < t.samples.size(); ++i)
+    EXPECT_NEAR(t.samples[i].t, 0.01 * static_cast<double>(i), 1e-12);
+}
+
+TEST(RunLoop, StopsAtTheFirstDivergence) {
+  // Explicit Euler on an undamped stiff contact gains energy every bounce.
+  Scene scene = default_scene(Shape::PointMass);
+  scene.contact.k = 1e6;
+  scene.contact.c = 0.0;
+  scene.sim.integrator = Integrator::ExplicitEuler;
+  scene.sim.dt = 2e-3;  // ω·Δt = 2
+  scene.sim.duration = 5.0;
+  const Trajectory t = simulate(scene);
+  ASSERT_TRUE(t.divergence);
+  EXPECT_LT(t.samples.back().t, t.divergence->time);
+}
+
+// An engine that reports bad numbers itself (as MuJoCo does) stops the run
+// as non-finite, with the time of the step.
+class FailingStepper final : public Stepper {
+ public:
+  explicit FailingStepper(const Scene& scene) : model_(make_model(scene)), contacts_(model_) {}
+  void reset(const State& s) override { state_ = s; }
+  void set_applied(const Vec3&) override {}
+  StepStatus step() override { return ++steps_ == 3 ? StepStatus::NonFinite : StepStatus::Ok; }
+  const State& state() const override { return state_; }
+  const ContactSet& contacts() const override { return contacts_; }
+  const Model& model() const override { return model_; }
+  double dt() const override { return 1e-3; }
+  std::string describe() const override { return "failing"; }
+
+ private:
+  Model model_;
+  ContactSet contacts_;
+  State state_;
+  int steps_ = 0;
+};
+
+TEST(RunLoop, EngineFailureStopsTheRunAsNonFinite) {
+  Scene scene = default_scene(Shape::PointMass);
+  scene.initial.q = Vec3(0.0, 1.0, 0.0);
+  scene.sim.dt = 1e-3;
+  scene.sim.output_dt = 1e-3;
+  FailingStepper stepper(scene);
+  const Trajectory t = simulate(stepper, scene.sim);
+  ASSERT_TRUE(t.divergence);
+  EXPECT_EQ(t.divergence->kind, DivergenceKind::NonFinite);
+  EXPECT_NEAR(t.divergence->time, 3e-3, 1e-15);
+  EXPECT_EQ(t.samples.size(), 3u);  // t = 0, 1, 2 ms
+}
+
+}  // namespace
+}  // namespace contact2d

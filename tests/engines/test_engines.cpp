@@ -1,0 +1,93 @@
+// The engine registry (engines/engines.hpp): names in, steppers out, one
+// result type, and a one-line error for anything it cannot run.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/input_error.hpp"
+#include "engines/engines.hpp"
+#include "io/scene_file.hpp"
+
+namespace contact2d {
+namespace {
+
+std::string error_of(const std::string& name) {
+  try {
+    engines::parse_engine(name, "--engines");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Registry, ParsesTheReference) {
+  const engines::EngineSpec spec = engines::parse_engine("ref");
+  EXPECT_EQ(spec.kind, "ref");
+  EXPECT_EQ(spec.name(), "ref");
+}
+
+TEST(Registry, UnknownNamesAreOneLineErrorsNamingTheOption) {
+  EXPECT_EQ(error_of("bullet"), "--engines bullet: unknown engine (use ref or mujoco)");
+  EXPECT_EQ(error_of("ref:exact"), "--engines ref:exact: unknown engine (use ref or mujoco)");
+#ifdef CONTACT2D_WITH_MUJOCO
+  EXPECT_EQ(error_of("mujoco:stiff"),
+            "--engines mujoco:stiff: unknown mapping (seed, exact, calibrated)");
+  EXPECT_EQ(error_of("mujoco:exact:spheres"),
+            "--engines mujoco:exact:spheres: unknown geometry (corners, boxes)");
+#else
+  EXPECT_NE(error_of("mujoco").find("built without MuJoCo"), std::string::npos);
+#endif
+}
+
+TEST(Registry, ListsWhatItCanRun) {
+  const std::vector<std::string> names = engines::engine_names();
+  ASSERT_FALSE(names.empty());
+  EXPECT_EQ(names.front(), "ref");
+  for (const std::string& name : names) EXPECT_EQ(engines::parse_engine(name).name(), name);
+#ifdef CONTACT2D_WITH_MUJOCO
+  EXPECT_EQ(names.size(), 5u);  // ref, mujoco, mujoco:seed|exact|calibrated
+#else
+  EXPECT_EQ(names.size(), 1u);
+#endif
+}
+
+// The registry's reference run is the core's run loop on a ReferenceStepper:
+// the same samples, bit for bit, and no MuJoCo settings.
+TEST(Registry, ReferenceRunIsTheRunLoop) {
+  const Scene scene = load_scene(std::string(CONTACT2D_SCENES_DIR) + "/box.toml");
+  const engines::EngineRun run = engines::run_engine("ref", scene);
+  const Trajectory direct = simulate(scene);
+  ASSERT_EQ(run.trajectory.samples.size(), direct.samples.size());
+  for (size_t i = 0; i < direct.samples.size(); ++i) {
+    ASSERT_EQ(run.trajectory.samples[i].state.q, direct.samples[i].state.q);
+    ASSERT_EQ(run.trajectory.samples[i].state.v, direct.samples[i].state.v);
+  }
+  EXPECT_EQ(run.description, "ref semi_implicit_euler");
+  EXPECT_TRUE(std::isnan(run.impratio));
+  EXPECT_TRUE(run.warnings.empty());
+  EXPECT_GT(run.seconds, 0.0);
+}
+
+#ifdef CONTACT2D_WITH_MUJOCO
+TEST(Registry, MujocoRunCarriesItsSolverSettings) {
+  Scene scene = load_scene(std::string(CONTACT2D_SCENES_DIR) + "/point_mass.toml");
+  scene.sim.duration = 0.1;
+  const engines::EngineRun run = engines::run_engine("mujoco:exact", scene);
+  EXPECT_EQ(run.engine, "mujoco:exact");
+  EXPECT_EQ(run.description, "mujoco exact Euler");
+  EXPECT_FALSE(run.trajectory.divergence);
+  // exact: timeconst = 2m/c, dampratio c/(2√(mk)) (mujoco/mapping.hpp).
+  EXPECT_DOUBLE_EQ(run.solref[0], 2.0 * scene.mass / scene.contact.c);
+  EXPECT_FALSE(std::isnan(run.impratio));
+}
+
+TEST(Registry, ExplicitEulerIsNotOfferedByMujoco) {
+  EXPECT_TRUE(engines::engine_offers("ref", Integrator::ExplicitEuler));
+  EXPECT_FALSE(engines::engine_offers("mujoco", Integrator::ExplicitEuler));
+  EXPECT_TRUE(engines::engine_offers("mujoco", Integrator::RK4));
+}
+#endif
+
+}  // namespace
+}  // namespace contact2d

@@ -1,0 +1,64 @@
+// Shared fixtures of the test suites: scenes built in code, closed forms the
+// tests compare against, stepping without the run loop, and running the real
+// program. One header, so no two suites keep their own copy.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/integrators.hpp"
+#include "core/run.hpp"
+#include "core/scene.hpp"
+
+namespace contact2d::test {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A critically damped Kelvin–Voigt contact (ζ = 1 for the body's mass),
+// k = 1e4 N/m, Δt = 1e-4 s, 2 s: the body settles within a few 1/ω = 10 ms.
+inline Scene resting_scene(Shape shape, Integrator integrator) {
+  Scene scene = default_scene(shape);
+  scene.contact.k = 1e4;
+  scene.contact.c = 2.0 * std::sqrt(scene.contact.k * scene.mass);
+  scene.contact.damping = DampingLaw::KelvinVoigt;
+  scene.sim.integrator = integrator;
+  scene.sim.duration = 2.0;
+  scene.sim.dt = 1e-4;
+  return scene;
+}
+
+// The last sample of the reference run (which must not diverge).
+inline State final_state(const Scene& scene) {
+  const Trajectory trajectory = simulate(scene);
+  EXPECT_FALSE(trajectory.divergence);
+  return trajectory.samples.back().state;
+}
+
+// Restitution of one impact on a linear spring–damper at damping ratio ζ < 1
+// (derivations in tests/core/test_rebound.cpp):
+//   compression law  e = exp(−ζ·atan(√(1−ζ²)/ζ)/√(1−ζ²))
+inline double compression_restitution(double zeta) {
+  const double s = std::sqrt(1.0 - zeta * zeta);
+  return std::exp(-zeta * std::atan(s / zeta) / s);
+}
+
+//   Kelvin–Voigt     e = e^(−ζω t_e)·|cos(ω_d t_e) − ζ/√(1−ζ²)·sin(ω_d t_e)|,
+//                    ω_d·t_e = π − atan2(2ζ√(1−ζ²), 1−2ζ²)
+inline double kelvin_voigt_restitution(double zeta) {
+  const double s = std::sqrt(1.0 - zeta * zeta);
+  const double phase = kPi - std::atan2(2.0 * zeta * s, 1.0 - 2.0 * zeta * zeta);  // ω_d·t_e
+  const double decay = std::exp(-zeta * phase / s);  // e^(−ζω t_e)
+  return decay * std::abs(std::cos(phase) - zeta / s * std::sin(phase));
+}
+
+// Steps a model n times from s with the core's step() (no divergence rule,
+// so a test can watch an unstable method grow).
+inline State advance(const Model& model, Integrator integrator, double dt, State s, long long n) {
+  StepWorkspace ws(model);
+  find_contacts(model, s.q, ws.contacts);
+  for (long long i = 0; i < n; ++i) step(model, integrator, dt, s, ws);
+  return s;
+}
+
+}  // namespace contact2d::test
