@@ -15,23 +15,15 @@ namespace contact2d::cli {
 
 namespace {
 
-struct StabilityOptions {
-  std::string path;
-  std::vector<std::string> sets;
-  std::optional<double> duration;
+struct StabilityOptions : AnalysisOptions {
   std::vector<double> ks;
-  std::vector<std::string> integrators;
-  std::vector<std::string> engines{"ref"};
   std::optional<double> zeta;
   double dt_max = 1e-2;
   double precision = 0.02;
-  std::string csv, plot;
-  unsigned threads = 0;
-  bool quiet = false;
 };
 
 int stability(const StabilityOptions& o) {
-  const Scene scene = load_scene_with(o.path, o.sets, o.duration);
+  const Scene scene = o.load();
   std::unique_ptr<AtomicFile> csv;
   if (!o.csv.empty()) csv = std::make_unique<AtomicFile>(o.csv);
 
@@ -57,11 +49,7 @@ int stability(const StabilityOptions& o) {
     csv->commit();
   }
   if (!o.plot.empty()) {
-    try {
-      analysis::plot_stability(o.plot, result);
-    } catch (const std::runtime_error& e) {
-      throw InputError(e.what());
-    }
+    analysis::plot_stability(o.plot, result);
   }
   return kExitOk;
 }
@@ -73,18 +61,11 @@ Command add_stability(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("stability",
                                      "Largest stable dt per contact stiffness and integrator "
                                      "(bisection), against the linear theory");
-  cmd->add_option("scene", o->path, "Scene file (TOML)")->required();
+  o->add_to(*cmd, "Write one row per engine, integrator and k to this CSV file",
+            "Write the stability map (PNG, gnuplot)");
   cmd->add_option("--ks", o->ks,
                   "Comma-separated contact stiffnesses, N/m (default 1e3,1e4,...,1e9)")
       ->delimiter(',');
-  cmd->add_option("--integrators", o->integrators, "Comma-separated list (default: all four)")
-      ->delimiter(',');
-  cmd->add_option("--engines", o->engines,
-                  "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = "
-                  "its default) "
-                  "(default: ref)")
-      ->delimiter(',')
-      ->check(CLI::IsMember(engines::engine_names()));
   cmd->add_option(
       "--zeta", o->zeta,
       "Damping ratio held at every k: c = 2*zeta*sqrt(k*m_eff) (default: keep the scene's c)");
@@ -92,14 +73,6 @@ Command add_stability(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--precision", o->precision, "Relative width of the final bracket (default 0.02)")
       ->check(CLI::Range(1e-4, 1.0));
-  cmd->add_option("--csv", o->csv, "Write one row per engine, integrator and k to this CSV file");
-  cmd->add_option("--plot", o->plot, "Write the stability map (PNG, gnuplot)");
-  cmd->add_option("--threads", o->threads, "Worker threads (default: one per core)")
-      ->check(CLI::Range(1u, 256u));
-  cmd->add_option("--duration", o->duration,
-                  "Simulated time of each probe, s (overrides sim.duration)");
-  cmd->add_option("--set", o->sets, "Override any scene key, e.g. --set contact.c=0 (repeatable)");
-  cmd->add_flag("--quiet", o->quiet, "No progress on stderr");
   return {cmd, [o] { return stability(*o); }};
 }
 

@@ -19,26 +19,19 @@ namespace contact2d::cli {
 
 namespace {
 
-struct SweepOptions {
-  std::string path;
-  std::vector<std::string> sets;
-  std::optional<double> duration;
-  std::vector<std::string> integrators;
+struct SweepOptions : AnalysisOptions {
   std::vector<double> dts;
   std::vector<double> mujoco_dts;
   std::vector<std::string> mujoco_integrators;
-  std::vector<std::string> engines{"ref"};
-  std::string csv, orders_csv, plot;
+  std::string orders_csv;
   int repeats = 3;
   double tol = 1e-12;
-  unsigned threads = 0;
   bool reference_study = false;
   std::string study_csv;
-  bool quiet = false;
 };
 
 int sweep(const SweepOptions& o) {
-  const Scene scene = load_scene_with(o.path, o.sets, o.duration);
+  const Scene scene = o.load();
   if (!scene.obstacles.empty()) {
     throw InputError(o.path +
                      ": sweep measures errors against the converged reference, which handles "
@@ -106,11 +99,7 @@ int sweep(const SweepOptions& o) {
     orders_csv->commit();
   }
   if (!o.plot.empty()) {
-    try {
-      analysis::plot_sweep(o.plot, result);
-    } catch (const std::runtime_error& e) {
-      throw InputError(e.what());
-    }
+    analysis::plot_sweep(o.plot, result);
   }
   return kExitOk;
 }
@@ -122,11 +111,8 @@ Command add_sweep(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("sweep",
                                      "Error against run time: every engine x integrator x dt "
                                      "against the scene's converged reference");
-  cmd->add_option("scene", o->path, "Scene file (TOML)")->required();
-  cmd->add_option(
-         "--integrators", o->integrators,
-         "Comma-separated list (default: explicit_euler,semi_implicit_euler,implicit_euler,rk4)")
-      ->delimiter(',');
+  o->add_to(*cmd, "Write one row per run to this CSV file",
+            "Write the work-precision diagram (PNG, gnuplot)");
   cmd->add_option("--dts", o->dts,
                   "Comma-separated time steps, s (default: 1e-3,5e-4,2e-4,1e-4,5e-5,2e-5,1e-5)")
       ->delimiter(',');
@@ -138,32 +124,18 @@ Command add_sweep(CLI::App& app) {
                   "Comma-separated integrators for MuJoCo only (default: --integrators; it has no "
                   "explicit Euler)")
       ->delimiter(',');
-  cmd->add_option("--engines", o->engines,
-                  "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = "
-                  "its default) "
-                  "(default: ref)")
-      ->delimiter(',')
-      ->check(CLI::IsMember(engines::engine_names()));
-  cmd->add_option("--csv", o->csv, "Write one row per run to this CSV file");
   cmd->add_option("--orders-csv", o->orders_csv, "Write the observed orders to this CSV file");
-  cmd->add_option("--plot", o->plot, "Write the work-precision diagram (PNG, gnuplot)");
   cmd->add_option(
          "--repeats", o->repeats,
          "Time each run as the best of N repeats (default 3; 1 when a run takes over 0.25 s)")
       ->check(CLI::Range(1, 100));
   cmd->add_option("--tol", o->tol, "Tolerance of the converged reference (default 1e-12)")
       ->check(CLI::Range(1e-15, 1e-3));
-  cmd->add_option("--threads", o->threads, "Worker threads (default: one per core)")
-      ->check(CLI::Range(1u, 256u));
   cmd->add_flag(
       "--reference-study", o->reference_study,
       "First show the reference's self-consistency error at tolerances 1e-3..1e-13 against 1e-14");
   cmd->add_option("--study-csv", o->study_csv,
                   "Write the reference study to this CSV file (implies --reference-study)");
-  cmd->add_option("--duration", o->duration, "Simulated time, s (overrides sim.duration)");
-  cmd->add_option("--set", o->sets,
-                  "Override any scene key, e.g. --set contact.k=1e6 (repeatable)");
-  cmd->add_flag("--quiet", o->quiet, "No progress on stderr");
   return {cmd, [o] { return sweep(*o); }};
 }
 

@@ -83,4 +83,27 @@ Scene load_scene_with(const std::string& path, const std::vector<std::string>& s
   return load_scene(path, overrides);
 }
 
+void AnalysisOptions::add_to(CLI::App& cmd, const std::string& csv_help,
+                             const std::string& plot_help) {
+  cmd.add_option("scene", path, "Scene file (TOML)")->required();
+  cmd.add_option(
+         "--integrators", integrators,
+         "Comma-separated list (default: explicit_euler,semi_implicit_euler,implicit_euler,rk4)")
+      ->delimiter(',');
+  cmd.add_option("--engines", engines,
+                 "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = "
+                 "its default) (default: ref)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(engines::engine_names()));
+  cmd.add_option("--csv", csv, csv_help);
+  cmd.add_option("--plot", plot, plot_help);
+  cmd.add_option("--threads", threads, "Worker threads (default: one per core)")
+      ->check(CLI::Range(1u, 256u));
+  cmd.add_option("--duration", duration, "Simulated time of each run, s (overrides sim.duration)");
+  cmd.add_option("--set", sets, "Override any scene key, e.g. --set contact.k=1e6 (repeatable)");
+  cmd.add_flag("--quiet", quiet, "No progress on stderr");
+}
+
+Scene AnalysisOptions::load() const { return load_scene_with(path, sets, duration); }
+
 }  // namespace contact2d::cli

@@ -30,6 +30,22 @@ struct SceneOptions {
   Scene load() const;  // throws InputError
 };
 
+// The options sweep and stability share: the scene with --set and
+// --duration, --integrators, --engines, --csv, --plot, --threads, --quiet.
+struct AnalysisOptions {
+  std::string path;
+  std::vector<std::string> sets;
+  std::optional<double> duration;
+  std::vector<std::string> integrators;
+  std::vector<std::string> engines{"ref"};
+  std::string csv, plot;
+  unsigned threads = 0;
+  bool quiet = false;
+
+  void add_to(CLI::App& cmd, const std::string& csv_help, const std::string& plot_help);
+  Scene load() const;  // throws InputError
+};
+
 // sweep and stability: progress on stderr, rewritten in place, only when
 // stderr is a terminal and not quiet (else an empty function).
 std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label,
