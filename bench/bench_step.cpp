@@ -1,7 +1,10 @@
-// contact2d_bench: the cost of one reference step (core step(), the
-// integrator alone, no divergence check, no output) against one mj_step of
-// the same scene's generated model (models/<scene>.calibrated.xml) with the
-// matching MuJoCo integrator, at the scene's Δt.
+// contact2d_bench: the cost of one reference step (ReferenceStepper::step():
+// the integrator and the contact stage of the new state, no divergence
+// check, no output) against one bare mj_step of the same scene's generated
+// model (models/<scene>.calibrated.xml) with the matching MuJoCo integrator,
+// at the scene's Δt. MuJoCo is stepped directly, not through MujocoStepper,
+// so that its figure is MuJoCo's own cost and not the reference's contact
+// stage run on its state for the divergence monitor.
 //
 // Both replay their scene from its initial state (MuJoCo: keyframe 0) and
 // start over after sim.duration, so each timing averages the same mix of

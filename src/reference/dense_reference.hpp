@@ -33,7 +33,7 @@
 //
 // The right-hand side reproduces dynamics.cpp's acceleration() branch by
 // branch (ground contact, sliding friction, rolling resistance, the model's
-// constant applied load); tests/analysis checks that the two agree to rounding
+// constant applied load); tests/reference checks that the two agree to rounding
 // on random states, so a change in the core's force law shows up there.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The bad-input matrix: every file under tests/bad_inputs/ is a case run
+// The bad-input matrix: every file under tests/cli/bad_inputs/ is a case run
 // through the real contact2d program. Its header says what must happen:
 //   # expect-status: N          exit status (2 bad input, 3 diverged)
 //   # expect-message: TEXT      must appear in stderr (repeatable)

@@ -19,7 +19,7 @@ namespace {
 // Resting on an obstacle: the spring carries the weight, d = m·g/k, exactly
 // as on the ground. At rest a = 0 is a fixed point of every integrator, so
 // the only error is the e^(−ω·t) transient after 2 s (ω = 100 rad/s, < 1e-80)
-// plus rounding: tolerance 1e-9·d, as in tests/test_static.cpp.
+// plus rounding: tolerance 1e-9·d, as in tests/core/test_static.cpp.
 
 class RestOnObstacle : public ::testing::TestWithParam<Integrator> {};
 
@@ -65,14 +65,14 @@ INSTANTIATE_TEST_SUITE_P(AllIntegrators, RestOnObstacle, ::testing::ValuesIn(kAl
 
 // ---------------------------------------------------------------------------
 // Rebound from a wall, without gravity: the same closed forms as the ground
-// (tests/test_rebound.cpp derives them):
+// (tests/core/test_rebound.cpp derives them):
 //   compression  e = exp(−ζ·φ/√(1−ζ²)),  φ = atan(√(1−ζ²)/ζ)
 //   Kelvin–Voigt e = e^(−ζω t_e)·|cos(ω_d t_e) − ζ/√(1−ζ²)·sin(ω_d t_e)|,
 //                ω_d·t_e = π − atan2(2ζ√(1−ζ²), 1−2ζ²)
 // The ball starts 1e-12 m into the wall so the first evaluation sees the
 // contact (changes e by ~ω·1e-12/v0 = 1e-10). RK4 at ω·Δt = 1e-3: the
 // damper's kink inside one step gives the 2·(ω·Δt)²·ζ = 2e-6·ζ tolerance of
-// tests/test_rebound.cpp.
+// tests/core/test_rebound.cpp.
 
 Scene wall_scene(DampingLaw law, double zeta) {
   Scene scene = default_scene(Shape::Circle);
