@@ -10,40 +10,51 @@ namespace contact2d {
 ContactSet::ContactSet(const Model& model) {
   const size_t points = model.body.points.size();
   const size_t obstacles = model.obstacles.size();
-  contacts_.reserve(points * (1 + obstacles) + obstacles);
+  storage_.resize(points * (1 + obstacles) + obstacles);
 }
 
 void find_contacts(const Model& model, const Vec3& q, ContactSet& out) {
-  out.clear();
   const RigidBody& body = model.body;
   const Vec2 p(q.x(), q.y());
   // One rotation of the body's points: R(θ), or the identity for a circle.
   const double ct = body.points_rotate ? std::cos(q.z()) : 1.0;
   const double st = body.points_rotate ? std::sin(q.z()) : 0.0;
+  const Vec2* const points = body.points.data();
+  const size_t n_points = body.points.size();
+  Contact* const first = out.storage_.data();  // room for every contact at once
+  Contact* next = first;
 
   // Ground, the half-plane y < 0: d = −c_y, n = +y.
-  for (const Vec2& local : body.points) {
-    const Vec2 r(ct * local.x() - st * local.y(), st * local.x() + ct * local.y());
-    const double c_y = q.y() + r.y();
-    if (!(c_y >= 0.0)) out.add({-c_y, Vec2(0.0, 1.0), r});  // NaN stays visible
+  for (size_t i = 0; i < n_points; ++i) {
+    const double rx = ct * points[i].x() - st * points[i].y();
+    const double ry = st * points[i].x() + ct * points[i].y();
+    const double c_y = q.y() + ry;
+    if (!(c_y >= 0.0)) *next++ = {-c_y, 0.0, 1.0, rx, ry};  // NaN stays visible
   }
-  if (model.obstacles.empty()) return;
+  out.ground_ = static_cast<size_t>(next - first);
 
   // Obstacles: a disc meets them with its whole rim, other bodies with their points.
-  ObstacleContact hit;
-  if (body.roll_radius > 0.0) {
-    for (const Obstacle& o : model.obstacles) {
-      if (disc_contact(o, p, body.roll_radius, hit)) out.add({hit.depth, hit.normal, hit.r});
+  if (!model.obstacles.empty()) {
+    ObstacleContact hit;
+    if (body.roll_radius > 0.0) {
+      for (const Obstacle& o : model.obstacles) {
+        if (disc_contact(o, p, body.roll_radius, hit))
+          *next++ = {hit.depth, hit.normal.x(), hit.normal.y(), hit.r.x(), hit.r.y()};
+      }
+    } else {
+      for (size_t i = 0; i < n_points; ++i) {
+        const Vec2& local = points[i];
+        const double rx = ct * local.x() - st * local.y();
+        const double ry = st * local.x() + ct * local.y();
+        const Vec2 c(p.x() + rx, p.y() + ry);
+        for (const Obstacle& o : model.obstacles) {
+          if (point_contact(o, c, hit))
+            *next++ = {hit.depth, hit.normal.x(), hit.normal.y(), rx, ry};
+        }
+      }
     }
-    return;
   }
-  for (const Vec2& local : body.points) {
-    const Vec2 r(ct * local.x() - st * local.y(), st * local.x() + ct * local.y());
-    const Vec2 c = p + r;
-    for (const Obstacle& o : model.obstacles) {
-      if (point_contact(o, c, hit)) out.add({hit.depth, hit.normal, r});
-    }
-  }
+  out.size_ = static_cast<size_t>(next - first);
 }
 
 double max_penetration(const ContactSet& contacts) {

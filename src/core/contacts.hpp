@@ -39,10 +39,16 @@ namespace contact2d {
 
 struct Model;
 
+// Plain doubles, read and written one at a time: as two-lane vectors they
+// were stored in halves and loaded whole (or the reverse) between the two
+// stages, which the CPU cannot forward from its store buffer — a stall that
+// cost 10–15 ns a step.
 struct Contact {
-  double depth = 0.0;            // penetration d > 0, m
-  Vec2 normal = Vec2(0.0, 1.0);  // unit normal out of the touched surface
-  Vec2 r = Vec2::Zero();         // lever arm: contact point − COM, world frame
+  double depth = 0.0;         // penetration d > 0, m
+  double nx = 0.0, ny = 1.0;  // unit normal out of the touched surface
+  double rx = 0.0, ry = 0.0;  // lever arm: contact point − COM, world frame
+  Vec2 normal() const { return {nx, ny}; }
+  Vec2 r() const { return {rx, ry}; }
 };
 
 class ContactSet {
@@ -51,18 +57,25 @@ class ContactSet {
   // Room for every contact the model can have at once.
   explicit ContactSet(const Model& model);
 
-  void clear() { contacts_.clear(); }
-  // Within the capacity reserved by the constructor: never allocates.
-  void add(const Contact& contact) { contacts_.push_back(contact); }
+  void clear() { size_ = ground_ = 0; }
 
-  auto begin() const { return contacts_.begin(); }
-  auto end() const { return contacts_.end(); }
-  size_t size() const { return contacts_.size(); }
-  bool empty() const { return contacts_.empty(); }
-  size_t capacity() const { return contacts_.capacity(); }
+  // Every contact, ground first.
+  const Contact* begin() const { return storage_.data(); }
+  const Contact* end() const { return storage_.data() + size_; }
+  size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  size_t capacity() const { return storage_.size(); }
+  // The ground contacts (normal +y) are [begin, begin + ground_count); the
+  // force stage takes them on a path with n = (0, 1) written in.
+  size_t ground_count() const { return ground_; }
 
  private:
-  std::vector<Contact> contacts_;
+  // Writes through a local pointer and counts, so that the compiler need not
+  // assume its stores change the model it reads.
+  friend void find_contacts(const Model& model, const Vec3& q, ContactSet& out);
+  std::vector<Contact> storage_;  // sized once; [0, size_) in use
+  size_t size_ = 0;
+  size_t ground_ = 0;
 };
 
 // The position stage: every active contact of the body at configuration q.

@@ -9,9 +9,22 @@ Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v)
   Vec2 force(model.applied.x(), model.applied.y() - body.mass * model.gravity);
   double torque = model.applied.z();
 
-  for (const Contact& contact : contacts) {
-    const Vec2& n = contact.normal;
-    const Vec2& r = contact.r;
+  // Ground: n = (0, 1), t = (1, 0), so v_n = v_c,y, v_t = v_c,x, f = (Ft, Fn).
+  const Contact* ground_end = contacts.begin() + contacts.ground_count();
+  for (const Contact* it = contacts.begin(); it != ground_end; ++it) {
+    const double rx = it->rx, ry = it->ry;
+    const double vc_x = v.x() - omega * ry;
+    const double vc_y = v.y() + omega * rx;
+    const double fn = normal_force(law, it->depth, vc_y);
+    const double ft = friction_force(law, fn, vc_x);
+    force += Vec2(ft, fn);
+    torque += rx * fn - ry * ft + rolling_torque(law, fn, body.roll_radius, v.z());
+  }
+  // Obstacles: the same law along their normal n and tangent t = (n_y, −n_x).
+  for (const Contact* it = ground_end; it != contacts.end(); ++it) {
+    const Contact& contact = *it;
+    const Vec2 n = contact.normal();
+    const Vec2 r = contact.r();
     const Vec2 t(n.y(), -n.x());
     const Vec2 vc(v.x() - omega * r.y(), v.y() + omega * r.x());  // v + ω × r
     const double fn = normal_force(law, contact.depth, vc.dot(n));

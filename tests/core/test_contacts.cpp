@@ -33,9 +33,9 @@ TEST(ContactStage, TiltedBoxTouchesWithItsLowestCornerOnly) {
   const Contact& c = *contacts.begin();
   const double root3 = std::sqrt(3.0);
   EXPECT_NEAR(c.depth, 0.05 * root3, kUlps);
-  EXPECT_EQ(c.normal, Vec2(0.0, 1.0));
-  EXPECT_NEAR(c.r.x(), -0.1 * root3 + 0.05, kUlps);
-  EXPECT_NEAR(c.r.y(), -0.1 - 0.05 * root3, kUlps);
+  EXPECT_EQ(c.normal(), Vec2(0.0, 1.0));
+  EXPECT_NEAR(c.r().x(), -0.1 * root3 + 0.05, kUlps);
+  EXPECT_NEAR(c.r().y(), -0.1 - 0.05 * root3, kUlps);
   EXPECT_NEAR(max_penetration(contacts), 0.05 * root3, kUlps);
 }
 
@@ -47,7 +47,7 @@ TEST(ContactStage, CirclePointStaysBelowTheCentre) {
   find_contacts(model, Vec3(2.0, 0.09, 1.0), contacts);
   ASSERT_EQ(contacts.size(), 1u);
   EXPECT_NEAR(contacts.begin()->depth, 0.01, kUlps);
-  EXPECT_EQ(contacts.begin()->r, Vec2(0.0, -0.1));
+  EXPECT_EQ(contacts.begin()->r(), Vec2(0.0, -0.1));
 }
 
 // Ground contacts come first, then obstacles, in the order the force stage
@@ -64,8 +64,8 @@ TEST(ContactStage, GroundFirstThenEveryObstacle) {
   ASSERT_EQ(contacts.size(), 2u);
   for (const Contact& c : contacts) {
     EXPECT_NEAR(c.depth, 0.01, kUlps);
-    EXPECT_EQ(c.normal, Vec2(0.0, 1.0));
-    EXPECT_EQ(c.r, Vec2(0.0, -0.05));
+    EXPECT_EQ(c.normal(), Vec2(0.0, 1.0));
+    EXPECT_EQ(c.r(), Vec2(0.0, -0.05));
   }
 }
 

@@ -39,7 +39,7 @@ TEST_P(StepperPerIntegrator, KeptContactsAreThoseOfTheCurrentState) {
     auto a = stepper.contacts().begin();
     for (const Contact& b : fresh) {
       ASSERT_EQ(a->depth, b.depth);
-      ASSERT_EQ(a->r, b.r);
+      ASSERT_EQ(a->r(), b.r());
       ++a;
     }
     touching_steps += fresh.empty() ? 0 : 1;
