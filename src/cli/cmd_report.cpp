@@ -7,7 +7,9 @@
 // only code that runs an engine); the pages are written by report/pages.hpp
 // from the structs the seam returns, each through io's AtomicFile. Run it
 // from the repository root: scene paths are relative to it (they name the
-// scenes in the models and messages, as the CLI's do).
+// scenes in the models and messages, as the CLI's do). Exit status: 0 done,
+// 2 bad input (one line, before any run), 3 a run failed (an engine
+// diverged, gnuplot or the bench failed): no page is written then.
 #include <glob.h>
 #include <unistd.h>
 

@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   const std::vector<Command> commands = {
       add_simulate(app), add_play(app),
 #ifdef CONTACT2D_WITH_MUJOCO
-      add_generate(app), add_compare(app), add_report(app),
+      add_generate(app), add_compare(app),
+      add_report(app),  // validation/report/ (src/cli/cmd_report.cpp)
 #endif
       add_sweep(app),    add_stability(app),
   };

@@ -121,8 +121,10 @@ std::vector<MappingMean> mapping_means(const std::vector<MappingCase>& cases,
                                        const std::vector<std::string>& scenes,
                                        const std::vector<std::string>& mappings) {
   std::vector<MappingMean> means;
+  means.reserve(mappings.size());
   for (const std::string& mapping : mappings) {
     std::vector<double> errors;
+    errors.reserve(scenes.size());
     for (const std::string& scene : scenes) errors.push_back(find_error(cases, scene, mapping));
     means.push_back({mapping, geometric_mean(errors)});
   }
@@ -131,7 +133,10 @@ std::vector<MappingMean> mapping_means(const std::vector<MappingCase>& cases,
 
 OverallWinner overall_winner(const std::vector<MappingMean>& means) {
   std::vector<std::pair<double, std::string>> printed;
-  for (const MappingMean& m : means) printed.emplace_back(std::stod(g(m.mean, 3)), m.mapping);
+  printed.reserve(means.size());
+  for (const MappingMean& m : means) {  // a mean that is not a number sorts last
+    printed.emplace_back(std::isfinite(m.mean) ? std::stod(g(m.mean, 3)) : INFINITY, m.mapping);
+  }
   std::stable_sort(printed.begin(), printed.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   if (printed.empty()) return {};

@@ -29,8 +29,6 @@
 #include "mujoco/mjcf.hpp"
 #endif
 
-extern char** environ;
-
 namespace contact2d::cli {
 // Defined in cmd_sweep.cpp: the CLI's engines as an analysis runner.
 analysis::EngineRunner cli_engine_runner();
@@ -289,6 +287,7 @@ Bench run_bench(const std::string& executable, const std::string& min_time) {
                                 std::string("--benchmark_out=") + json_path,
                                 "--benchmark_out_format=json"};
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;

@@ -63,6 +63,13 @@ TEST(ReportNumbers, WinnersPerSceneAndOverall) {
   EXPECT_NEAR(overall.ratio_to_next, 0.0707 / 0.0548, 1e-12);  // the means as printed
 }
 
+TEST(ReportNumbers, MeanThatIsNotANumberSortsLast) {
+  const OverallWinner w =
+      overall_winner({{"seed", std::nan("")}, {"exact", 0.2}, {"calibrated", 0.4}});
+  EXPECT_EQ(w.mapping, "exact");
+  EXPECT_NEAR(w.ratio_to_next, 2.0, 1e-12);
+}
+
 TEST(ReportNumbers, TiesGoToTheFirstMapping) {
   std::vector<MappingCase> cases;
   for (const char* m : {"seed", "exact", "calibrated"})
