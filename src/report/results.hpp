@@ -151,7 +151,8 @@ struct SweepData {
 
 struct StabilityRow {
   std::string engine, integrator;
-  double k = 0.0;
+  double k = 0.0, c = 0.0;       // N/m, N·s/m
+  double zeta = 0.0;             // damping ratio at that k
   std::optional<double> theory;  // none: unconditionally stable (∞)
   std::string verdict;           // analysis::verdict_name()
   double dt_stable = 0.0, dt_unstable = 0.0, dt_min = 0.0, dt_max = 0.0;

@@ -218,6 +218,8 @@ StabilityMap stability_map(const Scene& scene, const std::string& name,
     row.engine = r.engine;
     row.integrator = std::string(integrator_name(r.integrator));
     row.k = r.k;
+    row.c = r.c;
+    row.zeta = r.zeta;
     row.theory = finite(r.theory);
     row.verdict = analysis::verdict_name(r.verdict);
     row.dt_stable = r.dt_stable;

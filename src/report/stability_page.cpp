@@ -117,6 +117,19 @@ std::string measured_range(const StabilityData& d, const std::string& integrator
   return range ? range_text(*range, [](double x) { return g(x, 2); }) : "–";
 }
 
+// "20 N·s/m at every k\n\nHolding c fixed makes ζ = … fall from 0.32 to
+// 0.00032": the scene's c and the damping ratio at the smallest and largest k.
+std::string scene_c_text(const StabilityMap& map) {
+  const StabilityRow *first = nullptr, *last = nullptr;
+  for (const StabilityRow& r : map.rows) {
+    if (!first || r.k < first->k) first = &r;
+    if (!last || r.k > last->k) last = &r;
+  }
+  if (!first) return "c at every k\n\nHolding c fixed makes ζ = c/(2√(k·m)) fall";
+  return g(first->c) + " N·s/m at every k\n\nHolding c fixed makes ζ = c/(2√(k·m)) fall from " +
+         g(first->zeta, 2) + " to " + g(last->zeta, 2);
+}
+
 }  // namespace
 
 std::string stability_page(const StabilityData& d, const Bench& bench) {
@@ -186,9 +199,8 @@ mass of a contact point (1/m_eff = 1/m + r²/I: a corner of a box or T);
   damper switch) fails to converge even after splitting the step 64 times,
   and the divergence rule stops the run.
 
-### The point mass with the scene's own c = 20 N·s/m at every k
-
-Holding c fixed makes ζ = c/(2√(k·m)) fall from 0.3 to 3e-4 as k grows.
+### The point mass with the scene's own c = )md" +
+         scene_c_text(d.scene_c) + R"md( as k grows.
 
 ![stability point mass, scene c](stability.point_mass_scene_c.png)
 

@@ -175,34 +175,25 @@ std::string mujoco_floor_table(const SweepData& d) {
   return to_markdown(t);
 }
 
+// The bench's per-step table (CPU time and wall clock per step, and their
+// ratio), then the libm floors; "-" where MuJoCo did not run.
 std::string bench_block(const Bench& b) {
   if (!b.ran) return "(contact2d_bench was not built)";
-  char line[256];
-  std::string out =
-      "per step at each scene's dt; MuJoCo: models/<scene>.calibrated.xml (its Euler is "
-      "semi-implicit).\n"
-      "ratio = mj_step / reference step, on CPU time (robust to other load on the machine) and "
-      "wall clock\n";
-  std::snprintf(line, sizeof line, "%-11s %-20s %10s %10s %9s %9s %9s\n", "scene", "integrator",
-                "ref cpu", "mj cpu", "ratio", "ref wall", "mj wall");
-  out += line;
+  auto ns = [](double x, int decimals) { return fixed(x, decimals) + "ns"; };
+  Table t{{"scene", "integrator", "ref cpu", "mj cpu", "ratio", "ref wall", "mj wall"}, {}};
   for (const BenchRow& r : b.rows) {
-    if (!r.mj_cpu_ns) {
-      std::snprintf(line, sizeof line, "%-11s %-20s %8.1fns %10s %9s %7.1fns %9s\n",
-                    r.scene.c_str(), r.integrator.c_str(), r.ref_cpu_ns, "-", "-", r.ref_real_ns,
-                    "-");
-    } else {
-      std::snprintf(line, sizeof line, "%-11s %-20s %8.1fns %8.0fns %8.0fx %7.1fns %7.0fns\n",
-                    r.scene.c_str(), r.integrator.c_str(), r.ref_cpu_ns, *r.mj_cpu_ns,
-                    *r.mj_cpu_ns / r.ref_cpu_ns, r.ref_real_ns, *r.mj_real_ns);
-    }
-    out += line;
+    const bool mj = r.mj_cpu_ns.has_value();
+    add_row(t, {r.scene, r.integrator, ns(r.ref_cpu_ns, 1), mj ? ns(*r.mj_cpu_ns, 0) : "-",
+                mj ? fixed(*r.mj_cpu_ns / r.ref_cpu_ns, 0) + "x" : "-", ns(r.ref_real_ns, 1),
+                mj ? ns(*r.mj_real_ns, 0) : "-"});
   }
-  std::snprintf(line, sizeof line,
-                "\nfloor (CPU, each call feeding the next): sincos %.1fns, tanh %.1fns, a step "
-                "with no contact points %.1fns",
-                b.sincos_ns, b.tanh_ns, b.free_flight_ns);
-  return out + line;
+  return "per step at each scene's dt; MuJoCo: models/<scene>.calibrated.xml (its Euler is "
+         "semi-implicit).\n"
+         "ratio = mj_step / reference step, on CPU time (robust to other load on the machine) and "
+         "wall clock\n" +
+         to_text(t) + "\nfloor (CPU, each call feeding the next): sincos " + ns(b.sincos_ns, 1) +
+         ", tanh " + ns(b.tanh_ns, 1) + ", a step with no contact points " +
+         ns(b.free_flight_ns, 1);
 }
 
 // A bench ratio as the table prints it (whole numbers).
@@ -248,6 +239,35 @@ std::string targets(const SweepData& d) {
         ".\n";
   }
   return out;
+}
+
+// The standard errors of the reference's observed orders on the bouncing
+// scenes (every scene but the rolling disc), "0.01…0.3".
+std::string bouncing_stderr(const SweepData& d) {
+  std::vector<double> errors;
+  for (const std::string& name : d.scenes) {
+    const SceneSweep* s = find_sweep(d, name);
+    if (!s || name == "circle") continue;
+    for (const OrderRow& o : s->orders) {
+      if (o.engine == "ref" && o.against == "reference" && o.observed)
+        errors.push_back(o.observed_stderr);
+    }
+  }
+  const auto range = range_of(errors);
+  if (!range) return "–";
+  auto one = [](double x) { return g(x, 1); };
+  return one(range->lo) == one(range->hi) ? one(range->lo) : one(range->lo) + "…" + one(range->hi);
+}
+
+// MuJoCo's errors against the reference at one step, "0.001–0.0012".
+std::string mujoco_errors_at(const SceneSweep& s, double dt) {
+  std::vector<double> errors;
+  for (const SweepRun& r : s.runs) {
+    if (r.engine == "mujoco" && r.status == "ok" && csv(r.dt) == csv(dt))
+      errors.push_back(r.max_pos);
+  }
+  const auto range = range_of(errors);
+  return range ? range_text(*range, [](double x) { return g(x, 2); }) : "–";
 }
 
 // The circle's observed orders: the Euler methods and RK4 (section 3).
@@ -427,7 +447,8 @@ Why the orders fall below nominal:
 - **The error constant depends on where each impact falls inside its step**,
   i.e. erratically on Δt (error/Δt of semi-implicit Euler on the point mass
   ranges over 2…70 across 25 steps between 1e-5 and 1e-3 s). Hence the
-  zig-zag curves and the standard errors of ±0.1…0.3 on the slopes; the
+  zig-zag curves and the standard errors of ±)md" +
+         bouncing_stderr(d) + R"md( on the slopes; the
   orders are first order "on average", not pointwise.
 - **Stiff tanh friction**: at α = 100 s/m and μ = 0.5 the linearised friction
   rate is μ·g·α = 490 1/s; stick–slip transitions are resolved only when Δt ≪
@@ -479,7 +500,8 @@ numerical error — refining MuJoCo's step only makes it converge to *its*
 model (second column). With the Kelvin–Voigt law and c = 200 (last row) the
 floor drops to )md" +
          (kv_floor ? g(kv_floor->max_pos, 2) : std::string("–")) +
-         R"md( m (its errors at 1e-4 s are about a millimetre), the
+         R"md( m (its errors at 1e-4 s are )md" +
+         (kv ? mujoco_errors_at(*kv, 1e-4) : std::string("–")) + R"md( m), the
 friction difference that README.md explains. So MuJoCo stops being trustworthy as a stand-in for the reference
 model at that floor, whatever its step; as a solver of its own model it
 converges at first order.
@@ -525,7 +547,7 @@ which stays near zero while it rolls. The step skips tanh where its
 correctly rounded value is ±1 (|α·v| ≥ 22; bit-identical, tested): one libm
 call less per evaluation for a fast-sliding corner or a fast-spinning disc,
 a saving about as large as the run-to-run noise of a shared machine (compare
-the empty-step time of two runs of this script). Going further
+the empty-step time of two runs of the report). Going further
 would mean replacing libm's tanh and sincos with approximations of our own;
 the reference keeps libm, whose accuracy nobody has to re-validate.
 

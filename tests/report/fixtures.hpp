@@ -167,10 +167,15 @@ inline StabilityData stability() {
       srow("ref", "implicit_euler", 1e9, std::nullopt, "unstable at dt_min", nan, 31623,
            "Newton failed at t = 0 s")};
   d.reference = {pm, box};
-  d.scene_c = {
-      "point_mass_scene_c",
-      "point_mass",
-      {srow("ref", "explicit_euler", 1e9, 0.000632, "bracketed", 3.8e-6, 31623, "energy gain")}};
+  // The point mass (1 kg) with c = 20 at every k: ζ = 20/(2√k).
+  StabilityRow soft = srow("ref", "explicit_euler", 1e3, 0.632, "stable at dt_max", 0.01, 31.6);
+  soft.c = 20;
+  soft.zeta = 0.316;
+  StabilityRow stiff =
+      srow("ref", "explicit_euler", 1e9, 0.000632, "bracketed", 3.8e-6, 31623, "energy gain");
+  stiff.c = 20;
+  stiff.zeta = 0.000316;
+  d.scene_c = {"point_mass_scene_c", "point_mass", {soft, stiff}};
   d.mujoco_scenes = {"point_mass"};
   StabilityMap mj{"mujoco.point_mass", "point_mass", {}};
   StabilityRow a = srow("mujoco", "semi_implicit_euler", 1e4, 0.828, "bracketed", 0.008, 100,
