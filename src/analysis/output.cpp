@@ -488,4 +488,22 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
 
 // ---------------------------------------------------------------- gnuplot
 
+std::string run_summary(const Scene& scene, const std::string& engine, const EngineRun& run) {
+  const Model model = make_model(scene);
+  const auto& samples = run.trajectory.samples;
+  double deepest = 0.0;
+  for (const Sample& s : samples) deepest = std::max(deepest, max_penetration(model, s.state.q));
+  const State& first = samples.front().state;
+  const State& last = samples.back().state;
+  return std::string(shape_name(scene.shape)) + " [" + engine + ", " +
+         std::string(integrator_name(scene.sim.integrator)) +
+         ", dt = " + format_number(scene.sim.dt) + " s, " + format_number(scene.sim.duration) +
+         " s in " + format_number(run.seconds * 1e3, 3) +
+         " ms]: final x = " + format_number(last.q.x()) + " m, y = " + format_number(last.q.y()) +
+         " m, theta = " + format_number(last.q.z()) +
+         " rad, |v| = " + format_number(last.v.head<2>().norm()) +
+         " m/s; max sampled penetration " + format_number(deepest) + " m; energy " +
+         format_number(energy(model, first)) + " -> " + format_number(energy(model, last)) + " J";
+}
+
 }  // namespace contact2d::analysis

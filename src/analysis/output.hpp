@@ -35,4 +35,9 @@ void write_stability_csv(std::FILE* out, const StabilityResult& result);
 // bounds as lines. Throws std::runtime_error when gnuplot fails.
 void plot_stability(const std::string& png_path, const StabilityResult& result);
 
+// The one-line summary `contact2d simulate` prints of a run: scene,
+// engine, integrator, Δt, duration, wall clock, final state, deepest sampled
+// penetration, energy at the first and last sample (no newline).
+std::string run_summary(const Scene& scene, const std::string& engine, const EngineRun& run);
+
 }  // namespace contact2d::analysis

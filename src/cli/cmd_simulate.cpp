@@ -2,6 +2,7 @@
 #include <iostream>
 #include <memory>
 
+#include "analysis/output.hpp"
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
 #include "io/csv.hpp"
@@ -20,26 +21,6 @@ engines::EngineRun run_chosen_engine(const SimulateOptions& options, const Scene
   if (options.engine == "mujoco")
     return engines::run_engine(options.mujoco.spec(options.scene.path), scene);
   return engines::run_engine(engines::parse_engine(options.engine), scene);
-}
-
-void print_summary(const Scene& scene, const std::string& engine, const engines::EngineRun& run) {
-  const Model model = make_model(scene);
-  const auto& samples = run.trajectory.samples;
-  double deepest = 0.0;
-  for (const Sample& s : samples) deepest = std::max(deepest, max_penetration(model, s.state.q));
-  const State& first = samples.front().state;
-  const State& last = samples.back().state;
-  std::cout << shape_name(scene.shape) << " [" << engine << ", "
-            << integrator_name(scene.sim.integrator) << ", dt = " << format_number(scene.sim.dt)
-            << " s, " << format_number(scene.sim.duration) << " s in "
-            << format_number(run.seconds * 1e3, 3)
-            << " ms]: final x = " << format_number(last.q.x())
-            << " m, y = " << format_number(last.q.y())
-            << " m, theta = " << format_number(last.q.z())
-            << " rad, |v| = " << format_number(last.v.head<2>().norm())
-            << " m/s; max sampled penetration " << format_number(deepest) << " m; energy "
-            << format_number(energy(model, first)) << " -> " << format_number(energy(model, last))
-            << " J\n";
 }
 
 int simulate(const SimulateOptions& options) {
@@ -62,7 +43,7 @@ int simulate(const SimulateOptions& options) {
     for (const Sample& s : run.trajectory.samples) write_trajectory_row(out->get(), s);
     out->commit();
   }
-  print_summary(scene, options.engine, run);
+  std::cout << analysis::run_summary(scene, options.engine, run) << "\n";
   return kExitOk;
 }
 

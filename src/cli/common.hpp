@@ -79,5 +79,6 @@ Command add_generate(CLI::App& app);   // built with MuJoCo only
 Command add_compare(CLI::App& app);    // built with MuJoCo only
 Command add_sweep(CLI::App& app);      // error against run time (src/cli/cmd_sweep.cpp)
 Command add_stability(CLI::App& app);  // stability map (src/cli/cmd_stability.cpp)
+Command add_report(CLI::App& app);     // validation/report/ (src/cli/cmd_report.cpp; with MuJoCo)
 
 }  // namespace contact2d::cli

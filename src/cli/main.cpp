@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       add_simulate(app), add_play(app),
 #ifdef CONTACT2D_WITH_MUJOCO
       add_generate(app), add_compare(app),
+      add_report(app),  // validation/report/ (src/cli/cmd_report.cpp)
 #endif
       add_sweep(app),    add_stability(app),
   };

@@ -1,6 +1,7 @@
 #include "game/game.hpp"
 
 #include "core/input_error.hpp"
+#include "core/rng.hpp"
 #include "engines/engines.hpp"
 
 #include <algorithm>
@@ -14,13 +15,6 @@ constexpr double kPi = 3.14159265358979323846;
 
 // SplitMix64 (Steele, Lea, Flood 2014): a fixed, portable sequence, unlike
 // the standard library's distributions.
-std::uint64_t splitmix64(std::uint64_t& x) {
-  std::uint64_t z = (x += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
 long long steps_for(double seconds, double dt) {
   return std::max(0LL, static_cast<long long>(std::llround(seconds / dt)));
 }
@@ -92,7 +86,7 @@ Game::Game(Pitch pitch, const std::string& engine, std::uint64_t seed)
 }
 
 double Game::next_uniform() {
-  return static_cast<double>(splitmix64(rng_) >> 11) * 0x1.0p-53;  // [0, 1)
+  return contact2d::next_uniform(rng_);  // [0, 1)
 }
 
 double Game::distance_to_goal() const {

@@ -1,0 +1,80 @@
+// Seeded random scenes (report/random_scenes.hpp).
+#include "report/random_scenes.hpp"
+
+#include "core/format.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "core/rng.hpp"
+
+namespace contact2d::report {
+namespace {
+
+// x rounded to `digits` significant digits, as "%.*g" prints it.
+double rounded(double x, int digits) {
+  return std::strtod(format_number(x, digits).c_str(), nullptr);
+}
+
+}  // namespace
+
+std::vector<RandomScene> draw_random_scenes(std::uint64_t seed, int count) {
+  const Shape shapes[] = {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle};
+  std::uint64_t state = seed;
+  auto u = [&state] { return next_uniform(state); };
+  std::vector<RandomScene> out;
+  for (int i = 0; i < count; ++i) {
+    const Shape shape = shapes[i % 4];
+    Scene s = default_scene(shape);
+    double m = std::pow(10.0, u() * 2 - 1);
+    const double k = std::pow(10.0, 3 + u() * 2.5);
+    const double c = (200 + u() * 1300) * std::sqrt(m);
+    m = rounded(m, 6);
+    if (shape == Shape::PointMass) s.half_height = rounded(u() * 0.2, 4);
+    if (shape == Shape::Box) {
+      s.width = rounded(0.05 + u(), 4);
+      s.height = rounded(0.05 + u(), 4);
+    }
+    if (shape == Shape::Circle) s.radius = rounded(0.02 + u() * 0.5, 4);
+    if (shape == Shape::TShape) {
+      s.parts.clear();
+      const int n = 1 + static_cast<int>(u() * 3);
+      double total = 0.0;
+      for (int j = 0; j < n; ++j) {
+        BoxPart part;
+        part.mass = rounded(m * (0.2 + u() * 0.8), 6);
+        part.width = rounded(0.05 + u() * 0.55, 4);
+        part.height = rounded(0.05 + u() * 0.55, 4);
+        part.x = rounded(u() * 0.6 - 0.3, 4);
+        part.y = rounded(u() * 0.6 - 0.3, 4);
+        total += part.mass;
+        s.parts.push_back(part);
+      }
+      m = total;
+    }
+    if (shape != Shape::TShape) s.mass = m;  // a T's mass comes from its parts
+    s.contact.k = rounded(k, 6);
+    s.contact.c = rounded(c, 6);
+    s.contact.mu = rounded(0.1 + u() * 0.9, 3);
+    s.contact.alpha = 100;
+    s.contact.damping = DampingLaw::KelvinVoigt;
+    const double spin = shape == Shape::PointMass ? 0.0 : 1.0;
+    s.initial.q = Vec3(0.0, rounded(0.6 + u() * 0.9, 4), rounded(spin * (u() * 1.2 - 0.6), 4));
+    s.initial.v = Vec3(rounded(u() * 3 - 1.5, 4), 0.0, rounded(spin * (u() * 6 - 3), 4));
+    s.sim.dt = 1e-4;
+    s.sim.duration = 1.5;
+    s.sim.integrator = Integrator::SemiImplicitEuler;
+    char name[16];
+    std::snprintf(name, sizeof name, "s%02d", i);
+    if (const auto error = validate(s)) {
+      throw std::runtime_error(std::string("random scene ") + name + ": " + error->key + " = " +
+                               std::to_string(error->value) + " is out of range: " + error->range);
+    }
+    out.push_back({name, s, m});
+  }
+  return out;
+}
+
+}  // namespace contact2d::report

@@ -1,0 +1,201 @@
+// The report's own result structs: plain data that the seam (report/runs.hpp)
+// fills from the engines and analyses, and that the page writers
+// (report/pages.hpp) turn into Markdown. Nothing here runs anything, so the
+// pages can be tested on hand-written values. Times are wall clock (they vary
+// from run to run); everything else is deterministic for a given build.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace contact2d::report {
+
+// ------------------------------------------------------------ README.md
+
+// One `compare` of a scene on the reference and MuJoCo.
+struct Comparison {
+  std::string shape;              // "point_mass", …
+  std::string mujoco_integrator;  // "Euler", "RK4", "implicit"
+  double dt = 0.0, duration = 0.0;
+  double max_pos = 0.0, rms_pos = 0.0, max_angle = 0.0, max_vel = 0.0, end_pos = 0.0;
+  double impratio = 0.0;
+  double ref_seconds = 0.0, mujoco_seconds = 0.0;  // wall clock of the stepping
+};
+
+// Every scene under every mapping (sections 1 and 2).
+struct MappingCase {
+  std::string scene, mapping;
+  Comparison result;
+};
+
+// A line of the goal table (section 3): the verdict is computed by the page.
+struct GoalCase {
+  std::string label;
+  double pos_goal = 0.0;
+  std::optional<double> angle_goal;  // none: only the position is a goal
+  Comparison result;
+};
+
+struct GeometryCase {
+  std::string scene;
+  bool friction = false;
+  std::string geometry;  // "corners", "boxes"
+  Comparison result;
+};
+
+struct IntegratorCase {
+  std::string scene;
+  std::string integrator;  // the reference's name
+  Comparison result;
+};
+
+// A scene drawn at random (section 6), run without and with friction.
+struct RandomCase {
+  std::string name;  // "s00", …
+  std::string shape;
+  double mass = 0.0, k = 0.0, c = 0.0, mu = 0.0;
+  double max_pos_frictionless = 0.0, max_angle_frictionless = 0.0;
+  double max_pos_friction = 0.0;
+};
+
+struct RandomConfig {
+  std::uint64_t seed = 0;
+  int count = 0;
+  double pos_goal = 0.0, angle_goal = 0.0;  // the frictionless goal
+};
+
+struct ReadmeData {
+  std::vector<std::string> scenes;    // in page order
+  std::vector<std::string> mappings;  // in page order
+  std::vector<MappingCase> shipped;
+  std::vector<MappingCase> kelvin_voigt;
+  std::vector<GoalCase> goals;
+  std::vector<GeometryCase> geometry;
+  std::vector<IntegratorCase> integrators;
+  RandomConfig random_config;
+  std::vector<RandomCase> random;
+};
+
+// ------------------------------------------------------------- sweep.md
+
+struct StudyRow {  // the reference at one tolerance against tol 1e-14
+  double tol = 0.0;
+  bool ok = true;
+  double max_pos = 0.0;
+  double seconds = 0.0;
+  long long events = 0;
+};
+
+struct SweepRun {
+  std::string engine;      // "ref", "mujoco"
+  std::string integrator;  // "rk4", …; "dopri5_events" for the adaptive method
+  double dt = 0.0;         // 0 for the adaptive method
+  double tol = 0.0;        // the adaptive method's tolerance
+  std::string status;      // "ok", "diverged", "failed"
+  double max_pos = 0.0;
+  std::optional<double> self_max_pos;  // against the engine's own finest run
+  double seconds = 0.0;
+};
+
+struct OrderRow {
+  std::string engine, integrator, against;
+  double nominal = 0.0;
+  std::optional<double> observed;
+  double observed_stderr = 0.0;
+  int points = 0;
+  double dt_min = 0.0, dt_max = 0.0;
+  std::string note;
+};
+
+struct SceneSweep {
+  std::string name;             // "point_mass", …, "point_mass_kv": names the plot
+  std::string scene;            // the scene's shape, as the analysis names it
+  std::vector<StudyRow> study;  // empty for a sweep without a reference study
+  double amplification = 0.0;
+  std::vector<SweepRun> runs;
+  std::vector<OrderRow> orders;
+};
+
+struct BenchRow {
+  std::string scene, integrator;
+  double ref_cpu_ns = 0.0, ref_real_ns = 0.0;
+  std::optional<double> mj_cpu_ns, mj_real_ns;  // none without MuJoCo
+};
+
+struct Bench {
+  bool ran = false;
+  std::string command;  // "contact2d_bench --benchmark_min_time=0.2"
+  std::vector<BenchRow> rows;
+  double sincos_ns = -1.0, tanh_ns = -1.0, free_flight_ns = -1.0;
+};
+
+struct RunInfo {  // how this run went: all of it varies
+  unsigned cores = 0;
+  std::string load;  // the 1, 5 and 15 minute load averages
+  long long total_seconds = 0, sweep_seconds = 0, stability_seconds = 0;
+};
+
+struct SweepData {
+  bool mujoco = false;
+  std::string engines;     // "ref,mujoco"
+  std::string mujoco_dts;  // "1e-3,5e-4,2e-4,1e-4"
+  std::vector<std::string> scenes;
+  std::vector<SceneSweep> sweeps;  // the scenes, then point_mass_kv
+  Bench bench;
+  RunInfo info;
+};
+
+// --------------------------------------------------------- stability.md
+
+struct StabilityRow {
+  std::string engine, integrator;
+  double k = 0.0, c = 0.0;       // N/m, N·s/m
+  double zeta = 0.0;             // damping ratio at that k
+  std::optional<double> theory;  // none: unconditionally stable (∞)
+  std::string verdict;           // analysis::verdict_name()
+  double dt_stable = 0.0, dt_unstable = 0.0, dt_min = 0.0, dt_max = 0.0;
+  double omega_dt_stable = 0.0;  // NaN when no Δt was stable
+  std::optional<double> penetration, penetration_small_step, reference_penetration;
+  std::string failure;  // how the first unstable probe failed
+  std::string note;
+};
+
+struct StabilityMap {
+  std::string name;   // "point_mass", "point_mass_scene_c", "mujoco.box", …: names the plot
+  std::string scene;  // the scene's shape, as the analysis names it
+  std::vector<StabilityRow> rows;
+};
+
+struct StabilityData {
+  bool mujoco = false;
+  std::vector<std::string> scenes;
+  std::vector<StabilityMap> reference;  // the scenes at ζ = 1
+  StabilityMap scene_c;                 // the point mass with its own c
+  std::vector<std::string> mujoco_scenes;
+  std::vector<StabilityMap> mujoco_maps;
+};
+
+// ----------------------------------------------------------- extreme.md
+
+// What `contact2d simulate` would have answered: its exit status and its
+// output, standard error (warnings, diagnostic) before standard output (the
+// summary line "shape [engine, …]: final x = …").
+struct EngineOutcome {
+  int status = 0;
+  std::string text;
+};
+
+struct ExtremeCase {
+  std::string path;                   // "validation/scenes/extreme/large_alpha.toml"
+  std::vector<std::string> expected;  // the file's "# expect:" lines
+  EngineOutcome ref;
+  std::optional<EngineOutcome> mujoco;  // none without MuJoCo
+};
+
+struct ExtremeData {
+  std::vector<ExtremeCase> cases;
+};
+
+}  // namespace contact2d::report

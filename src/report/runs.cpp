@@ -1,0 +1,260 @@
+// The report's seam to the engines and analyses (report/runs.hpp): the only
+// file of the report that runs anything.
+#include "report/runs.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "analysis/output.hpp"
+#include "analysis/stability.hpp"
+#include "analysis/sweep.hpp"
+#include "analysis/trajectory_error.hpp"
+#include "cli/common.hpp"
+#include "core/divergence.hpp"
+#include "engines/engines.hpp"
+#include "io/csv.hpp"
+#include "io/plot.hpp"
+#include "io/scene_file.hpp"
+#include "mujoco/mjcf.hpp"
+#include "report/bench_json.hpp"
+
+namespace contact2d::report {
+namespace {
+
+std::optional<double> finite(double x) {
+  return std::isfinite(x) ? std::optional<double>(x) : std::nullopt;
+}
+
+std::string status_text(analysis::RunStatus status) {
+  switch (status) {
+    case analysis::RunStatus::Ok: return "ok";
+    case analysis::RunStatus::Diverged: return "diverged";
+    case analysis::RunStatus::Failed: return "failed";
+  }
+  return "failed";
+}
+
+}  // namespace
+
+bool mujoco_built() { return engines::mujoco_available(); }
+
+Comparison compare_engines(const Scene& scene, const std::string& source,
+                           const std::string& mapping, const std::string& geometry,
+                           const std::string& plot_png) {
+  namespace mj = contact2d::mujoco;
+  const mj::MjcfOptions options = mj::mjcf_options(mapping, geometry, source);
+  Comparison c;
+  c.mujoco_integrator = mj::mujoco_integrator(scene.sim.integrator);
+  engines::EngineSpec spec;
+  spec.kind = "mujoco";
+  spec.mapping = mapping;
+  spec.geometry = geometry;
+  spec.source = source;
+  const engines::EngineRun mujoco = engines::run_engine(spec, scene);
+  const engines::EngineRun ref = engines::run_engine("ref", scene);
+  for (const auto* run : {&ref, &mujoco}) {
+    if (run->trajectory.divergence) {
+      throw std::runtime_error(source + ": " + (run == &ref ? "ref" : "MuJoCo") + ": " +
+                               describe(*run->trajectory.divergence, scene));
+    }
+  }
+  const analysis::TrajectoryError e = analysis::error_between(ref.trajectory, mujoco.trajectory);
+  if (!plot_png.empty()) {
+    const std::string title =
+        std::string(shape_name(scene.shape)) + ": ref vs MuJoCo (" +
+        std::string(mj::mapping_name(options.mapping)) + " mapping, " +
+        (scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
+        " damping)";
+    plot_comparison(plot_png, title, ref.trajectory, mujoco.trajectory);
+  }
+  c.shape = std::string(shape_name(scene.shape));
+  c.dt = scene.sim.dt;
+  c.duration = scene.sim.duration;
+  c.max_pos = e.max_pos;
+  c.rms_pos = e.rms_pos;
+  c.max_angle = e.max_angle;
+  c.max_vel = e.max_vel;
+  c.end_pos = e.end_pos;
+  c.impratio = mujoco.impratio;
+  c.ref_seconds = ref.seconds;
+  c.mujoco_seconds = mujoco.seconds;
+  return c;
+}
+
+void write_model(const Scene& scene, const std::string& source, const std::string& mapping,
+                 const std::string& path) {
+  AtomicFile out(path);
+  const auto model = contact2d::mujoco::generate_mjcf(
+      scene, contact2d::mujoco::mjcf_options(mapping, "corners", source));
+  std::fputs(model.xml.c_str(), out.get());
+  out.commit();
+}
+
+SceneSweep sweep_scene(const Scene& scene, const std::string& name, const SweepRequest& request,
+                       const std::string& plot_png) {
+  SceneSweep out;
+  out.name = name;
+  out.scene = std::string(shape_name(scene.shape));
+  if (request.study) {
+    const std::vector<double> tols{1e-3, 1e-4,  1e-5,  1e-6,  1e-7, 1e-8,
+                                   1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
+    // One thread, as `contact2d sweep --study-csv`: the study times every run.
+    const analysis::ReferenceStudy study = analysis::study_reference(scene, tols, 1e-14, 1);
+    for (const analysis::ToleranceRow& row : study.rows) {
+      out.study.push_back(
+          {row.tol, row.failure.empty(), row.error.max_pos, row.seconds, row.stats.events});
+    }
+    out.amplification = study.amplification;
+  }
+  analysis::SweepConfig config;
+  if (!request.integrators.empty())
+    config.integrators = analysis::parse_integrators(request.integrators);
+  if (!request.mujoco_dts.empty()) config.other_dts = request.mujoco_dts;
+  if (!request.mujoco_integrators.empty())
+    config.other_integrators = analysis::parse_integrators(request.mujoco_integrators);
+  config.engines = request.engines;
+  config.repeats = request.repeats;
+  const analysis::SweepResult result = analysis::run_sweep(scene, config);
+  for (const analysis::SweepRow& row : result.rows) {
+    SweepRun run;
+    run.engine = row.engine;
+    run.integrator = std::string(integrator_name(row.integrator));
+    run.dt = row.dt;
+    run.status = status_text(row.status);
+    run.max_pos = row.error.max_pos;
+    if (row.self_error) run.self_max_pos = row.self_error->max_pos;
+    run.seconds = row.repeats > 0 ? row.seconds : 0.0;
+    out.runs.push_back(run);
+  }
+  for (const analysis::ToleranceRow& row : result.dense_curve) {
+    SweepRun run;
+    run.engine = "ref";
+    run.integrator = "dopri5_events";
+    run.tol = row.tol;
+    run.status = row.failure.empty() ? "ok" : "failed";
+    run.max_pos = row.error.max_pos;
+    run.seconds = row.seconds;
+    out.runs.push_back(run);
+  }
+  for (const analysis::OrderFit& f : result.orders) {
+    OrderRow o;
+    o.engine = f.engine;
+    o.integrator = std::string(integrator_name(f.integrator));
+    o.against = f.against;
+    o.nominal = f.nominal;
+    o.observed = f.order;
+    o.observed_stderr = f.order_stderr;
+    o.points = f.points;
+    o.dt_min = f.dt_min;
+    o.dt_max = f.dt_max;
+    o.note = f.note;
+    out.orders.push_back(o);
+  }
+  if (!plot_png.empty()) analysis::plot_sweep(plot_png, result);
+  return out;
+}
+
+StabilityMap stability_map(const Scene& scene, const std::string& name,
+                           const StabilityRequest& request, const std::string& plot_png) {
+  analysis::StabilityConfig config;
+  if (!request.ks.empty()) config.ks = request.ks;
+  config.engines = request.engines;
+  config.zeta = request.zeta;
+  const analysis::StabilityResult result =
+      analysis::run_stability(scene, config);
+  StabilityMap map;
+  map.name = name;
+  map.scene = result.scene_name;
+  for (const analysis::StabilityRow& r : result.rows) {
+    StabilityRow row;
+    row.engine = r.engine;
+    row.integrator = std::string(integrator_name(r.integrator));
+    row.k = r.k;
+    row.c = r.c;
+    row.zeta = r.zeta;
+    row.theory = finite(r.theory);
+    row.verdict = analysis::verdict_name(r.verdict);
+    row.dt_stable = r.dt_stable;
+    row.dt_unstable = r.dt_unstable;
+    row.dt_min = r.dt_min;
+    row.dt_max = result.dt_max;
+    row.omega_dt_stable = r.omega * r.dt_stable;
+    row.penetration = finite(r.penetration);
+    row.penetration_small_step = finite(r.penetration_small_step);
+    row.reference_penetration = finite(r.reference_penetration);
+    row.failure = r.failure;
+    row.note = r.note;
+    map.rows.push_back(row);
+  }
+  if (!plot_png.empty()) analysis::plot_stability(plot_png, result);
+  return map;
+}
+
+EngineOutcome simulate_outcome(const std::string& path, const std::string& engine) {
+  Scene scene;
+  engines::EngineRun run;
+  try {
+    scene = load_scene(path);
+    engines::EngineSpec spec = engines::parse_engine(engine);
+    spec.source = path;
+    run = engines::run_engine(spec, scene);
+  } catch (const InputError& e) {
+    return {cli::kExitBadInput, "contact2d: " + std::string(e.what()) + "\n"};
+  }
+  std::string text;
+  for (const std::string& w : run.warnings)
+    text += "contact2d: " + engine + " warning: " + w + "\n";
+  if (run.trajectory.divergence) {
+    text += "contact2d: " + path + ": " + describe(*run.trajectory.divergence, scene) + "\n";
+    return {cli::kExitDiverged, text};
+  }
+  return {cli::kExitOk, analysis::run_summary(scene, engine, run) + "\n"};
+}
+
+Bench run_bench(const std::string& executable, const std::string& min_time) {
+  char json_path[] = "/tmp/contact2d-bench-XXXXXX";
+  const int fd = ::mkstemp(json_path);
+  if (fd < 0) throw std::runtime_error("cannot create a temporary file for the bench's JSON");
+  ::close(fd);
+  std::vector<std::string> args{executable, "--benchmark_min_time=" + min_time,
+                                std::string("--benchmark_out=") + json_path,
+                                "--benchmark_out_format=json"};
+  std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int spawned =
+      ::posix_spawn(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  int status = 0;
+  if (spawned != 0 || ::waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) ||
+      WEXITSTATUS(status) != 0) {
+    std::remove(json_path);
+    throw std::runtime_error(executable + " failed (exit " +
+                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+  }
+  std::ifstream in(json_path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::remove(json_path);
+  Bench bench = parse_bench_json(text.str());
+  const size_t slash = executable.rfind('/');
+  bench.command = (slash == std::string::npos ? executable : executable.substr(slash + 1)) +
+                  " --benchmark_min_time=" + min_time;
+  return bench;
+}
+
+}  // namespace contact2d::report

@@ -1,0 +1,180 @@
+// Golden tests of the report's pages: hand-written result structs
+// (fixtures.hpp) through the page writers, compared with the Markdown checked
+// in under tests/report/golden/, wall-clock fields masked. A page that
+// changes fails here; when the change is meant, regenerate the golden files
+// with CONTACT2D_UPDATE_GOLDEN=1 and review their diff.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <sstream>
+
+#include "fixtures.hpp"
+#include "report/pages.hpp"
+
+namespace contact2d::report {
+namespace {
+
+// Wall-clock fields: the per-step columns of README.md and sweep.md's
+// "ms at 1e-4", "N ms" anywhere, the run's load and duration, and the bench
+// block of sweep.md. The choices made from times (the cheapest run per
+// accuracy) stay: on fixed structs they are fixed.
+std::string mask_timing(const std::string& page) {
+  std::string out;
+  std::istringstream in(page);
+  std::vector<bool> timing;  // per column of the current table
+  bool in_bench = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line == "```") in_bench = !in_bench;
+    if (in_bench && line != "```") {
+      out += "BENCH\n";
+      continue;
+    }
+    if (line.rfind("|", 0) == 0) {
+      std::vector<std::string> cells;
+      size_t start = 2;
+      for (size_t at; (at = line.find(" | ", start)) != std::string::npos; start = at + 3)
+        cells.push_back(line.substr(start, at - start));
+      cells.push_back(line.substr(start, line.size() - start - 2));
+      if (timing.empty()) {
+        for (const std::string& c : cells) {
+          timing.push_back(c.find("µs/step") != std::string::npos ||
+                           c.find("ms at 1e-4") != std::string::npos);
+        }
+      } else if (line.rfind("|---", 0) != 0) {
+        line = "|";
+        for (size_t i = 0; i < cells.size(); ++i)
+          line += " " + (i < timing.size() && timing[i] ? std::string("T") : cells[i]) + " |";
+      }
+    } else {
+      timing.clear();
+    }
+    out += line + "\n";
+  }
+  out = std::regex_replace(out, std::regex(R"([0-9.e+-]+ ms\b)"), "T ms");
+  out = std::regex_replace(out, std::regex(R"(this run: [^)]*\))"), "this run: RUNINFO)");
+  out = std::regex_replace(out, std::regex(R"(took \d+ s\n\(sweeps \d+ s, stability maps \d+ s\))"),
+                           "took T s\n(sweeps T s, stability maps T s)");
+  return out;
+}
+
+void expect_golden(const std::string& name, const std::string& page) {
+  const std::string path = std::string(CONTACT2D_REPORT_GOLDEN_DIR) + "/" + name;
+  const std::string masked = mask_timing(page);
+  if (std::getenv("CONTACT2D_UPDATE_GOLDEN")) {
+    std::ofstream(path) << masked;
+    GTEST_SKIP() << "wrote " << path;
+  }
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << path << " is missing (CONTACT2D_UPDATE_GOLDEN=1 writes it)";
+  // The first line that differs, not two whole pages.
+  std::istringstream want(std::string(std::istreambuf_iterator<char>(in), {}));
+  std::istringstream got(masked);
+  std::string a, b;
+  for (int line = 1;; ++line) {
+    const bool more_a = static_cast<bool>(std::getline(want, a));
+    const bool more_b = static_cast<bool>(std::getline(got, b));
+    if (!more_a && !more_b) return;
+    if (more_a != more_b || a != b) {
+      ADD_FAILURE() << name << " changed at line " << line
+                    << ":\n  golden: " << (more_a ? a : "(end)")
+                    << "\n  page:   " << (more_b ? b : "(end)");
+      return;
+    }
+  }
+}
+
+TEST(ReportPages, ReadmeMatchesGolden) {
+  expect_golden("README.md", readme_page(fixtures::readme()));
+}
+
+TEST(ReportPages, SweepMatchesGolden) { expect_golden("sweep.md", sweep_page(fixtures::sweep())); }
+
+TEST(ReportPages, StabilityMatchesGolden) {
+  expect_golden("stability.md", stability_page(fixtures::stability(), fixtures::sweep().bench));
+}
+
+TEST(ReportPages, ExtremeMatchesGolden) {
+  expect_golden("extreme.md", extreme_page(fixtures::extreme()));
+}
+
+// The mask hides wall clock and nothing else: a time changes nothing, an
+// error does.
+TEST(ReportPages, MaskHidesTimesOnly) {
+  ReadmeData a = fixtures::readme();
+  ReadmeData b = a;
+  b.shipped[0].result.mujoco_seconds *= 3;
+  b.integrators[0].result.ref_seconds *= 3;
+  EXPECT_NE(readme_page(a), readme_page(b));
+  EXPECT_EQ(mask_timing(readme_page(a)), mask_timing(readme_page(b)));
+  b.shipped[0].result.max_vel *= 3;
+  EXPECT_NE(mask_timing(readme_page(a)), mask_timing(readme_page(b)));
+
+  SweepData s = fixtures::sweep();
+  SweepData t = s;
+  t.info.total_seconds += 5;
+  t.sweeps[0].study[1].seconds *= 2;
+  EXPECT_EQ(mask_timing(sweep_page(s)), mask_timing(sweep_page(t)));
+  t.sweeps[0].study[1].max_pos *= 2;
+  EXPECT_NE(mask_timing(sweep_page(s)), mask_timing(sweep_page(t)));
+}
+
+// Verdicts and counts in the prose follow the structs.
+TEST(ReportPages, ReadmeVerdictsAndCounts) {
+  const std::string page = readme_page(fixtures::readme());
+  EXPECT_NE(page.find("| box, c = 200, friction | 12.5 | 0.004 | 3e-3 | 0.5 | - | **no** |"),
+            std::string::npos);
+  EXPECT_NE(
+      page.find("| box, c = 200, frictionless | 1e-15 | 3e-06 | 1e-5 | 0.0002 | 1e-4 | **no** |"),
+      std::string::npos);
+  EXPECT_NE(page.find("Without friction, 1 of 3 scenes are within 1e-5 m and 1e-4 rad."),
+            std::string::npos);
+  EXPECT_NE(page.find("Three scenes drawn by `contact2d report`\n(SplitMix64, seed 42)"),
+            std::string::npos);
+  EXPECT_NE(page.find("- point_mass: **calibrated** (0.1 m), 2.5× smaller than the next best"),
+            std::string::npos);
+  EXPECT_NE(page.find("- box: **exact** (0.02 m), 1.5× smaller"), std::string::npos);
+  // Means as printed: calibrated 0.0548, exact 0.0707: 0.0707 / 0.0548 = 1.29.
+  EXPECT_NE(page.find("- overall: **calibrated**, its geometric-mean error 1.29× below"),
+            std::string::npos);
+}
+
+TEST(ReportPages, SweepProseNumbers) {
+  const std::string page = sweep_page(fixtures::sweep());
+  EXPECT_NE(page.find("its step costs 50–80× more"), std::string::npos);
+  // The bench table (wall clock, so masked in the golden file) as aligned text.
+  EXPECT_NE(
+      page.find("scene       integrator           ref cpu  mj cpu  ratio  ref wall  mj wall\n"
+                "point_mass  semi_implicit_euler  20.0ns   1000ns  50x    20.5ns    1001ns\n"),
+      std::string::npos);
+  EXPECT_NE(page.find("circle      semi_implicit_euler  30.0ns   -       -      30.5ns    -\n"),
+            std::string::npos);
+  EXPECT_NE(page.find("sincos 26.1ns, tanh 41.6ns, a step with no contact points 10.1ns\n```"),
+            std::string::npos);
+  EXPECT_NE(page.find("(1.00 for the Euler methods, ≈ 4.6 for RK4 between 1e-3\n  and 2e-4 s,"),
+            std::string::npos);
+  EXPECT_NE(page.find("semi-implicit Euler against MuJoCo Euler 50–50× (CPU time), all "
+                      "integrators 10–80× — not met on every scene (section 6)."),
+            std::string::npos);
+  EXPECT_NE(page.find("floor drops to 0.001 m (its errors at 1e-4 s are 0.001 m)"),
+            std::string::npos);
+  // ref orders of the bouncing point mass: ± 0.012 and ± 0.14 (the circle's left out)
+  EXPECT_NE(page.find("standard errors of ±0.01…0.1 on the slopes"), std::string::npos);
+}
+
+TEST(ReportPages, StabilityProseRanges) {
+  const std::string page = stability_page(fixtures::stability(), fixtures::sweep().bench);
+  // explicit Euler bracketed: 316·0.0016 = 0.506, 3162·0.00017 = 0.538, 700·0.0011 = 0.77
+  EXPECT_NE(page.find("fails at ω·Δt ≈ 0.51–0.77 (the table)"), std::string::npos);
+  // implicit Euler bracketed: 31623·0.00024 = 7.59 only
+  EXPECT_NE(page.find("(≳ 7.6, the table)"), std::string::npos);
+  EXPECT_NE(page.find("= 0.83 at ζ = 1,\nRK4 2.79 at ζ = 1"), std::string::npos);
+  EXPECT_NE(page.find("own c = 20 N·s/m at every k\n\nHolding c fixed makes ζ = c/(2√(k·m)) "
+                      "fall from 0.32 to 0.00032 as k grows."),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace contact2d::report
