@@ -16,16 +16,10 @@
 
 #include "io/csv.hpp"
 #include "io/plot.hpp"
+#include "io/table.hpp"
 
 namespace contact2d::analysis {
 namespace {
-
-std::string pad(const std::string& text, size_t width) {
-  // Width in characters, counting a UTF-8 sequence as one.
-  size_t chars = 0;
-  for (unsigned char c : text) chars += (c & 0xC0) != 0x80;
-  return chars >= width ? text + " " : text + std::string(width - chars, ' ');
-}
 
 std::string csv_number(double value) { return std::isfinite(value) ? number(value, 9, "") : ""; }
 
@@ -46,14 +40,6 @@ std::string kind_text(DivergenceKind kind) {
     case DivergenceKind::NewtonFailed: return "Newton failed";
   }
   return "?";
-}
-
-std::string csv_text(std::string text) {
-  for (char& c : text) {
-    if (c == '"') c = '\'';
-    if (c == '\n') c = ' ';
-  }
-  return "\"" + text + "\"";
 }
 
 // "RK4" for the reference, "MuJoCo Euler" etc. for MuJoCo (its Euler is
@@ -97,39 +83,42 @@ void print_sweep(std::ostream& out, const SweepResult& r) {
       << "time: wall clock of each run, best of " << r.repeats << " (one run when it takes over "
       << number(r.single_run_seconds, 3) << " s), " << r.threads << " thread"
       << (r.threads > 1 ? "s" : "") << " side by side\n\n";
-  out << pad("engine", 8) << pad("integrator", 21) << pad("dt", 9) << pad("max pos err", 13)
-      << pad("end pos err", 13) << pad("max angle err", 15) << pad("own-finest err", 16)
-      << "time (ms)\n";
+  Table runs{{"engine", "integrator", "dt", "max pos err", "end pos err", "max angle err",
+              "own-finest err", "time (ms)", "note"},
+             {}};
   for (const SweepRow& row : r.rows) {
-    out << pad(row.engine, 8) << pad(std::string(integrator_name(row.integrator)), 21)
-        << pad(number(row.dt, 3), 9);
+    const std::string engine = row.engine, integrator(integrator_name(row.integrator)),
+                      dt = number(row.dt, 3);
     if (row.status == RunStatus::Ok) {
-      out << pad(number(row.error.max_pos), 13) << pad(number(row.error.end_pos), 13)
-          << pad(number(row.error.max_angle), 15)
-          << pad(row.self_error ? number(row.self_error->max_pos) : "(finest)", 16)
-          << number(row.seconds * 1e3, 3);
+      add_row(runs, {engine, integrator, dt, number(row.error.max_pos), number(row.error.end_pos),
+                     number(row.error.max_angle),
+                     row.self_error ? number(row.self_error->max_pos) : "(finest)",
+                     number(row.seconds * 1e3, 3), ""});
     } else if (row.status == RunStatus::Diverged) {
-      out << "diverged at t = " << number(row.divergence->time, 4) << " s ("
-          << kind_text(row.divergence->kind) << ")";
+      add_row(runs, {engine, integrator, dt, "-", "-", "-", "-", "-",
+                     "diverged at t = " + number(row.divergence->time, 4) + " s (" +
+                         kind_text(row.divergence->kind) + ")"});
     } else {
-      out << "failed: " << row.message;
+      add_row(runs, {engine, integrator, dt, "-", "-", "-", "-", "-", "failed: " + row.message});
     }
-    out << "\n";
   }
+  out << to_text(runs);
   if (!r.dense_curve.empty()) {
-    out << "\nthe adaptive method itself (Dormand–Prince 5(4) with events) at other tolerances:\n"
-        << pad("tol", 9) << pad("max pos err", 13) << pad("end pos err", 13)
-        << pad("max angle err", 15) << pad("steps", 8) << pad("events", 8) << "time (ms)\n";
+    out << "\nthe adaptive method itself (Dormand–Prince 5(4) with events) at other tolerances:\n";
+    Table dense{{"tol", "max pos err", "end pos err", "max angle err", "steps", "events",
+                 "time (ms)", "note"},
+                {}};
     for (const ToleranceRow& row : r.dense_curve) {
-      out << pad(number(row.tol, 2), 9);
       if (!row.failure.empty()) {
-        out << "failed: " << row.failure << "\n";
+        add_row(dense,
+                {number(row.tol, 2), "-", "-", "-", "-", "-", "-", "failed: " + row.failure});
         continue;
       }
-      out << pad(number(row.error.max_pos), 13) << pad(number(row.error.end_pos), 13)
-          << pad(number(row.error.max_angle), 15) << pad(std::to_string(row.stats.accepted), 8)
-          << pad(std::to_string(row.stats.events), 8) << number(row.seconds * 1e3, 3) << "\n";
+      add_row(dense, {number(row.tol, 2), number(row.error.max_pos), number(row.error.end_pos),
+                      number(row.error.max_angle), std::to_string(row.stats.accepted),
+                      std::to_string(row.stats.events), number(row.seconds * 1e3, 3), ""});
     }
+    out << to_text(dense);
   }
   out << "\n";
   print_orders(out, r);
@@ -142,66 +131,58 @@ void print_orders(std::ostream& out, const SweepResult& r) {
          "scene's length\n"
          "scale L = "
       << number(r.length_scale, 3) << " m (body size or largest COM displacement)\n";
-  out << pad("engine", 8) << pad("integrator", 21) << pad("against", 12) << pad("nominal", 9)
-      << pad("observed", 12) << pad("dt range", 18) << "note\n";
+  Table orders{{"engine", "integrator", "against", "nominal", "observed", "dt range", "note"}, {}};
   for (const OrderFit& f : r.orders) {
-    out << pad(f.engine, 8) << pad(std::string(integrator_name(f.integrator)), 21)
-        << pad(f.against, 12) << pad(number(f.nominal, 2), 9)
-        << pad(f.order ? number(*f.order, 2) + " ± " + number(f.order_stderr, 1) : "-", 12)
-        << pad(f.order ? number(f.dt_min, 2) + ".." + number(f.dt_max, 2) + " (" +
-                             std::to_string(f.points) + ")"
-                       : "-",
-               18)
-        << f.note << "\n";
+    add_row(orders,
+            {f.engine, std::string(integrator_name(f.integrator)), f.against, number(f.nominal, 2),
+             f.order ? number(*f.order, 2) + " ± " + number(f.order_stderr, 1) : "-",
+             f.order ? number(f.dt_min, 2) + ".." + number(f.dt_max, 2) + " (" +
+                           std::to_string(f.points) + ")"
+                     : "-",
+             f.note});
   }
+  out << to_text(orders);
 }
 
 void write_sweep_csv(std::FILE* out, const SweepResult& r) {
-  std::fprintf(
-      out,
-      "scene,engine,integrator,dt,tol,status,max_pos_err,end_pos_err,max_angle_err,end_angle_err,"
-      "self_max_pos_err,seconds,repeats,diverged_at,reference_tol,reference_err,message\n");
+  Table t{{"scene", "engine", "integrator", "dt", "tol", "status", "max_pos_err", "end_pos_err",
+           "max_angle_err", "end_angle_err", "self_max_pos_err", "seconds", "repeats",
+           "diverged_at", "reference_tol", "reference_err", "message"},
+          {}};
   for (const SweepRow& row : r.rows) {
     const bool ok = row.status == RunStatus::Ok;
-    std::fprintf(out, "%s,%s,%s,%s,,%s,%s,%s,%s,%s,%s,%s,%d,%s,%s,%s,%s\n", r.scene_name.c_str(),
-                 row.engine.c_str(), std::string(integrator_name(row.integrator)).c_str(),
-                 csv_number(row.dt).c_str(), status_text(row).c_str(),
-                 ok ? csv_number(row.error.max_pos).c_str() : "",
-                 ok ? csv_number(row.error.end_pos).c_str() : "",
-                 ok ? csv_number(row.error.max_angle).c_str() : "",
-                 ok ? csv_number(row.error.end_angle).c_str() : "",
-                 row.self_error ? csv_number(row.self_error->max_pos).c_str() : "",
-                 row.repeats > 0 ? csv_number(row.seconds).c_str() : "", row.repeats,
-                 row.divergence ? csv_number(row.divergence->time).c_str() : "",
-                 csv_number(r.reference.tol).c_str(), csv_number(r.reference_error).c_str(),
-                 csv_text(row.message).c_str());
+    add_row(t, {r.scene_name, row.engine, std::string(integrator_name(row.integrator)),
+                csv_number(row.dt), "", status_text(row), ok ? csv_number(row.error.max_pos) : "",
+                ok ? csv_number(row.error.end_pos) : "", ok ? csv_number(row.error.max_angle) : "",
+                ok ? csv_number(row.error.end_angle) : "",
+                row.self_error ? csv_number(row.self_error->max_pos) : "",
+                row.repeats > 0 ? csv_number(row.seconds) : "", std::to_string(row.repeats),
+                row.divergence ? csv_number(row.divergence->time) : "", csv_number(r.reference.tol),
+                csv_number(r.reference_error), row.message});
   }
   // The adaptive method's own curve: integrator "dopri5_events", no dt.
   for (const ToleranceRow& row : r.dense_curve) {
     const bool ok = row.failure.empty();
-    std::fprintf(out, "%s,ref,dopri5_events,,%s,%s,%s,%s,%s,%s,,%s,3,,%s,%s,%s\n",
-                 r.scene_name.c_str(), csv_number(row.tol).c_str(), ok ? "ok" : "failed",
-                 ok ? csv_number(row.error.max_pos).c_str() : "",
-                 ok ? csv_number(row.error.end_pos).c_str() : "",
-                 ok ? csv_number(row.error.max_angle).c_str() : "",
-                 ok ? csv_number(row.error.end_angle).c_str() : "", csv_number(row.seconds).c_str(),
-                 csv_number(r.reference.tol).c_str(), csv_number(r.reference_error).c_str(),
-                 csv_text(row.failure).c_str());
+    add_row(t, {r.scene_name, "ref", "dopri5_events", "", csv_number(row.tol), ok ? "ok" : "failed",
+                ok ? csv_number(row.error.max_pos) : "", ok ? csv_number(row.error.end_pos) : "",
+                ok ? csv_number(row.error.max_angle) : "",
+                ok ? csv_number(row.error.end_angle) : "", "", csv_number(row.seconds), "3", "",
+                csv_number(r.reference.tol), csv_number(r.reference_error), row.failure});
   }
+  std::fputs(to_csv(t).c_str(), out);
 }
 
 void write_orders_csv(std::FILE* out, const SweepResult& r) {
-  std::fprintf(out,
-               "scene,engine,integrator,against,nominal,observed,observed_stderr,points,dt_min,dt_"
-               "max,note\n");
+  Table t{{"scene", "engine", "integrator", "against", "nominal", "observed", "observed_stderr",
+           "points", "dt_min", "dt_max", "note"},
+          {}};
   for (const OrderFit& f : r.orders) {
-    std::fprintf(out, "%s,%s,%s,%s,%s,%s,%s,%d,%s,%s,%s\n", r.scene_name.c_str(), f.engine.c_str(),
-                 std::string(integrator_name(f.integrator)).c_str(), f.against.c_str(),
-                 csv_number(f.nominal).c_str(), f.order ? csv_number(*f.order).c_str() : "",
-                 f.order ? csv_number(f.order_stderr).c_str() : "", f.points,
-                 f.order ? csv_number(f.dt_min).c_str() : "",
-                 f.order ? csv_number(f.dt_max).c_str() : "", csv_text(f.note).c_str());
+    add_row(t, {r.scene_name, f.engine, std::string(integrator_name(f.integrator)), f.against,
+                csv_number(f.nominal), f.order ? csv_number(*f.order) : "",
+                f.order ? csv_number(f.order_stderr) : "", std::to_string(f.points),
+                f.order ? csv_number(f.dt_min) : "", f.order ? csv_number(f.dt_max) : "", f.note});
   }
+  std::fputs(to_csv(t).c_str(), out);
 }
 
 void plot_sweep(const std::string& png_path, const SweepResult& r) {
@@ -294,37 +275,38 @@ void print_reference_study(std::ostream& out, const std::string& scene_name,
       << number(study.truth_seconds * 1e3, 3)
       << " ms); the scene magnifies an initial height change by up to "
       << number(study.amplification, 3) << "x\n";
-  out << pad("tol", 8) << pad("max pos err", 13) << pad("end pos err", 13)
-      << pad("max angle err", 15) << pad("steps", 8) << pad("rejected", 10) << pad("events", 8)
-      << pad("f evals", 9) << "time (ms)\n";
+  Table t{{"tol", "max pos err", "end pos err", "max angle err", "steps", "rejected", "events",
+           "f evals", "time (ms)", "note"},
+          {}};
   for (const ToleranceRow& row : study.rows) {
-    out << pad(number(row.tol, 2), 8);
     if (!row.failure.empty()) {
-      out << "failed: " << row.failure << "\n";
+      add_row(t, {number(row.tol, 2), "-", "-", "-", "-", "-", "-", "-", "-",
+                  "failed: " + row.failure});
       continue;
     }
-    out << pad(number(row.error.max_pos), 13) << pad(number(row.error.end_pos), 13)
-        << pad(number(row.error.max_angle), 15) << pad(std::to_string(row.stats.accepted), 8)
-        << pad(std::to_string(row.stats.rejected), 10) << pad(std::to_string(row.stats.events), 8)
-        << pad(std::to_string(row.stats.evaluations), 9) << number(row.seconds * 1e3, 3) << "\n";
+    add_row(t, {number(row.tol, 2), number(row.error.max_pos), number(row.error.end_pos),
+                number(row.error.max_angle), std::to_string(row.stats.accepted),
+                std::to_string(row.stats.rejected), std::to_string(row.stats.events),
+                std::to_string(row.stats.evaluations), number(row.seconds * 1e3, 3), ""});
   }
+  out << to_text(t);
 }
 
 void write_reference_study_csv(std::FILE* out, const std::string& scene_name,
                                const ReferenceStudy& study) {
-  std::fprintf(out,
-               "scene,tol,truth_tol,max_pos_err,end_pos_err,max_angle_err,steps,rejected,events,"
-               "evaluations,seconds,amplification\n");
+  Table t{{"scene", "tol", "truth_tol", "max_pos_err", "end_pos_err", "max_angle_err", "steps",
+           "rejected", "events", "evaluations", "seconds", "amplification"},
+          {}};
   for (const ToleranceRow& row : study.rows) {
     const bool ok = row.failure.empty();
-    std::fprintf(out, "%s,%s,%s,%s,%s,%s,%lld,%lld,%lld,%lld,%s,%s\n", scene_name.c_str(),
-                 csv_number(row.tol).c_str(), csv_number(study.truth_tol).c_str(),
-                 ok ? csv_number(row.error.max_pos).c_str() : "",
-                 ok ? csv_number(row.error.end_pos).c_str() : "",
-                 ok ? csv_number(row.error.max_angle).c_str() : "", row.stats.accepted,
-                 row.stats.rejected, row.stats.events, row.stats.evaluations,
-                 csv_number(row.seconds).c_str(), csv_number(study.amplification).c_str());
+    add_row(t, {scene_name, csv_number(row.tol), csv_number(study.truth_tol),
+                ok ? csv_number(row.error.max_pos) : "", ok ? csv_number(row.error.end_pos) : "",
+                ok ? csv_number(row.error.max_angle) : "", std::to_string(row.stats.accepted),
+                std::to_string(row.stats.rejected), std::to_string(row.stats.events),
+                std::to_string(row.stats.evaluations), csv_number(row.seconds),
+                csv_number(study.amplification)});
   }
+  std::fputs(to_csv(t).c_str(), out);
 }
 
 // ------------------------------------------------------------ stability
@@ -341,13 +323,10 @@ void print_stability(std::ostream& out, const StabilityResult& r) {
       << (r.zeta ? "c = 2*zeta*sqrt(k*m_eff) with zeta = " + number(*r.zeta, 3)
                  : std::string("the scene's c at every k"))
       << "; theory: largest stable omega*dt of the linear oscillator, omega = sqrt(k/m_eff)\n\n";
-  out << pad("engine", 8) << pad("integrator", 21) << pad("k (N/m)", 9) << pad("zeta", 9)
-      << pad("omega", 10) << pad("stable dt", 11) << pad("omega*dt", 10) << pad("theory", 8)
-      << pad("ratio", 7) << pad("depth (m)", 11) << pad("at wdt=0.2", 11) << pad("ref depth", 10)
-      << "first failure / note\n";
+  Table t{{"engine", "integrator", "k (N/m)", "zeta", "omega", "stable dt", "omega*dt", "theory",
+           "ratio", "depth (m)", "at wdt=0.2", "ref depth", "first failure / note"},
+          {}};
   for (const StabilityRow& row : r.rows) {
-    out << pad(row.engine, 8) << pad(std::string(integrator_name(row.integrator)), 21)
-        << pad(number(row.k, 2), 9) << pad(number(row.zeta, 3), 9) << pad(number(row.omega, 4), 10);
     std::string stable;
     switch (row.verdict) {
       case StabilityVerdict::Bracketed: stable = number(row.dt_stable, 3); break;
@@ -356,48 +335,73 @@ void print_stability(std::ostream& out, const StabilityResult& r) {
       case StabilityVerdict::Failed: stable = "failed"; break;
     }
     const double observed = row.omega * row.dt_stable;
-    out << pad(stable, 11)
-        << pad(std::isnan(row.dt_stable)
-                   ? "-"
-                   : (row.verdict == StabilityVerdict::StableAtMax ? ">=" : "") +
-                         number(observed, 3),
-               10)
-        << pad(std::isfinite(row.theory) ? number(row.theory, 3) : "inf", 8)
-        << pad(std::isfinite(row.theory) && !std::isnan(row.dt_stable)
-                   ? number(observed / row.theory, 3)
-                   : "-",
-               7)
-        << pad(number(row.penetration, 3), 11) << pad(number(row.penetration_small_step, 3), 11)
-        << pad(number(row.reference_penetration, 3), 10);
     std::string tail = row.failure;
     if (!row.note.empty()) tail += (tail.empty() ? "" : "; ") + row.note;
-    out << tail << "\n";
+    add_row(
+        t,
+        {row.engine, std::string(integrator_name(row.integrator)), number(row.k, 2),
+         number(row.zeta, 3), number(row.omega, 4), stable,
+         std::isnan(row.dt_stable)
+             ? "-"
+             : (row.verdict == StabilityVerdict::StableAtMax ? ">=" : "") + number(observed, 3),
+         std::isfinite(row.theory) ? number(row.theory, 3) : "inf",
+         std::isfinite(row.theory) && !std::isnan(row.dt_stable) ? number(observed / row.theory, 3)
+                                                                 : "-",
+         number(row.penetration, 3), number(row.penetration_small_step, 3),
+         number(row.reference_penetration, 3), tail});
   }
+  out << to_text(t);
 }
 
 void write_stability_csv(std::FILE* out, const StabilityResult& r) {
-  std::fprintf(out,
-               "scene,engine,integrator,k,c,m_eff,omega,zeta,theory_omega_dt,theory_dt,dt_stable,"
-               "dt_unstable,"
-               "dt_min,dt_max,verdict,omega_dt_stable,probes,penetration,penetration_small_step,"
-               "reference_penetration,"
-               "failure,note\n");
+  Table t{{"scene",
+           "engine",
+           "integrator",
+           "k",
+           "c",
+           "m_eff",
+           "omega",
+           "zeta",
+           "theory_omega_dt",
+           "theory_dt",
+           "dt_stable",
+           "dt_unstable",
+           "dt_min",
+           "dt_max",
+           "verdict",
+           "omega_dt_stable",
+           "probes",
+           "penetration",
+           "penetration_small_step",
+           "reference_penetration",
+           "failure",
+           "note"},
+          {}};
   for (const StabilityRow& row : r.rows) {
-    std::fprintf(out, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%d,%s,%s,%s,%s,%s\n",
-                 r.scene_name.c_str(), row.engine.c_str(),
-                 std::string(integrator_name(row.integrator)).c_str(), csv_number(row.k).c_str(),
-                 csv_number(row.c).c_str(), csv_number(row.m_eff).c_str(),
-                 csv_number(row.omega).c_str(), csv_number(row.zeta).c_str(),
-                 std::isfinite(row.theory) ? csv_number(row.theory).c_str() : "inf",
-                 std::isfinite(row.theory) ? csv_number(row.theory / row.omega).c_str() : "inf",
-                 csv_number(row.dt_stable).c_str(), csv_number(row.dt_unstable).c_str(),
-                 csv_number(row.dt_min).c_str(), csv_number(r.dt_max).c_str(),
-                 verdict_name(row.verdict), csv_number(row.omega * row.dt_stable).c_str(),
-                 row.probes, csv_number(row.penetration).c_str(),
-                 csv_number(row.penetration_small_step).c_str(),
-                 csv_number(row.reference_penetration).c_str(), csv_text(row.failure).c_str(),
-                 csv_text(row.note).c_str());
+    add_row(t, {r.scene_name,
+                row.engine,
+                std::string(integrator_name(row.integrator)),
+                csv_number(row.k),
+                csv_number(row.c),
+                csv_number(row.m_eff),
+                csv_number(row.omega),
+                csv_number(row.zeta),
+                std::isfinite(row.theory) ? csv_number(row.theory) : "inf",
+                std::isfinite(row.theory) ? csv_number(row.theory / row.omega) : "inf",
+                csv_number(row.dt_stable),
+                csv_number(row.dt_unstable),
+                csv_number(row.dt_min),
+                csv_number(r.dt_max),
+                verdict_name(row.verdict),
+                csv_number(row.omega * row.dt_stable),
+                std::to_string(row.probes),
+                csv_number(row.penetration),
+                csv_number(row.penetration_small_step),
+                csv_number(row.reference_penetration),
+                row.failure,
+                row.note});
   }
+  std::fputs(to_csv(t).c_str(), out);
 }
 
 void plot_stability(const std::string& png_path, const StabilityResult& r) {

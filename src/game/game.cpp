@@ -1,5 +1,6 @@
 #include "game/game.hpp"
 
+#include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/rng.hpp"
 #include "engines/engines.hpp"
@@ -38,8 +39,7 @@ std::string_view outcome_name(Outcome outcome) {
 }
 
 std::string outcome_text(Outcome outcome, double min_kick_distance) {
-  char distance[32];
-  std::snprintf(distance, sizeof distance, "%g m", min_kick_distance);
+  const std::string distance = format_number("%g m", min_kick_distance);
   switch (outcome) {
     case Outcome::None: return "";
     case Outcome::Goal: return "GOAL!";

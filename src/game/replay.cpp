@@ -128,9 +128,8 @@ Replay read_replay(const std::string& path) {
 
 std::string format_replay(const Replay& replay) {
   std::ostringstream out;
-  char fingerprint[32];
-  std::snprintf(fingerprint, sizeof fingerprint, "%016llx",
-                static_cast<unsigned long long>(replay.pitch_fingerprint));
+  const std::string fingerprint =
+      format_text("%016llx", static_cast<unsigned long long>(replay.pitch_fingerprint));
   // The shortest decimal that reads back as the same double.
   const std::string dt = format_shortest(replay.dt, 6);
   out << "contact2d-replay 1\n"

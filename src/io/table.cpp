@@ -71,6 +71,7 @@ std::string to_text(const Table& table) {
       out += cells[i];
       if (i + 1 < cells.size()) out += std::string(widths[i] - display_width(cells[i]) + 2, ' ');
     }
+    while (!out.empty() && out.back() == ' ') out.pop_back();  // empty last cells
     return out + "\n";
   };
   std::string out = line(table.columns);

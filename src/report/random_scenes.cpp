@@ -66,10 +66,9 @@ std::vector<RandomScene> draw_random_scenes(std::uint64_t seed, int count) {
     s.sim.dt = 1e-4;
     s.sim.duration = 1.5;
     s.sim.integrator = Integrator::SemiImplicitEuler;
-    char name[16];
-    std::snprintf(name, sizeof name, "s%02d", i);
+    const std::string name = format_text("s%02d", i);
     if (const auto error = validate(s)) {
-      throw std::runtime_error(std::string("random scene ") + name + ": " + error->key + " = " +
+      throw std::runtime_error("random scene " + name + ": " + error->key + " = " +
                                std::to_string(error->value) + " is out of range: " + error->range);
     }
     out.push_back({name, s, m});

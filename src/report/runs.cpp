@@ -168,8 +168,7 @@ StabilityMap stability_map(const Scene& scene, const std::string& name,
   if (!request.ks.empty()) config.ks = request.ks;
   config.engines = request.engines;
   config.zeta = request.zeta;
-  const analysis::StabilityResult result =
-      analysis::run_stability(scene, config);
+  const analysis::StabilityResult result = analysis::run_stability(scene, config);
   StabilityMap map;
   map.name = name;
   map.scene = result.scene_name;

@@ -339,7 +339,7 @@ one step) is caught by locating its extremum from the end derivatives. Between
 events the right-hand side is analytic (tanh friction and tanh rolling
 resistance are smooth), so the method keeps its fifth order through impacts.
 It works for any body and parameters (not for scenes with static obstacles,
-which it refuses); `tests/analysis/test_dense_reference.cpp` checks it
+which it refuses); `tests/reference/test_dense_reference.cpp` checks it
 against closed-form bounces with both damping laws (to 1e-11 m), a grazing
 corner inside a 0.25 s step, and the core's force law on random states.
 

@@ -44,7 +44,7 @@ TEST_P(Models, RegenerateToTheSameBytesAndLoadWithoutWarning) {
   const std::string stored = read(test::source_dir() + "/" + model_path);
   EXPECT_EQ(generated, stored)
       << model_path
-      << " is out of date: regenerate it with scripts/report (or from the repository "
+      << " is out of date: regenerate it with scripts/demo (or from the repository "
          "root: contact2d generate "
       << scene_path << " --mapping " << mujoco::mapping_name(c.mapping) << " -o " << model_path
       << ")";

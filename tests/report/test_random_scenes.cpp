@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "report/random_scenes.hpp"
 #include "core/rng.hpp"
+#include "report/random_scenes.hpp"
 
 namespace contact2d::report {
 namespace {

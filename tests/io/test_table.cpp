@@ -32,7 +32,7 @@ TEST(Table, MarkdownKeepsAnEscapedPipeAndJoinsLines) {
 TEST(Table, AlignedTextCountsCharactersNotBytes) {
   EXPECT_EQ(to_text(sample()),
             "scene   max pos (m)  note\n"
-            "box     0.0123       \n"
+            "box     0.0123\n"
             "μ-disc  1e-05        a, \"b\" | c\n");
 }
 
@@ -55,6 +55,13 @@ TEST(Table, EmptyTableIsItsHeader) {
   EXPECT_EQ(to_markdown(t), "| a | b |\n|---|---|\n");
   EXPECT_EQ(to_csv(t), "a,b\n");
   EXPECT_EQ(to_text(t), "a  b\n");
+}
+
+// An empty last cell leaves no trailing blanks on its line.
+TEST(Table, TextLinesEndWithoutBlanks) {
+  Table t{{"a", "note"}, {}};
+  add_row(t, {"long value", ""});
+  EXPECT_EQ(to_text(t), "a           note\nlong value\n");
 }
 
 }  // namespace
