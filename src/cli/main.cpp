@@ -14,14 +14,10 @@ int main(int argc, char** argv) {
       "2.2"};
   app.require_subcommand(1);
 
-  const std::vector<Command> commands = {
-      add_simulate(app), add_play(app),
-#ifdef CONTACT2D_WITH_MUJOCO
-      add_generate(app), add_compare(app),
-      add_report(app),  // validation/report/ (src/cli/cmd_report.cpp)
-#endif
-      add_sweep(app),    add_stability(app),
-  };
+  std::vector<Command> commands = {add_simulate(app), add_play(app)};
+  for (Command& c : add_mujoco_commands(app)) commands.push_back(c);  // generate, compare, report
+  commands.push_back(add_sweep(app));
+  commands.push_back(add_stability(app));
 
   try {
     app.parse(argc, argv);
