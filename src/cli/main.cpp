@@ -6,9 +6,12 @@
 
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
+#include "io/interrupt.hpp"
 
 int main(int argc, char** argv) {
   using namespace contact2d::cli;
+  // SIGINT, SIGTERM, SIGHUP: remove unfinished output files, exit 130/143/129.
+  contact2d::install_interrupt_cleanup();
   CLI::App app{
       "contact2d: a 2D rigid-body penalty-contact reference solver, cross-validated against MuJoCo "
       "2.2"};

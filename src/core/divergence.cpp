@@ -123,9 +123,9 @@ std::string describe(const Divergence& d, const Scene& scene) {
     const double safe_dt = 0.05 / cs.omega;
     message +=
         "Likely cause: " + method + " gains energy on every undamped rebound (the " +
-        "compression law does not damp it): each contact step multiplies it by 1 + (ω·Δt)² = " +
-        format("%.3g", 1.0 + omega_dt * omega_dt) + omega_text + ". Try --dt " +
-        format("%.2g", safe_dt) + " or --integrator semi_implicit_euler.";
+        "compression law does not damp it): each contact step multiplies it by 1 + (ω·Δt)² = 1 + " +
+        format("%.3g", omega_dt * omega_dt) + omega_text + ". Try --dt " + format("%.2g", safe_dt) +
+        " or --integrator semi_implicit_euler.";
   } else if (omega_dt > limit) {
     const double safe_dt = 0.5 * limit / cs.omega;
     message += "Likely cause: ω·Δt = " + format("%.3g", omega_dt) + " exceeds the " + method +

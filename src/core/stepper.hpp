@@ -28,7 +28,6 @@ class Stepper {
   virtual const ContactSet& contacts() const = 0;  // at state().q
   // The scene's model (the divergence rule and energies use it).
   virtual const Model& model() const = 0;
-  virtual double dt() const = 0;
   // "ref semi_implicit_euler", "mujoco calibrated Euler", …
   virtual std::string describe() const = 0;
 };
@@ -44,7 +43,6 @@ class ReferenceStepper final : public Stepper {
   const State& state() const override { return state_; }
   const ContactSet& contacts() const override { return ws_.contacts; }
   const Model& model() const override { return model_; }
-  double dt() const override { return dt_; }
   std::string describe() const override;
 
  private:

@@ -60,7 +60,7 @@ EngineSpec parse_engine(const std::string& name, const std::string& option) {
   spec.mapping = rest.substr(0, second);
   if (second != std::string::npos) spec.geometry = rest.substr(second + 1);
 #ifdef CONTACT2D_WITH_MUJOCO
-  if (!mujoco::parse_mapping(spec.mapping))
+  if (!spec.mapping.empty() && !mujoco::parse_mapping(spec.mapping))
     throw InputError(option + " " + name + ": unknown mapping (seed, exact, calibrated)");
   if (!spec.geometry.empty() && !mujoco::parse_geometry(spec.geometry))
     throw InputError(option + " " + name + ": unknown geometry (corners, boxes)");

@@ -7,7 +7,8 @@
 //   ref                        the reference solver with the scene's integrator
 //   mujoco                     MuJoCo, default mapping (calibrated) and geometry (corners)
 //   mujoco:MAPPING             MAPPING = seed | exact | calibrated (mujoco/mapping.hpp)
-//   mujoco:MAPPING:GEOMETRY    GEOMETRY = corners | boxes (mujoco/mjcf.hpp)
+//   mujoco:MAPPING:GEOMETRY    GEOMETRY = corners | boxes (mujoco/mjcf.hpp); an empty
+//                              MAPPING ("mujoco::boxes") is the default mapping
 #pragma once
 
 #include <array>

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "core/input_error.hpp"
+#include "io/interrupt.hpp"
 
 namespace contact2d::game {
 
@@ -67,6 +68,8 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps
                      "); install Debian's ffmpeg package");
   }
   pipe_ = fdopen(fds[1], "wb");
+  register_child(pid_);
+  temp_slot_ = register_temporary(path_ + ".tmp");
 }
 
 VideoWriter::~VideoWriter() {
@@ -87,8 +90,11 @@ void VideoWriter::finish() {
   pipe_ = nullptr;
   int status = 0;
   waitpid(pid_, &status, 0);
+  register_child(0);
   pid_ = -1;
   const std::string temporary = path_ + ".tmp";
+  unregister_temporary(temp_slot_);  // from here on, removed or renamed below
+  temp_slot_ = -1;
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::remove(temporary.c_str());
     throw InputError("--record " + path_ + ": ffmpeg failed (exit status " +

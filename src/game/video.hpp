@@ -27,6 +27,7 @@ class VideoWriter {
   std::string path_;
   FILE* pipe_ = nullptr;
   pid_t pid_ = -1;
+  int temp_slot_ = -1;  // "<path>.tmp", removed if a signal ends the program (io/interrupt.hpp)
 };
 
 }  // namespace contact2d::game

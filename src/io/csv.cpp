@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "io/interrupt.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d {
@@ -18,10 +19,12 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   }
   ::fchmod(fd, 0644);  // mkstemp creates 0600; an output file is for sharing
   temp_path_ = pattern;
+  slot_ = register_temporary(temp_path_);
   file_ = fdopen(fd, "w");
   if (!file_) {
     ::close(fd);
     std::remove(temp_path_.c_str());
+    unregister_temporary(slot_);
     throw InputError(path_ + ": cannot open output file");
   }
 }
@@ -31,15 +34,20 @@ AtomicFile::~AtomicFile() {
     std::fclose(file_);
     std::remove(temp_path_.c_str());
   }
+  unregister_temporary(slot_);
 }
 
 void AtomicFile::commit() {
   const bool flushed = std::fflush(file_) == 0;
   const bool closed = std::fclose(file_) == 0;
   file_ = nullptr;
-  if (!flushed || !closed || std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
-    std::remove(temp_path_.c_str());
-    throw InputError(path_ + ": cannot write output file (" + std::strerror(errno) + ")");
+  const bool renamed = flushed && closed && std::rename(temp_path_.c_str(), path_.c_str()) == 0;
+  const int error = errno;
+  if (!renamed) std::remove(temp_path_.c_str());
+  unregister_temporary(slot_);
+  slot_ = -1;
+  if (!renamed) {
+    throw InputError(path_ + ": cannot write output file (" + std::strerror(error) + ")");
   }
 }
 

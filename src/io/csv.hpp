@@ -29,6 +29,7 @@ class AtomicFile {
   std::string path_;
   std::string temp_path_;
   std::FILE* file_ = nullptr;
+  int slot_ = -1;  // io/interrupt.hpp: removed if a signal ends the program first
 };
 
 constexpr const char* kTrajectoryHeader = "t,x,y,theta,vx,vy,omega";

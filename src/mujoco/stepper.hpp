@@ -36,7 +36,6 @@ class MujocoStepper final : public Stepper {
   const State& state() const override { return state_; }
   const ContactSet& contacts() const override { return contacts_; }
   const Model& model() const override { return model_; }
-  double dt() const override { return model_ptr_->opt.timestep; }
   std::string describe() const override;
 
   const SolverSettings& settings() const { return settings_; }

@@ -120,7 +120,6 @@ class FailingStepper final : public Stepper {
   const State& state() const override { return state_; }
   const ContactSet& contacts() const override { return contacts_; }
   const Model& model() const override { return model_; }
-  double dt() const override { return 1e-3; }
   std::string describe() const override { return "failing"; }
 
  private:

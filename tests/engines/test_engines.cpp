@@ -82,6 +82,14 @@ TEST(Registry, MujocoRunCarriesItsSolverSettings) {
   EXPECT_FALSE(std::isnan(run.impratio));
 }
 
+// A geometry without a mapping names itself so that it parses back.
+TEST(Registry, GeometryAloneRoundTrips) {
+  const engines::EngineSpec spec = engines::parse_engine("mujoco::boxes");
+  EXPECT_TRUE(spec.mapping.empty());
+  EXPECT_EQ(spec.geometry, "boxes");
+  EXPECT_EQ(spec.name(), "mujoco::boxes");
+}
+
 TEST(Registry, ExplicitEulerIsNotOfferedByMujoco) {
   EXPECT_TRUE(engines::engine_offers("ref", Integrator::ExplicitEuler));
   EXPECT_FALSE(engines::engine_offers("mujoco", Integrator::ExplicitEuler));

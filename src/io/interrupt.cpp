@@ -1,0 +1,80 @@
+#include "io/interrupt.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstring>
+#include <mutex>
+
+namespace contact2d {
+namespace {
+
+constexpr int kSlots = 64;
+constexpr size_t kPathMax = 4096;
+
+// A slot is written only while it is free (in_use == false) and published by
+// setting in_use; the handler reads only published slots.
+struct Slot {
+  std::atomic<bool> in_use{false};
+  char path[kPathMax] = {};
+};
+Slot g_slots[kSlots];
+std::mutex g_register;  // between threads that register; never taken by the handler
+std::atomic<int> g_child{0};
+
+void write_all(const char* text) {
+  size_t left = std::strlen(text);
+  while (left > 0) {
+    const ssize_t n = ::write(STDERR_FILENO, text, left);
+    if (n <= 0) return;
+    text += n;
+    left -= static_cast<size_t>(n);
+  }
+}
+
+extern "C" void on_interrupt(int signal) {
+  if (const int child = g_child.load(); child > 0) {
+    ::kill(child, SIGKILL);
+    ::waitpid(child, nullptr, 0);
+  }
+  for (Slot& slot : g_slots) {
+    if (slot.in_use.load()) ::unlink(slot.path);
+  }
+  const char* name = signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "SIGHUP";
+  write_all("contact2d: interrupted (");
+  write_all(name);
+  write_all("): unfinished output files removed\n");
+  ::_exit(128 + signal);
+}
+
+}  // namespace
+
+void install_interrupt_cleanup() {
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  sigemptyset(&action.sa_mask);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, s);  // one at a time
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(s, &action, nullptr);
+}
+
+int register_temporary(const std::string& path) {
+  if (path.size() >= kPathMax) return -1;
+  const std::lock_guard<std::mutex> lock(g_register);
+  for (int i = 0; i < kSlots; ++i) {
+    if (g_slots[i].in_use.load()) continue;
+    std::memcpy(g_slots[i].path, path.c_str(), path.size() + 1);
+    g_slots[i].in_use.store(true);
+    return i;
+  }
+  return -1;
+}
+
+void unregister_temporary(int slot) {
+  if (slot >= 0 && slot < kSlots) g_slots[slot].in_use.store(false);
+}
+
+void register_child(int pid) { g_child.store(pid); }
+
+}  // namespace contact2d

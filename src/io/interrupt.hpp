@@ -1,0 +1,32 @@
+// Output that survives an interrupt: SIGINT, SIGTERM and SIGHUP end the
+// program without leaving a temporary file behind.
+//
+// Every writer of the project writes to a temporary file and renames it into
+// place when it is done (AtomicFile, the video's "<path>.tmp"). Those files
+// are registered here while they exist. The handler installed by
+// install_interrupt_cleanup() kills a registered child writer, removes every
+// registered file (kill, waitpid and unlink are async-signal-safe), writes one line to stderr
+// ("contact2d: interrupted (SIGINT): no output written") and exits with 128 + the signal number
+// (130, 143, 129), as a shell reports a process killed by that signal.
+#pragma once
+
+#include <string>
+
+namespace contact2d {
+
+// Installs the handler for SIGINT, SIGTERM and SIGHUP (the CLI's main does).
+void install_interrupt_cleanup();
+
+// Registers a temporary file for removal on an interrupt; returns its slot
+// (-1 when all 64 slots are in use: the file is then not cleaned up).
+int register_temporary(const std::string& path);
+
+// The file was renamed or removed: forget it (slot -1 is ignored).
+void unregister_temporary(int slot);
+
+// A child process writing one of those files (ffmpeg): on an interrupt it is
+// killed and reaped before the files are removed, so it cannot create one
+// after. One child at a time; 0 forgets it.
+void register_child(int pid);
+
+}  // namespace contact2d

@@ -1,0 +1,122 @@
+// Interrupted runs leave nothing behind (io/interrupt.hpp): each command is
+// started through the real program in an empty directory, signalled as soon
+// as its temporary output file exists, and must exit with 128 + the signal,
+// print exactly one line, and leave the directory empty.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Case {
+  const char* name;
+  std::vector<std::string> args;  // after the program name; run inside the directory
+  int signal;
+};
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+bool has_temporary(const fs::path& dir) {
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().filename().string().find(".tmp") != std::string::npos) return true;
+  }
+  return false;
+}
+
+class Interrupt : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Interrupt, RemovesTheTemporaryFileAndExitsWith128PlusTheSignal) {
+  const Case& c = GetParam();
+  const fs::path dir = fs::temp_directory_path() / ("contact2d_interrupt_" + std::string(c.name) +
+                                                    "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path err = dir.string() + ".stderr";
+
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (::chdir(dir.c_str()) != 0) ::_exit(120);
+    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen(err.c_str(), "w", stderr))
+      ::_exit(121);
+    std::vector<std::string> args = c.args;
+    args.insert(args.begin(), CONTACT2D_EXE);
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(CONTACT2D_EXE, argv.data());
+    ::_exit(122);
+  }
+  // Wait (up to 60 s) for the command to open its output.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  bool opened = false;
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (has_temporary(dir)) {
+      opened = true;
+      break;
+    }
+    if (::waitpid(pid, &status, WNOHANG) == pid) break;  // ended before opening: a failure
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(opened) << "no temporary file appeared; stderr: " << slurp(err);
+  ::kill(pid, c.signal);
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed instead of exiting";
+  EXPECT_EQ(WEXITSTATUS(status), 128 + c.signal);
+  EXPECT_TRUE(fs::is_empty(dir)) << "left behind: " << fs::directory_iterator(dir)->path();
+  const std::string text = slurp(err);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+  EXPECT_NE(text.find("contact2d: interrupted ("), std::string::npos) << text;
+  fs::remove_all(dir);
+  fs::remove(err);
+}
+
+const std::string kScenes = CONTACT2D_SCENES_DIR;
+
+std::vector<Case> cases() {
+  std::vector<Case> out = {
+      // 2e7 steps: far longer than the wait for the file.
+      {"simulate_sigint",
+       {"simulate", kScenes + "/box.toml", "--csv", "out.csv", "--duration", "2000"},
+       SIGINT},
+      {"sweep_sigterm",
+       {"sweep", kScenes + "/point_mass.toml", "--csv", "out.csv", "--plot", "out.png",
+        "--duration", "200", "--quiet"},
+       SIGTERM},
+      {"simulate_sighup",
+       {"simulate", kScenes + "/circle.toml", "--csv", "out.csv", "--duration", "2000"},
+       SIGHUP},
+  };
+#ifdef CONTACT2D_WITH_MUJOCO
+  // MuJoCo's side of compare: 5e6 mj_step calls.
+  out.push_back({"compare_sigterm",
+                 {"compare", kScenes + "/box.toml", "--csv", "out.csv", "--duration", "500"},
+                 SIGTERM});
+#endif
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Commands, Interrupt, ::testing::ValuesIn(cases()),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
