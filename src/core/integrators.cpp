@@ -79,41 +79,6 @@ Vec3 implicit_residual(const Model& model, double dt, const State& s, const Vec3
   return v_next - s.v - dt * acceleration_at(model, ws, s.q + dt * v_next, v_next);
 }
 
-// ws.contacts are those of s.q throughout (s is only written on success).
-bool implicit_euler_newton(const Model& model, double dt, State& s, StepWorkspace& ws) {
-  Vec3 v_next = s.v + dt * acceleration(model, ws.contacts, s.v);  // semi-implicit predictor
-  Vec3 g = implicit_residual(model, dt, s, v_next, ws);
-  for (int iteration = 0; iteration < kNewtonMaxIterations; ++iteration) {
-    Eigen::Matrix3d jacobian;
-    for (int j = 0; j < 3; ++j) {
-      const double h = 1e-7 * std::max(1.0, std::abs(v_next[j]));
-      Vec3 probe = v_next;
-      probe[j] += h;
-      jacobian.col(j) = (implicit_residual(model, dt, s, probe, ws) - g) / h;
-    }
-    const Vec3 delta = jacobian.partialPivLu().solve(-g);
-    if (!delta.allFinite()) return false;
-    // Backtracking: accept the first fraction of the step that lowers |G|∞.
-    double fraction = 1.0;
-    Vec3 trial = v_next + delta;
-    Vec3 g_trial = implicit_residual(model, dt, s, trial, ws);
-    while (g_trial.lpNorm<Eigen::Infinity>() > g.lpNorm<Eigen::Infinity>() && fraction > 1e-3) {
-      fraction *= 0.5;
-      trial = v_next + fraction * delta;
-      g_trial = implicit_residual(model, dt, s, trial, ws);
-    }
-    v_next = trial;
-    g = g_trial;
-    if ((fraction * delta).lpNorm<Eigen::Infinity>() <=
-        kNewtonTolerance * (1.0 + v_next.lpNorm<Eigen::Infinity>())) {
-      s.q += dt * v_next;
-      s.v = v_next;
-      return true;
-    }
-  }
-  return false;
-}
-
 // Newton, and on failure two half steps (recursively). Each successful
 // (sub)step leaves ws.contacts at the new state, as step() promises.
 bool implicit_euler(const Model& model, double dt, State& s, int depth, StepWorkspace& ws) {
@@ -153,6 +118,55 @@ double scalar_stability_limit(double zeta, Amplification amplification) {
 }
 
 }  // namespace
+
+// ws.contacts are those of s.q throughout (s is only written on success).
+//
+// Each iteration solves J·δ = −G(v') for the full Newton step δ and then
+// backtracks: δ, δ/2, δ/4, … down to δ/1024, accepting the first fraction
+// whose residual is strictly smaller in the max norm. If none is, the
+// iteration has stalled (the piecewise force put a kink between v' and the
+// root, or the finite-difference Jacobian points the wrong way): the solve
+// fails and step() splits the step. Converged when, with s = 1 + |v'|∞,
+// both the full step and the residual are small: |δ|∞ ≤ tol·s and
+// |G(v')|∞ ≤ tol·s (tol = 1e-10; G is a velocity, like δ) — checked at the
+// iterate before stepping, and after a step taken in full.
+bool implicit_euler_newton(const Model& model, double dt, State& s, StepWorkspace& ws) {
+  Vec3 v_next = s.v + dt * acceleration(model, ws.contacts, s.v);  // semi-implicit predictor
+  Vec3 g = implicit_residual(model, dt, s, v_next, ws);
+  auto small = [](const Vec3& x, const Vec3& v) {
+    return x.lpNorm<Eigen::Infinity>() <= kNewtonTolerance * (1.0 + v.lpNorm<Eigen::Infinity>());
+  };
+  auto accept = [&](const Vec3& v) {
+    s.q += dt * v;
+    s.v = v;
+    return true;
+  };
+  for (int iteration = 0; iteration < kNewtonMaxIterations; ++iteration) {
+    Eigen::Matrix3d jacobian;
+    for (int j = 0; j < 3; ++j) {
+      const double h = 1e-7 * std::max(1.0, std::abs(v_next[j]));
+      Vec3 probe = v_next;
+      probe[j] += h;
+      jacobian.col(j) = (implicit_residual(model, dt, s, probe, ws) - g) / h;
+    }
+    const Vec3 delta = jacobian.partialPivLu().solve(-g);
+    if (!delta.allFinite()) return false;
+    if (small(delta, v_next) && small(g, v_next)) return accept(v_next);
+    double fraction = 1.0;
+    Vec3 trial = v_next + delta;
+    Vec3 g_trial = implicit_residual(model, dt, s, trial, ws);
+    while (!(g_trial.lpNorm<Eigen::Infinity>() < g.lpNorm<Eigen::Infinity>())) {
+      if (fraction < 1e-3) return false;  // no decrease down to δ/1024: stalled
+      fraction *= 0.5;
+      trial = v_next + fraction * delta;
+      g_trial = implicit_residual(model, dt, s, trial, ws);
+    }
+    v_next = trial;
+    g = g_trial;
+    if (fraction == 1.0 && small(delta, v_next) && small(g, v_next)) return accept(v_next);
+  }
+  return false;
+}
 
 StepStatus step(const Model& model, Integrator integrator, double dt, State& state,
                 StepWorkspace& ws) {

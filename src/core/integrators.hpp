@@ -10,8 +10,11 @@
 // forces' derivatives and is formed by forward differences of G (three extra
 // force evaluations per iteration; the force is only piecewise smooth, so an
 // analytic Jacobian would be no more exact at the kinks). Each Newton step is
-// backtracked until |G|∞ decreases. Converged when the update satisfies
-// |δv'|∞ ≤ 1e-10·(1 + |v'|∞) — far below the method's O(Δt) error.
+// backtracked until |G|∞ strictly decreases; when no fraction down to 1/1024
+// decreases it, the iteration has stalled and counts as not converged.
+// Converged when the full Newton step and the residual are both small:
+// |δv'|∞ ≤ 1e-10·(1 + |v'|∞) and |G(v')|∞ ≤ 1e-10·(1 + |v'|∞) — far below
+// the method's O(Δt) error.
 // Fallback: after 30 iterations without convergence the step is split into
 // two half steps, recursively up to 6 levels (Δt/64); if that still fails the
 // step reports StepStatus::NewtonFailed and the run stops as diverged.
@@ -49,6 +52,12 @@ struct StepWorkspace {
   ContactSet contacts;
   ContactSet scratch;
 };
+
+// Implicit Euler's Newton solve for one step of Δt, without splitting:
+// true and the new state when it converged; false (state untouched) when it
+// did not. ws.contacts must be the contacts at state.q; on success they are
+// left stale (step() refreshes them). Exposed for its tests.
+bool implicit_euler_newton(const Model& model, double dt, State& state, StepWorkspace& ws);
 
 // One step of Δt from `state`. On entry ws.contacts must be the contacts at
 // state.q (find_contacts); on exit they are those of the new state.
