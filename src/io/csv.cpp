@@ -13,6 +13,7 @@ namespace contact2d {
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   std::string pattern = path_ + ".tmp.XXXXXX";
+  const InterruptsHeld held;  // no signal between creating the file and registering it
   const int fd = mkstemp(pattern.data());
   if (fd < 0) {
     throw InputError(path_ + ": cannot create output file (" + std::strerror(errno) + ")");

@@ -10,12 +10,28 @@
 // (130, 143, 129), as a shell reports a process killed by that signal.
 #pragma once
 
+#include <signal.h>
+
 #include <string>
 
 namespace contact2d {
 
 // Installs the handler for SIGINT, SIGTERM and SIGHUP (the CLI's main does).
 void install_interrupt_cleanup();
+
+// While alive, SIGINT, SIGTERM and SIGHUP wait (on this thread): wrap the
+// creation of a temporary file and its registration in one, so that no
+// signal can come between them.
+class InterruptsHeld {
+ public:
+  InterruptsHeld();
+  ~InterruptsHeld();
+  InterruptsHeld(const InterruptsHeld&) = delete;
+  InterruptsHeld& operator=(const InterruptsHeld&) = delete;
+
+ private:
+  sigset_t saved_;  // the mask before
+};
 
 // Registers a temporary file for removal on an interrupt; returns its slot
 // (-1 when all 64 slots are in use: the file is then not cleaned up).
