@@ -507,7 +507,9 @@ std::string run_summary(const Scene& scene, const std::string& engine, const Eng
          " m, theta = " + format_number(last.q.z()) +
          " rad, |v| = " + format_number(last.v.head<2>().norm()) +
          " m/s; max sampled penetration " + format_number(deepest) + " m; energy " +
-         format_number(energy(model, first)) + " -> " + format_number(energy(model, last)) + " J";
+         format_number(energy(model, first)) + " -> " + format_number(energy(model, last)) +
+         " J, largest rise " + format_number(run.trajectory.energy.max_rise, 3) + " J (allowed " +
+         format_number(run.trajectory.energy.tolerance, 3) + " J)";
 }
 
 }  // namespace contact2d::analysis

@@ -37,7 +37,9 @@ void plot_stability(const std::string& png_path, const StabilityResult& result);
 
 // The one-line summary `contact2d simulate` prints of a run: scene,
 // engine, integrator, Δt, duration, wall clock, final state, deepest sampled
-// penetration, energy at the first and last sample (no newline).
+// penetration, energy at the first and last sample and the energy balance:
+// its largest rise and the rise the integrator explains (core/divergence.hpp;
+// no newline).
 std::string run_summary(const Scene& scene, const std::string& engine, const EngineRun& run);
 
 }  // namespace contact2d::analysis

@@ -162,6 +162,13 @@ int compare(const CompareOptions& options) {
   for (const std::string& w : c.mujoco.warnings)
     std::cerr << "contact2d: MuJoCo warning: " << w << "\n";
   if (report_divergence(c, options.scene.path)) return kExitDiverged;
+  for (const auto& [name, run] : {std::pair{"ref", &c.ref}, std::pair{"MuJoCo", &c.mujoco}}) {
+    if (!run->trajectory.energy.exceeded()) continue;
+    std::cerr << "contact2d: " << options.scene.path << ": " << name << " warning: "
+              << describe_energy_rise(run->trajectory.energy, run->trajectory.available_energy,
+                                      c.scene)
+              << "\n";
+  }
   c.errors = analysis::error_between(c.ref.trajectory, c.mujoco.trajectory);
   if (csv) write_csv(*csv, c);
   if (!options.plot.empty()) {

@@ -33,6 +33,11 @@ int simulate(const SimulateOptions& options) {
   for (const std::string& warning : run.warnings) {
     std::cerr << "contact2d: " << options.engine << " warning: " << warning << "\n";
   }
+  if (!run.trajectory.divergence && run.trajectory.energy.exceeded()) {
+    std::cerr << "contact2d: " << options.scene.path << ": warning: "
+              << describe_energy_rise(run.trajectory.energy, run.trajectory.available_energy, scene)
+              << "\n";
+  }
   if (run.trajectory.divergence) {
     std::cerr << "contact2d: " << options.scene.path << ": "
               << describe(*run.trajectory.divergence, scene) << "\n";

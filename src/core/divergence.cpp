@@ -49,11 +49,14 @@ double DivergenceMonitor::depth_limit(double energy) const {
 }
 
 std::optional<Divergence> DivergenceMonitor::check(const State& s, const ContactSet& contacts,
-                                                   double t, double applied_work) const {
+                                                   double t, double applied_work,
+                                                   double* energy_out) const {
   if (!s.q.allFinite() || !s.v.allFinite()) {
     return Divergence{DivergenceKind::NonFinite, t, std::numeric_limits<double>::quiet_NaN(), 0.0};
   }
-  const double gain = energy(*model_, contacts, s) - initial_energy_;
+  const double e = energy(*model_, contacts, s);
+  if (energy_out) *energy_out = e;
+  const double gain = e - initial_energy_;
   const double allowed = available_ + std::abs(applied_work);
   if (gain > allowed) return Divergence{DivergenceKind::EnergyGain, t, gain, allowed};
   const double depth = max_penetration(contacts);
@@ -71,6 +74,33 @@ std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
 }
 
 }  // namespace
+
+double energy_rise_tolerance(const Model& model, double available_energy, double dt) {
+  const double wdt = contact_stiffness(model).omega * dt;
+  const double oscillation = wdt < 1.0 ? 2.0 * (0.5 * wdt) / (1.0 - 0.5 * wdt) : 1.0;
+  return available_energy * (std::min(1.0, oscillation) + 1e-9);
+}
+
+std::string describe_energy_rise(const EnergyBalance& b, double available_energy,
+                                 const Scene& scene) {
+  const Model model = make_model(scene);
+  const double wdt = contact_stiffness(model).omega * scene.sim.dt;
+  std::string cause;
+  if (scene.sim.integrator == Integrator::ExplicitEuler) {
+    cause = "explicit Euler multiplies the energy by 1 + (ω·Δt)² = 1 + " +
+            format("%.3g", wdt * wdt) + " on every step in contact";
+  } else {
+    cause = "the contact is resolved with ω·Δt = " + format("%.3g", wdt) +
+            "; a smaller --dt shrinks the rise";
+  }
+  return "energy rose by " + format("%.3g", b.max_rise) + " J (" +
+         format("%.3g", 100.0 * b.max_rise / available_energy) +
+         " % of the energy available) at t = " + format("%.6g", b.time_of_max_rise) +
+         " s, more than the " + format("%.3g", b.tolerance) +
+         " J the integrator's oscillation explains: not physics (a passive system only loses "
+         "energy); likely cause: " +
+         cause;
+}
 
 std::string describe(const Divergence& d, const Scene& scene) {
   const Model model = make_model(scene);

@@ -51,8 +51,9 @@ class DivergenceMonitor {
   DivergenceMonitor(const Model& model, const State& initial, const ContactSet& contacts);
   // Checks a state after a step ending at time t, with its contacts;
   // applied_work is the work done by Model::applied so far (0 without a player).
+  // When `energy` is given it receives E(s) (computed for the rule anyway).
   std::optional<Divergence> check(const State& s, const ContactSet& contacts, double t,
-                                  double applied_work = 0.0) const;
+                                  double applied_work = 0.0, double* energy = nullptr) const;
   double available_energy() const { return available_; }
 
  private:
@@ -62,6 +63,34 @@ class DivergenceMonitor {
   double available_ = 0.0;
   double max_depth_ = 0.0;
 };
+
+// The energy balance of a run without applied forces. A passive system's
+// mechanical energy never rises: E(t₂) ≤ E(t₁) for t₂ > t₁. An integrator
+// makes it oscillate: semi-implicit Euler on the contact oscillator of
+// frequency ω keeps |ΔE| ≤ (ω·Δt/2)/(1 − ω·Δt/2) of the energy in play
+// (tests/core/test_energy.cpp checks that bound), so its largest rise above
+// an earlier minimum is twice that; a contact entered or left inside a step
+// costs O((ω·Δt)²) of it. The tolerance on the rise is therefore
+//   rise_tolerance = E_avail·min(1, 2·(ω·Δt/2)/(1 − ω·Δt/2)) + 1e-9·E_avail
+// (E_avail: the monitor's available energy; the 1e-9 covers rounding). A
+// rise beyond it is reported as a warning with its size and time; beyond
+// E_avail itself the divergence rule stops the run (exit 3).
+struct EnergyBalance {
+  double initial = 0.0;           // E(0), J
+  double final = 0.0;             // E at the last step, J
+  double max_rise = 0.0;          // largest E(t) − min_{s≤t} E(s), J
+  double time_of_max_rise = 0.0;  // s
+  double tolerance = 0.0;         // rise_tolerance above, J
+  bool exceeded() const { return max_rise > tolerance; }
+};
+
+// The tolerance of the rise for the model at time step dt.
+double energy_rise_tolerance(const Model& model, double available_energy, double dt);
+
+// One line for a rise beyond the tolerance: size in J and % of E_avail, time,
+// and the likely cause (the integrator and ω·Δt).
+std::string describe_energy_rise(const EnergyBalance& balance, double available_energy,
+                                 const Scene& scene);
 
 // One-paragraph diagnosis: what happened, when, the likely cause in terms of
 // ω·Δt against the integrator's limit (and friction stiffness μ·g·α·Δt), and

@@ -6,7 +6,7 @@ namespace contact2d {
 
 std::optional<Divergence> check_step(StepStatus status, const Stepper& stepper,
                                      const DivergenceMonitor& monitor, double t,
-                                     double applied_work) {
+                                     double applied_work, double* energy) {
   switch (status) {
     case StepStatus::NewtonFailed: return Divergence{DivergenceKind::NewtonFailed, t, 0.0, 0.0};
     case StepStatus::NonFinite:
@@ -14,7 +14,7 @@ std::optional<Divergence> check_step(StepStatus status, const Stepper& stepper,
                         0.0};
     case StepStatus::Ok: break;
   }
-  return monitor.check(stepper.state(), stepper.contacts(), t, applied_work);
+  return monitor.check(stepper.state(), stepper.contacts(), t, applied_work, energy);
 }
 
 RunResult run(Stepper& stepper, const SimParams& sim,
@@ -24,12 +24,24 @@ RunResult run(Stepper& stepper, const SimParams& sim,
   const DivergenceMonitor monitor(stepper.model(), stepper.state(), stepper.contacts());
 
   RunResult result;
+  EnergyBalance& balance = result.energy;
+  result.available_energy = monitor.available_energy();
+  balance.initial = balance.final = energy(stepper.model(), stepper.contacts(), stepper.state());
+  balance.tolerance = energy_rise_tolerance(stepper.model(), monitor.available_energy(), sim.dt);
+  double lowest = balance.initial;  // min over the steps so far
   on_sample({0.0, stepper.state()});
   for (long long i = 1; i <= steps; ++i) {
     const double t = static_cast<double>(i) * sim.dt;
-    result.divergence = check_step(stepper.step(), stepper, monitor, t);
+    double e = balance.final;
+    result.divergence = check_step(stepper.step(), stepper, monitor, t, 0.0, &e);
     result.steps = i;
     if (result.divergence) return result;
+    balance.final = e;
+    if (e < lowest) lowest = e;
+    if (e - lowest > balance.max_rise) {
+      balance.max_rise = e - lowest;
+      balance.time_of_max_rise = t;
+    }
     if (i % stride == 0 || i == steps) on_sample({t, stepper.state()});
   }
   return result;
@@ -41,6 +53,8 @@ Trajectory simulate(Stepper& stepper, const SimParams& sim) {
   const RunResult result =
       run(stepper, sim, [&](const Sample& s) { trajectory.samples.push_back(s); });
   trajectory.divergence = result.divergence;
+  trajectory.energy = result.energy;
+  trajectory.available_energy = result.available_energy;
   return trajectory;
 }
 

@@ -27,6 +27,8 @@ struct Sample {
 struct Trajectory {
   std::vector<Sample> samples;
   std::optional<Divergence> divergence;  // set when the run stopped early
+  EnergyBalance energy;                  // over every step (core/divergence.hpp)
+  double available_energy = 0.0;         // the monitor's E_avail, J
 };
 
 // The check after a step that ended at time t with `status`: the engine's
@@ -34,11 +36,13 @@ struct Trajectory {
 // applied_work is the work done by applied forces so far.
 std::optional<Divergence> check_step(StepStatus status, const Stepper& stepper,
                                      const DivergenceMonitor& monitor, double t,
-                                     double applied_work = 0.0);
+                                     double applied_work = 0.0, double* energy = nullptr);
 
 struct RunResult {
   std::optional<Divergence> divergence;  // set when the run stopped early
   long long steps = 0;                   // steps taken
+  EnergyBalance energy;                  // over every step taken
+  double available_energy = 0.0;         // the monitor's E_avail, J
 };
 
 // Runs the stepper from its current state (time 0) for sim.duration at

@@ -142,5 +142,47 @@ TEST(RunLoop, EngineFailureStopsTheRunAsNonFinite) {
   EXPECT_EQ(t.samples.size(), 3u);  // t = 0, 1, 2 ms
 }
 
+// The energy balance of the run loop (core/divergence.hpp): a passive system
+// only loses energy, so a rise is the integrator's. Its tolerance is
+// E_avail·(2·(ω·Δt/2)/(1 − ω·Δt/2) + 1e-9), the semi-implicit Euler
+// oscillation bound doubled (a rise is measured from an earlier minimum).
+Scene bouncing_t(Integrator integrator) {
+  Scene scene = default_scene(Shape::TShape);
+  scene.contact.c = 0.0;
+  scene.contact.mu = 0.0;
+  scene.initial.q = Vec3(0.0, 0.5, 0.4);
+  scene.initial.v = Vec3(0.0, 0.0, 3.0);
+  scene.sim.integrator = integrator;
+  scene.sim.duration = 10.0;
+  return scene;
+}
+
+TEST(EnergyBalance, ToleranceIsTheSemiImplicitOscillationBound) {
+  const Scene scene = bouncing_t(Integrator::SemiImplicitEuler);
+  const Trajectory t = simulate(scene);
+  const Model model = make_model(scene);
+  const double wdt = contact_stiffness(model).omega * scene.sim.dt;
+  EXPECT_NEAR(t.energy.tolerance,
+              t.available_energy * (2.0 * (0.5 * wdt) / (1.0 - 0.5 * wdt) + 1e-9),
+              1e-12 * t.available_energy);
+}
+
+// A T bouncing without damping or friction for 10 s (the case that used to
+// pass silently): semi-implicit Euler's energy oscillates within the bound,
+// explicit Euler's grows past it without reaching the divergence rule.
+TEST(EnergyBalance, SemiImplicitStaysWithinExplicitEulerIsFlagged) {
+  const Trajectory semi = simulate(bouncing_t(Integrator::SemiImplicitEuler));
+  ASSERT_FALSE(semi.divergence);
+  EXPECT_GT(semi.energy.max_rise, 0.0) << "the bounce must exercise the oscillation";
+  EXPECT_FALSE(semi.energy.exceeded())
+      << semi.energy.max_rise << " J against " << semi.energy.tolerance << " J";
+
+  const Trajectory expl = simulate(bouncing_t(Integrator::ExplicitEuler));
+  ASSERT_FALSE(expl.divergence) << "below the divergence rule: the rise is the warning's to catch";
+  EXPECT_TRUE(expl.energy.exceeded())
+      << expl.energy.max_rise << " J against " << expl.energy.tolerance << " J";
+  EXPECT_GT(expl.energy.final, expl.energy.initial) << "explicit Euler gains energy";
+}
+
 }  // namespace
 }  // namespace contact2d
