@@ -6,8 +6,9 @@
 // starts and ends at zero, so ∫(Fn − m·g)dt = 0). With v_c = v:
 //   m·dv/dt = −μ·m·g·tanh(α·v), and the distance to rest is
 //   s0 = ∫₀^v0 v/(μ·g·tanh(α·v)) dv = v0²/(2μg) + (π²/12 − ε)/(α²·μ·g),
-// ε = α²·∫_{v0}^∞ 2v/(e^{2αv} − 1)dv < e^{−2αv0}·(2αv0 + 1) ≈ 1e-12 at
-// α·v0 = 15: the tanh adds π²/(12·α²·μ·g) to the Coulomb distance.
+// ε = α²·∫_{v0}^∞ 2v/(e^{2αv} − 1)dv < e^{−2αv0}·(2αv0 + 1) = 3e-12 at
+// α·v0 = 15 (1e-14 m of distance): the tanh adds π²/(12·α²·μ·g) to the
+// Coulomb distance.
 //
 // Compliance. The friction force F = μ·m·g·tanh(α·v_c) acts h/2 below the
 // centre; the corners balance its torque F·h/2 by loading the front corner
@@ -49,9 +50,11 @@
 // ~1e-10 m; what remains is the coupling of the contact's vertical
 // transient with the friction that spins the disc up by the slip
 // ≈ atanh(μ_roll/(1.5·R·μ))/α, second order in the transient amplitude:
-// measured 2e-5 m. Tolerance 1e-4 m, 0.003 % of the distance; the slip term
-// (1.37e-3 m) is 14× the tolerance, so the test fails without it or with a
-// wrong 1.5 of the disc's inertia (a 1 % change of the distance, 0.03 m).
+// measured 1.8e-5 m. Tolerance 1e-4 m, 0.003 % of the distance; the slip
+// term (1.37e-3 m) is 14× the tolerance, so the test fails without it, and
+// a wrong inertia factor (1.5 → 1 or 2) would move the distance by a third.
+// (The tanh term of the disc, 1.3e-4 m, is only 1.3× the tolerance: it is
+// included for completeness, not checked.)
 #include <gtest/gtest.h>
 
 #include <cmath>
