@@ -160,6 +160,11 @@ TEST_F(Cli, CompareJsonHasTheAgreedKeysAndTheLibrarysNumbers) {
         "\"integrators\": {\"ref\": \"semi_implicit_euler\", \"mujoco\": \"Euler\"}"}) {
     EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
   }
+  // The JSON carries 10 significant digits (format_number(v, 10) in
+  // cli/cmd_compare.cpp), so a number read back differs from the library's
+  // by at most half a unit in the 10th digit, 5e-10 relative: tolerance
+  // 1e-9 relative, twice that, and far below any real difference between
+  // the program's run and the library's.
   const test::BothRuns runs = test::run_both(test::scene_from(kBox));
   EXPECT_NEAR(json_number(r.out, "max_pos_err"), runs.errors.max_pos, 1e-9 * runs.errors.max_pos);
   EXPECT_NEAR(json_number(r.out, "rms_pos_err"), runs.errors.rms_pos, 1e-9 * runs.errors.rms_pos);
