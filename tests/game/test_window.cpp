@@ -269,4 +269,40 @@ TEST(Window, RecordingTheGoalReplayWritesAVideoOfEveryFrame) {
   fs::remove(err);
 }
 
+// Ctrl-C while recording (io/interrupt.hpp): ffmpeg is stopped before the
+// unfinished "<path>.tmp" is removed, so neither the video nor its temporary
+// is left, and the program exits 130 with one line.
+TEST(Window, InterruptedRecordingLeavesNoFile) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
+  const fs::path video = temp("interrupted.mp4"), err = temp("interrupted.err");
+  const fs::path partial = video.string() + ".tmp";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen(err.c_str(), "w", stderr))
+      ::_exit(121);
+    ::execl(CONTACT2D_EXE, CONTACT2D_EXE, "play", "--replay",
+            CONTACT2D_SOURCE_DIR "/validation/replays/goal.replay", "--record", video.c_str(),
+            static_cast<char*>(nullptr));
+    ::_exit(122);
+  }
+  bool started = false;
+  for (int i = 0; i < 3000 && !started; ++i) {  // up to 30 s for ffmpeg's first bytes
+    started = fs::exists(partial) && fs::file_size(partial) > 0;
+    if (!started) pause(0.01);
+  }
+  ASSERT_TRUE(started) << slurp(err);
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed instead of exiting";
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  pause(0.5);  // a surviving ffmpeg would write (or rename) by now
+  EXPECT_FALSE(fs::exists(partial));
+  EXPECT_FALSE(fs::exists(video));
+  const std::string log = slurp(err);
+  EXPECT_NE(log.find("contact2d: interrupted (SIGINT)"), std::string::npos) << log;
+  fs::remove(err);
+}
+
 }  // namespace
