@@ -75,17 +75,8 @@ INSTANTIATE_TEST_SUITE_P(AllIntegrators, RestOnObstacle, ::testing::ValuesIn(kAl
 // tests/core/test_rebound.cpp.
 
 Scene wall_scene(DampingLaw law, double zeta) {
-  Scene scene = default_scene(Shape::Circle);
-  scene.mass = 1.0;
+  Scene scene = test::impact_scene(Shape::Circle, law, zeta);
   scene.radius = 0.1;
-  scene.contact.k = 1e4;
-  scene.contact.c = zeta * 2.0 * std::sqrt(scene.mass * scene.contact.k);
-  scene.contact.mu = 0.0;
-  scene.contact.damping = law;
-  scene.sim.gravity = 0.0;
-  scene.sim.integrator = Integrator::RK4;
-  scene.sim.dt = 1e-5;        // ω·Δt = 1e-3
-  scene.sim.duration = 0.05;  // contact lasts < π/ω_d ≈ 0.04 s for ζ ≤ 0.7
   return scene;
 }
 

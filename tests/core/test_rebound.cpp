@@ -34,16 +34,7 @@ namespace {
 constexpr double kKinkError = 2e-6;  // 2·(ω·Δt)², per unit ζ
 
 double simulated_restitution(DampingLaw law, double zeta) {
-  Scene scene = default_scene(Shape::PointMass);
-  scene.mass = 1.0;
-  scene.contact.k = 1e4;
-  scene.contact.c = zeta * 2.0 * std::sqrt(scene.mass * scene.contact.k);
-  scene.contact.mu = 0.0;
-  scene.contact.damping = law;
-  scene.sim.gravity = 0.0;
-  scene.sim.integrator = Integrator::RK4;
-  scene.sim.dt = 1e-5;        // ω·Δt = 1e-3
-  scene.sim.duration = 0.05;  // contact lasts < π/ω_d ≈ 0.04 s for ζ ≤ 0.7
+  Scene scene = test::impact_scene(Shape::PointMass, law, zeta);  // ω·Δt = 1e-3
   const double v0 = 1.0;
   scene.initial.q = Vec3(0.0, scene.half_height - 1e-12, 0.0);
   scene.initial.v = Vec3(0.0, -v0, 0.0);

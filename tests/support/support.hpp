@@ -28,6 +28,23 @@ inline Scene resting_scene(Shape shape, Integrator integrator) {
   return scene;
 }
 
+// One impact on a linear spring–damper without gravity or friction:
+// m = 1 kg, k = 1e4 N/m, c = ζ·2√(m·k), RK4 at Δt = 1e-5 s (ω·Δt = 1e-3),
+// 0.05 s (the contact lasts < π/ω_d ≈ 0.04 s for ζ ≤ 0.7).
+inline Scene impact_scene(Shape shape, DampingLaw law, double zeta) {
+  Scene scene = default_scene(shape);
+  scene.mass = 1.0;
+  scene.contact.k = 1e4;
+  scene.contact.c = zeta * 2.0 * std::sqrt(scene.mass * scene.contact.k);
+  scene.contact.mu = 0.0;
+  scene.contact.damping = law;
+  scene.sim.gravity = 0.0;
+  scene.sim.integrator = Integrator::RK4;
+  scene.sim.dt = 1e-5;
+  scene.sim.duration = 0.05;
+  return scene;
+}
+
 // The last sample of the reference run (which must not diverge).
 inline State final_state(const Scene& scene) {
   const Trajectory trajectory = simulate(scene);
