@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace contact2d {
@@ -31,8 +32,8 @@ constexpr double d1 = -12715105075.0 / 11282082432.0, d3 = 87487479700.0 / 32700
 constexpr double kSafety = 0.9;
 constexpr double kFacMin = 0.2;
 constexpr double kFacMax = 10.0;
-// Consecutive zero-length mode flips at one instant before a tangency is let
-// through without flipping again (see find_event).
+// Consecutive zero-length mode flips at one instant before the flipping stops
+// and the function is resolved instead (see find_event and resolve_chatter).
 constexpr int kMaxZeroLengthFlips = 8;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
@@ -245,7 +246,40 @@ double bracket_root(F phi, double a, double fa, double b, double fb) {
 struct Event {
   double s = 0.0;  // position in the step, [0, 1]; 0 = at its start
   size_t function = 0;
+  // The function is on its wrong side at both ends of the step after the
+  // zero-length flips ran out, and the step shows no point where the current
+  // mode is consistent: the step must not be accepted (see resolve_chatter).
+  bool unresolved = false;
 };
+
+// After kMaxZeroLengthFlips zero-length flips of function j at the step's
+// start, with φ(0) ≤ 0 and φ(1) < 0 (φ = signed value under the current
+// mode on the continuous extension). The flips chatter because at the start
+// φ is zero to rounding, so both modes see themselves "already past" it. The
+// rate φ̇(0) is that of the true solution there (every switching function's
+// time derivative is the same in both modes on its surface, header), so it
+// decides which side the solution actually leaves to:
+//   φ̇(0) > 0: into the current mode's side. φ(0) ≤ 0 is rounding at the
+//     surface (e.g. the step redone up to an exit stops one ulp short of
+//     it); the mode is right, and φ(1) < 0 means the function comes back
+//     within the step: a genuine crossing after an interior maximum. Locate
+//     the maximum (root of φ̇ on the continuous extension) and the crossing
+//     after it, exactly like the grazing test does for a minimum.
+//   otherwise, or no interior point with φ > 0: this step offers no stretch
+//     where the current mode is consistent. Returned as unresolved: the step
+//     is rejected and halved, so the search repeats on ever shorter steps
+//     (a shorter step separates a crossing from the start or exposes the
+//     maximum that a long one hides). If the step underflows first the
+//     integration fails, naming time, point and function.
+template <typename Phi, typename Rate>
+Event resolve_chatter(size_t j, Phi phi, Rate rate, double rate0, double rate1, double s1) {
+  const Event unresolved{0.0, j, true};
+  if (!(rate0 > 0.0) || !(rate1 < 0.0)) return unresolved;
+  const double m = bracket_root(rate, 0.0, rate0, 1.0, rate1);
+  const double fm = phi(m);
+  if (!(fm > 0.0)) return unresolved;
+  return Event{bracket_root(phi, m, fm, 1.0, s1), j, false};
+}
 
 // Earliest switching-function crossing inside the step [t, t + h], on the
 // continuous extension r. s_start/s_end and the rates are evaluated from the
@@ -263,6 +297,13 @@ std::optional<Event> find_event(const System& sys, const Vec6& y0, const Vec6& f
       const Vec6 y = interpolate(r, s);
       return sys.signed_value(j, y, nullptr, nullptr);
     };
+    auto rate = [&](double s) {
+      const Vec6 y = interpolate(r, s);
+      const Vec6 yd = interpolate_rate(r, s, h);
+      double v = 0.0;
+      sys.signed_value(j, y, &yd, &v);
+      return v;
+    };
     double a = 0.0, fa = s0;
     double b = 1.0, fb = s1;
     if (s1 < 0.0) {
@@ -270,18 +311,15 @@ std::optional<Event> find_event(const System& sys, const Vec6& y0, const Vec6& f
         // Already on the far side at the start: a tangency the last flip got
         // the wrong way round, or rounding right at the surface.
         if (allow_start_events) return Event{0.0, j};
+        // The flips chatter: never accept the step as it is.
+        const Event e = resolve_chatter(j, phi, rate, rate0, rate1, s1);
+        if (e.unresolved) return e;
+        if (!best || e.s < best->s) best = e;
         continue;
       }
     } else if (s0 > 0.0 && rate0 < 0.0 && rate1 > 0.0) {
       // Consistent at both ends but dipping in between: find the interior
       // minimum (root of the rate on the continuous extension).
-      auto rate = [&](double s) {
-        const Vec6 y = interpolate(r, s);
-        const Vec6 yd = interpolate_rate(r, s, h);
-        double v = 0.0;
-        sys.signed_value(j, y, &yd, &v);
-        return v;
-      };
       // bracket_root wants φ(a) > 0: use −rate.
       const double m = bracket_root([&](double s) { return -rate(s); }, 0.0, -rate0, 1.0, -rate1);
       const double fm = phi(m);
@@ -317,6 +355,21 @@ double initial_step(const System& sys, const Vec6& y0, const Vec6& f0, double rt
   const double dmax = std::max(dn1, dn2);
   const double h1 = dmax <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / dmax, 0.2);
   return std::min({100.0 * h0, h1, h_max});
+}
+
+// Failure message for a chatter resolve_chatter could not resolve.
+std::string chatter_message(const Model& model, double t, size_t j) {
+  const size_t n = model.body.points.size();
+  const size_t i = j < n ? j : j - n;
+  const char* what = j < n ? "contact (c_y = 0)"
+                     : model.contact.damping == DampingLaw::Compression
+                         ? "compression damper (v_c,y = 0)"
+                         : "Kelvin-Voigt force (k*d - c*v_c,y = 0)";
+  char time[32];
+  std::snprintf(time, sizeof time, "%.17g", t);
+  return "inconsistent contact mode at t = " + std::string(time) + " s: contact point " +
+         std::to_string(i) + ", switching function " + what +
+         " is on the wrong side in both modes (chattering) and no shorter step resolves it";
 }
 
 }  // namespace
@@ -359,6 +412,8 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
   double h = initial_step(sys, y, f, rtol, atol, h_max, stats.evaluations);
   bool rejected_last = false;
   int zero_length_flips = 0;
+  // Function whose chatter the current step is being shortened to resolve.
+  std::optional<size_t> unresolved;
   StepResult step;
   Vec6 r[5];
   std::vector<unsigned char> flips(sys.functions(), 0);
@@ -375,8 +430,10 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
     const double remaining = duration - t;
     h = std::min(h, h_max);
     if (h >= remaining || remaining - h <= 1e-12 * remaining) h = remaining;
-    if (h <= 8.0 * kEps * std::max(1.0, t))
+    if (h <= 8.0 * kEps * std::max(1.0, t)) {
+      if (unresolved) return fail(chatter_message(model, t, *unresolved));
       return fail("step size underflow at t = " + std::to_string(t));
+    }
 
     dopri_step(sys, y, f, h, rtol, atol, step);
     stats.evaluations += 6;
@@ -397,6 +454,15 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
     dense_coefficients(y, step, h, r);
     const std::optional<Event> event =
         find_event(sys, y, f, step.y1, step.k[6], r, h, zero_length_flips < kMaxZeroLengthFlips);
+    if (event && event->unresolved) {
+      // Chattering function with no consistent stretch in this step: reject
+      // it and try a shorter one (resolve_chatter).
+      unresolved = event->function;
+      ++stats.rejected;
+      h *= 0.5;
+      rejected_last = true;
+      continue;
+    }
 
     if (!event) {
       out.segments_.push_back({t, h, {r[0], r[1], r[2], r[3], r[4]}});
@@ -406,6 +472,7 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
       f = step.k[6];
       h = h_next;
       zero_length_flips = 0;
+      unresolved.reset();
       if (!y.allFinite()) return fail("non-finite state at t = " + std::to_string(t));
       continue;
     }
@@ -422,6 +489,7 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
       t += h_event;
       y = step.y1;
       zero_length_flips = 0;
+      unresolved.reset();
     } else {
       ++zero_length_flips;
     }

@@ -31,6 +31,38 @@
 // sliding modes: a crossing is transversal or a tangency, and the new mode is
 // the side the function crosses to.
 //
+// Chatter. Those derivatives being equal, a function's rate at a point on
+// its surface is the true solution's, and says which side it leaves to.
+// Flipping at the start of a step (a function already on its wrong side
+// there) is right when that rate points away from the current mode's side.
+// But at a rounding-level distance from the surface it can happen that both
+// modes see themselves past it: e.g. a point leaving the ground whose step,
+// redone up to the located exit, stops one ulp short of the surface while
+// the next step holds the whole following flight; in the free mode the
+// contact function is then "wrong" at both ends of the step, in the contact
+// mode it is "wrong" (by an ulp) at the start and the exit is found again
+// within an ulp. After kMaxZeroLengthFlips such zero-length flips the
+// function is no longer flipped at the start, and — unlike the old code,
+// which then accepted the step and integrated the point, e.g., 2.4 mm inside
+// the ground with no force — it is resolved:
+//   * rate into the current mode's side: the mode is right (the start value
+//     is rounding at the surface); the function comes back within the step,
+//     after an interior maximum: that crossing is located like any other;
+//   * otherwise the step is rejected and halved, and the search repeats on
+//     the shorter step; if the step underflows first, the integration fails
+//     with a message naming the time, the contact point and the function.
+// This is no Filippov sliding mode being cut short: sliding needs the
+// vector fields of the two modes to point into the surface from both sides,
+// i.e. opposite normal rates on it, and the rates here are equal on the
+// surface. Equal and zero (a tangency, e.g. a body at rest with v_c,y = 0
+// exactly on the damper's surface) is the only case where the modes' next
+// orders can disagree at rounding level; where that leaves the function on
+// the wrong side of both modes on every step, the run is reported, never
+// silently integrated in an inconsistent mode.
+//
+// Runs that never reach the flip limit are unaffected: the resolution only
+// replaces what the old code did at that limit (skip the function).
+//
 // The right-hand side reproduces dynamics.cpp's acceleration() branch by
 // branch (ground contact, sliding friction, rolling resistance, the model's
 // constant applied load); tests/reference checks that the two agree to rounding
