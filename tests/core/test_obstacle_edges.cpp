@@ -49,10 +49,11 @@ double lowest_point(const RigidBody& body, const Vec3& q) {
 // ---------------------------------------------------------------------------
 // Resting: the springs carry the weight. At rest a = 0 is a fixed point of
 // every integrator, so the only error is the transient left after 2 s
-// (e^(−ζω·t) with ζω ≥ 70 s⁻¹ for these critically or 0.7-damped contacts:
-// < 1e-60) plus rounding: tolerance 1e-9·d, as in tests/core/test_static.cpp.
-// The scenes are mirror-symmetric about x = 0 and start with θ = 0, ω = 0: the
-// torques of mirrored contacts cancel exactly, so θ stays exactly 0.
+// (e^(−ζω·t) with ζω = n·c/(2m) ≥ 100 s⁻¹ for n contacts of damping
+// c = 2√(k·m): < 1e-80) plus rounding: tolerance 1e-9·d, as in
+// tests/core/test_static.cpp. The scenes are mirror-symmetric about x = 0 and
+// start with θ = 0, ω = 0, so the rotation is not excited: the torques of
+// mirrored contacts cancel exactly (or to rounding when four are summed).
 
 class RestOnObstacleVertex : public ::testing::TestWithParam<Integrator> {};
 
@@ -109,6 +110,25 @@ TEST_P(RestOnObstacleVertex, BoxBridgingTwoBlocksRestsOnFourSprings) {
     EXPECT_NEAR(c.depth, d, 1e-9 * d);
     EXPECT_EQ(c.normal(), Vec2(0.0, 1.0));
   }
+}
+
+// A compound T hung by its bar across two 4 cm box posts at x = ±0.15, its
+// stem (0.1 wide) hanging between them: the four post corners press into the
+// bar's underside (the bar's own corners, at x = ±0.3, are in the air), so
+// 4·k·d = m·g with m = 1 kg. The default T's COM is 0.15 m above the stem's
+// centre, 0.05 m below the bar's underside: COM at y = top − 0.05 − d.
+TEST_P(RestOnObstacleVertex, CompoundHungByItsBarAcrossTwoPosts) {
+  Scene scene = test::resting_scene(Shape::TShape, GetParam());
+  scene.obstacles = {box_post(-0.15), box_post(0.15)};
+  scene.initial.q = Vec3(0.0, kPostTop - 0.05 + 0.01, 0.0);
+  const Model model = make_model(scene);
+  const double d = model.body.mass * scene.sim.gravity / (4.0 * scene.contact.k);
+  const State s = test::final_state(scene);
+  EXPECT_NEAR(kPostTop - 0.05 - s.q.y(), d, 1e-9 * d);
+  EXPECT_NEAR(s.q.z(), 0.0, 1e-12);
+  ContactSet contacts(model);
+  find_contacts(model, s.q, contacts);
+  EXPECT_EQ(contacts.size(), 4u);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllIntegrators, RestOnObstacleVertex, ::testing::ValuesIn(kAllIntegrators),
