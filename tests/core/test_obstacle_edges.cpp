@@ -251,7 +251,7 @@ INSTANTIATE_TEST_SUITE_P(Posts, PlankDrop,
 // inside steps and bound the error (3e-8 relative measured for the ball of
 // tests/core/test_obstacles.cpp); measured here 1.1e-8 relative; tolerance
 // 1e-6. A normal or lever arm off the gradient (a non-conservative spring)
-// changes the energy by order 1.
+// would not keep it.
 TEST(VertexEnergy, ElasticBounceOffAPostCornerKeepsTheEnergy) {
   Scene scene = plank_scene(Integrator::RK4);
   scene.contact.c = 0.0;
