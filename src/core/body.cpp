@@ -40,6 +40,7 @@ RigidBody make_compound(const std::vector<BoxPart>& parts) {
     const double hx = 0.5 * part.width;
     const double hy = 0.5 * part.height;
     const Vec2 centre = Vec2(part.x, part.y) - props.com;
+    body.parts.push_back(PartOutline{centre, hx, hy});
     for (const Vec2& corner : {Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(hx, hy), Vec2(-hx, hy)}) {
       body.points.push_back(centre + corner);
     }

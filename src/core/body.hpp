@@ -7,6 +7,13 @@
 //   compound    rotates = true,  every vertex of every part, relative to the COM
 //   circle      rotates = true,  one point (0, -R) that stays below the centre
 //               (points_rotate = false) plus rolling resistance
+//
+// A box and every part of a compound also keep their outline: an axis-aligned
+// rectangle in the body frame (centre relative to the COM, half extents),
+// rotated with the body by R(θ). The contact stage tests the obstacles'
+// corners and round ends against these outlines (core/contacts.hpp). The
+// point mass and the circle have none (no edges; the circle meets obstacles
+// with its whole disc).
 #pragma once
 
 #include <Eigen/Core>
@@ -28,6 +35,14 @@ struct BoxPart {
   double mass = 0.0;
 };
 
+// The outline of one convex part: the rectangle |u_x| ≤ hx, |u_y| ≤ hy
+// around `centre`, in the body frame with the COM at the origin.
+struct PartOutline {
+  Vec2 centre = Vec2::Zero();  // relative to the COM, body frame
+  double hx = 0.0;             // half width
+  double hy = 0.0;             // half height
+};
+
 struct RigidBody {
   double mass = 1.0;
   double inertia = 0.0;            // about the COM, kg·m² (0 when rotates = false)
@@ -35,6 +50,7 @@ struct RigidBody {
   bool points_rotate = true;       // false: points keep their world-frame offset (circle)
   double roll_radius = 0.0;        // > 0: the point is a rolling contact of this radius
   std::vector<Vec2> points;        // contact points relative to the COM, body frame
+  std::vector<PartOutline> parts;  // convex outlines with edges (box, compound); else empty
   Vec2 com_offset = Vec2::Zero();  // COM in the construction frame (compound only)
 };
 

@@ -10,7 +10,10 @@ namespace contact2d {
 ContactSet::ContactSet(const Model& model) {
   const size_t points = model.body.points.size();
   const size_t obstacles = model.obstacles.size();
-  storage_.resize(points * (1 + obstacles) + obstacles);
+  const size_t parts = model.body.parts.size();
+  // Ground and body points against obstacles, a disc's one contact per
+  // obstacle, and up to four obstacle vertices against every part.
+  storage_.resize(points * (1 + obstacles) + obstacles + 4 * obstacles * parts);
 }
 
 void find_contacts(const Model& model, const Vec3& q, ContactSet& out) {
@@ -50,6 +53,18 @@ void find_contacts(const Model& model, const Vec3& q, ContactSet& out) {
         for (const Obstacle& o : model.obstacles) {
           if (point_contact(o, c, hit))
             *next++ = {hit.depth, hit.normal.x(), hit.normal.y(), rx, ry};
+        }
+      }
+      // Obstacle vertices (box corners, segment caps) against the body's edges.
+      for (const Obstacle& o : model.obstacles) {
+        Vec2 vertices[4];
+        double radius = 0.0;
+        const int n_vertices = obstacle_vertices(o, vertices, radius);
+        for (int k = 0; k < n_vertices; ++k) {
+          for (const PartOutline& part : body.parts) {
+            if (vertex_part_contact(vertices[k], radius, p, ct, st, part, hit))
+              *next++ = {hit.depth, hit.normal.x(), hit.normal.y(), hit.r.x(), hit.r.y()};
+          }
         }
       }
     }

@@ -19,15 +19,25 @@
 //   obstacles a circle: its true disc against every obstacle
 //               (core/obstacles.hpp: d = R − |p − closest point|);
 //             any other body: every point against every obstacle
-//               (d = distance to the nearest face, or into a capsule)
+//               (d = distance to the nearest face, or into a capsule),
+//             then every obstacle vertex v (a box's corners, a segment's
+//             round ends of radius ρ) against every part outline of the body
+//               (u = R(θ)ᵀ·(v − p) − c_j in the part's frame; d = ρ + the
+//               distance to the nearest edge inside, ρ − the distance to the
+//               edge above or beside it outside; n = −R(θ)·m, m the edge's
+//               outward normal; r = v + ρ·n − p; core/obstacles.hpp derives
+//               it and says why no pair of features counts twice)
 //
 // Each contact carries depth d > 0, the unit normal n out of the surface the
-// body touches and the lever arm r from the COM to the contact point. The
-// tangent is t = (n_y, −n_x), which is +x on the ground.
+// body touches (for an obstacle vertex: out of the vertex, into the body's
+// edge) and the lever arm r from the COM to the contact point. The tangent is
+// t = (n_y, −n_x), which is +x on the ground. The force stage applies the
+// same law to every contact whatever made it.
 //
 // A ContactSet's capacity is fixed when it is made for a model (points ×
-// (1 + obstacles), plus one per obstacle for a disc), so finding contacts in
-// a step never allocates.
+// (1 + obstacles), plus one per obstacle for a disc, plus four obstacle
+// vertices × parts per obstacle), so finding contacts in a step never
+// allocates.
 #pragma once
 
 #include <vector>

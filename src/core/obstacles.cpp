@@ -122,4 +122,57 @@ bool point_contact(const Obstacle& o, const Vec2& c, ObstacleContact& out) {
   return true;
 }
 
+int obstacle_vertices(const Obstacle& o, Vec2 (&vertices)[4], double& radius) {
+  if (o.shape == ObstacleShape::Box) {
+    radius = 0.0;
+    vertices[0] = o.a;
+    vertices[1] = Vec2(o.b.x(), o.a.y());
+    vertices[2] = o.b;
+    vertices[3] = Vec2(o.a.x(), o.b.y());
+    return 4;
+  }
+  radius = o.radius;
+  vertices[0] = o.a;
+  vertices[1] = o.b;
+  return o.a == o.b ? 1 : 2;  // a round post has one cap
+}
+
+bool vertex_part_contact(const Vec2& v, double radius, const Vec2& p, double ct, double st,
+                         const PartOutline& part, ObstacleContact& out) {
+  // The vertex in the part's frame: u = Rᵀ(v − p) − centre.
+  const double wx = v.x() - p.x(), wy = v.y() - p.y();
+  const double ux = ct * wx + st * wy - part.centre.x();
+  const double uy = -st * wx + ct * wy - part.centre.y();
+  const double ax = std::abs(ux) - part.hx;  // > 0: beyond a side edge
+  const double ay = std::abs(uy) - part.hy;  // > 0: beyond the top or bottom edge
+  // m: the outward normal of the part's touched edge, part frame; depth along it.
+  double mx = 0.0, my = 0.0, depth = 0.0;
+  if (ax < 0.0 && ay < 0.0) {  // inside: the nearest edge, top/bottom first on a tie
+    if (ay >= ax) {
+      my = uy >= 0.0 ? 1.0 : -1.0;
+      depth = radius - ay;
+    } else {
+      mx = ux >= 0.0 ? 1.0 : -1.0;
+      depth = radius - ax;
+    }
+  } else if (ax < 0.0) {  // above or below the part, within its width: that edge
+    my = uy >= 0.0 ? 1.0 : -1.0;
+    depth = radius - ay;
+  } else if (ay < 0.0) {  // beside the part, within its height: that edge
+    mx = ux >= 0.0 ? 1.0 : -1.0;
+    depth = radius - ax;
+  } else {
+    return false;  // a corner region: the body's corner carries this contact
+  }
+  if (!(depth > 0.0)) return false;
+  // n = −R·m (out of the obstacle's vertex, into the body's edge); the contact
+  // point is the vertex's deepest point in the body, v + radius·n.
+  const double nx = -(ct * mx - st * my);
+  const double ny = -(st * mx + ct * my);
+  out.depth = depth;
+  out.normal = Vec2(nx, ny);
+  out.r = Vec2(wx + radius * nx, wy + radius * ny);
+  return true;
+}
+
 }  // namespace contact2d
