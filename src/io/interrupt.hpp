@@ -16,7 +16,8 @@
 
 namespace contact2d {
 
-// Installs the handler for SIGINT, SIGTERM and SIGHUP (the CLI's main does).
+// Installs the handler for SIGINT, SIGTERM and SIGHUP (the CLI's main does),
+// except for a signal that is ignored when the program starts (nohup).
 void install_interrupt_cleanup();
 
 // While alive, SIGINT, SIGTERM and SIGHUP wait (on this thread): wrap the
