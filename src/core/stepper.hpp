@@ -1,8 +1,9 @@
 // One interface for every engine that advances the planar body: the
 // reference solver (one per integrator, here) and MuJoCo
-// (mujoco/stepper.hpp). The run loop (core/run.hpp), the game and the
-// benchmarks drive engines only through it, so "run a scene" means the same
-// thing for all of them.
+// (mujoco/stepper.hpp). The run loop (core/run.hpp) and the game drive
+// engines only through it, so "run a scene" means the same thing for all of
+// them; the benchmark steps the reference through it and times bare mj_step
+// for MuJoCo's own cost (bench/bench_step.cpp says why).
 //
 // A stepper starts at the scene's initial state. After every step it holds
 // the new state and the contacts of that state found by the reference's
