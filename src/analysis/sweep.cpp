@@ -254,7 +254,9 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
             row.divergence = trajectories[job.row].divergence;
             if (row.divergence) {
               row.status = RunStatus::Diverged;
-              row.message = describe(*row.divergence, s);
+              // A runner of the tests' own may leave the message empty.
+              row.message = run.divergence_message.empty() ? describe(*row.divergence, s)
+                                                           : run.divergence_message;
               break;
             }
           }

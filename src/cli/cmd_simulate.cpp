@@ -39,8 +39,7 @@ int simulate(const SimulateOptions& options) {
               << "\n";
   }
   if (run.trajectory.divergence) {
-    std::cerr << "contact2d: " << options.scene.path << ": "
-              << describe(*run.trajectory.divergence, scene) << "\n";
+    std::cerr << "contact2d: " << options.scene.path << ": " << run.divergence_message << "\n";
     return kExitDiverged;
   }
   if (out) {

@@ -102,28 +102,29 @@ std::string describe_energy_rise(const EnergyBalance& b, double available_energy
          cause;
 }
 
+std::string divergence_event(const Divergence& d) {
+  switch (d.kind) {
+    case DivergenceKind::NonFinite: return "the state became non-finite";
+    case DivergenceKind::EnergyGain:
+      return format("the energy rose by %.3g J, more than the %.3g J the system ever held", d.value,
+                    d.limit);
+    case DivergenceKind::Penetration:
+      return format(
+          "a contact point sank %.3g m into the ground, beyond the %.3g m any "
+          "energy in the scene can explain",
+          d.value, d.limit);
+    case DivergenceKind::NewtonFailed:
+      return "implicit Euler's Newton iteration did not converge even at dt/64";
+  }
+  return "";
+}
+
 std::string describe(const Divergence& d, const Scene& scene) {
   const Model model = make_model(scene);
   const ContactStiffness cs = contact_stiffness(model);
   const Integrator integrator = scene.sim.integrator;
   const double dt = scene.sim.dt;
-  std::string what;
-  switch (d.kind) {
-    case DivergenceKind::NonFinite: what = "the state became non-finite"; break;
-    case DivergenceKind::EnergyGain:
-      what = format("the energy rose by %.3g J, more than the %.3g J the system ever held", d.value,
-                    d.limit);
-      break;
-    case DivergenceKind::Penetration:
-      what = format(
-          "a contact point sank %.3g m into the ground, beyond the %.3g m any "
-          "energy in the scene can explain",
-          d.value, d.limit);
-      break;
-    case DivergenceKind::NewtonFailed:
-      what = "implicit Euler's Newton iteration did not converge even at dt/64";
-      break;
-  }
+  const std::string what = divergence_event(d);
   std::string message = "simulation diverged at t = " + format("%.6g", d.time) + " s in scene " +
                         std::string(shape_name(scene.shape)) + " (" +
                         std::string(integrator_name(integrator)) + ", dt = " + format("%g", dt) +

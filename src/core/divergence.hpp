@@ -92,6 +92,10 @@ double energy_rise_tolerance(const Model& model, double available_energy, double
 std::string describe_energy_rise(const EnergyBalance& balance, double available_energy,
                                  const Scene& scene);
 
+// What tripped the rule, as a clause: "the state became non-finite", "the
+// energy rose by … J, more than …", ….
+std::string divergence_event(const Divergence& d);
+
 // One-paragraph diagnosis: what happened, when, the likely cause in terms of
 // ω·Δt against the integrator's limit (and friction stiffness μ·g·α·Δt), and
 // what to try.

@@ -13,6 +13,7 @@
 
 #include <string>
 
+#include "core/divergence.hpp"
 #include "core/integrators.hpp"
 #include "core/scene.hpp"
 
@@ -31,6 +32,11 @@ class Stepper {
   virtual const Model& model() const = 0;
   // "ref semi_implicit_euler", "mujoco calibrated Euler", …
   virtual std::string describe() const = 0;
+  // Why a run on this engine diverged, and what to try, in the engine's own
+  // terms; the reference's diagnosis (core/divergence.hpp) by default.
+  virtual std::string explain(const Divergence& d, const Scene& scene) const {
+    return contact2d::describe(d, scene);
+  }
 };
 
 // The reference solver: core step() with the scene's integrator and Δt.

@@ -85,6 +85,8 @@ EngineRun run_engine(const EngineSpec& spec, const Scene& scene) {
   const auto start = std::chrono::steady_clock::now();
   run.trajectory = simulate(*stepper, scene.sim);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (run.trajectory.divergence)
+    run.divergence_message = stepper->explain(*run.trajectory.divergence, scene);
 #ifdef CONTACT2D_WITH_MUJOCO
   if (const auto* mj = dynamic_cast<const mujoco::MujocoStepper*>(stepper.get())) {
     run.warnings = mj->warnings();

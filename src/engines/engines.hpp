@@ -43,10 +43,13 @@ std::vector<std::string> engine_names();
 
 // The result of running one engine on one scene.
 struct EngineRun {
-  std::string engine;                 // EngineSpec::name()
-  std::string description;            // Stepper::describe(), e.g. "mujoco calibrated Euler"
-  Trajectory trajectory;              // samples every output_dt; divergence if it stopped
-  double seconds = 0.0;               // wall clock of the run loop (model building excluded)
+  std::string engine;       // EngineSpec::name()
+  std::string description;  // Stepper::describe(), e.g. "mujoco calibrated Euler"
+  Trajectory trajectory;    // samples every output_dt; divergence if it stopped
+  double seconds = 0.0;     // wall clock of the run loop (model building excluded)
+  // When the run diverged: why, and what to try, in the engine's own terms
+  // (Stepper::explain); empty otherwise.
+  std::string divergence_message;
   std::vector<std::string> warnings;  // anything the engine warned about
   // Facts about the run that are not failures, e.g. "refsafe" when MuJoCo
   // raised a standard-form timeconst to 2·Δt (a softer contact than asked).

@@ -1,5 +1,7 @@
 #include "mujoco/stepper.hpp"
 
+#include "mujoco/divergence.hpp"
+
 namespace contact2d::mujoco {
 namespace {
 
@@ -76,6 +78,11 @@ StepStatus MujocoStepper::step() {
 std::string MujocoStepper::describe() const {
   return "mujoco " + std::string(mapping_name(settings_.mapping)) + " " +
          std::string(mujoco_integrator(integrator_));
+}
+
+std::string MujocoStepper::explain(const Divergence& d, const Scene& scene) const {
+  // body_invweight0 of body 1: (translational, rotational); Â is the first.
+  return describe_mujoco_divergence(d, scene, settings_, model_ptr_->body_invweight0[2]);
 }
 
 std::vector<std::string> MujocoStepper::warnings() const {

@@ -37,6 +37,8 @@ class MujocoStepper final : public Stepper {
   const ContactSet& contacts() const override { return contacts_; }
   const Model& model() const override { return model_; }
   std::string describe() const override;
+  // MuJoCo's terms (mujoco/divergence.hpp).
+  std::string explain(const Divergence& d, const Scene& scene) const override;
 
   const SolverSettings& settings() const { return settings_; }
   // MuJoCo's text warnings so far, then its non-zero warning counters.

@@ -63,7 +63,7 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
   for (const auto* run : {&ref, &mujoco}) {
     if (run->trajectory.divergence) {
       throw std::runtime_error(source + ": " + (run == &ref ? "ref" : "MuJoCo") + ": " +
-                               describe(*run->trajectory.divergence, scene));
+                               run->divergence_message);
     }
   }
   const analysis::TrajectoryError e = analysis::error_between(ref.trajectory, mujoco.trajectory);
@@ -212,7 +212,7 @@ EngineOutcome simulate_outcome(const std::string& path, const std::string& engin
   for (const std::string& w : run.warnings)
     text += "contact2d: " + engine + " warning: " + w + "\n";
   if (run.trajectory.divergence) {
-    text += "contact2d: " + path + ": " + describe(*run.trajectory.divergence, scene) + "\n";
+    text += "contact2d: " + path + ": " + run.divergence_message + "\n";
     return {cli::kExitDiverged, text};
   }
   return {cli::kExitOk, analysis::run_summary(scene, engine, run) + "\n"};
