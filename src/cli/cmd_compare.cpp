@@ -1,8 +1,10 @@
 // contact2d compare SCENE [--mapping NAME] [--geometry NAME] [--csv FILE] [--json] [--plot
-// FILE.png] [overrides]
+// FILE.png] [--converged-tol TOL] [--no-diagnosis] [overrides]
 //
 // Runs the reference solver and MuJoCo on the same scene (same Δt, same
-// sample times) and reports their differences (analysis/trajectory_error.hpp).
+// sample times), measures both against the converged solution and against
+// each other, and diagnoses their difference by re-running without each
+// suspected cause (analysis/comparison.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,11 +13,13 @@
 #include <sstream>
 #include <utility>
 
+#include "analysis/comparison.hpp"
 #include "analysis/trajectory_error.hpp"
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
 #include "io/csv.hpp"
 #include "io/plot.hpp"
+#include "io/table.hpp"
 #include "mujoco/mjcf.hpp"
 
 namespace contact2d::cli {
@@ -29,6 +33,8 @@ struct CompareOptions {
   std::string csv;
   std::string plot;
   bool json = false;
+  double converged_tol = 1e-12;
+  bool no_diagnosis = false;
 };
 
 struct Comparison {
@@ -36,7 +42,9 @@ struct Comparison {
   mj::MjcfOptions mjcf;
   engines::EngineRun ref;
   engines::EngineRun mujoco;
-  analysis::TrajectoryError errors;
+  analysis::TrajectoryError errors;  // ref ↔ MuJoCo
+  analysis::ThreeWay three;
+  analysis::Diagnosis diagnosis;
 };
 
 struct Energies {
@@ -64,10 +72,57 @@ std::string json_string(const std::string& text) {
 
 std::string json_number(double v) { return std::isfinite(v) ? format_number(v, 10) : "null"; }
 
+// `prefix`_max_pos_err, …: one pair's distances (null when not measured).
+void json_errors(std::ostringstream& o, const std::string& prefix,
+                 const analysis::TrajectoryError& e, bool measured) {
+  auto n = [measured](double v) { return measured ? json_number(v) : std::string("null"); };
+  o << ", \"" << prefix << "_max_pos_err\": " << n(e.max_pos) << ", \"" << prefix
+    << "_rms_pos_err\": " << n(e.rms_pos) << ", \"" << prefix << "_end_pos_err\": " << n(e.end_pos)
+    << ", \"" << prefix << "_max_angle_err\": " << n(e.max_angle) << ", \"" << prefix
+    << "_end_angle_err\": " << n(e.end_angle) << ", \"" << prefix
+    << "_max_vel_err\": " << n(e.max_vel) << ", \"" << prefix
+    << "_max_omega_err\": " << n(e.max_omega);
+}
+
+void json_diagnosis(std::ostringstream& o, const analysis::Diagnosis& d) {
+  o << ", \"diagnosis_ran\": " << (d.ran ? "true" : "false")
+    << ", \"agrees\": " << (d.agrees ? "true" : "false")
+    << ", \"diagnosis_summary\": " << json_string(d.summary) << ", \"diagnosis\": [";
+  bool first = true;
+  for (const analysis::Finding& f : d.findings) {
+    if (!f.named) continue;
+    o << (first ? "" : ", ");
+    first = false;
+    o << "{\"cause\": " << json_string(f.cause) << ", \"share\": " << json_number(f.share)
+      << ", \"before\": " << json_number(f.before) << ", \"after\": " << json_number(f.after)
+      << ", \"fix\": " << json_string(f.fix) << ", \"explanation\": " << json_string(f.explanation);
+    if (f.cause == "friction") {
+      o << ", \"sliding_phases\": [";
+      for (size_t i = 0; i < f.phases.size(); ++i)
+        o << (i ? ", " : "") << "{\"t0\": " << json_number(f.phases[i].t0)
+          << ", \"t1\": " << json_number(f.phases[i].t1)
+          << ", \"distance0\": " << json_number(f.phases[i].distance0)
+          << ", \"distance1\": " << json_number(f.phases[i].distance1) << "}";
+      o << "]";
+    }
+    o << "}";
+  }
+  o << "], \"ruled_out\": [";
+  first = true;
+  for (const analysis::Finding& f : d.findings) {
+    if (f.named) continue;
+    o << (first ? "" : ", ") << "{\"cause\": " << json_string(f.cause)
+      << ", \"share\": " << json_number(f.share) << ", \"after\": " << json_number(f.after) << "}";
+    first = false;
+  }
+  o << "]";
+}
+
 void print_json(const Comparison& c, const std::string& path) {
   const Energies er = energies(c.scene, c.ref.trajectory);
   const Energies em = energies(c.scene, c.mujoco.trajectory);
   const analysis::TrajectoryError& e = c.errors;
+  const analysis::ConvergedSolution& conv = c.three.converged;
   std::ostringstream o;
   o << "{\"scene\": " << json_string(path) << ", \"shape\": \"" << shape_name(c.scene.shape) << "\""
     << ", \"mapping\": \"" << mj::mapping_name(c.mjcf.mapping) << "\", \"geometry\": \""
@@ -93,46 +148,145 @@ void print_json(const Comparison& c, const std::string& path) {
     << ", \"impratio\": " << json_number(c.mujoco.impratio) << ", \"mujoco_warnings\": [";
   for (size_t i = 0; i < c.mujoco.warnings.size(); ++i)
     o << (i ? ", " : "") << json_string(c.mujoco.warnings[i]);
-  o << "]}\n";
+  o << "], \"converged_tol\": " << json_number(conv.tol)
+    << ", \"converged_available\": " << (conv.available ? "true" : "false")
+    << ", \"converged_why_not\": " << (conv.available ? "null" : json_string(conv.why_not))
+    << ", \"converged_own_error\": "
+    << (conv.available ? json_number(conv.own_error) : std::string("null"))
+    << ", \"converged_seconds\": " << json_number(conv.seconds) << ", \"amplification\": "
+    << (conv.available ? json_number(conv.amplification) : std::string("null"));
+  json_errors(o, "ref_vs_converged", c.three.ref_vs_converged, conv.available);
+  json_errors(o, "mujoco_vs_converged", c.three.mujoco_vs_converged, conv.available);
+  json_errors(o, "ref_vs_mujoco", c.three.ref_vs_mujoco, true);
+  json_diagnosis(o, c.diagnosis);
+  o << "}\n";
   std::cout << o.str();
+}
+
+// Words wrapped at `width` columns after an indent.
+std::string wrapped(const std::string& text, const std::string& indent, size_t width = 78) {
+  std::string out, line = indent;
+  std::istringstream words(text);
+  std::string word;
+  size_t length = indent.size();  // in characters (UTF-8 sequences count as one)
+  auto chars = [](const std::string& w) {
+    size_t n = 0;
+    for (unsigned char ch : w) n += (ch & 0xC0) != 0x80;
+    return n;
+  };
+  while (words >> word) {
+    if (length > indent.size() && length + 1 + chars(word) > width) {
+      out += line + "\n";
+      line = indent;
+      length = indent.size();
+    }
+    if (length > indent.size()) {
+      line += " ";
+      ++length;
+    }
+    line += word;
+    length += chars(word);
+  }
+  return out + line + "\n";
 }
 
 void print_table(const Comparison& c) {
   const Energies er = energies(c.scene, c.ref.trajectory);
   const Energies em = energies(c.scene, c.mujoco.trajectory);
-  const analysis::TrajectoryError& e = c.errors;
+  const analysis::ConvergedSolution& conv = c.three.converged;
   auto f = [](double v) { return format_number(v, 4); };
   std::cout << shape_name(c.scene.shape) << ": ref " << integrator_name(c.scene.sim.integrator)
             << " vs MuJoCo " << mj::mujoco_integrator(c.scene.sim.integrator) << ", mapping "
             << mj::mapping_name(c.mjcf.mapping) << ", geometry "
-            << mj::geometry_name(c.mjcf.geometry) << ", dt = " << f(c.scene.sim.dt) << " s, "
-            << e.samples << " samples over " << f(c.scene.sim.duration) << " s\n"
-            << "  max position error   " << f(e.max_pos) << " m (at t = " << f(e.time_of_max_pos)
-            << " s)\n"
-            << "  RMS position error   " << f(e.rms_pos) << " m\n"
-            << "  max angle error      " << f(e.max_angle) << " rad\n"
-            << "  max velocity error   " << f(e.max_vel) << " m/s, omega " << f(e.max_omega)
-            << " rad/s\n"
-            << "  end error            " << f(e.end_pos) << " m, " << f(e.end_angle) << " rad\n"
-            << "  energy ref           " << f(er.initial) << " -> " << f(er.final) << " J\n"
-            << "  energy MuJoCo        " << f(em.initial) << " -> " << f(em.final) << " J\n"
-            << "  wall clock           ref " << f(c.ref.seconds) << " s, MuJoCo "
-            << f(c.mujoco.seconds) << " s\n";
+            << mj::geometry_name(c.mjcf.geometry) << ", "
+            << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt")
+            << " damping, dt = " << f(c.scene.sim.dt) << " s, " << c.errors.samples
+            << " samples over " << f(c.scene.sim.duration) << " s\n";
+  if (conv.available) {
+    std::cout << "converged solution: Dormand-Prince 5(4) with every contact switch located, tol "
+              << format_shortest(conv.tol)
+              << " (its own error <= " << format_number(conv.own_error, 2)
+              << " m: the distance to tol " << format_shortest(10 * conv.tol)
+              << ");\nthe scene magnifies a 1e-8 m change of the initial height "
+              << format_number(conv.amplification, 3) << "-fold\n\n";
+  } else {
+    std::cout << wrapped("converged solution: not available (" + conv.why_not +
+                             "); only ref <-> MuJoCo is measured.",
+                         "")
+              << "\n";
+  }
+  Table t;
+  t.columns = {"", "ref <-> converged", "MuJoCo <-> converged", "ref <-> MuJoCo"};
+  auto row = [&](const std::string& name, auto field) {
+    add_row(t, {name, conv.available ? f(field(c.three.ref_vs_converged)) : "-",
+                conv.available ? f(field(c.three.mujoco_vs_converged)) : "-",
+                f(field(c.three.ref_vs_mujoco))});
+  };
+  using E = analysis::TrajectoryError;
+  row("max position (m)", [](const E& e) { return e.max_pos; });
+  row("RMS position (m)", [](const E& e) { return e.rms_pos; });
+  row("end position (m)", [](const E& e) { return e.end_pos; });
+  row("max angle (rad)", [](const E& e) { return e.max_angle; });
+  row("end angle (rad)", [](const E& e) { return e.end_angle; });
+  row("max velocity (m/s)", [](const E& e) { return e.max_vel; });
+  row("max omega (rad/s)", [](const E& e) { return e.max_omega; });
+  row("time of max position (s)", [](const E& e) { return e.time_of_max_pos; });
+  std::cout << to_text(t) << "\n"
+            << "energy ref     " << f(er.initial) << " -> " << f(er.final) << " J\n"
+            << "energy MuJoCo  " << f(em.initial) << " -> " << f(em.final) << " J\n"
+            << "wall clock     ref " << f(c.ref.seconds) << " s, MuJoCo " << f(c.mujoco.seconds)
+            << " s";
+  if (conv.available) std::cout << ", converged " << f(conv.seconds) << " s";
+  std::cout << "\n";
+  const analysis::Diagnosis& d = c.diagnosis;
+  if (!d.ran) return;
+  std::cout << "\nDiagnosis (each cause removed alone, both engines re-run):\n"
+            << wrapped(d.summary, "  ");
+  int n = 0;
+  for (const analysis::Finding& finding : d.findings) {
+    if (!finding.named) continue;
+    std::cout << "\n"
+              << wrapped(std::to_string(++n) + ". " + finding.cause + ": " + finding.explanation,
+                         "  ")
+              << "     fix: " << finding.fix << "\n";
+  }
+  std::string ruled_out;
+  for (const analysis::Finding& finding : d.findings) {
+    if (finding.named) continue;
+    ruled_out += (ruled_out.empty() ? "" : "; ") + finding.cause + " (" +
+                 (std::isfinite(finding.share)
+                      ? format_text("%.0f %%", std::round(100.0 * finding.share) + 0.0) + ", " +
+                            format_number(finding.after, 3) + " m without it"
+                      : std::string("not measured")) +
+                 ")";
+  }
+  if (!ruled_out.empty())
+    std::cout << "\n" << wrapped("Measured and ruled out: " + ruled_out + ".", "  ");
 }
 
 void write_csv(AtomicFile& out, const Comparison& c) {
-  std::fprintf(out.get(),
+  const bool conv = c.three.converged.available;
+  std::fprintf(out.get(), "%s%s\n",
                "t,x_ref,y_ref,theta_ref,vx_ref,vy_ref,omega_ref,"
-               "x_mujoco,y_mujoco,theta_mujoco,vx_mujoco,vy_mujoco,omega_mujoco\n");
+               "x_mujoco,y_mujoco,theta_mujoco,vx_mujoco,vy_mujoco,omega_mujoco",
+               conv ? ",x_converged,y_converged,theta_converged,vx_converged,vy_converged,"
+                      "omega_converged"
+                    : "");
   const auto& a = c.ref.trajectory.samples;
   const auto& b = c.mujoco.trajectory.samples;
   for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
     const State& r = a[i].state;
     const State& m = b[i].state;
     std::fprintf(out.get(),
-                 "%.10g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n",
+                 "%.10g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g",
                  a[i].t, r.q.x(), r.q.y(), r.q.z(), r.v.x(), r.v.y(), r.v.z(), m.q.x(), m.q.y(),
                  m.q.z(), m.v.x(), m.v.y(), m.v.z());
+    if (conv) {
+      const State g = c.three.converged.trajectory.at(a[i].t);
+      std::fprintf(out.get(), ",%.12g,%.12g,%.12g,%.12g,%.12g,%.12g", g.q.x(), g.q.y(), g.q.z(),
+                   g.v.x(), g.v.y(), g.v.z());
+    }
+    std::fputc('\n', out.get());
   }
   out.commit();
 }
@@ -142,8 +296,7 @@ bool report_divergence(const Comparison& c, const std::string& path) {
   bool diverged = false;
   for (const auto& [name, run] : {std::pair{"ref", &c.ref}, std::pair{"MuJoCo", &c.mujoco}}) {
     if (!run->trajectory.divergence) continue;
-    std::cerr << "contact2d: " << path << ": " << name << ": "
-              << describe(*run->trajectory.divergence, c.scene) << "\n";
+    std::cerr << "contact2d: " << path << ": " << name << ": " << run->divergence_message << "\n";
     diverged = true;
   }
   return diverged;
@@ -169,7 +322,11 @@ int compare(const CompareOptions& options) {
                                       c.scene)
               << "\n";
   }
-  c.errors = analysis::error_between(c.ref.trajectory, c.mujoco.trajectory);
+  c.three =
+      analysis::three_way(c.scene, c.ref.trajectory, c.mujoco.trajectory, options.converged_tol);
+  c.errors = c.three.ref_vs_mujoco;
+  if (!options.no_diagnosis)
+    c.diagnosis = analysis::diagnose(c.scene, spec, c.ref, c.mujoco, c.three);
   if (csv) write_csv(*csv, c);
   if (!options.plot.empty()) {
     const std::string title =
@@ -199,6 +356,11 @@ Command add_compare(CLI::App& app) {
   cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
   cmd->add_option("--plot", options->plot,
                   "Draw x, y, theta of both engines and the errors into this PNG (gnuplot)");
+  cmd->add_option("--converged-tol", options->converged_tol,
+                  "Tolerance of the converged solution (rtol = atol; default 1e-12)")
+      ->check(CLI::Range(1e-14, 1e-6));
+  cmd->add_flag("--no-diagnosis", options->no_diagnosis,
+                "Skip the diagnosis (the re-runs that remove each cause of the difference)");
   return {cmd, [options] { return compare(*options); }};
 }
 
