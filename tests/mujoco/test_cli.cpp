@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "analysis/comparison.hpp"
 #include "mj_test_util.hpp"
 #include "mujoco/mjcf.hpp"
 
@@ -173,6 +174,20 @@ TEST_F(Cli, CompareJsonHasTheAgreedKeysAndTheLibrarysNumbers) {
   EXPECT_EQ(json_number(r.out, "dt"), 1e-4);
   EXPECT_GT(json_number(r.out, "ref_seconds"), 0.0);
   EXPECT_GT(json_number(r.out, "mujoco_seconds"), 0.0);
+  // The three-way keys: the same runs against the converged solution at the
+  // default tolerance, to the JSON's 10 digits.
+  EXPECT_EQ(json_number(r.out, "converged_tol"), 1e-12);
+  const analysis::ThreeWay three =
+      analysis::three_way(test::scene_from(kBox), runs.ref, runs.mj.trajectory, 1e-12);
+  for (const auto& [key, value] :
+       {std::pair{"ref_vs_converged_max_pos_err", three.ref_vs_converged.max_pos},
+        std::pair{"mujoco_vs_converged_max_pos_err", three.mujoco_vs_converged.max_pos},
+        std::pair{"ref_vs_converged_max_angle_err", three.ref_vs_converged.max_angle},
+        std::pair{"mujoco_vs_converged_max_angle_err", three.mujoco_vs_converged.max_angle},
+        std::pair{"ref_vs_mujoco_max_pos_err", three.ref_vs_mujoco.max_pos}}) {
+    EXPECT_NEAR(json_number(r.out, key), value, 1e-9 * value) << key;
+  }
+  EXPECT_NE(r.out.find("\"diagnosis\": ["), std::string::npos);
 }
 
 TEST_F(Cli, CompareCsvHasBothTrajectoriesAtTheSameTimes) {
@@ -185,7 +200,8 @@ TEST_F(Cli, CompareCsvHasBothTrajectoriesAtTheSameTimes) {
   EXPECT_EQ(header,
             "t,x_ref,y_ref,theta_ref,vx_ref,vy_ref,omega_ref,x_mujoco,y_mujoco,theta_mujoco,vx_"
             "mujoco,vy_mujoco,"
-            "omega_mujoco");
+            "omega_mujoco,x_converged,y_converged,theta_converged,vx_converged,vy_converged,"
+            "omega_converged");
   int rows = 0;
   while (std::getline(csv, line)) ++rows;
   EXPECT_EQ(rows, 501);  // t = 0 and every 1e-3 s over 0.5 s

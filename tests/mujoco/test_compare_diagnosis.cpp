@@ -1,0 +1,91 @@
+// compare's diagnosis on the real engines (analysis/comparison.hpp): it
+// names the damping law where the scene uses the compression law, the
+// reference's step where that dominates, and nothing where the engines
+// agree.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "analysis/comparison.hpp"
+#include "mj_test_util.hpp"
+
+namespace contact2d {
+namespace {
+
+struct Diagnosed {
+  analysis::ThreeWay three;
+  analysis::Diagnosis diagnosis;
+};
+
+Diagnosed diagnosed(const Scene& scene) {
+  engines::EngineSpec spec;
+  spec.kind = "mujoco";
+  const engines::EngineRun ref = engines::run_engine("ref", scene);
+  const engines::EngineRun mj = engines::run_engine(spec, scene);
+  Diagnosed d;
+  d.three = analysis::three_way(scene, ref.trajectory, mj.trajectory, 1e-12);
+  d.diagnosis = analysis::diagnose(scene, spec, ref, mj, d.three);
+  return d;
+}
+
+const analysis::Finding* named(const analysis::Diagnosis& d, const std::string& cause) {
+  for (const analysis::Finding& f : d.findings)
+    if (f.cause == cause && f.named) return &f;
+  return nullptr;
+}
+
+// The shipped scenes' law: compression-only damping, which MuJoCo cannot
+// represent. Measured on this drop (μ = 0.3, c = 50): 0.399 m apart,
+// 0.0047 m with Kelvin–Voigt in both (99 % removed). The test asks for the cause to be named first with
+// at least half of the difference: any other outcome means the diagnosis
+// or the damping law changed.
+TEST(CompareDiagnosis, NamesTheDampingLawOnACompressionLawScene) {
+  Scene scene = test::drop_scene(Shape::PointMass, 50.0, 0.3);
+  scene.contact.damping = DampingLaw::Compression;
+  const Diagnosed d = diagnosed(scene);
+  ASSERT_FALSE(d.diagnosis.agrees);
+  ASSERT_FALSE(d.diagnosis.findings.empty());
+  const analysis::Finding& first = d.diagnosis.findings.front();
+  std::printf("%s: %.3g -> %.3g m (%.2f)\n", first.cause.c_str(), first.before, first.after,
+              first.share);
+  EXPECT_EQ(first.cause, "damping_law");
+  EXPECT_GE(first.share, 0.5);
+  EXPECT_NE(first.fix.find("kelvin_voigt"), std::string::npos);
+  EXPECT_NE(first.fix.find("--set contact.damping="), std::string::npos);
+}
+
+// A stiff contact at a large step on the reference's implicit Euler, whose
+// numerical damping at ω·Δt = 0.63 eats the bounces, against MuJoCo's
+// `implicit` (explicit in contact forces: semi-implicit Euler, which keeps
+// the energy). Measured: ref 0.367 m from the converged solution, MuJoCo
+// 0.023 m; at Δt/10 the difference falls by 35 %.
+TEST(CompareDiagnosis, NamesTheReferencesStepWhenItsOwnErrorDominates) {
+  const Scene scene = test::scene_from(
+      "scene = \"point_mass\"\n[body]\nmass = 1.0\nhalf_height = 0.05\n"
+      "[contact]\nk = 1e5\nc = 20\nmu = 0\ndamping = \"kelvin_voigt\"\n"
+      "[initial]\ny = 0.5\n[sim]\ndt = 2e-3\nduration = 2.0\nintegrator = \"implicit_euler\"\n");
+  const Diagnosed d = diagnosed(scene);
+  ASSERT_TRUE(d.three.converged.available);
+  EXPECT_GT(d.three.ref_vs_converged.max_pos, 5.0 * d.three.mujoco_vs_converged.max_pos);
+  const analysis::Finding* step = named(d.diagnosis, "time_step");
+  ASSERT_NE(step, nullptr) << d.diagnosis.summary;
+  EXPECT_EQ(step->fix, "--dt 0.0002");
+  EXPECT_NE(step->explanation.find("fixed-step reference's own error is the larger part"),
+            std::string::npos)
+      << step->explanation;
+}
+
+// Kelvin–Voigt, frictionless, calibrated mapping, ζ = 1: the engines agree
+// to the goal (measured 1e-7 m; test_agreement.cpp), so nothing may be
+// named and nothing re-run.
+TEST(CompareDiagnosis, NamesNothingWhenAKelvinVoigtFrictionlessSceneAgrees) {
+  for (Shape shape : {Shape::PointMass, Shape::Circle}) {
+    const Scene scene = test::drop_scene(shape, 200.0, 0.0);
+    const Diagnosed d = diagnosed(scene);
+    EXPECT_TRUE(d.diagnosis.agrees) << shape_name(shape) << " " << d.three.ref_vs_mujoco.max_pos;
+    EXPECT_TRUE(d.diagnosis.findings.empty());
+  }
+}
+
+}  // namespace
+}  // namespace contact2d
