@@ -1,8 +1,6 @@
 #include "game/comparison_video.hpp"
 
-#define GLFW_INCLUDE_NONE
 #include <GL/gl.h>
-#include <GLFW/glfw3.h>
 
 #include <algorithm>
 #include <cctype>
@@ -13,6 +11,7 @@
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "game/draw2d.hpp"
+#include "game/offscreen.hpp"
 #include "game/video.hpp"
 
 namespace contact2d::game {
@@ -307,49 +306,6 @@ void draw_comparison_frame(const ComparisonVideoInput& in, const RigidBody& body
   draw::flush_text();
 }
 
-std::string g_glfw_error;
-
-void on_glfw_error(int, const char* description) {
-  g_glfw_error = description ? description : "unknown error";
-}
-
-// GLFW with one hidden window whose back buffer is drawn and read back.
-class HiddenWindow {
- public:
-  HiddenWindow(int width, int height) {
-    glfwSetErrorCallback(on_glfw_error);
-    if (!glfwInit()) {
-      throw InputError("--video needs a display: run under xvfb-run, or set DISPLAY (" +
-                       g_glfw_error + ")");
-    }
-    glfwDefaultWindowHints();
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
-    window_ = glfwCreateWindow(width, height, "contact2d compare --video", nullptr, nullptr);
-    if (!window_) {
-      glfwTerminate();
-      throw InputError("--video: cannot create an OpenGL 2.1 context (" + g_glfw_error + ")");
-    }
-    glfwMakeContextCurrent(window_);
-    draw::forget_gl_objects();  // an earlier context's text atlas is gone
-    glfwGetFramebufferSize(window_, &width_, &height_);
-  }
-  ~HiddenWindow() {
-    glfwDestroyWindow(window_);
-    glfwTerminate();
-  }
-  HiddenWindow(const HiddenWindow&) = delete;
-  HiddenWindow& operator=(const HiddenWindow&) = delete;
-  int width() const { return width_; }
-  int height() const { return height_; }
-
- private:
-  GLFWwindow* window_ = nullptr;
-  int width_ = 0, height_ = 0;
-};
-
 }  // namespace
 
 long long comparison_video_frames(double duration, int fps) {
@@ -365,7 +321,7 @@ void check_video_path(const std::string& path) {
 }
 
 void write_comparison_video(const std::string& path, const ComparisonVideoInput& in, int fps,
-                            int width, int height) {
+                            int width, int height, OffscreenBackend backend) {
   check_video_path(path);
   if (!in.scene || !in.reference || !in.mujoco)
     throw InputError("--video " + path + ": needs a scene, a reference and a MuJoCo trajectory");
@@ -381,18 +337,16 @@ void write_comparison_video(const std::string& path, const ComparisonVideoInput&
   const long long frames = comparison_video_frames(duration, fps);
   const RigidBody body = make_body(*in.scene);
 
-  HiddenWindow window(width, height);
-  const int w = window.width(), h = window.height();
+  const OffscreenContext context(width, height, backend, "--video");
+  const int w = context.width(), h = context.height();
   const Camera cam = fit_camera(in, body, frames, fps, w, h);
   const VideoFormat format = lower_extension(path) == ".gif" ? VideoFormat::Gif : VideoFormat::Mp4;
   VideoWriter video(path, w, h, fps, format, "--video");
-  std::vector<unsigned char> pixels(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
+  std::vector<unsigned char> pixels;
   for (long long i = 0; i < frames; ++i) {
     const double t = static_cast<double>(i) / fps;
     draw_comparison_frame(in, body, cam, t, duration, w, h);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadBuffer(GL_BACK);
-    glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+    context.read_pixels(pixels);
     if (!video.write(pixels)) break;  // ffmpeg is gone; finish() says why
   }
   video.finish();

@@ -1,6 +1,7 @@
 // Both engines on screen (`contact2d compare --video FILE`): the bodies of
 // the reference and MuJoCo overlaid in real time, drawn with the game's
-// renderer (game/draw2d.hpp) into a hidden GLFW window and piped to ffmpeg
+// renderer (game/draw2d.hpp) offscreen (game/offscreen.hpp: EGL surfaceless,
+// else a hidden GLFW window) and piped to ffmpeg
 // (game/video.hpp: "<FILE>.tmp", renamed when complete, removed on Ctrl-C).
 //
 //   reference   filled, orange (kReferenceRgb)
@@ -20,14 +21,17 @@
 // trajectory that ended early (divergence) holds its last state and the HUD
 // says when it stopped. The converged solution is drawn up to its t_end.
 //
-// Needs an X display (Xvfb will do: `xvfb-run -a contact2d compare ...`):
-// without one it throws InputError "--video needs a display: ...".
+// Offscreen: by default EGL on Mesa's surfaceless platform (no display
+// needed), else a hidden window on the X display (Xvfb will do:
+// `xvfb-run -a contact2d compare ...`); with neither it throws InputError
+// "--video needs a display: run under xvfb-run, or set DISPLAY (...)".
 #pragma once
 
 #include <string>
 
 #include "core/run.hpp"
 #include "core/scene.hpp"
+#include "game/offscreen.hpp"
 #include "reference/dense_reference.hpp"
 
 namespace contact2d::game {
@@ -61,9 +65,11 @@ void check_video_path(const std::string& path);
 
 // Writes the video. Throws InputError for a bad path (see check_video_path),
 // a missing input, fps outside [1, 240], a size that is odd or outside
-// [64, 4096], no display, or ffmpeg failing; nothing is left at `path`
-// (nor "<path>.tmp") then.
+// [64, 4096], no offscreen context (see above), or ffmpeg failing; nothing
+// is left at `path` (nor "<path>.tmp") then. `backend` chooses the
+// offscreen context (tests pin one; a command leaves it at Auto).
 void write_comparison_video(const std::string& path, const ComparisonVideoInput& input,
-                            int fps = 30, int width = 960, int height = 540);
+                            int fps = 30, int width = 960, int height = 540,
+                            OffscreenBackend backend = OffscreenBackend::Auto);
 
 }  // namespace contact2d::game
