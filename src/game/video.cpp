@@ -70,11 +70,20 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps
   temp_slot_ = register_temporary(path_ + ".tmp");
 }
 
-VideoWriter::~VideoWriter() {
-  try {
-    finish();
-  } catch (...) {
-  }
+VideoWriter::~VideoWriter() { abandon(); }
+
+void VideoWriter::abandon() {
+  if (pid_ < 0) return;
+  if (pipe_) std::fclose(pipe_);
+  pipe_ = nullptr;
+  kill(pid_, SIGTERM);
+  int status = 0;
+  waitpid(pid_, &status, 0);
+  register_child(0);
+  pid_ = -1;
+  std::remove((path_ + ".tmp").c_str());
+  unregister_temporary(temp_slot_);
+  temp_slot_ = -1;
 }
 
 bool VideoWriter::write(const std::vector<unsigned char>& rgb) {

@@ -28,6 +28,10 @@ class VideoWriter {
   bool write(const std::vector<unsigned char>& rgb);
   // Closes the pipe and waits; throws InputError when ffmpeg failed.
   void finish();
+  // Stops ffmpeg and removes "<path>.tmp": no video. What the destructor
+  // does when finish() was not called (an exception left the frame loop):
+  // a video appears only when it is complete.
+  void abandon();
 
  private:
   std::string path_;

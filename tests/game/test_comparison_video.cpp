@@ -9,17 +9,20 @@
 
 #include <unistd.h>
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/input_error.hpp"
 #include "engines/engines.hpp"
 #include "game/comparison_video.hpp"
+#include "game/video.hpp"
 #include "reference/dense_reference.hpp"
 
 namespace fs = std::filesystem;
@@ -222,6 +225,26 @@ TEST(ComparisonVideo, OtherExtensionsAreRefusedNamingTheOption) {
     EXPECT_FALSE(fs::exists(video));
     EXPECT_FALSE(fs::exists(video.string() + ".tmp"));
   }
+}
+
+// A writer dropped before finish() (an exception left the frame loop)
+// leaves neither the video nor its temporary: a video appears only complete.
+TEST(ComparisonVideo, AnAbandonedWriterLeavesNoFile) {
+  const fs::path video = temp("abandoned.mp4");
+  {
+    game::VideoWriter writer(video.string(), 64, 64, kFps, game::VideoFormat::Mp4, "--video");
+    const std::vector<unsigned char> grey(64 * 64 * 3, 128);
+    // Frames until ffmpeg has opened its output (up to 10 s).
+    bool started = false;
+    for (int i = 0; i < 1000 && !started; ++i) {
+      ASSERT_TRUE(writer.write(grey));
+      started = fs::exists(video.string() + ".tmp");
+      if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_TRUE(started);
+  }
+  EXPECT_FALSE(fs::exists(video));
+  EXPECT_FALSE(fs::exists(video.string() + ".tmp"));
 }
 
 // Without a display: the window backend fails with one line saying what to
