@@ -86,7 +86,7 @@ struct EglContext {
     if (display == EGL_NO_DISPLAY) return egl_error("eglGetPlatformDisplayEXT");
     EGLint major = 0, minor = 0;
     if (!eglInitialize(display, &major, &minor)) {
-      const std::string why = egl_error("eglInitialize");
+      std::string why = egl_error("eglInitialize");
       display = EGL_NO_DISPLAY;
       return why;
     }

@@ -13,6 +13,13 @@
 #include "io/interrupt.hpp"
 
 namespace contact2d::game {
+namespace {
+
+// One palette for the whole GIF from every frame, applied without dithering.
+const char* const kGifFilter =
+    "vflip,split[a][b];[a]palettegen=stats_mode=full[p];[b][p]paletteuse=dither=none";
+
+}  // namespace
 
 VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps,
                          VideoFormat format, std::string option)
@@ -30,10 +37,7 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps
       "rgb24",  "-video_size", size,    "-framerate", rate, "-i",       "-"};
   const std::vector<std::string> encoding =
       format == VideoFormat::Gif
-          ? std::vector<std::string>{"-vf",
-                                     "vflip,split[a][b];[a]palettegen=stats_mode=full[p];[b][p]"
-                                     "paletteuse=dither=none",
-                                     "-f", "gif", path + ".tmp"}
+          ? std::vector<std::string>{"-vf", kGifFilter, "-f", "gif", path + ".tmp"}
           : std::vector<std::string>{"-vf",       "vflip",      "-c:v", "libx264",  "-preset",
                                      "veryfast",  "-crf",       "20",   "-pix_fmt", "yuv420p",
                                      "-movflags", "+faststart", "-f",   "mp4",      path + ".tmp"};
