@@ -163,13 +163,27 @@ Camera fit_camera(const ComparisonVideoInput& in, const RigidBody& body, long lo
                   int width, int height) {
   const double extent = std::max(body_extent(body), disc_radius(body, *in.scene));
   Bounds b;
-  for (const Trajectory* t : {in.reference, in.mujoco})
-    for (const Sample& s : t->samples) b.add(s.state, extent);
+  for (const Sample& s : in.reference->samples) b.add(s.state, extent);
   if (in.converged) {
     for (long long i = 0; i < frames; ++i) {
       const double t = static_cast<double>(i) / fps;
       if (t <= in.converged->t_end()) b.add(in.converged->at(t), extent);
     }
+  }
+  // MuJoCo's path widens the view by at most the reference's own size
+  // (at least four body sizes) on each side: a run that blows up before
+  // its divergence is caught leaves the frame instead of shrinking the
+  // bodies to dots (the HUD says where it stopped).
+  Bounds m;
+  for (const Sample& s : in.mujoco->samples) m.add(s.state, extent);
+  if (b.x0 <= b.x1 && m.x0 <= m.x1) {
+    const double reach = std::max({b.x1 - b.x0, b.y1 - b.y0, 4.0 * extent, 0.1});
+    b.x0 = std::min(b.x0, std::max(m.x0, b.x0 - reach));
+    b.x1 = std::max(b.x1, std::min(m.x1, b.x1 + reach));
+    b.y0 = std::min(b.y0, std::max(m.y0, b.y0 - reach));
+    b.y1 = std::max(b.y1, std::min(m.y1, b.y1 + reach));
+  } else if (m.x0 <= m.x1) {
+    b = m;
   }
   if (!(b.x0 <= b.x1)) b = Bounds{-1.0, 1.0, 0.0, 1.0};  // nothing finite: any view
   // The ground and a band of it below y = 0 are always in view; the view is

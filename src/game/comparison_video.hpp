@@ -12,7 +12,9 @@
 // time, the distance between the centres of mass of the bodies shown, and
 // a legend. The camera holds every sample of both trajectories (and the
 // converged solution at the frame times) and the ground in view, at one
-// scale for x and y.
+// scale for x and y; MuJoCo's samples widen the reference's view by at most
+// its own size on each side (a run blowing up leaves the frame rather than
+// shrinking the bodies to dots).
 //
 // Real time: frame i shows t_i = i / fps, i = 0 … N − 1 with
 // N = comparison_video_frames(duration, fps) = max(1, round(duration·fps)):
