@@ -7,49 +7,41 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 
 #include "core/input_error.hpp"
 #include "io/interrupt.hpp"
 
 namespace contact2d::game {
+namespace {
 
-VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps) : path_(path) {
+// One palette for the whole GIF from every frame, applied without dithering.
+const char* const kGifFilter =
+    "vflip,split[a][b];[a]palettegen=stats_mode=full[p];[b][p]paletteuse=dither=none";
+
+}  // namespace
+
+VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps,
+                         VideoFormat format, std::string option)
+    : path_(path), option_(std::move(option)) {
   // A write to a dead ffmpeg must fail with EPIPE, not kill the game.
   std::signal(SIGPIPE, SIG_IGN);
   int fds[2];
   if (pipe(fds) != 0)
-    throw InputError("--record " + path + ": cannot create a pipe (" + std::strerror(errno) + ")");
+    throw InputError(option_ + " " + path + ": cannot create a pipe (" + std::strerror(errno) +
+                     ")");
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   const std::string rate = std::to_string(fps);
-  std::vector<std::string> args = {"ffmpeg",
-                                   "-loglevel",
-                                   "error",
-                                   "-y",
-                                   "-f",
-                                   "rawvideo",
-                                   "-pixel_format",
-                                   "rgb24",
-                                   "-video_size",
-                                   size,
-                                   "-framerate",
-                                   rate,
-                                   "-i",
-                                   "-",
-                                   "-vf",
-                                   "vflip",
-                                   "-c:v",
-                                   "libx264",
-                                   "-preset",
-                                   "veryfast",
-                                   "-crf",
-                                   "20",
-                                   "-pix_fmt",
-                                   "yuv420p",
-                                   "-movflags",
-                                   "+faststart",
-                                   "-f",
-                                   "mp4",
-                                   path + ".tmp"};
+  std::vector<std::string> args = {
+      "ffmpeg", "-loglevel",   "error", "-y",         "-f", "rawvideo", "-pixel_format",
+      "rgb24",  "-video_size", size,    "-framerate", rate, "-i",       "-"};
+  const std::vector<std::string> encoding =
+      format == VideoFormat::Gif
+          ? std::vector<std::string>{"-vf", kGifFilter, "-f", "gif", path + ".tmp"}
+          : std::vector<std::string>{"-vf",       "vflip",      "-c:v", "libx264",  "-preset",
+                                     "veryfast",  "-crf",       "20",   "-pix_fmt", "yuv420p",
+                                     "-movflags", "+faststart", "-f",   "mp4",      path + ".tmp"};
+  args.insert(args.end(), encoding.begin(), encoding.end());
   std::vector<char*> argv;
   argv.reserve(args.size() + 1);
   for (std::string& a : args) argv.push_back(a.data());
@@ -74,7 +66,7 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps
   close(fds[0]);
   if (rc != 0) {
     close(fds[1]);
-    throw InputError("--record " + path + ": cannot start ffmpeg (" + std::strerror(rc) +
+    throw InputError(option_ + " " + path + ": cannot start ffmpeg (" + std::strerror(rc) +
                      "); install Debian's ffmpeg package");
   }
   pipe_ = fdopen(fds[1], "wb");
@@ -82,11 +74,20 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps
   temp_slot_ = register_temporary(path_ + ".tmp");
 }
 
-VideoWriter::~VideoWriter() {
-  try {
-    finish();
-  } catch (...) {
-  }
+VideoWriter::~VideoWriter() { abandon(); }
+
+void VideoWriter::abandon() {
+  if (pid_ < 0) return;
+  if (pipe_) std::fclose(pipe_);
+  pipe_ = nullptr;
+  kill(pid_, SIGTERM);
+  int status = 0;
+  waitpid(pid_, &status, 0);
+  register_child(0);
+  pid_ = -1;
+  std::remove((path_ + ".tmp").c_str());
+  unregister_temporary(temp_slot_);
+  temp_slot_ = -1;
 }
 
 bool VideoWriter::write(const std::vector<unsigned char>& rgb) {
@@ -107,13 +108,13 @@ void VideoWriter::finish() {
   temp_slot_ = -1;
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::remove(temporary.c_str());
-    throw InputError("--record " + path_ + ": ffmpeg failed (exit status " +
+    throw InputError(option_ + " " + path_ + ": ffmpeg failed (exit status " +
                      std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
                      "); no video written");
   }
   // Like every output of contact2d: the file appears only when complete.
   if (std::rename(temporary.c_str(), path_.c_str()) != 0) {
-    throw InputError("--record " + path_ + ": cannot write the video (" + std::strerror(errno) +
+    throw InputError(option_ + " " + path_ + ": cannot write the video (" + std::strerror(errno) +
                      ")");
   }
 }

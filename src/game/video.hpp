@@ -1,5 +1,7 @@
 // A video file written by ffmpeg (Debian's package) from raw RGB frames on
-// its standard input: H.264 in MP4, yuv420p so that every player reads it.
+// its standard input: H.264 in MP4, yuv420p so that every player reads it,
+// or an animated GIF (a palette computed over all frames: palettegen then
+// paletteuse, without dithering, so flat colours stay flat).
 #pragma once
 
 #include <sys/types.h>
@@ -9,10 +11,14 @@
 
 namespace contact2d::game {
 
+enum class VideoFormat { Mp4, Gif };
+
 class VideoWriter {
  public:
-  // Starts ffmpeg; throws InputError when it cannot be started.
-  VideoWriter(const std::string& path, int width, int height, int fps);
+  // Starts ffmpeg; throws InputError when it cannot be started. `option`
+  // names the command-line option in error messages ("--record", "--video").
+  VideoWriter(const std::string& path, int width, int height, int fps,
+              VideoFormat format = VideoFormat::Mp4, std::string option = "--record");
   ~VideoWriter();
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
@@ -22,9 +28,14 @@ class VideoWriter {
   bool write(const std::vector<unsigned char>& rgb);
   // Closes the pipe and waits; throws InputError when ffmpeg failed.
   void finish();
+  // Stops ffmpeg and removes "<path>.tmp": no video. What the destructor
+  // does when finish() was not called (an exception left the frame loop):
+  // a video appears only when it is complete.
+  void abandon();
 
  private:
   std::string path_;
+  std::string option_;
   FILE* pipe_ = nullptr;
   pid_t pid_ = -1;
   int temp_slot_ = -1;  // "<path>.tmp", removed if a signal ends the program (io/interrupt.hpp)

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/input_error.hpp"
+#include "game/draw2d.hpp"
 #include "game/render.hpp"
 #include "game/video.hpp"
 
@@ -77,6 +78,7 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
   glfwSetWindowUserPointer(window, &queue);
   glfwSetKeyCallback(window, on_key);
   glfwMakeContextCurrent(window);
+  draw::forget_gl_objects();  // a text atlas uploaded to an earlier context is gone
   glfwSwapInterval(o.vsync ? 1 : 0);
 
   int fb_width = o.width, fb_height = o.height;

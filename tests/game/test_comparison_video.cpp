@@ -1,0 +1,279 @@
+// `compare --video` as a library call (game/comparison_video.hpp), under
+// Xvfb (ctest runs this through xvfb-run, label "window"): the video has
+// comparison_video_frames(duration, fps) = round(duration·fps) frames, as
+// ffprobe counts them, and a decoded frame shows both engines' body colours
+// in the world area (below the HUD, whose legend also holds them). The
+// "MuJoCo" trajectory here is the reference shifted sideways by 0.6 m, so
+// the two bodies never overlap and both colours must be visible.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/input_error.hpp"
+#include "engines/engines.hpp"
+#include "game/comparison_video.hpp"
+#include "game/video.hpp"
+#include "reference/dense_reference.hpp"
+
+namespace fs = std::filesystem;
+using namespace contact2d;
+
+namespace {
+
+fs::path temp(const std::string& name) {
+  return fs::temp_directory_path() / ("contact2d_video_" + std::to_string(::getpid()) + "_" + name);
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+int sh(const std::string& command) {
+  const int raw = std::system(command.c_str());
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+std::string capture(const std::string& command) {
+  const fs::path out = temp("capture");
+  sh(command + " >'" + out.string() + "' 2>/dev/null");
+  std::string text = slurp(out);
+  fs::remove(out);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
+}
+
+long count_frames(const fs::path& video) {
+  return std::atol(capture("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                           "stream=nb_read_frames -of csv=p=0 '" +
+                           video.string() + "'")
+                       .c_str());
+}
+
+// Frame n (from 0) decoded to RGB, top row first.
+std::vector<unsigned char> decode_frame(const fs::path& video, int n) {
+  const fs::path raw = temp("frame.rgb");
+  sh("ffmpeg -loglevel error -y -i '" + video.string() + "' -vf 'select=eq(n\\," +
+     std::to_string(n) + ")' -frames:v 1 -f rawvideo -pix_fmt rgb24 '" + raw.string() + "'");
+  const std::string bytes = slurp(raw);
+  fs::remove(raw);
+  return {bytes.begin(), bytes.end()};
+}
+
+// Pixels of the world area (below the HUD band) within `tolerance` of a
+// colour in every channel.
+long count_colour(const std::vector<unsigned char>& rgb, int width, int height,
+                  const int (&colour)[3], int tolerance) {
+  long n = 0;
+  for (int y = game::kComparisonHudHeight; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t i =
+          3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
+      bool near = true;
+      for (int c = 0; c < 3; ++c)
+        near = near && std::abs(rgb[i + static_cast<size_t>(c)] - colour[c]) <= tolerance;
+      n += near ? 1 : 0;
+    }
+  }
+  return n;
+}
+
+struct Fixture {
+  Scene scene;
+  Trajectory reference, mujoco;
+  DenseTrajectory converged;
+  game::ComparisonVideoInput input;
+
+  Fixture() {
+    scene = default_scene(Shape::Box);
+    scene.sim.duration = 0.5;
+    reference = engines::run_engine("ref", scene).trajectory;
+    mujoco = reference;
+    for (Sample& s : mujoco.samples) s.state.q.x() += 0.6;
+    converged = converged_reference(scene, 1e-8);
+    input.scene = &scene;
+    input.reference = &reference;
+    input.mujoco = &mujoco;
+    input.converged = &converged;
+    input.title = "box: ref vs ref shifted by 0.6 m (test)";
+  }
+};
+
+constexpr int kWidth = 960, kHeight = 540, kFps = 20;
+
+// Writes the fixture's video through `backend` and checks it; returns
+// frame 5 decoded.
+std::vector<unsigned char> check_mp4(game::OffscreenBackend backend, const std::string& name) {
+  const Fixture f;
+  EXPECT_TRUE(f.converged.ok()) << f.converged.failure();
+  const fs::path video = temp(name + ".mp4");
+  game::write_comparison_video(video.string(), f.input, kFps, kWidth, kHeight, backend);
+  EXPECT_FALSE(fs::exists(video.string() + ".tmp"));
+  EXPECT_TRUE(fs::exists(video));
+
+  // 0.5 s at 20 fps: frames at t = 0, 0.05, …, 0.45 s.
+  const long expected = static_cast<long>(game::comparison_video_frames(0.5, kFps));
+  EXPECT_EQ(expected, 10);
+  const long frames = count_frames(video);
+  EXPECT_EQ(frames, expected);
+  EXPECT_EQ(capture("ffprobe -v error -select_streams v:0 -show_entries stream=width,height "
+                    "-of csv=p=0 '" +
+                    video.string() + "'"),
+            "960,540");
+
+  // Tolerance: frames are encoded as H.264 in yuv420p (8-bit limited-range
+  // Y'CbCr, chroma shared by 2×2 pixels, crf 20). A flat area's colour comes
+  // back within a few levels per channel (range quantisation ±2, encoder
+  // error a few more); pixels whose 2×2 block straddles an edge get a mixed
+  // chroma and fall outside. ±24 per channel keeps the interiors of the
+  // filled body and of MuJoCo's 4 px outline and no other colour drawn (the
+  // nearest, the ground and the background, are > 100 levels away in some
+  // channel).
+  std::vector<unsigned char> rgb = decode_frame(video, 5);
+  EXPECT_EQ(rgb.size(), static_cast<size_t>(kWidth) * kHeight * 3);
+  if (rgb.size() != static_cast<size_t>(kWidth) * kHeight * 3) return {};
+  const long ref = count_colour(rgb, kWidth, kHeight, game::kReferenceRgb, 24);
+  const long mj = count_colour(rgb, kWidth, kHeight, game::kMujocoRgb, 24);
+  const long conv = count_colour(rgb, kWidth, kHeight, game::kConvergedRgb, 40);
+  std::printf(
+      "mp4 (%s): %ld frames (expected %ld); frame 5: reference colour %ld px, MuJoCo "
+      "colour %ld px, converged (dark) %ld px\n",
+      name.c_str(), frames, expected, ref, mj, conv);
+  // The box is ~0.4 × 0.2 m in a view a few metres across: thousands of
+  // pixels filled, its outline several hundred.
+  EXPECT_GT(ref, 1000);
+  EXPECT_GT(mj, 200);
+  fs::remove(video);
+  return rgb;
+}
+
+TEST(ComparisonVideo, Mp4HasDurationTimesFpsFramesAndBothColoursThroughEgl) {
+  if (!game::offscreen_egl_built()) GTEST_SKIP() << "built without libEGL";
+  check_mp4(game::OffscreenBackend::Egl, "egl");
+}
+
+TEST(ComparisonVideo, Mp4HasDurationTimesFpsFramesAndBothColoursThroughAWindow) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
+  const std::vector<unsigned char> window = check_mp4(game::OffscreenBackend::Window, "window");
+  // Both backends draw with the same renderer (here both Mesa's llvmpipe):
+  // the same picture.
+  if (game::offscreen_egl_built() && !window.empty()) {
+    const std::vector<unsigned char> egl = check_mp4(game::OffscreenBackend::Egl, "egl");
+    // In the world area: the HUD's text at scale 1.5 lands on fractional
+    // pixels, where the two contexts round a few glyph edges differently.
+    long differ = 0;
+    const size_t from = static_cast<size_t>(game::kComparisonHudHeight) * kWidth * 3;
+    for (size_t i = from; i < std::min(egl.size(), window.size()); ++i)
+      differ += std::abs(egl[i] - window[i]) > 24 ? 1 : 0;
+    std::printf("EGL and window frames: %ld bytes of the world area differ by more than 24\n",
+                differ);
+    EXPECT_LT(differ, 50);
+  }
+}
+
+TEST(ComparisonVideo, GifHasTheSameFramesAndColours) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
+  const Fixture f;
+  const fs::path video = temp("both.GIF");  // the extension's case does not matter
+  game::write_comparison_video(video.string(), f.input, kFps, kWidth, kHeight);  // Auto
+  EXPECT_FALSE(fs::exists(video.string() + ".tmp"));
+  ASSERT_TRUE(fs::exists(video));
+  EXPECT_EQ(capture("ffprobe -v error -select_streams v:0 -show_entries stream=codec_name "
+                    "-of csv=p=0 '" +
+                    video.string() + "'"),
+            "gif");
+  const long frames = count_frames(video);
+  EXPECT_EQ(frames, game::comparison_video_frames(0.5, kFps));
+  // A GIF's palette (palettegen over all frames, no dithering) holds every
+  // colour of these few-colour frames exactly; ±4 allows for a palette
+  // entry merged with a neighbour.
+  const std::vector<unsigned char> rgb = decode_frame(video, 5);
+  ASSERT_EQ(rgb.size(), static_cast<size_t>(kWidth) * kHeight * 3);
+  const long ref = count_colour(rgb, kWidth, kHeight, game::kReferenceRgb, 4);
+  const long mj = count_colour(rgb, kWidth, kHeight, game::kMujocoRgb, 4);
+  std::printf("gif: %ld frames; frame 5: reference colour %ld px, MuJoCo colour %ld px\n", frames,
+              ref, mj);
+  EXPECT_GT(ref, 1000);
+  EXPECT_GT(mj, 200);
+  fs::remove(video);
+}
+
+TEST(ComparisonVideo, OtherExtensionsAreRefusedNamingTheOption) {
+  const Fixture f;
+  for (const std::string name : {"clip.avi", "clip", "clip.mp4.txt", "dir.mp4/clip"}) {
+    const fs::path video = temp(name);
+    try {
+      game::write_comparison_video(video.string(), f.input, kFps, kWidth, kHeight);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("--video"), std::string::npos) << what;
+      EXPECT_NE(what.find(".mp4 or .gif"), std::string::npos) << what;
+    }
+    EXPECT_FALSE(fs::exists(video));
+    EXPECT_FALSE(fs::exists(video.string() + ".tmp"));
+  }
+}
+
+// A writer dropped before finish() (an exception left the frame loop)
+// leaves neither the video nor its temporary: a video appears only complete.
+TEST(ComparisonVideo, AnAbandonedWriterLeavesNoFile) {
+  const fs::path video = temp("abandoned.mp4");
+  {
+    game::VideoWriter writer(video.string(), 64, 64, kFps, game::VideoFormat::Mp4, "--video");
+    const std::vector<unsigned char> grey(64 * 64 * 3, 128);
+    // Frames until ffmpeg has opened its output (up to 10 s).
+    bool started = false;
+    for (int i = 0; i < 1000 && !started; ++i) {
+      ASSERT_TRUE(writer.write(grey));
+      started = fs::exists(video.string() + ".tmp");
+      if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_TRUE(started);
+  }
+  EXPECT_FALSE(fs::exists(video));
+  EXPECT_FALSE(fs::exists(video.string() + ".tmp"));
+}
+
+// Without a display: the window backend fails with one line saying what to
+// do; Auto still writes the video when EGL surfaceless is there.
+TEST(ComparisonVideo, WithoutADisplay) {
+  const Fixture f;
+  const char* display = std::getenv("DISPLAY");
+  const std::string saved = display ? display : "";
+  ::unsetenv("DISPLAY");
+  const fs::path video = temp("nodisplay.mp4");
+  try {
+    game::write_comparison_video(video.string(), f.input, kFps, kWidth, kHeight,
+                                 game::OffscreenBackend::Window);
+    ADD_FAILURE() << "opened a window without a display";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    std::printf("window backend without DISPLAY: %s\n", what.c_str());
+    EXPECT_EQ(what.find("--video needs a display: run under xvfb-run, or set DISPLAY"), 0u) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  EXPECT_FALSE(fs::exists(video));
+  EXPECT_FALSE(fs::exists(video.string() + ".tmp"));
+  if (game::offscreen_egl_built()) {
+    game::write_comparison_video(video.string(), f.input, kFps, kWidth, kHeight);
+    EXPECT_EQ(count_frames(video), game::comparison_video_frames(0.5, kFps));
+    std::printf("Auto without DISPLAY (EGL surfaceless): %ld frames\n", count_frames(video));
+    fs::remove(video);
+  }
+  if (display) ::setenv("DISPLAY", saved.c_str(), 1);
+}
+
+}  // namespace
