@@ -1,5 +1,5 @@
 // contact2d compare SCENE [--mapping NAME] [--geometry NAME] [--csv FILE] [--json] [--plot
-// FILE.png] [--converged-tol TOL] [--no-diagnosis] [overrides]
+// FILE.png] [--video FILE.mp4|.gif] [--converged-tol TOL] [--no-diagnosis] [overrides]
 //
 // Runs the reference solver and MuJoCo on the same scene (same Δt, same
 // sample times), measures both against the converged solution and against
@@ -21,6 +21,9 @@
 #include "io/plot.hpp"
 #include "io/table.hpp"
 #include "mujoco/mjcf.hpp"
+#ifdef CONTACT2D_WITH_WINDOW
+#include "game/comparison_video.hpp"
+#endif
 
 namespace contact2d::cli {
 namespace {
@@ -32,6 +35,7 @@ struct CompareOptions {
   MujocoOptions mujoco;
   std::string csv;
   std::string plot;
+  std::string video;
   bool json = false;
   double converged_tol = 1e-12;
   bool no_diagnosis = false;
@@ -308,6 +312,15 @@ int compare(const CompareOptions& options) {
   const engines::EngineSpec spec = options.mujoco.spec(options.scene.path);
   c.mjcf = mj::mjcf_options(spec.mapping, spec.geometry, spec.source);
   mj::mujoco_integrator(c.scene.sim.integrator);  // explicit Euler: fail before any work
+  if (!options.video.empty()) {
+#ifdef CONTACT2D_WITH_WINDOW
+    game::check_video_path(options.video);
+#else
+    throw InputError("--video " + options.video +
+                     ": this contact2d was built without the game's window (GLFW, OpenGL, "
+                     "stb_easy_font), which draws the video");
+#endif
+  }
   std::unique_ptr<AtomicFile> csv;
   if (!options.csv.empty()) csv = std::make_unique<AtomicFile>(options.csv);
   c.mujoco = engines::run_engine(spec, c.scene);
@@ -336,6 +349,21 @@ int compare(const CompareOptions& options) {
         " damping)";
     plot_comparison(options.plot, title, c.ref.trajectory, c.mujoco.trajectory);
   }
+#ifdef CONTACT2D_WITH_WINDOW
+  if (!options.video.empty()) {
+    game::ComparisonVideoInput in;
+    in.scene = &c.scene;
+    in.reference = &c.ref.trajectory;
+    in.mujoco = &c.mujoco.trajectory;
+    in.converged = c.three.converged.available ? &c.three.converged.trajectory : nullptr;
+    in.title = std::string(shape_name(c.scene.shape)) + ": ref " +
+               std::string(integrator_name(c.scene.sim.integrator)) + " vs MuJoCo " +
+               mj::mujoco_integrator(c.scene.sim.integrator) + ", " +
+               std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping";
+    in.reference_label = "ref";
+    game::write_comparison_video(options.video, in);
+  }
+#endif
   if (options.json) {
     print_json(c, options.scene.path);
   } else {
@@ -356,6 +384,9 @@ Command add_compare(CLI::App& app) {
   cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
   cmd->add_option("--plot", options->plot,
                   "Draw x, y, theta of both engines and the errors into this PNG (gnuplot)");
+  cmd->add_option("--video", options->video,
+                  "Draw both engines overlaid in real time into this .mp4 or .gif (reference "
+                  "filled, MuJoCo outlined, the converged solution as a thin line)");
   cmd->add_option("--converged-tol", options->converged_tol,
                   "Tolerance of the converged solution (rtol = atol; default 1e-12)")
       ->check(CLI::Range(1e-14, 1e-6));

@@ -277,3 +277,29 @@ TEST(ComparisonVideo, WithoutADisplay) {
 }
 
 }  // namespace
+
+// Through the program: `contact2d compare SCENE --video FILE` writes the
+// scene's duration × 30 frames (a 0.5 s scene: 15), and a bad extension is
+// refused before any engine runs, with nothing left behind.
+#ifdef CONTACT2D_EXE_WITH_MUJOCO
+TEST(ComparisonVideo, CompareWritesTheVideoThroughTheProgram) {
+  const fs::path scene = temp("scene.toml");
+  std::ofstream(scene) << "scene = \"box\"\n[contact]\nk = 1e4\nc = 200\nmu = 0.5\n"
+                          "damping = \"kelvin_voigt\"\n[initial]\ny = 0.5\ntheta = 0.3\n"
+                          "[sim]\ndt = 1e-4\nduration = 0.5\n";
+  const fs::path video = temp("compare.mp4");
+  const std::string exe = CONTACT2D_EXE_WITH_MUJOCO;
+  ASSERT_EQ(sh("'" + exe + "' compare '" + scene.string() + "' --no-diagnosis --video '" +
+               video.string() + "' >/dev/null"),
+            0);
+  EXPECT_EQ(count_frames(video), 15);
+  fs::remove(video);
+  const fs::path bad = temp("compare.avi");
+  EXPECT_EQ(sh("'" + exe + "' compare '" + scene.string() + "' --video '" + bad.string() +
+               "' >/dev/null 2>&1"),
+            2);
+  EXPECT_FALSE(fs::exists(bad));
+  EXPECT_FALSE(fs::exists(bad.string() + ".tmp"));
+  fs::remove(scene);
+}
+#endif
