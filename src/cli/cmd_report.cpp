@@ -20,6 +20,7 @@
 #include <memory>
 #include <thread>
 
+#include "analysis/comparison.hpp"
 #include "cli/common.hpp"
 #include "io/csv.hpp"
 #include "io/scene_file.hpp"
@@ -100,6 +101,17 @@ rp::ReadmeData readme_runs(const ReportOptions& o) {
                                 compare(s, kKelvinVoigt, m, "corners",
                                         plotted ? o.out + "/" + s + ".kelvin_voigt.png" : "")});
     }
+  }
+  progress("three-way comparisons, diagnoses and animations");
+  d.named_share = analysis::kNamedShare;
+  for (const std::string& s : kScenes) {
+    std::string failure;
+    const std::string video = d.animation_note.empty() ? o.out + "/" + s + ".gif" : "";
+    d.three_way.push_back(rp::compare_three_way(load(scene_path(s)), scene_path(s), "as shipped",
+                                                d.converged_tol, video, failure));
+    if (!failure.empty()) d.animation_note = failure;
+    d.three_way.push_back(rp::compare_three_way(load(scene_path(s), kKelvinVoigt), scene_path(s),
+                                                "Kelvin–Voigt", d.converged_tol, "", failure));
   }
   for (const std::string c : {"200", "1000"}) {
     for (const std::string& s : kScenes) {

@@ -24,6 +24,24 @@ struct Comparison {
   double ref_seconds = 0.0, mujoco_seconds = 0.0;  // wall clock of the stepping
 };
 
+// A built-in scene through `contact2d compare` (calibrated mapping): the
+// three distances and the diagnosis's named causes (section 1a).
+struct CauseShare {
+  std::string cause;  // "damping_law", …
+  double share = 0.0;
+  std::string fix;
+};
+struct ThreeWayCase {
+  std::string scene;
+  std::string law;  // "as shipped" or "Kelvin–Voigt"
+  bool converged = false;
+  double ref_vs_converged = 0.0, mujoco_vs_converged = 0.0, ref_vs_mujoco = 0.0;  // max pos, m
+  double amplification = 0.0;
+  bool agrees = false;
+  std::vector<CauseShare> causes;  // named causes, largest share first
+  std::string animation;           // file name in the report directory; empty: not drawn
+};
+
 // Every scene under every mapping (sections 1 and 2).
 struct MappingCase {
   std::string scene, mapping;
@@ -71,6 +89,10 @@ struct ReadmeData {
   std::vector<std::string> mappings;  // in page order
   std::vector<MappingCase> shipped;
   std::vector<MappingCase> kelvin_voigt;
+  std::vector<ThreeWayCase> three_way;
+  double converged_tol = 1e-12;
+  double named_share = 0.0;    // a cause is named from this share on (analysis::kNamedShare)
+  std::string animation_note;  // why there are no animations, when there are none
   std::vector<GoalCase> goals;
   std::vector<GeometryCase> geometry;
   std::vector<IntegratorCase> integrators;

@@ -9,22 +9,28 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
+#include "analysis/comparison.hpp"
 #include "analysis/output.hpp"
 #include "analysis/stability.hpp"
 #include "analysis/sweep.hpp"
 #include "analysis/trajectory_error.hpp"
 #include "cli/common.hpp"
 #include "core/divergence.hpp"
+#include "core/input_error.hpp"
 #include "engines/engines.hpp"
 #include "io/csv.hpp"
 #include "io/plot.hpp"
 #include "io/scene_file.hpp"
 #include "mujoco/mjcf.hpp"
 #include "report/bench_json.hpp"
+#ifdef CONTACT2D_WITH_WINDOW
+#include "game/comparison_video.hpp"
+#endif
 
 namespace contact2d::report {
 namespace {
@@ -86,6 +92,58 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
   c.impratio = mujoco.impratio;
   c.ref_seconds = ref.seconds;
   c.mujoco_seconds = mujoco.seconds;
+  return c;
+}
+
+ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
+                               const std::string& law, double tol, const std::string& video,
+                               std::string& video_failure) {
+  engines::EngineSpec spec;
+  spec.kind = "mujoco";
+  spec.source = source;
+  const engines::EngineRun mujoco = engines::run_engine(spec, scene);
+  const engines::EngineRun ref = engines::run_engine("ref", scene);
+  for (const auto* run : {&ref, &mujoco}) {
+    if (run->trajectory.divergence) {
+      throw std::runtime_error(source + ": " + (run == &ref ? "ref" : "MuJoCo") + ": " +
+                               run->divergence_message);
+    }
+  }
+  const analysis::ThreeWay three =
+      analysis::three_way(scene, ref.trajectory, mujoco.trajectory, tol);
+  const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, mujoco, three);
+  ThreeWayCase c;
+  c.scene = std::string(shape_name(scene.shape));
+  c.law = law;
+  c.converged = three.converged.available;
+  c.ref_vs_converged = three.ref_vs_converged.max_pos;
+  c.mujoco_vs_converged = three.mujoco_vs_converged.max_pos;
+  c.ref_vs_mujoco = three.ref_vs_mujoco.max_pos;
+  c.amplification = three.converged.amplification;
+  c.agrees = d.agrees;
+  for (const analysis::Finding& f : d.findings)
+    if (f.named) c.causes.push_back({f.cause, f.share, f.fix});
+  if (!video.empty()) {
+#ifdef CONTACT2D_WITH_WINDOW
+    try {
+      game::ComparisonVideoInput in;
+      in.scene = &scene;
+      in.reference = &ref.trajectory;
+      in.mujoco = &mujoco.trajectory;
+      in.converged = three.converged.available ? &three.converged.trajectory : nullptr;
+      in.title = c.scene + " (" + law + "): ref " +
+                 std::string(integrator_name(scene.sim.integrator)) + " vs MuJoCo " +
+                 contact2d::mujoco::mujoco_integrator(scene.sim.integrator) + ", calibrated";
+      in.reference_label = "ref";
+      game::write_comparison_video(video, in, 20, 640, 360);
+      c.animation = std::filesystem::path(video).filename().string();
+    } catch (const InputError& e) {
+      video_failure = e.what();
+    }
+#else
+    video_failure = "this contact2d was built without the game's window (GLFW, OpenGL)";
+#endif
+  }
   return c;
 }
 

@@ -31,6 +31,15 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
                            const std::string& mapping, const std::string& geometry,
                            const std::string& plot_png = "");
 
+// `contact2d compare SCENE [--video VIDEO]` under the calibrated mapping:
+// three-way distances at `tol` and the diagnosis (analysis/comparison.hpp).
+// With `video` not empty, draws the animation there; when it cannot
+// (no window built, no offscreen context), leaves `animation` empty and
+// puts the reason into `video_failure`.
+ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
+                               const std::string& law, double tol, const std::string& video,
+                               std::string& video_failure);
+
 // `contact2d generate -o PATH`: the scene's MJCF under a mapping.
 void write_model(const Scene& scene, const std::string& source, const std::string& mapping,
                  const std::string& path);

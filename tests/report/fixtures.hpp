@@ -50,6 +50,33 @@ inline ReadmeData readme() {
                 {"box", true, "boxes", comparison(0.002, 0.008)}};
   d.integrators = {{"box", "rk4", comparison(1.1e-6, 4.9e-6)}};
   d.integrators.back().result.mujoco_integrator = "RK4";
+  // Three-way rows: a diagnosed scene with two causes (shares 0.954 → "95 %",
+  // 0.585 → "59 %"), one where the engines agree, one without a converged
+  // solution; one animation.
+  ThreeWayCase diagnosed;
+  diagnosed.scene = "point_mass";
+  diagnosed.law = "as shipped";
+  diagnosed.converged = true;
+  diagnosed.ref_vs_converged = 0.0028;
+  diagnosed.mujoco_vs_converged = 0.525;
+  diagnosed.ref_vs_mujoco = 0.524;
+  diagnosed.amplification = 3.1;
+  diagnosed.causes = {{"damping_law", 0.954, "--set contact.damping=kelvin_voigt"},
+                      {"friction", 0.585, "--set contact.mu=0"}};
+  diagnosed.animation = "point_mass.gif";
+  ThreeWayCase agrees = diagnosed;
+  agrees.law = "Kelvin–Voigt";
+  agrees.ref_vs_mujoco = 2e-6;
+  agrees.agrees = true;
+  agrees.causes.clear();
+  agrees.animation.clear();
+  ThreeWayCase unconverged = agrees;
+  unconverged.scene = "box";
+  unconverged.converged = false;
+  unconverged.agrees = false;
+  unconverged.ref_vs_mujoco = 0.01;
+  d.three_way = {diagnosed, agrees, unconverged};
+  d.named_share = 0.2;
   d.random_config = {42, 3, 1e-5, 1e-4};
   d.random = {{"s00", "point_mass", 0.5, 12345.6, 300.25, 0.5, 2e-6, 0, 0.001},
               {"s01", "box", 2, 1000, 200, 0.1, 5e-6, 2e-4, 0.01},
