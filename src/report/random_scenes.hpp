@@ -16,7 +16,7 @@
 // Kelvin–Voigt, α = 100 s/m, Δt = 1e-4 s, 1.5 s, semi-implicit Euler. Each
 // drawn value is rounded to the digits the report prints (mass, k, c to 6,
 // μ to 3, lengths and the initial state to 4), so the table shows exactly
-// what ran (ζ is therefore c/(2√(k·m)) of the printed c, k, m to ~6 digits).
+// what ran; ζ = c/(2√(k·m)) of those values holds to c's 6-digit rounding.
 // ζ is that of the body's translation on its contacts (m, not the smaller
 // effective mass 1/(1/m + r²/I) of a corner, whose own ratio is larger).
 // Every scene passes the core's validate().

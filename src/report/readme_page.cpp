@@ -84,7 +84,7 @@ std::string random_table(const std::vector<RandomCase>& cases) {
            "max angle, μ = 0 (rad)", "max pos, with μ (m)"},
           {}};
   for (const RandomCase& c : cases) {
-    add_row(t, {c.name, c.shape, g(c.mass), g(c.k, 6), g(c.c, 6), g(random_zeta(c)), g(c.mu),
+    add_row(t, {c.name, c.shape, g(c.mass, 6), g(c.k, 6), g(c.c, 6), g(random_zeta(c)), g(c.mu),
                 g(c.max_pos_frictionless), g(c.max_angle_frictionless), g(c.max_pos_friction)});
   }
   return to_markdown(t);
