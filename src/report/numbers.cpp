@@ -152,6 +152,50 @@ int random_reached(const std::vector<RandomCase>& cases, const RandomConfig& con
   }));
 }
 
+double random_zeta(const RandomCase& c) { return c.c / (2 * std::sqrt(c.k * c.mass)); }
+
+std::vector<ZetaBand> random_bands(const std::vector<RandomCase>& cases,
+                                   const RandomConfig& config) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double edges[] = {0.0, 0.3, 1.0, std::numeric_limits<double>::infinity()};
+  auto finite_max = [&](const std::vector<double>& v) {
+    const std::optional<Range> r = range_of(v);
+    return r ? r->hi : nan;
+  };
+  std::vector<ZetaBand> out;
+  for (int b = 0; b < 3; ++b) {
+    ZetaBand band;
+    band.lo = edges[b];
+    band.hi = edges[b + 1];
+    std::vector<double> pos, angle, friction;
+    std::vector<RandomCase> members;
+    for (const RandomCase& c : cases) {
+      const double zeta = random_zeta(c);
+      if (zeta < band.lo || zeta >= band.hi) continue;
+      members.push_back(c);
+      pos.push_back(c.max_pos_frictionless);
+      angle.push_back(c.max_angle_frictionless);
+      friction.push_back(c.max_pos_friction);
+    }
+    band.count = static_cast<int>(members.size());
+    band.reached = random_reached(members, config);
+    band.max_pos = finite_max(pos);
+    band.max_angle = finite_max(angle);
+    band.max_pos_friction = finite_max(friction);
+    std::vector<double> sorted;
+    for (double p : pos) {
+      if (std::isfinite(p)) sorted.push_back(p);
+    }
+    std::sort(sorted.begin(), sorted.end());
+    const size_t n = sorted.size();
+    band.median_pos = n == 0       ? nan
+                      : n % 2 == 1 ? sorted[n / 2]
+                                   : (sorted[n / 2 - 1] + sorted[n / 2]) / 2;
+    out.push_back(band);
+  }
+  return out;
+}
+
 double micros_per_step(double seconds, double duration, double dt) {
   return seconds / (duration / dt) * 1e6;
 }

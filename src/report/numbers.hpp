@@ -74,6 +74,23 @@ bool goal_reached(double max_pos, double max_angle, double pos_goal,
 // Random scenes within the frictionless goal.
 int random_reached(const std::vector<RandomCase>& cases, const RandomConfig& config);
 
+// A random scene's damping ratio ζ = c/(2√(k·m)), m its total mass (the ζ
+// report/random_scenes.hpp draws).
+double random_zeta(const RandomCase& c);
+
+// The random scenes with lo ≤ ζ < hi: how many, how many within the
+// frictionless goal, the median and largest frictionless position error,
+// the largest angle error and the largest position error with friction
+// (maxima and median over the finite values; NaN when there is none).
+struct ZetaBand {
+  double lo = 0.0, hi = 0.0;  // hi = +inf for the last band
+  int count = 0, reached = 0;
+  double median_pos = 0.0, max_pos = 0.0, max_angle = 0.0, max_pos_friction = 0.0;
+};
+// The bands ζ < 0.3, 0.3 ≤ ζ < 1 and ζ ≥ 1, in that order.
+std::vector<ZetaBand> random_bands(const std::vector<RandomCase>& cases,
+                                   const RandomConfig& config);
+
 // Per-step cost in µs of `seconds` of stepping over duration/dt steps.
 double micros_per_step(double seconds, double duration, double dt);
 

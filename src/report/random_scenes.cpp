@@ -3,10 +3,14 @@
 
 #include "core/format.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <numeric>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "core/rng.hpp"
 
@@ -24,13 +28,20 @@ std::vector<RandomScene> draw_random_scenes(std::uint64_t seed, int count) {
   const Shape shapes[] = {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle};
   std::uint64_t state = seed;
   auto u = [&state] { return next_uniform(state); };
+  // ζ stratified: scene i lies in slice slots[i] of `count` equal slices of
+  // log ζ over [kMinZeta, kMaxZeta] (a seeded Fisher–Yates shuffle), at a
+  // uniform place inside it; so each scene's ζ is log-uniform and the scenes
+  // cover the range evenly.
+  std::vector<int> slots(static_cast<size_t>(std::max(count, 0)));
+  std::iota(slots.begin(), slots.end(), 0);
+  for (int i = count - 1; i > 0; --i) std::swap(slots[i], slots[static_cast<int>(u() * (i + 1))]);
   std::vector<RandomScene> out;
   for (int i = 0; i < count; ++i) {
     const Shape shape = shapes[i % 4];
     Scene s = default_scene(shape);
     double m = std::pow(10.0, u() * 2 - 1);
     const double k = std::pow(10.0, 3 + u() * 2.5);
-    const double c = (200 + u() * 1300) * std::sqrt(m);
+    const double zeta = kMinZeta * std::pow(kMaxZeta / kMinZeta, (slots[i] + u()) / count);
     m = rounded(m, 6);
     if (shape == Shape::PointMass) s.half_height = rounded(u() * 0.2, 4);
     if (shape == Shape::Box) {
@@ -56,7 +67,7 @@ std::vector<RandomScene> draw_random_scenes(std::uint64_t seed, int count) {
     }
     if (shape != Shape::TShape) s.mass = m;  // a T's mass comes from its parts
     s.contact.k = rounded(k, 6);
-    s.contact.c = rounded(c, 6);
+    s.contact.c = rounded(2 * zeta * std::sqrt(s.contact.k * m), 6);
     s.contact.mu = rounded(0.1 + u() * 0.9, 3);
     s.contact.alpha = 100;
     s.contact.damping = DampingLaw::KelvinVoigt;

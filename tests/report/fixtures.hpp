@@ -77,10 +77,16 @@ inline ReadmeData readme() {
   unconverged.ref_vs_mujoco = 0.01;
   d.three_way = {diagnosed, agrees, unconverged};
   d.named_share = 0.2;
-  d.random_config = {42, 3, 1e-5, 1e-4};
-  d.random = {{"s00", "point_mass", 0.5, 12345.6, 300.25, 0.5, 2e-6, 0, 0.001},
-              {"s01", "box", 2, 1000, 200, 0.1, 5e-6, 2e-4, 0.01},
-              {"s02", "tshape", 1.25, 300000, 1500, 1, 2e-5, 1e-5, 0.1}};
+  d.random_config = {42, 4, 1e-5, 1e-4};
+  // ζ = c/(2√(k·m)) chosen so that √(k·m) is round: s00 √(0.5·2e4) = 100,
+  // ζ = 30/200 = 0.15; s01 √(2·5000) = 100, ζ = 0.5; s02 √(1.25·3e5) = 612.4,
+  // ζ = 1500/1224.7 = 1.22; s03 √(0.1·1e5) = 100, ζ = 0.25. Bands: ζ < 0.3
+  // s00 (reached) and s03 (missed), median (2e-6 + 3e-4)/2 = 1.51e-4;
+  // 0.3–1 s01 (angle 2e-4 misses); ≥ 1 s02 (2e-5 misses).
+  d.random = {{"s00", "point_mass", 0.5, 20000, 30, 0.5, 2e-6, 0, 0.001},
+              {"s01", "box", 2, 5000, 100, 0.1, 5e-6, 2e-4, 0.01},
+              {"s02", "tshape", 1.25, 300000, 1500, 1, 2e-5, 1e-5, 0.1},
+              {"s03", "circle", 0.1, 100000, 50, 0.3, 3e-4, 1e-9, 0.002}};
   return d;
 }
 

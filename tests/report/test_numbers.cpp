@@ -90,6 +90,34 @@ TEST(ReportNumbers, Goals) {
   EXPECT_EQ(random_reached(d.random, d.random_config), 1);
 }
 
+// The fixture's four scenes (fixtures.hpp has the hand computation).
+TEST(ReportNumbers, ZetaBands) {
+  const ReadmeData d = fixtures::readme();
+  EXPECT_NEAR(random_zeta(d.random[0]), 0.15, 1e-12);
+  EXPECT_NEAR(random_zeta(d.random[2]), 1500 / (2 * std::sqrt(1.25 * 3e5)), 1e-12);
+  const std::vector<ZetaBand> b = random_bands(d.random, d.random_config);
+  ASSERT_EQ(b.size(), 3u);
+  EXPECT_EQ(b[0].count, 2);
+  EXPECT_EQ(b[0].reached, 1);
+  EXPECT_NEAR(b[0].median_pos, 1.51e-4, 1e-15);
+  EXPECT_EQ(b[0].max_pos, 3e-4);
+  EXPECT_EQ(b[0].max_angle, 1e-9);
+  EXPECT_EQ(b[0].max_pos_friction, 0.002);
+  EXPECT_EQ(b[1].count, 1);
+  EXPECT_EQ(b[1].reached, 0);
+  EXPECT_EQ(b[1].max_angle, 2e-4);
+  EXPECT_EQ(b[2].count, 1);
+  EXPECT_EQ(b[2].reached, 0);
+  EXPECT_EQ(b[2].max_pos, 2e-5);
+  EXPECT_EQ(b[2].lo, 1.0);
+  EXPECT_TRUE(std::isinf(b[2].hi));
+  // An empty band has no errors.
+  const std::vector<ZetaBand> none = random_bands({}, d.random_config);
+  EXPECT_EQ(none[1].count, 0);
+  EXPECT_TRUE(std::isnan(none[1].max_pos));
+  EXPECT_TRUE(std::isnan(none[1].median_pos));
+}
+
 TEST(ReportNumbers, PerStepCost) {
   EXPECT_NEAR(micros_per_step(0.05, 2.0, 1e-4), 2.5, 1e-12);  // 0.05 s over 2e4 steps
 }

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/rng.hpp"
 #include "report/random_scenes.hpp"
@@ -61,10 +62,60 @@ TEST(RandomScenes, DistributionsAndValidity) {
     } else {
       EXPECT_GE(s.mass, 0.1 * (1 - 1e-6));
       EXPECT_LE(s.mass, 10 * (1 + 1e-6));
-      // c = U(200, 1500)·√m, rounded to 6 digits
-      EXPECT_GE(s.contact.c / std::sqrt(s.mass), 200 * (1 - 1e-5));
-      EXPECT_LE(s.contact.c / std::sqrt(s.mass), 1500 * (1 + 1e-5));
     }
+    // ζ = c/(2√(k·m)) in [0.1, 5]; c is rounded to 6 digits (relative 5e-6).
+    const double zeta = s.contact.c / (2 * std::sqrt(s.contact.k * scenes[i].mass));
+    EXPECT_GE(zeta, kMinZeta * (1 - 1e-5));
+    EXPECT_LE(zeta, kMaxZeta * (1 + 1e-5));
+  }
+}
+
+double zeta_of(const RandomScene& r) {
+  return r.scene.contact.c / (2 * std::sqrt(r.scene.contact.k * r.mass));
+}
+
+// Log-uniform in [0.1, 5]: P(ζ < 1) = ln 10 / ln 50 = 0.589 and
+// P(ζ < 0.3) = ln 3 / ln 50 = 0.281 (a draw uniform in ζ would give 0.18
+// and 0.04). Stratified over 2000 slices, the scenes of one draw are within
+// one slice (1/2000) of these fractions: bound 1e-3. Each scene's own ζ,
+// over 2000 seeds, is log-uniform: binomial σ = √(0.589·0.411/2000) = 0.011
+// and √(0.281·0.719/2000) = 0.010; bound 4σ.
+TEST(RandomScenes, ZetaIsLogUniform) {
+  const auto scenes = draw_random_scenes(20260101, 2000);
+  int below_one = 0;
+  int below_point_three = 0;
+  for (const RandomScene& r : scenes) {
+    below_one += zeta_of(r) < 1.0;
+    below_point_three += zeta_of(r) < 0.3;
+  }
+  const double p_one = std::log(10.0) / std::log(50.0);
+  const double p_point_three = std::log(3.0) / std::log(50.0);
+  EXPECT_NEAR(below_one / 2000.0, p_one, 1e-3);
+  EXPECT_NEAR(below_point_three / 2000.0, p_point_three, 1e-3);
+  int first_below_one = 0;
+  int first_below_point_three = 0;
+  for (std::uint64_t seed = 1; seed <= 2000; ++seed) {
+    const double zeta = zeta_of(draw_random_scenes(seed, kRandomSceneCount).front());
+    first_below_one += zeta < 1.0;
+    first_below_point_three += zeta < 0.3;
+  }
+  EXPECT_NEAR(first_below_one / 2000.0, p_one, 0.044);
+  EXPECT_NEAR(first_below_point_three / 2000.0, p_point_three, 0.040);
+}
+
+// The report's count fills every ζ band of README.md section 6 with at
+// least eight scenes, whatever the seed (the default 20260101 and others).
+TEST(RandomScenes, ReportCountFillsEveryBand) {
+  for (std::uint64_t seed : {std::uint64_t{20260101}, std::uint64_t{1}, std::uint64_t{7},
+                             std::uint64_t{42}, std::uint64_t{123456789}}) {
+    int bands[3] = {0, 0, 0};
+    for (const RandomScene& r : draw_random_scenes(seed, kRandomSceneCount)) {
+      const double zeta = zeta_of(r);
+      ++bands[zeta < 0.3 ? 0 : zeta < 1.0 ? 1 : 2];
+    }
+    std::printf("seed %llu: scenes per band (ζ < 0.3, 0.3–1, ≥ 1): %d %d %d\n",
+                static_cast<unsigned long long>(seed), bands[0], bands[1], bands[2]);
+    for (int n : bands) EXPECT_GE(n, 8) << "seed " << seed;
   }
 }
 
