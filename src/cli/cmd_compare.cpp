@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -389,7 +390,15 @@ Command add_compare(CLI::App& app) {
                   "filled, MuJoCo outlined, the converged solution as a thin line)");
   cmd->add_option("--converged-tol", options->converged_tol,
                   "Tolerance of the converged solution (rtol = atol; default 1e-12)")
-      ->check(CLI::Range(1e-14, 1e-6));
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || !(v >= 1e-14 && v <= 1e-6))
+              return text + " is out of range: must be in [1e-14, 1e-6]";
+            return std::string();
+          },
+          "TOL in [1e-14, 1e-6]"));
   cmd->add_flag("--no-diagnosis", options->no_diagnosis,
                 "Skip the diagnosis (the re-runs that remove each cause of the difference)");
   return {cmd, [options] { return compare(*options); }};
