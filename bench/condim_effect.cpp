@@ -11,7 +11,11 @@
 //     divided by its steps, the smallest of --repeats runs (this machine is
 //     shared; the smallest is the least disturbed).
 //
-//   build-dir/bench/contact2d_condim [--mapping NAME] [--repeats N]
+// --csv DIR writes each MuJoCo trajectory, DIR/<scene>.<friction>.condim<N>.csv
+// (t, x, y, θ, vx, vy, ω at 17 digits), to compare runs of two versions of
+// the generator sample by sample.
+//
+//   build-dir/bench/contact2d_condim [--mapping NAME] [--repeats N] [--csv DIR]
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
@@ -58,14 +62,30 @@ struct Row {
   double ns = 0.0;
 };
 
+void write_csv(const std::string& path, const Trajectory& run) {
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) {
+    std::fprintf(stderr, "contact2d_condim: cannot write %s\n", path.c_str());
+    return;
+  }
+  std::fprintf(out, "t,x,y,theta,vx,vy,omega\n");
+  for (const Sample& s : run.samples) {
+    std::fprintf(out, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t, s.state.q.x(),
+                 s.state.q.y(), s.state.q.z(), s.state.v.x(), s.state.v.y(), s.state.v.z());
+  }
+  std::fclose(out);
+}
+
 Row measure(const Scene& scene, const Trajectory& reference, mujoco::MjcfOptions options,
-            int condim, int repeats) {
+            int condim, int repeats, const std::string& csv) {
   options.condim = condim;
   const mujoco::GeneratedModel generated = mujoco::generate_mjcf(scene, options);
   mujoco::MujocoStepper stepper(scene, generated.xml, mujoco::generated_origin(options.source));
   Row row;
   row.condim = condim != 0 ? condim : mujoco::contact_condim(scene.contact);
-  row.error = analysis::error_between(reference, simulate(stepper, scene.sim));
+  const Trajectory run = simulate(stepper, scene.sim);
+  if (!csv.empty()) write_csv(csv + ".condim" + std::to_string(row.condim) + ".csv", run);
+  row.error = analysis::error_between(reference, run);
   row.ns = mj_step_ns(generated.xml, step_count(scene.sim), repeats);
   return row;
 }
@@ -75,13 +95,16 @@ Row measure(const Scene& scene, const Trajectory& reference, mujoco::MjcfOptions
 int main(int argc, char** argv) {
   std::string mapping = "calibrated";
   int repeats = 5;
+  std::string csv_dir;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--mapping") == 0) {
       mapping = argv[i + 1];
+    } else if (std::strcmp(argv[i], "--csv") == 0) {
+      csv_dir = argv[i + 1];
     } else if (std::strcmp(argv[i], "--repeats") == 0) {
       repeats = std::max(1, std::atoi(argv[i + 1]));
     } else {
-      std::fprintf(stderr, "usage: contact2d_condim [--mapping NAME] [--repeats N]\n");
+      std::fprintf(stderr, "usage: contact2d_condim [--mapping NAME] [--repeats N] [--csv DIR]\n");
       return 2;
     }
   }
@@ -100,8 +123,11 @@ int main(int argc, char** argv) {
     for (const Scene* scene : std::initializer_list<const Scene*>{&with_friction, &frictionless}) {
       const mujoco::MjcfOptions options = mujoco::mjcf_options(mapping, "", source);
       const Trajectory reference = simulate(*scene);
-      const Row rule = measure(*scene, reference, options, 0, repeats);
-      const Row six = measure(*scene, reference, options, 6, repeats);
+      const std::string csv =
+          csv_dir.empty() ? ""
+                          : csv_dir + "/" + name + (scene == &frictionless ? ".none" : ".scene");
+      const Row rule = measure(*scene, reference, options, 0, repeats, csv);
+      const Row six = measure(*scene, reference, options, 6, repeats, csv);
       std::printf("%-11s %-12s %6d %15.10g %15.10g %9.0f %15.10g %15.10g %9.0f %7.2fx\n", name,
                   scene == &frictionless ? "none" : "scene's", rule.condim, rule.error.max_pos,
                   rule.error.rms_pos, rule.ns, six.error.max_pos, six.error.rms_pos, six.ns,

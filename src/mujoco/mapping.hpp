@@ -40,7 +40,9 @@
 // within one step and the contact chatters at rest. impratio = 1/(c·Δt·A_t),
 // with A_t = 1/m + r_max²/I the largest tangential inverse mass of a contact
 // point, is the largest chatter-free value (rolling rows, whose slope is
-// impratio·c·(μ_roll/μ)², bound it too). The reference's tanh slope μ·Fn·α
+// impratio·c·(μ_roll/μ)², bound it too). It depends on Δt: 5, 50, 500
+// for validation/scenes/box.toml (c = 50, A_t = 4/kg) at Δt = 1e-3, 1e-4,
+// 1e-5 (the generated header says so). The reference's tanh slope μ·Fn·α
 // only shapes speeds below 1/α and is not matched.
 #pragma once
 
