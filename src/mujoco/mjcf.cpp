@@ -276,8 +276,11 @@ std::string header(const Scene& scene, const MjcfOptions& options, const SolverS
           mujoco_integrator(scene.sim.integrator) + "), gravity " + f(scene.sim.gravity) +
           " m/s^2\n";
   text += "  body: m " + f(l.mass) + " kg";
-  if (l.hinge) text += ", " + inertia_formula(scene.shape) + " = " + f(l.inertia[1]) + " kg m^2";
-  text += " (about the hinge)\n";
+  if (l.hinge) {
+    text +=
+        ", " + inertia_formula(scene.shape) + " = " + f(l.inertia[1]) + " kg m^2 (about the hinge)";
+  }
+  text += "\n";
   text += "  initial: x " + f(x0.q.x()) + ", y " + f(x0.q.y()) + ", theta " + f(x0.q.z()) +
           ", vx " + f(x0.v.x()) + ", vy " + f(x0.v.y()) + ", omega " + f(x0.v.z()) + "\n";
   if (l.hinge) {

@@ -3,7 +3,9 @@
 // formula the header states, with the scene's own parameters and arithmetic
 // written out in the test (nothing of src/mujoco/mapping.cpp is called), for
 // every built-in scene (validation/scenes/*.toml) under every mapping (and,
-// for the box and the T, both geometries); the values the header gives are
+// for the box and the T, both geometries), and for validation/scenes/extreme
+// (frictionless, refsafe-clamped, RK4 and implicit scenes among them, under
+// every mapping); the values the header gives are
 // also the ones in the file. Which values depend on Δt is checked by
 // regenerating at 10·Δt: only the lines that say "depends on Δt" (and the
 // line of Δt itself) may change. Also here: condim per scene (only what the
@@ -26,6 +28,18 @@ using mujoco::Mapping;
 constexpr double kRel = 1e-14;  // two orders of summation of a few terms
 
 const char* const kScenes[] = {"point_mass", "box", "tshape", "circle"};
+const char* const kExtremeScenes[] = {"heavy_damping_implicit",
+                                      "heavy_damping_semi_implicit",
+                                      "impact_50ms",
+                                      "impact_50ms_coarse_step",
+                                      "large_alpha",
+                                      "large_mass",
+                                      "long_rest",
+                                      "rolling_to_rest",
+                                      "stiff_k1e9",
+                                      "stiff_k1e9_too_large_step",
+                                      "tiny_mass",
+                                      "tiny_mass_default_step"};
 
 struct Case {
   std::string scene;
@@ -34,7 +48,9 @@ struct Case {
 };
 
 std::string case_name(const Case& c) {
-  return c.scene + "_" + std::string(mujoco::mapping_name(c.mapping)) + "_" +
+  std::string scene = c.scene;
+  std::replace(scene.begin(), scene.end(), '/', '_');
+  return scene + "_" + std::string(mujoco::mapping_name(c.mapping)) + "_" +
          std::string(mujoco::geometry_name(c.geometry));
 }
 
@@ -207,35 +223,42 @@ TEST_P(Header, EveryNumberIsItsStatedFormula) {
     file_solref >> f0 >> f1;
     EXPECT_EQ(f0, solref0);
     EXPECT_EQ(f1, solref1);
-    // impratio: the built-in scenes all have sliding friction and c > 0.
-    ASSERT_GT(p.mu, 0.0);
-    ASSERT_GT(cd, 0.0);
-    double a_t = 0.0;
-    if (s.shape == Shape::PointMass) {
-      a_t = 1.0 / m;
-      expect_rel(after(h, "A_t = 1/m = "), a_t, "A_t");
-    } else {
-      expect_rel(after(h, "r = "), b.r, "r");
-      a_t = 1.0 / m + b.r * b.r / b.inertia;
-      expect_rel(after(h, "A_t = 1/m + r^2/I = "), a_t, "A_t");
-    }
-    double impratio = 0.0;
-    std::string label;
-    if (s.shape == Shape::Circle && p.mu_roll > 0.0) {
-      const double mu = std::max(p.mu, 1e-5);
-      label = "impratio = min(1/(c Δt A_t), I (max(mu, 1e-5)/mu_roll)^2/(c Δt)) = ";
-      impratio = std::min(1.0 / (cd * dt * a_t),
-                          b.inertia * (mu / p.mu_roll) * (mu / p.mu_roll) / (cd * dt));
-    } else {
-      label = "impratio = 1/(c Δt A_t) = ";
-      impratio = 1.0 / (cd * dt * a_t);
-    }
-    impratio = std::clamp(impratio, 1e-15, 1e10);
-    const double printed = after(h, label);
-    expect_rel(printed, impratio, "impratio");
-    EXPECT_TRUE(says(h, label + mujoco::format_exact(printed) + " (depends on Δt")) << h;
-    EXPECT_EQ(option->DoubleAttribute("impratio", 1.0), printed);
     EXPECT_STREQ(option->Attribute("cone"), "elliptic");
+    if (expected_condim(p) == 1) {
+      EXPECT_TRUE(says(h, "impratio: not written (condim 1")) << h;
+      EXPECT_EQ(option->Attribute("impratio"), nullptr);
+      EXPECT_FALSE(says(h, "(depends on Δt")) << h;  // no other value does
+    } else if (!(cd > 0.0)) {
+      EXPECT_TRUE(says(h, "impratio: not written (c = 0")) << h;
+      EXPECT_EQ(option->Attribute("impratio"), nullptr);
+    } else {
+      ASSERT_TRUE(p.mu > 0.0 || (s.shape == Shape::Circle && p.mu_roll > 0.0)) << h;
+      double a_t = 0.0;
+      if (s.shape == Shape::PointMass) {
+        a_t = 1.0 / m;
+        expect_rel(after(h, "A_t = 1/m = "), a_t, "A_t");
+      } else {
+        expect_rel(after(h, "r = "), b.r, "r");
+        a_t = 1.0 / m + b.r * b.r / b.inertia;
+        expect_rel(after(h, "A_t = 1/m + r^2/I = "), a_t, "A_t");
+      }
+      double impratio = 0.0;
+      std::string label;
+      if (s.shape == Shape::Circle && p.mu_roll > 0.0) {
+        const double mu = std::max(p.mu, 1e-5);
+        label = "impratio = min(1/(c Δt A_t), I (max(mu, 1e-5)/mu_roll)^2/(c Δt)) = ";
+        impratio = std::min(1.0 / (cd * dt * a_t),
+                            b.inertia * (mu / p.mu_roll) * (mu / p.mu_roll) / (cd * dt));
+      } else {
+        label = "impratio = 1/(c Δt A_t) = ";
+        impratio = 1.0 / (cd * dt * a_t);
+      }
+      impratio = std::clamp(impratio, 1e-15, 1e10);
+      const double printed = after(h, label);
+      expect_rel(printed, impratio, "impratio");
+      EXPECT_TRUE(says(h, label + mujoco::format_exact(printed) + " (depends on Δt")) << h;
+      EXPECT_EQ(option->DoubleAttribute("impratio", 1.0), printed);
+    }
   } else {
     const double tc = c.mapping == Mapping::Seed ? std::sqrt(m / k) : 2.0 * m / cd;
     const double zeta = cd / (2.0 * std::sqrt(m * k));
@@ -296,6 +319,11 @@ std::vector<Case> cases() {
       out.push_back({scene, mapping, Geometry::CornerSpheres});
       const std::string name = scene;
       if (name == "box" || name == "tshape") out.push_back({scene, mapping, Geometry::BoxGeoms});
+    }
+  }
+  for (const char* scene : kExtremeScenes) {
+    for (Mapping mapping : mujoco::kAllMappings) {
+      out.push_back({std::string("extreme/") + scene, mapping, Geometry::CornerSpheres});
     }
   }
   return out;
