@@ -9,7 +9,8 @@
 //   - the cost of one bare mj_step of that model, replaying the scene from
 //     keyframe 0 for sim.duration: the thread's CPU time of the whole run
 //     divided by its steps, the smallest of --repeats runs (this machine is
-//     shared; the smallest is the least disturbed).
+//     shared; the smallest is the least disturbed), the two models' runs
+//     taken in turns.
 //
 // --csv DIR writes each MuJoCo trajectory, DIR/<scene>.<friction>.condim<N>.csv
 // (t, x, y, θ, vx, vy, ω at 17 digits), to compare runs of two versions of
@@ -24,6 +25,8 @@
 #include <ctime>
 #include <initializer_list>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "analysis/trajectory_error.hpp"
 #include "core/run.hpp"
@@ -42,22 +45,30 @@ double thread_cpu_seconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-// ns of CPU per mj_step over whole replays of the scene (smallest of `repeats`).
-double mj_step_ns(const std::string& xml, long long steps, int repeats) {
-  const mujoco::ModelPtr model = mujoco::load_model(xml, "condim measurement");
-  const mujoco::DataPtr data = mujoco::make_data(model.get());
-  double best = 1e300;
+// ns of CPU per mj_step of two models over whole replays of the scene: the
+// smallest of `repeats` replays each, taken in turns (A, B, A, B, ...) so
+// that a change in the machine's load falls on both.
+std::pair<double, double> mj_step_ns(const std::string& xml_a, const std::string& xml_b,
+                                     long long steps, int repeats) {
+  const mujoco::ModelPtr models[2] = {mujoco::load_model(xml_a, "condim measurement"),
+                                      mujoco::load_model(xml_b, "condim measurement")};
+  const mujoco::DataPtr data[2] = {mujoco::make_data(models[0].get()),
+                                   mujoco::make_data(models[1].get())};
+  double best[2] = {1e300, 1e300};
   for (int r = 0; r < repeats; ++r) {
-    mj_resetDataKeyframe(model.get(), data.get(), 0);
-    const double start = thread_cpu_seconds();
-    for (long long i = 0; i < steps; ++i) mj_step(model.get(), data.get());
-    best = std::min(best, (thread_cpu_seconds() - start) / static_cast<double>(steps));
+    for (int k = 0; k < 2; ++k) {
+      mj_resetDataKeyframe(models[k].get(), data[k].get(), 0);
+      const double start = thread_cpu_seconds();
+      for (long long i = 0; i < steps; ++i) mj_step(models[k].get(), data[k].get());
+      best[k] = std::min(best[k], (thread_cpu_seconds() - start) / static_cast<double>(steps));
+    }
   }
-  return best * 1e9;
+  return {best[0] * 1e9, best[1] * 1e9};
 }
 
 struct Row {
   int condim = 0;
+  std::string xml;
   analysis::TrajectoryError error;
   double ns = 0.0;
 };
@@ -77,7 +88,7 @@ void write_csv(const std::string& path, const Trajectory& run) {
 }
 
 Row measure(const Scene& scene, const Trajectory& reference, mujoco::MjcfOptions options,
-            int condim, int repeats, const std::string& csv) {
+            int condim, const std::string& csv) {
   options.condim = condim;
   const mujoco::GeneratedModel generated = mujoco::generate_mjcf(scene, options);
   mujoco::MujocoStepper stepper(scene, generated.xml, mujoco::generated_origin(options.source));
@@ -86,7 +97,7 @@ Row measure(const Scene& scene, const Trajectory& reference, mujoco::MjcfOptions
   const Trajectory run = simulate(stepper, scene.sim);
   if (!csv.empty()) write_csv(csv + ".condim" + std::to_string(row.condim) + ".csv", run);
   row.error = analysis::error_between(reference, run);
-  row.ns = mj_step_ns(generated.xml, step_count(scene.sim), repeats);
+  row.xml = generated.xml;
   return row;
 }
 
@@ -126,8 +137,9 @@ int main(int argc, char** argv) {
       const std::string csv =
           csv_dir.empty() ? ""
                           : csv_dir + "/" + name + (scene == &frictionless ? ".none" : ".scene");
-      const Row rule = measure(*scene, reference, options, 0, repeats, csv);
-      const Row six = measure(*scene, reference, options, 6, repeats, csv);
+      Row rule = measure(*scene, reference, options, 0, csv);
+      Row six = measure(*scene, reference, options, 6, csv);
+      std::tie(rule.ns, six.ns) = mj_step_ns(rule.xml, six.xml, step_count(scene->sim), repeats);
       std::printf("%-11s %-12s %6d %15.10g %15.10g %9.0f %15.10g %15.10g %9.0f %7.2fx\n", name,
                   scene == &frictionless ? "none" : "scene's", rule.condim, rule.error.max_pos,
                   rule.error.rms_pos, rule.ns, six.error.max_pos, six.error.rms_pos, six.ns,
