@@ -217,7 +217,7 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
           " 1/kg, read from the compiled model (MuJoCo's mean over the three translation axes "
           "of the body's inverse mass: 2/(3m) for slides along x and z)\n";
   text += in + "n = " + std::to_string(s.split) +
-          " MuJoCo contacts per 2D contact point (1 for a sphere, 2 for a box geom's edge)\n";
+          " (MuJoCo contacts per 2D contact point: 1 for a sphere, 2 for a box geom's edge)\n";
   text += in + "solref = (-k A/n, -c A/n) = (" + f(s.solref[0]) + ", " + f(s.solref[1]) +
           ") (direct form)\n";
   text += in + "solimp = " + join(s.solimp) + " (flat minimal impedance d = 1e-4); cone elliptic\n";
@@ -304,9 +304,9 @@ std::string header(const Scene& scene, const MjcfOptions& options, const SolverS
   text += "  condim " + std::to_string(condim) +
           ": 1 without friction (mu = mu_roll = mu_torsion = 0), 3 with sliding friction only, "
           "6 with rolling or torsional friction\n";
-  text += "  size: P = " + std::to_string(l.max_contacts) + " contacts with the ground (" +
-          l.contacts_why + "); nconmax = 2 P + " +
-          std::to_string(kAddedGeoms * kContactsPerAddedGeom) + " = " +
+  text += "  size: P = " + std::to_string(l.max_contacts) +
+          " (contacts the body can make with the ground: " + l.contacts_why +
+          "); nconmax = 2 P + " + std::to_string(kAddedGeoms * kContactsPerAddedGeom) + " = " +
           std::to_string(nconmax_of(l)) + " (twice P, and " + std::to_string(kAddedGeoms) +
           " added geoms of up to " + std::to_string(kContactsPerAddedGeom) +
           " contacts each); njmax = " + std::to_string(rows_per_contact(6, s.elliptic)) +
