@@ -43,7 +43,9 @@ double max_tangential_inverse_mass(const RigidBody& body) {
 // rolling contact, Δt·(1/I)·impratio·c·(μ_roll/μ)² ≤ 1 (the rolling rows'
 // regulariser is R_t·μ²/μ_roll²). μ is clamped at MuJoCo's mjMINMU = 1e-5.
 // Without sliding or rolling friction, the smallest impratio switches off
-// what remains of MuJoCo's friction (coefficients are clamped at 1e-5).
+// what remains of MuJoCo's friction (coefficients are clamped at 1e-5) in a
+// contact of condim > 1. The generated model has condim 1 then (mjcf.hpp),
+// with no friction rows at all, and does not write impratio.
 double calibrated_impratio(const Scene& scene, const RigidBody& body) {
   const ContactParams& p = scene.contact;
   const bool rolls = body.roll_radius > 0.0 && p.mu_roll > 0.0;

@@ -48,7 +48,8 @@ struct Layout {
   std::array<double, 3> inertia{};  // diaginertia about MuJoCo x, y (hinge), z
   bool hinge = true;
   std::vector<Geom> geoms;
-  int max_contacts = 0;  // nconmax
+  int max_contacts = 0;      // P: contacts the body can make with the ground
+  std::string contacts_why;  // how P is counted, for the header
 };
 
 std::vector<BoxPart> parts_of(const Scene& scene) {
@@ -86,25 +87,28 @@ Layout box_layout(const Scene& scene, Geometry geometry) {
     const double dx = p.x - props.com.x(), dz = p.y - props.com.y();
     ix += p.mass * ((p.height * p.height + depth * depth) / 12.0 + dz * dz);
     iz += p.mass * ((p.width * p.width + depth * depth) / 12.0 + dx * dx);
-    Geom part{"part" + std::to_string(i),
+    const bool visual = geometry == Geometry::CornerSpheres;
+    Geom part{(visual ? "visual_part" : "part") + std::to_string(i) + "_box",
               "box",
               join({p.width / 2, depth / 2, p.height / 2}),
               dx,
               dz,
-              geometry == Geometry::CornerSpheres};
+              visual};
     layout.geoms.push_back(part);
   }
   layout.inertia = loadable_inertia({ix, props.inertia, iz});
   if (geometry == Geometry::BoxGeoms) {
     layout.max_contacts = 4 * static_cast<int>(parts.size());
+    layout.contacts_why = "4 per part box: MuJoCo's box-plane collision returns up to 4";
     return layout;
   }
   const RigidBody body = make_compound(parts);
   for (size_t i = 0; i < body.points.size(); ++i) {
-    layout.geoms.push_back({"point" + std::to_string(i), "sphere", format_exact(kCornerRadius),
+    layout.geoms.push_back({"corner" + std::to_string(i), "sphere", format_exact(kCornerRadius),
                             body.points[i].x(), body.points[i].y(), false});
   }
   layout.max_contacts = static_cast<int>(body.points.size());
+  layout.contacts_why = "one per corner sphere";
   return layout;
 }
 
@@ -120,8 +124,9 @@ Layout point_mass_layout(const Scene& scene) {
   layout.inertia = {i, i, i};
   layout.hinge = false;
   layout.geoms.push_back(
-      {"point0", "sphere", format_exact(rho), 0.0, rho - scene.half_height, false});
+      {"contact_point", "sphere", format_exact(rho), 0.0, rho - scene.half_height, false});
   layout.max_contacts = 1;
+  layout.contacts_why = "one sphere";
   return layout;
 }
 
@@ -131,8 +136,9 @@ Layout circle_layout(const Scene& scene) {
   Layout layout;
   layout.mass = m;
   layout.inertia = {side, 0.5 * m * r * r, side};
-  layout.geoms.push_back({"point0", "sphere", format_exact(r), 0.0, 0.0, false});
+  layout.geoms.push_back({"disc", "sphere", format_exact(r), 0.0, 0.0, false});
   layout.max_contacts = 1;
+  layout.contacts_why = "one sphere";
   return layout;
 }
 
@@ -146,21 +152,106 @@ Layout make_layout(const Scene& scene, Geometry geometry) {
   return {};
 }
 
-std::string mapping_formula(const SolverSettings& s) {
-  switch (s.mapping) {
-    case Mapping::Seed:
-      return "timeconst = sqrt(m/k), dampratio = c/(2 sqrt(m k)); MuJoCo's default solimp and cone";
-    case Mapping::Exact:
-      return "timeconst = 2m/c, dampratio = c/(2 sqrt(m k)) (= direct form -k/m, -c/m); "
-             "MuJoCo's default solimp and cone";
-    case Mapping::Calibrated:
-      return "direct solref = (-k A/n, -c A/n) with A = body_invweight0 = " +
-             format_exact(s.inv_mass) +
-             " 1/kg read from the compiled model and n = " + std::to_string(s.split) +
-             " contacts per 2D point; flat minimal solimp (impedance 1e-4); elliptic cone; "
-             "impratio = mu m g alpha / c";
+// Rows of the constraint Jacobian per contact of dimension `condim`: condim
+// for the elliptic cone, 2·(condim − 1) for the pyramidal one (1 for a
+// frictionless contact in either).
+int rows_per_contact(int condim, bool elliptic) {
+  if (condim == 1) return 1;
+  return elliptic ? condim : 2 * (condim - 1);
+}
+
+// Room in the contact buffer for geoms a user adds to the file: this many
+// geoms of up to kContactsPerAddedGeom contacts each (box–plane's maximum).
+constexpr int kAddedGeoms = 10;
+constexpr int kContactsPerAddedGeom = 4;
+
+int nconmax_of(const Layout& l) { return 2 * l.max_contacts + kAddedGeoms * kContactsPerAddedGeom; }
+
+// Rows per contact at condim 6, the most any contact needs: geoms a user
+// adds may carry any condim.
+int njmax_of(const Layout& l, const SolverSettings& s) {
+  return rows_per_contact(6, s.elliptic) * nconmax_of(l);
+}
+
+int condim_of(const Scene& scene, const MjcfOptions& options) {
+  return options.condim != 0 ? options.condim : contact_condim(scene.contact);
+}
+
+// The 2D inertia formula of the scene's shape (the value is Layout::inertia[1]).
+std::string inertia_formula(Shape shape) {
+  switch (shape) {
+    case Shape::Box: return "I = m (w^2 + h^2)/12";
+    case Shape::TShape:
+      return "I = sum over parts of m_i ((w_i^2 + h_i^2)/12 + |p_i - COM|^2), "
+             "COM = sum m_i p_i / m";
+    case Shape::Circle: return "I = m R^2/2";
+    case Shape::PointMass: break;
   }
   return "";
+}
+
+std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condim) {
+  auto f = [](double v) { return format_exact(v); };
+  const std::string in = "    ";
+  std::string text = "  mapping " + std::string(mapping_name(s.mapping)) + ":\n";
+  if (s.mapping != Mapping::Calibrated) {
+    text += in + (s.mapping == Mapping::Seed ? "timeconst = sqrt(m/k) = " : "timeconst = 2m/c = ") +
+            f(s.solref[0]) + " s, dampratio = c/(2 sqrt(m k)) = " + f(s.solref[1]) +
+            (s.mapping == Mapping::Seed
+                 ? " (MuJoCo's spring (k/m)/dampratio^2 and damper (c/m)/dampratio: k/m, c/m "
+                   "only at dampratio 1)\n"
+                 : " (MuJoCo's spring k/m, damper c/m: the direct form -k/m, -c/m)\n");
+    const double used = std::max(s.solref[0], 2.0 * scene.sim.dt);
+    text += in + "MuJoCo uses timeconst max(timeconst, 2 Δt) = " + f(used) +
+            " s (refsafe; depends on Δt" +
+            (s.refsafe_clamped ? ": here raised to 2 Δt, a softer contact than k)\n"
+                               : ", here unchanged)\n");
+    text += in + "solimp = " + join(s.solimp) +
+            " (MuJoCo's default); cone pyramidal (MuJoCo's default); impratio 1 (MuJoCo's "
+            "default)\n";
+    return text;
+  }
+  const RigidBody body = make_body(scene);
+  const ContactParams& p = scene.contact;
+  text += in + "A = body_invweight0 = " + f(s.inv_mass) +
+          " 1/kg, read from the compiled model (MuJoCo's mean over the three translation axes "
+          "of the body's inverse mass: 2/(3m) for slides along x and z)\n";
+  text += in + "n = " + std::to_string(s.split) +
+          " (MuJoCo contacts per 2D contact point: 1 for a sphere, 2 for a box geom's edge)\n";
+  text += in + "solref = (-k A/n, -c A/n) = (" + f(s.solref[0]) + ", " + f(s.solref[1]) +
+          ") (direct form)\n";
+  text += in + "solimp = " + join(s.solimp) + " (flat minimal impedance d = 1e-4); cone elliptic\n";
+  if (condim == 1) {
+    text += in + "impratio: not written (condim 1 has no friction rows; MuJoCo's default 1)\n";
+    return text;
+  }
+  const bool rolls = body.roll_radius > 0.0 && p.mu_roll > 0.0;
+  if (!(p.c > 0.0)) {
+    text += in + "impratio: not written (c = 0: MuJoCo's friction has no velocity term)\n";
+    return text;
+  }
+  if (p.mu <= 0.0 && !rolls) {
+    text += in +
+            "impratio = 1e-15 (no sliding or rolling friction: MuJoCo's floor, which "
+            "switches off the 1e-5 friction MuJoCo keeps)\n";
+    return text;
+  }
+  if (body.rotates) {
+    text += in + "r = " + f(body_extent(body)) + " m, the farthest contact point from the COM\n";
+    text += in + "A_t = 1/m + r^2/I = ";
+  } else {
+    text += in + "A_t = 1/m = ";
+  }
+  const double r = body_extent(body);
+  const double a_t = body.rotates ? 1.0 / body.mass + r * r / body.inertia : 1.0 / body.mass;
+  text += f(a_t) + " 1/kg, the largest tangential inverse mass of a contact point\n";
+  text += in +
+          (rolls ? "impratio = min(1/(c Δt A_t), I (max(mu, 1e-5)/mu_roll)^2/(c Δt)) = "
+                 : "impratio = 1/(c Δt A_t) = ") +
+          f(s.impratio) +
+          " (depends on Δt; kept within [1e-15, 1e10]: the largest value at which MuJoCo's "
+          "viscous friction does not reverse a slip within one step)\n";
+  return text;
 }
 
 std::string header(const Scene& scene, const MjcfOptions& options, const SolverSettings& s,
@@ -168,29 +259,60 @@ std::string header(const Scene& scene, const MjcfOptions& options, const SolverS
   const ContactParams& p = scene.contact;
   const State& x0 = scene.initial;
   auto f = [](double v) { return format_exact(v); };
+  const int condim = condim_of(scene, options);
   std::string text =
       "\n  contact2d MJCF, generated by `contact2d generate`: regenerate it, do not edit it.\n";
-  text += "  scene file: " + (options.source.empty() ? std::string("(none)") : options.source) +
-          " (" + std::string(shape_name(scene.shape)) + ")\n";
-  text += "  mapping: " + std::string(mapping_name(s.mapping)) + ": " + mapping_formula(s) + "\n";
-  text += "  geometry: " + std::string(geometry_name(options.geometry)) + "\n";
-  text +=
-      "  body: mass " + f(l.mass) + " kg, inertia about the hinge " + f(l.inertia[1]) + " kg m^2\n";
+  text += "  scene file: " +
+          (options.source.empty() ? std::string("(none)") : options.source + " (as given)") +
+          ", shape " + std::string(shape_name(scene.shape)) + ", geometry " +
+          std::string(geometry_name(options.geometry)) + "\n";
   text += "  contact: k " + f(p.k) + " N/m, c " + f(p.c) + " N s/m, damping " +
           (p.damping == DampingLaw::Compression ? "compression (MuJoCo's damper is Kelvin-Voigt)"
                                                 : "kelvin_voigt") +
           ", mu " + f(p.mu) + ", alpha " + f(p.alpha) + " s/m, mu_roll " + f(p.mu_roll) +
           " m, mu_torsion " + f(p.mu_torsion) + "\n";
-  text += "  initial: x " + f(x0.q.x()) + ", y " + f(x0.q.y()) + ", theta " + f(x0.q.z()) +
-          ", vx " + f(x0.v.x()) + ", vy " + f(x0.v.y()) + ", omega " + f(x0.v.z()) + "\n";
-  text += "  sim: dt " + f(scene.sim.dt) + " s, duration " + f(scene.sim.duration) +
+  text += "  sim: dt " + f(scene.sim.dt) + " s (the timestep), duration " + f(scene.sim.duration) +
           " s, integrator " + std::string(integrator_name(scene.sim.integrator)) + " (MuJoCo " +
           mujoco_integrator(scene.sim.integrator) + "), gravity " + f(scene.sim.gravity) +
           " m/s^2\n";
-  if (s.refsafe_clamped) {
+  text += "  body: m " + f(l.mass) + " kg";
+  if (l.hinge) {
     text +=
-        "  note: timeconst < 2 dt: MuJoCo raises it to 2 dt (refsafe), a softer contact than k\n";
+        ", " + inertia_formula(scene.shape) + " = " + f(l.inertia[1]) + " kg m^2 (about the hinge)";
   }
+  text += "\n";
+  text += "  initial: x " + f(x0.q.x()) + ", y " + f(x0.q.y()) + ", theta " + f(x0.q.z()) +
+          ", vx " + f(x0.v.x()) + ", vy " + f(x0.v.y()) + ", omega " + f(x0.v.z()) + "\n";
+  if (l.hinge) {
+    text +=
+        "  pose: body pos (x, 0, y); unless theta = 0, body axisangle (0, -1, 0, theta), hinge "
+        "ref theta, slide axes (cos theta, 0, -sin theta) and (sin theta, 0, cos theta) (MuJoCo x "
+        "and z in the "
+        "rotated body frame): qpos0, which a viewer shows, is the initial pose; "
+        "qpos = (x - x0, y - y0, theta)\n";
+  } else {
+    text +=
+        "  pose: body pos (x, 0, y): qpos0, which a viewer shows, is the initial pose; "
+        "qpos = (x - x0, y - y0)\n";
+  }
+  text += "  keyframe \"initial\": qpos0 and qvel = (vx, vy" +
+          std::string(l.hinge ? ", omega)" : ")") + "\n";
+  text +=
+      "  derived values: each is the formula stated, evaluated with the values above; only "
+      "those marked \"depends on Δt\" change with the time step\n";
+  text += mapping_lines(scene, s, condim);
+  text += "  condim " + std::to_string(condim) +
+          ": 1 without friction (mu = mu_roll = mu_torsion = 0), 3 with sliding friction only, "
+          "6 with rolling or torsional friction\n";
+  text += "  size: P = " + std::to_string(l.max_contacts) +
+          " (contacts the body can make with the ground: " + l.contacts_why +
+          "); nconmax = 2 P + " + std::to_string(kAddedGeoms * kContactsPerAddedGeom) + " = " +
+          std::to_string(nconmax_of(l)) + " (twice P, and " + std::to_string(kAddedGeoms) +
+          " added geoms of up to " + std::to_string(kContactsPerAddedGeom) +
+          " contacts each); njmax = " + std::to_string(rows_per_contact(6, s.elliptic)) +
+          " nconmax = " + std::to_string(njmax_of(l, s)) + " (" +
+          (s.elliptic ? "an elliptic" : "a pyramidal") +
+          " condim-6 contact's rows: added geoms may have any condim)\n";
   return text;
 }
 
@@ -203,36 +325,53 @@ XMLElement* add(XMLDocument& doc, XMLElement* parent, const char* tag,
 }
 
 void add_options(XMLDocument& doc, XMLElement* root, const Scene& scene, const SolverSettings& s,
-                 const Layout& l) {
+                 const Layout& l, int condim) {
   add(doc, root, "compiler", {{"angle", "radian"}, {"inertiafromgeom", "false"}});
   XMLElement* option = add(doc, root, "option",
                            {{"timestep", format_exact(scene.sim.dt)},
                             {"integrator", mujoco_integrator(scene.sim.integrator)},
                             {"gravity", join({0.0, 0.0, -scene.sim.gravity})}});
   if (s.elliptic) option->SetAttribute("cone", "elliptic");
-  if (s.impratio != 1.0) option->SetAttribute("impratio", format_exact(s.impratio).c_str());
-  // Rows per condim-6 contact: 6 (elliptic) or 2·(6 − 1) = 10 (pyramidal).
+  // impratio scales the friction rows only: none at condim 1.
+  if (condim > 1 && s.impratio != 1.0)
+    option->SetAttribute("impratio", format_exact(s.impratio).c_str());
   add(doc, root, "size",
-      {{"nconmax", std::to_string(l.max_contacts)},
-       {"njmax", std::to_string(10 * l.max_contacts)}});
+      {{"nconmax", std::to_string(nconmax_of(l))}, {"njmax", std::to_string(njmax_of(l, s))}});
   XMLElement* defaults = add(doc, root, "default", {});
   const ContactParams& p = scene.contact;
   add(doc, defaults, "geom",
-      {{"condim", "6"},
+      {{"condim", std::to_string(condim)},
        {"friction", join({p.mu, p.mu_torsion, p.mu_roll})},
        {"solref", join(s.solref)},
        {"solimp", join(s.solimp)}});
 }
 
+// The body starts in the initial pose (qpos0 is what a viewer shows): pos
+// (x0, 0, y0) and, for a hinge, the body frame turned by θ0 about (0, −1, 0)
+// with hinge ref = θ0, so that the hinge's qpos is θ itself (MuJoCo turns the
+// body by qpos − ref from the frame it is given). Joint axes are in the body
+// frame, so the slides' are MuJoCo x and z turned back by θ0.
 void add_body(XMLDocument& doc, XMLElement* world, const Scene& scene, const Layout& l) {
   const Vec3& q0 = scene.initial.q;
+  const double theta = l.hinge ? q0.z() : 0.0;
   XMLElement* body =
       add(doc, world, "body", {{"name", "body"}, {"pos", join({q0.x(), 0.0, q0.y()})}});
+  std::string x_axis = "1 0 0", z_axis = "0 0 1";
+  if (theta != 0.0) {
+    body->SetAttribute("axisangle", join({0.0, -1.0, 0.0, theta}).c_str());
+    const double c = std::cos(theta), sn = std::sin(theta);
+    x_axis = join({c, 0.0, -sn});
+    z_axis = join({sn, 0.0, c});
+  }
   add(doc, body, "inertial",
       {{"pos", "0 0 0"}, {"mass", format_exact(l.mass)}, {"diaginertia", join(l.inertia)}});
-  add(doc, body, "joint", {{"name", "x"}, {"type", "slide"}, {"axis", "1 0 0"}});
-  add(doc, body, "joint", {{"name", "y"}, {"type", "slide"}, {"axis", "0 0 1"}});
-  if (l.hinge) add(doc, body, "joint", {{"name", "theta"}, {"type", "hinge"}, {"axis", "0 -1 0"}});
+  add(doc, body, "joint", {{"name", "x"}, {"type", "slide"}, {"axis", x_axis}});
+  add(doc, body, "joint", {{"name", "y"}, {"type", "slide"}, {"axis", z_axis}});
+  if (l.hinge) {
+    XMLElement* hinge =
+        add(doc, body, "joint", {{"name", "theta"}, {"type", "hinge"}, {"axis", "0 -1 0"}});
+    if (theta != 0.0) hinge->SetAttribute("ref", format_exact(theta).c_str());
+  }
   for (const Geom& g : l.geoms) {
     XMLElement* e =
         add(doc, body, "geom",
@@ -245,6 +384,7 @@ void add_body(XMLDocument& doc, XMLElement* world, const Scene& scene, const Lay
   }
 }
 
+// qpos0 (the hinge's ref is θ0) and the initial velocities.
 void add_keyframe(XMLDocument& doc, XMLElement* root, const Scene& scene, const Layout& l) {
   const State& s = scene.initial;
   const std::string qpos = l.hinge ? join({0.0, 0.0, s.q.z()}) : join({0.0, 0.0});
@@ -266,6 +406,11 @@ double read_inv_mass(const Scene& scene, const MjcfOptions& options, int split) 
 
 }  // namespace
 
+int contact_condim(const ContactParams& contact) {
+  if (contact.mu_roll > 0.0 || contact.mu_torsion > 0.0) return 6;
+  return contact.mu > 0.0 ? 3 : 1;
+}
+
 std::string generated_origin(const std::string& source) {
   return (source.empty() ? std::string("the scene") : source) + " (its generated MJCF)";
 }
@@ -286,7 +431,7 @@ std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
   XMLElement* root = doc.NewElement("mujoco");
   root->SetAttribute("model", ("contact2d_" + std::string(shape_name(scene.shape))).c_str());
   doc.InsertEndChild(root);
-  add_options(doc, root, scene, settings, layout);
+  add_options(doc, root, scene, settings, layout, condim_of(scene, options));
   XMLElement* world = add(doc, root, "worldbody", {});
   add(doc, world, "geom", {{"name", "ground"}, {"type", "plane"}, {"size", "0 0 1"}});
   add_body(doc, world, scene, layout);
@@ -308,6 +453,8 @@ GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options) {
       options.mapping == Mapping::Calibrated ? read_inv_mass(scene, options, split) : 0.0;
   GeneratedModel out;
   out.settings = solver_settings(scene, options.mapping, inv_mass, split);
+  // What MuJoCo uses: impratio is not written at condim 1 (no friction rows).
+  if (condim_of(scene, options) == 1) out.settings.impratio = 1.0;
   out.xml = write_mjcf(scene, options, out.settings);
   load_model(out.xml, generated_origin(
                           options.source));  // never hand out a model MuJoCo rejects or warns on

@@ -5,23 +5,40 @@
 // slide joints along x and z and, for bodies that rotate, a hinge about
 // (0, −1, 0) so that θ is counter-clockwise in the x–z plane (R_y(−θ) maps
 // (x, z) to (x·cosθ − z·sinθ, x·sinθ + z·cosθ), the 2D R(θ)). The body frame
-// is the COM and starts at the initial (x, y); qpos = (x − x0, y − y0, θ),
-// qvel = (vx, vy, ω); the initial θ and velocities are the keyframe
-// "initial". Contact parameters live in <default> so that the ground plane
-// carries the same values and MuJoCo's per-pair mixing (friction: max,
-// direct solref: min, solimp: average) changes nothing.
+// is the COM and is written in the initial pose, so that qpos0 (what a
+// viewer shows on opening the file) is the scene's start: pos (x0, 0, y0),
+// axisangle (0, −1, 0, θ0), hinge ref = θ0 (MuJoCo turns the body by
+// qpos − ref), and slide axes (cosθ0, 0, −sinθ0), (sinθ0, 0, cosθ0), which
+// are MuJoCo x and z in that rotated frame. qpos = (x − x0, y − y0, θ),
+// qvel = (vx, vy, ω); keyframe "initial" is qpos0 with the initial
+// velocities. Contact parameters live in <default> so that the ground plane
+// carries the same values and MuJoCo's per-pair mixing (friction and condim:
+// max, direct solref: min, solimp: average) changes nothing.
 //
-// Contact geoms (condim 6, friction "μ μ_torsion μ_roll"):
-//   point mass  a sphere of radius ρ = max(h, ε) centred at (0, ρ − h): its
-//               lowest point is the 2D contact point (0, −h) (no rotation)
-//   circle      a sphere of radius R at the COM: the single contact point
-//               below the centre of Algorithm 4
-//   box, T      corners: a sphere of radius ε = kCornerRadius at every 2D
-//               contact point (one MuJoCo contact per 2D point; the contact
-//               sits ε lower than the 2D point, shifting rest heights by ε)
-//               boxes:   one box geom per part (a 2D corner becomes a 3D edge
-//               whose two end vertices both touch: 2 contacts per point)
+// condim is what the scene needs (contact_condim): 1 without friction, 3
+// with sliding friction only, 6 with rolling or torsional friction;
+// friction "μ μ_torsion μ_roll". nconmax = 2·P + 40 (P: contacts the body
+// can make with the ground; room for 10 added geoms of up to 4 contacts),
+// njmax = rows of a condim-6 contact (6 elliptic, 10 pyramidal) × nconmax.
+//
+// Contact geoms, named for what they are:
+//   point mass  "contact_point": a sphere of radius ρ = max(h, ε) centred at
+//               (0, ρ − h): its lowest point is the 2D contact point (0, −h)
+//   circle      "disc": a sphere of radius R at the COM: the single contact
+//               point below the centre of Algorithm 4
+//   box, T      corners: "corner<i>", a sphere of radius ε = kCornerRadius at
+//               every 2D contact point (one MuJoCo contact per 2D point; the
+//               contact sits ε lower than the 2D point, shifting rest
+//               heights by ε); the parts are drawn by "visual_part<j>_box"
+//               boxes:   "part<j>_box", one box geom per part (a 2D corner
+//               becomes a 3D edge whose two end vertices both touch: 2
+//               contacts per point)
 // Visual-only geoms (contype = conaffinity = 0, group 1) draw the shape.
+//
+// The header comment states every derived value with the formula that
+// computes it (tests/mujoco/test_mjcf_header.cpp recomputes them) and marks
+// the ones that depend on Δt: calibrated's impratio, and the timeconst
+// MuJoCo uses under seed/exact (refsafe: max(timeconst, 2Δt)).
 //
 // Inertia (explicit <inertial>, inertiafromgeom="false"): the 2D value on the
 // hinge axis (MuJoCo y). The other two axes carry no joint; they are the
@@ -45,8 +62,14 @@ constexpr double kCornerRadius = 1e-9;
 struct MjcfOptions {
   Mapping mapping = kDefaultMapping;
   Geometry geometry = kDefaultGeometry;
-  std::string source;  // the scene file named in the header comment
+  std::string source;  // the scene file named in the header comment, as given
+  int condim = 0;      // 0: contact_condim(); 1, 3 or 6 forces it (for measurements)
 };
+
+// condim of every contact geom (and the plane): only what the scene needs,
+// 1 without friction (μ = μ_roll = μ_torsion = 0), 3 with sliding friction
+// only, 6 with rolling or torsional friction.
+int contact_condim(const ContactParams& contact);
 
 // Options from their names (empty: the default); throws InputError naming
 // an unknown mapping or geometry.

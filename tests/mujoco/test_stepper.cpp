@@ -44,7 +44,7 @@ TEST(MujocoStepper, CornerSpheresSitWhereTheTwoDimensionalRotationPutsThem) {
   mj_kinematics(model.get(), data.get());
   const double c = std::cos(q.z()), s = std::sin(q.z());
   for (size_t i = 0; i < body.points.size(); ++i) {
-    const int g = mj_name2id(model.get(), mjOBJ_GEOM, ("point" + std::to_string(i)).c_str());
+    const int g = mj_name2id(model.get(), mjOBJ_GEOM, ("corner" + std::to_string(i)).c_str());
     ASSERT_GE(g, 0);
     const Vec2& r = body.points[i];
     EXPECT_NEAR(data->geom_xpos[3 * g + 0], q.x() + c * r.x() - s * r.y(), 1e-12) << i;
@@ -84,7 +84,7 @@ TEST(MujocoStepper, RuntimeWarningsAreSurfaced) {
       "0.2\n"
       "[sim]\ndt = 1e-4\nduration = 0.3\n");
   std::string xml = mujoco::generate_mjcf(scene, {}).xml;
-  const std::string size = "nconmax=\"4\"";
+  const std::string size = "nconmax=\"48\"";
   ASSERT_NE(xml.find(size), std::string::npos);
   xml.replace(xml.find(size), size.size(), "nconmax=\"1\"");
   const test::MujocoRun run = test::run_mujoco_xml(scene, xml, "one contact");
