@@ -45,6 +45,9 @@ struct Rerun {
   Scene scene;
   bool ref = true;
   std::string mujoco;  // engine name
+  // A MuJoCo engine the runner's names cannot express (a held model_dt):
+  // run through the registry directly.
+  std::optional<engines::EngineSpec> mujoco_spec;
   // Results.
   std::optional<EngineRun> ref_run;
   EngineRun mujoco_run;
@@ -176,6 +179,19 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
     calibrated.mapping = "calibrated";
     reruns.push_back(rerun("mapping", scene, false, calibrated.name()));
   }
+  // The calibrated impratio = 1/(c·Δt·A_t) follows Δt unless the user held
+  // it (--model-dt): the Δt/10 re-run then changes MuJoCo's model as well as
+  // its step. This re-run steps at Δt/10 with the model of Δt.
+  const bool model_follows_dt = friction && mapping == "calibrated" && mujoco.model_dt == 0.0 &&
+                                std::isfinite(mujoco_run.impratio);
+  if (model_follows_dt) {
+    Rerun r = rerun("dt_dependent_model", scene, true, mj);
+    r.scene.sim.dt = dt / 10.0;
+    engines::EngineSpec held = mujoco;
+    held.model_dt = dt;
+    r.mujoco_spec = held;
+    reruns.push_back(r);
+  }
   const bool refsafe = std::find(mujoco_run.notes.begin(), mujoco_run.notes.end(), "refsafe") !=
                        mujoco_run.notes.end();
   double refsafe_dt = kNaN;
@@ -196,7 +212,8 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
     Rerun& r = reruns[i];
     try {
       if (r.ref) r.ref_run = runner("ref", r.scene);
-      r.mujoco_run = runner(r.mujoco, r.scene);
+      r.mujoco_run =
+          r.mujoco_spec ? engines::run_engine(*r.mujoco_spec, r.scene) : runner(r.mujoco, r.scene);
     } catch (const std::exception& e) {
       r.failure = e.what();
       return;
@@ -209,6 +226,14 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
   });
 
   const double before = d0.max_pos;
+  double follow_after = kNaN;  // the time_step re-run: Δt/10, MuJoCo's model following Δt
+  double follow_impratio = kNaN;
+  for (const Rerun& r : reruns) {
+    if (r.cause == "time_step" && r.failure.empty()) {
+      follow_after = r.between.max_pos;
+      follow_impratio = r.mujoco_run.impratio;
+    }
+  }
   for (const Rerun& r : reruns) {
     Finding f;
     f.cause = r.cause;
@@ -309,6 +334,26 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
                     " mapping keeps MuJoCo's default impedance 0.9–0.95, under which gravity "
                     "inside a contact is scaled by (1 − d) and the body rests at 5–10 % of m·g/k.";
       f.explanation += " With the calibrated mapping, " + falls + ".";
+    } else if (r.cause == "dt_dependent_model") {
+      // Not "removed" like the others: how much the Δt/10 comparison moves
+      // when MuJoCo's model is held at its Δt values instead of following.
+      f.fix = "--model-dt " + format_shortest(dt);
+      if (r.failure.empty() && std::isfinite(follow_after)) {
+        f.share = (f.after - follow_after) / before;
+        f.named = std::abs(f.share) >= kNamedShare;
+      } else {
+        f.share = kNaN;
+        f.named = false;
+      }
+      f.explanation = "MuJoCo's model depends on Δt: the calibrated impratio = 1/(c·Δt·A_t) is " +
+                      g3(mujoco_run.impratio) + " at Δt and " + g3(follow_impratio) +
+                      " at Δt/10. Both engines at Δt/10 differ by " + g3(follow_after) +
+                      " m with MuJoCo's model following Δt, and by " + g3(f.after) +
+                      " m with it held at its Δt values (" + f.fix +
+                      "): the model's dependence on Δt moves the difference by " +
+                      percent(std::isfinite(f.share) ? std::abs(f.share) : 0.0) +
+                      " of its size at Δt. Hold the model with " + f.fix +
+                      " to see the step's effect alone when changing --dt.";
     } else if (r.cause == "refsafe") {
       f.fix = "--dt " + format_shortest(refsafe_dt);
       f.explanation =
@@ -321,22 +366,29 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
   }
   std::stable_sort(dg.findings.begin(), dg.findings.end(), [](const Finding& a, const Finding& b) {
     if (a.named != b.named) return a.named;
-    const double sa = std::isfinite(a.share) ? a.share : -1e300;
-    const double sb = std::isfinite(b.share) ? b.share : -1e300;
+    const double sa = std::isfinite(a.share) ? std::abs(a.share) : -1e300;
+    const double sb = std::isfinite(b.share) ? std::abs(b.share) : -1e300;
     return sa > sb;
   });
-  std::string named;
-  for (const Finding& f : dg.findings)
-    if (f.named) named += (named.empty() ? "" : ", ") + f.cause + " (" + percent(f.share) + ")";
-  dg.summary =
-      named.empty()
-          ? "None of the causes re-run here takes away " + percent(kNamedShare) +
-                " or more of the " + g3(before) +
-                " m difference, so these runs do not attribute it (not re-run here: MuJoCo's "
-                "soft-constraint contact law itself, and a tumbling body's magnification of a "
-                "small early difference)."
-          : "Of the " + g3(before) +
-                " m difference, removing each cause alone takes away: " + named + ".";
+  std::string named, model;
+  for (const Finding& f : dg.findings) {
+    if (!f.named) continue;
+    if (f.cause == "dt_dependent_model")
+      model = " Holding MuJoCo's Δt-dependent model fixed moves the Δt/10 difference by " +
+              percent(std::abs(f.share)) + " of it (dt_dependent_model).";
+    else
+      named += (named.empty() ? "" : ", ") + f.cause + " (" + percent(f.share) + ")";
+  }
+  if (named.empty())
+    dg.summary = "None of the causes re-run here takes away " + percent(kNamedShare) +
+                 " or more of the " + g3(before) +
+                 " m difference, so these runs do not attribute it (not re-run here: MuJoCo's "
+                 "soft-constraint contact law itself, and a tumbling body's magnification of a "
+                 "small early difference).";
+  else
+    dg.summary = "Of the " + g3(before) +
+                 " m difference, removing each cause alone takes away: " + named + ".";
+  dg.summary += model;
   return dg;
 }
 

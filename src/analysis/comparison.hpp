@@ -28,6 +28,11 @@
 //   friction      the tanh law against MuJoCo's elliptic cone: μ = μ_roll = 0;
 //                 the sliding phases of the reference and how much the
 //                 distance grew inside each are listed
+//   dt_dependent_model  (calibrated with friction: impratio = 1/(c·Δt·A_t))
+//                 both engines at Δt/10 with MuJoCo's model held at its Δt
+//                 values (--model-dt Δt); its share is how far that moves
+//                 the Δt/10 difference, (held − following)/before, named
+//                 when |share| ≥ kNamedShare
 //   rolling_resistance  with sliding friction kept, μ_roll = 0 (MuJoCo's
 //                 cone shares one budget between sliding and rolling)
 //   mapping       a mapping other than calibrated (seed is exact only at

@@ -312,6 +312,7 @@ int compare(const CompareOptions& options) {
   c.scene = options.scene.load();
   const engines::EngineSpec spec = options.mujoco.spec(options.scene.path);
   c.mjcf = mj::mjcf_options(spec.mapping, spec.geometry, spec.source);
+  c.mjcf.model_dt = spec.model_dt;
   mj::mujoco_integrator(c.scene.sim.integrator);  // explicit Euler: fail before any work
   if (!options.video.empty()) {
 #ifdef CONTACT2D_WITH_WINDOW

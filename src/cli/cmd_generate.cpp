@@ -20,9 +20,10 @@ int generate(const GenerateOptions& options) {
   const Scene scene = options.scene.load();
   std::unique_ptr<AtomicFile> out;
   if (!options.output.empty()) out = std::make_unique<AtomicFile>(options.output);
-  const auto model = contact2d::mujoco::generate_mjcf(
-      scene, contact2d::mujoco::mjcf_options(options.mujoco.mapping, options.mujoco.geometry,
-                                             options.scene.path));
+  contact2d::mujoco::MjcfOptions mjcf = contact2d::mujoco::mjcf_options(
+      options.mujoco.mapping, options.mujoco.geometry, options.scene.path);
+  mjcf.model_dt = options.mujoco.model_dt;
+  const auto model = contact2d::mujoco::generate_mjcf(scene, mjcf);
   if (model.settings.refsafe_clamped) {
     std::cerr << "contact2d: note: timeconst " << format_number(model.settings.solref[0])
               << " s < 2 dt: MuJoCo raises it to 2 dt (refsafe), a softer contact than contact.k\n";

@@ -52,6 +52,18 @@ void MujocoOptions::add_to(CLI::App& cmd) {
                  "MuJoCo geoms of a box or T: corners (a small sphere per 2D contact point, "
                  "default) | boxes")
       ->check(CLI::IsMember({"corners", "boxes"}));
+  cmd.add_option("--model-dt", model_dt,
+                 "Compute MuJoCo's Δt-dependent values (the calibrated impratio) for this Δt "
+                 "instead of the timestep: holds the model fixed while --dt changes")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || !(v > 0.0 && v <= 1.0))
+              return text + " is out of range: must be in (0, 1] s";
+            return std::string();
+          },
+          "DT in (0, 1] s"));
 }
 
 engines::EngineSpec MujocoOptions::spec(const std::string& source) const {
@@ -60,6 +72,7 @@ engines::EngineSpec MujocoOptions::spec(const std::string& source) const {
   spec.mapping = mapping;
   spec.geometry = geometry;
   spec.source = source;
+  spec.model_dt = model_dt;
   return spec;
 }
 

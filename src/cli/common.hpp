@@ -59,6 +59,7 @@ Scene load_scene_with(const std::string& path, const std::vector<std::string>& s
 struct MujocoOptions {
   std::string mapping;
   std::string geometry;
+  double model_dt = 0.0;  // --model-dt; 0: the timestep
 
   void add_to(CLI::App& cmd);
   // The MuJoCo engine with these options; `source` is the scene file.

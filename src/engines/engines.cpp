@@ -12,7 +12,9 @@ namespace {
 
 #ifdef CONTACT2D_WITH_MUJOCO
 mujoco::MjcfOptions mjcf_options(const EngineSpec& spec) {
-  return mujoco::mjcf_options(spec.mapping, spec.geometry, spec.source);
+  mujoco::MjcfOptions options = mujoco::mjcf_options(spec.mapping, spec.geometry, spec.source);
+  options.model_dt = spec.model_dt;
+  return options;
 }
 #endif
 

@@ -26,6 +26,9 @@ struct EngineSpec {
   std::string mapping;       // MuJoCo: empty = the default mapping
   std::string geometry;      // MuJoCo: empty = the default geometry
   std::string source;        // the scene file, named in a generated model's header
+  // MuJoCo: the Δt its model's Δt-dependent values are computed for (0: the
+  // scene's timestep; mujoco/mjcf.hpp MjcfOptions::model_dt).
+  double model_dt = 0.0;
 
   std::string name() const;  // back to "mujoco:exact" etc.
 };

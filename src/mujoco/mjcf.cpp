@@ -190,7 +190,8 @@ std::string inertia_formula(Shape shape) {
   return "";
 }
 
-std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condim) {
+std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condim,
+                          double model_dt) {
   auto f = [](double v) { return format_exact(v); };
   const std::string in = "    ";
   std::string text = "  mapping " + std::string(mapping_name(s.mapping)) + ":\n";
@@ -249,6 +250,8 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
           (rolls ? "impratio = min(1/(c Δt A_t), I (max(mu, 1e-5)/mu_roll)^2/(c Δt)) = "
                  : "impratio = 1/(c Δt A_t) = ") +
           f(s.impratio) +
+          (model_dt > 0.0 ? " with Δt = " + f(model_dt) + " (--model-dt), not the timestep"
+                          : std::string()) +
           " (depends on Δt; kept within [1e-15, 1e10]: the largest value at which MuJoCo's "
           "viscous friction does not reverse a slip within one step)\n";
   return text;
@@ -300,7 +303,7 @@ std::string header(const Scene& scene, const MjcfOptions& options, const SolverS
   text +=
       "  derived values: each is the formula stated, evaluated with the values above; only "
       "those marked \"depends on Δt\" change with the time step\n";
-  text += mapping_lines(scene, s, condim);
+  text += mapping_lines(scene, s, condim, options.model_dt);
   text += "  condim " + std::to_string(condim) +
           ": 1 without friction (mu = mu_roll = mu_torsion = 0), 3 with sliding friction only, "
           "6 with rolling or torsional friction\n";
@@ -452,7 +455,12 @@ GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options) {
   const double inv_mass =
       options.mapping == Mapping::Calibrated ? read_inv_mass(scene, options, split) : 0.0;
   GeneratedModel out;
-  out.settings = solver_settings(scene, options.mapping, inv_mass, split);
+  Scene model_scene = scene;  // the Δt the Δt-dependent values are for
+  if (options.model_dt > 0.0) model_scene.sim.dt = options.model_dt;
+  out.settings = solver_settings(model_scene, options.mapping, inv_mass, split);
+  // refsafe is MuJoCo's, at the real timestep.
+  out.settings.refsafe_clamped =
+      out.settings.solref[0] > 0.0 && out.settings.solref[0] < 2.0 * scene.sim.dt;
   // What MuJoCo uses: impratio is not written at condim 1 (no friction rows).
   if (condim_of(scene, options) == 1) out.settings.impratio = 1.0;
   out.xml = write_mjcf(scene, options, out.settings);

@@ -64,6 +64,10 @@ struct MjcfOptions {
   Geometry geometry = kDefaultGeometry;
   std::string source;  // the scene file named in the header comment, as given
   int condim = 0;      // 0: contact_condim(); 1, 3 or 6 forces it (for measurements)
+  // The Δt the mapping's Δt-dependent values (calibrated's impratio) are
+  // computed for; 0: the scene's sim.dt (the timestep). Set, it holds the
+  // model fixed while the timestep changes (`--model-dt`).
+  double model_dt = 0.0;
 };
 
 // condim of every contact geom (and the plane): only what the scene needs,

@@ -4,6 +4,7 @@
 // agree.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "analysis/comparison.hpp"
@@ -36,9 +37,9 @@ const analysis::Finding* named(const analysis::Diagnosis& d, const std::string& 
 
 // The shipped scenes' law: compression-only damping, which MuJoCo cannot
 // represent. Measured on this drop (μ = 0.3, c = 50): 0.399 m apart,
-// 0.0047 m with Kelvin–Voigt in both (99 % removed). The test asks for the cause to be named first with
-// at least half of the difference: any other outcome means the diagnosis
-// or the damping law changed.
+// 0.0047 m with Kelvin–Voigt in both (99 % removed). The test asks for the cause to be named first
+// with at least half of the difference: any other outcome means the diagnosis or the damping law
+// changed.
 TEST(CompareDiagnosis, NamesTheDampingLawOnACompressionLawScene) {
   Scene scene = test::drop_scene(Shape::PointMass, 50.0, 0.3);
   scene.contact.damping = DampingLaw::Compression;
@@ -85,6 +86,45 @@ TEST(CompareDiagnosis, NamesNothingWhenAKelvinVoigtFrictionlessSceneAgrees) {
     EXPECT_TRUE(d.diagnosis.agrees) << shape_name(shape) << " " << d.three.ref_vs_mujoco.max_pos;
     EXPECT_TRUE(d.diagnosis.findings.empty());
   }
+}
+
+}  // namespace
+}  // namespace contact2d
+
+namespace contact2d {
+namespace {
+
+// --model-dt holds MuJoCo's Δt-dependent model: at a timestep of 1e-4 with
+// the model of 1e-3 the calibrated impratio is the 1e-3 run's (1/(c·Δt·A_t)
+// is exactly ten times smaller), and the diagnosis measures the dependence
+// on a scene with friction, printing the option that holds the model.
+TEST(CompareDiagnosis, ModelDtHoldsTheDtDependentImpratioAndIsDiagnosed) {
+  Scene scene = test::drop_scene(Shape::Box, 200.0, 0.5);
+  scene.sim.duration = 1.0;
+  engines::EngineSpec spec;
+  spec.kind = "mujoco";
+  const engines::EngineRun own = engines::run_engine(spec, scene);
+  Scene coarse = scene;
+  coarse.sim.dt = 1e-3;
+  const engines::EngineRun at_coarse = engines::run_engine(spec, coarse);
+  engines::EngineSpec held = spec;
+  held.model_dt = 1e-3;
+  const engines::EngineRun fine_held = engines::run_engine(held, scene);
+  EXPECT_DOUBLE_EQ(fine_held.impratio, at_coarse.impratio);
+  EXPECT_NEAR(own.impratio, 10.0 * at_coarse.impratio, 1e-12 * own.impratio);
+
+  const engines::EngineRun ref = engines::run_engine("ref", scene);
+  const analysis::ThreeWay three =
+      analysis::three_way(scene, ref.trajectory, own.trajectory, 1e-10);
+  const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, own, three);
+  const analysis::Finding* model = nullptr;
+  for (const analysis::Finding& f : d.findings)
+    if (f.cause == "dt_dependent_model") model = &f;
+  ASSERT_NE(model, nullptr);
+  EXPECT_EQ(model->fix, "--model-dt 0.0001");
+  EXPECT_TRUE(std::isfinite(model->share));
+  std::printf("dt_dependent_model: share %.3f (%s)\n", model->share,
+              model->named ? "named" : "ruled out");
 }
 
 }  // namespace
