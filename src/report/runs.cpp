@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "analysis/comparison.hpp"
 #include "analysis/output.hpp"
@@ -48,6 +49,22 @@ std::string status_text(analysis::RunStatus status) {
   return "failed";
 }
 
+// The reference and MuJoCo on the scene; throws std::runtime_error naming
+// the engine when either diverges (the report shows converged runs only).
+std::pair<engines::EngineRun, engines::EngineRun> run_both(const engines::EngineSpec& mujoco,
+                                                           const Scene& scene,
+                                                           const std::string& source) {
+  std::pair<engines::EngineRun, engines::EngineRun> runs{engines::run_engine("ref", scene),
+                                                         engines::run_engine(mujoco, scene)};
+  for (const engines::EngineRun* run : {&runs.first, &runs.second}) {
+    if (run->trajectory.divergence) {
+      throw std::runtime_error(source + ": " + (run == &runs.first ? "ref" : "MuJoCo") + ": " +
+                               run->divergence_message);
+    }
+  }
+  return runs;
+}
+
 }  // namespace
 
 bool mujoco_built() { return engines::mujoco_available(); }
@@ -64,14 +81,7 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
   spec.mapping = mapping;
   spec.geometry = geometry;
   spec.source = source;
-  const engines::EngineRun mujoco = engines::run_engine(spec, scene);
-  const engines::EngineRun ref = engines::run_engine("ref", scene);
-  for (const auto* run : {&ref, &mujoco}) {
-    if (run->trajectory.divergence) {
-      throw std::runtime_error(source + ": " + (run == &ref ? "ref" : "MuJoCo") + ": " +
-                               run->divergence_message);
-    }
-  }
+  const auto [ref, mujoco] = run_both(spec, scene, source);
   const analysis::TrajectoryError e = analysis::error_between(ref.trajectory, mujoco.trajectory);
   if (!plot_png.empty()) {
     const std::string title =
@@ -101,14 +111,7 @@ ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
   engines::EngineSpec spec;
   spec.kind = "mujoco";
   spec.source = source;
-  const engines::EngineRun mujoco = engines::run_engine(spec, scene);
-  const engines::EngineRun ref = engines::run_engine("ref", scene);
-  for (const auto* run : {&ref, &mujoco}) {
-    if (run->trajectory.divergence) {
-      throw std::runtime_error(source + ": " + (run == &ref ? "ref" : "MuJoCo") + ": " +
-                               run->divergence_message);
-    }
-  }
+  const auto [ref, mujoco] = run_both(spec, scene, source);
   const analysis::ThreeWay three =
       analysis::three_way(scene, ref.trajectory, mujoco.trajectory, tol);
   const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, mujoco, three);
