@@ -25,6 +25,7 @@
 #include "cli/common.hpp"
 #include "io/csv.hpp"
 #include "io/scene_file.hpp"
+#include "io/scene_writer.hpp"
 #include "report/pages.hpp"
 #include "report/random_scenes.hpp"
 #include "report/runs.hpp"
@@ -103,6 +104,20 @@ rp::ReadmeData readme_runs(const ReportOptions& o) {
                                         plotted ? o.out + "/" + s + ".kelvin_voigt.png" : "")});
     }
   }
+  for (const std::string& s : kScenes) {
+    const rp::Comparison* shipped = nullptr;
+    const rp::Comparison* kv = nullptr;
+    for (const rp::MappingCase& c : d.shipped)
+      if (c.scene == s && c.mapping == "calibrated") shipped = &c.result;
+    for (const rp::MappingCase& c : d.kelvin_voigt)
+      if (c.scene == s && c.mapping == "calibrated") kv = &c.result;
+    if (shipped && kv && shipped->max_pos == kv->max_pos && shipped->rms_pos == kv->rms_pos &&
+        shipped->max_angle == kv->max_angle && shipped->max_vel == kv->max_vel &&
+        shipped->end_pos == kv->end_pos) {
+      d.law_independent.push_back(s);
+      fs::remove(o.out + "/" + s + ".kelvin_voigt.png");
+    }
+  }
   progress("three-way comparisons, diagnoses and animations");
   d.named_share = analysis::kNamedShare;
   for (const std::string& s : kScenes) {
@@ -148,6 +163,16 @@ rp::ReadmeData readme_runs(const ReportOptions& o) {
   const std::vector<rp::RandomScene> randoms =
       rp::draw_random_scenes(o.seed, d.random_config.count);
   d.random.resize(randoms.size());
+  // Each random scene as a file, so that a row can be re-run on its own.
+  d.random_dir = o.out + "/random";
+  std::error_code ec;
+  fs::create_directories(o.out + "/random", ec);
+  for (const rp::RandomScene& r : randoms) {
+    write_page(o.out + "/random/" + r.name + ".toml",
+               scene_to_toml(r.scene, "Random scene " + r.name + " of contact2d report (seed " +
+                                          std::to_string(o.seed) +
+                                          "). Without friction: --set contact.mu=0"));
+  }
   analysis::parallel_for(randoms.size(), 0, [&](size_t i) {
     const rp::RandomScene& r = randoms[i];
     Scene frictionless = r.scene;

@@ -90,6 +90,10 @@ struct ReadmeData {
   std::vector<MappingCase> shipped;
   std::vector<MappingCase> kelvin_voigt;
   std::vector<ThreeWayCase> three_way;
+  // Scenes whose shipped and Kelvin–Voigt runs are the same (calibrated:
+  // every error equal), whose second plot the page leaves out.
+  std::vector<std::string> law_independent;
+  std::string random_dir;  // where the random scenes' files are, as the reader types it
   double converged_tol = 1e-12;
   double named_share = 0.0;    // a cause is named from this share on (analysis::kNamedShare)
   std::string animation_note;  // why there are no animations, when there are none

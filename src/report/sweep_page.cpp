@@ -382,7 +382,7 @@ The sweeps measure against the reference at tol = 1e-12, whose own error
 1e-12 it takes **)md" +
          at12("point_mass", time_of) + " ms (point mass), " + at12("box", time_of) +
          " ms (box),\n" + at12("tshape", time_of) + " ms (T) and " + at12("circle", time_of) +
-         " ms (circle, a 3.5 s scene)** against the target of\n100 ms, with " +
+         " ms (circle, a 3.5 s scene)** (the budget: 100 ms\nper scene), with " +
          four(events_of, "", " and ") + " located events, and\nis self-consistent to " +
          four(error_of, "", " and ") + R"md( m — well below the 1e-9 m asked for.
 The error falls roughly in proportion to the tolerance; it is not monotone
@@ -519,9 +519,9 @@ of the core's step() against mj_step on the generated
          R"md(
 ```
 
-The target was a reference step at least 100× cheaper than mj_step on every
-scene; the ratio column says whether this run met it (summary at the end of
-the page). Where the reference step's time goes: per step, a sin/cos pair for
+The requirement is a reference step at least 100× cheaper than mj_step on
+every scene; the ratio column says whether this run meets it (summary at the
+end of the page). Where the reference step's time goes: per step, a sin/cos pair for
 a body that rotates, and per touching point the contact law with one tanh
 for friction while the point slips slower than 22/α — the disc, which never
 leaves the ground, pays one for its slip at every step and one more for
@@ -530,9 +530,7 @@ the force once per step, RK4 four times, implicit Euler about ten times (a
 finite-difference Jacobian of three extra evaluations per Newton
 iteration). The run loop's divergence check (`run()`, an energy
 evaluation after every step) is not part of this measurement; the sweep's
-wall-clock times (section 2) include it. The pre-project
-measurement (28–62 ns against 1.5–4.2 µs, 41–142×) is of the same order as
-this one.
+wall-clock times (section 2) include it.
 
 Why 100× is out of reach for an accurate step on every scene: a step is one
 chain of dependent operations (each step needs the previous state), so it
@@ -551,7 +549,7 @@ the empty-step time of two runs of the report). Going further
 would mean replacing libm's tanh and sincos with approximations of our own;
 the reference keeps libm, whose accuracy nobody has to re-validate.
 
-## Results against the targets of issue 4
+## Summary: the requirements
 
 )md";
   out += targets(d);
