@@ -261,7 +261,9 @@ void print_table(const Comparison& c) {
     ruled_out += (ruled_out.empty() ? "" : "; ") + finding.cause + " (" +
                  (std::isfinite(finding.share)
                       ? format_text("%.0f %%", std::round(100.0 * finding.share) + 0.0) + ", " +
-                            format_number(finding.after, 3) + " m without it"
+                            format_number(finding.after, 3) +
+                            (finding.cause == "dt_dependent_model" ? " m with the model held"
+                                                                   : " m without it")
                       : std::string("not measured")) +
                  ")";
   }

@@ -86,8 +86,9 @@ TEST(Docs, LinkFinderSeesLinksAndIgnoresCode) {
   EXPECT_EQ(found, (std::vector<std::string>{"docs/x.md", "p.png"}));
 }
 
-std::string run(const std::string& args) {
-  const std::string command = std::string(CONTACT2D_EXE) + " " + args + " 2>&1";
+// Standard output and error of a shell command.
+std::string shell(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1";
   std::string out;
   if (FILE* pipe = ::popen(command.c_str(), "r")) {
     char buffer[4096];
@@ -97,6 +98,8 @@ std::string run(const std::string& args) {
   }
   return out;
 }
+
+std::string run(const std::string& args) { return shell(std::string(CONTACT2D_EXE) + " " + args); }
 
 // Option names ("--dt", "-o") at the start of a help line.
 std::set<std::string> options_in_help(const std::string& help) {
@@ -143,6 +146,54 @@ TEST(Docs, CliPageNamesEveryOptionOfEveryCommand) {
     for (const std::string& option : options)
       EXPECT_NE(section.find("`" + option), std::string::npos) << command << " " << option;
   }
+}
+
+}  // namespace
+
+namespace {
+
+// The README's tour shows real output: every ```console block's
+// "$ build/contact2d …" command is run from the repository root and each
+// line shown under it (but "…") must be a line of what it prints, with the
+// wall-clock figure of `simulate`'s summary ("in 1.96 ms") matched as any
+// number.
+TEST(Docs, ReadmeTourOutputIsWhatTheProgramPrints) {
+  const std::string readme = slurp(kRoot / "README.md");
+  std::istringstream lines(readme);
+  bool console = false;
+  std::string command;
+  std::vector<std::pair<std::string, std::vector<std::string>>> shown;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("```", 0) == 0) {
+      console = line == "```console";
+      continue;
+    }
+    if (!console) continue;
+    if (line.rfind("$ ", 0) == 0) {
+      shown.emplace_back(line.substr(2), std::vector<std::string>{});
+    } else if (!shown.empty() && line != "…") {
+      shown.back().second.push_back(line);
+    }
+  }
+  int checked = 0;
+  const std::regex wall_clock(R"(in [0-9.e+-]+ ms)");
+  for (const auto& [cmd, expected] : shown) {
+    if (expected.empty() || cmd.rfind("build/contact2d ", 0) != 0) continue;
+    const std::string out = shell("cd '" + kRoot.string() + "' && '" + CONTACT2D_EXE + "'" +
+                                  cmd.substr(std::string("build/contact2d").size()));
+    std::set<std::string> printed;
+    std::istringstream out_lines(out);
+    for (std::string l; std::getline(out_lines, l);)
+      printed.insert(std::regex_replace(l, wall_clock, "in … ms"));
+    for (const std::string& line : expected) {
+      EXPECT_TRUE(printed.count(std::regex_replace(line, wall_clock, "in … ms")))
+          << "the README shows a line that `" << cmd << "` does not print:\n  " << line
+          << "\nit printed:\n"
+          << out;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 5);
 }
 
 }  // namespace
