@@ -1,7 +1,7 @@
-// Penalty contact law for one point against the ground y = 0 (SPEC §2).
+// Penalty contact law for one point against the ground y = 0 (docs/physics.md).
 //
 //   d  = max(0, −c_y)                                   penetration
-//   Fn = k·d + c·max(0, −v_y)                           compression (slides' default)
+//   Fn = k·d + c·max(0, −v_y)                           compression (the scene files' default)
 //   Fn = max(0, k·d − c·v_y)                            Kelvin–Voigt (never pulls)
 //   Ft = −μ·Fn·tanh(α·v_x)                              regularised Coulomb friction
 //   τ_roll = −μ_roll·Fn·sgn_ε(ω),  sgn_ε(ω) = tanh(α·R·ω) rolling resistance

@@ -1,4 +1,4 @@
-// Forces and accelerations of one planar body (SPEC §2–3): the force stage,
+// Forces and accelerations of one planar body (docs/physics.md): the force stage,
 // which reads the contacts found by the position stage (core/contacts.hpp).
 //
 // With q = (x, y, θ), v = (vx, vy, ω) and the contacts found at q:

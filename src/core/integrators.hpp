@@ -1,4 +1,4 @@
-// Time stepping of (q, v) with a = M⁻¹·F(q, v) (SPEC §4).
+// Time stepping of (q, v) with a = M⁻¹·F(q, v) (docs/physics.md).
 //
 //   explicit Euler       v' = v + a(q, v)·Δt,    q' = q + v·Δt
 //   semi-implicit Euler  v' = v + a(q, v)·Δt,    q' = q + v'·Δt

@@ -1,5 +1,5 @@
 // Static obstacles: fixed geometry the body touches with the ground's contact
-// law (SPEC §2), applied along the normal n out of the touched surface instead
+// law (docs/physics.md), applied along the normal n out of the touched surface instead
 // of +y. This file is the geometry (depth and normal of one point or disc
 // against one obstacle, of one obstacle vertex against one part of the body);
 // core/contacts.hpp enumerates the contacts and core/dynamics.hpp
@@ -23,7 +23,7 @@
 // Which features touch:
 //   * a body with a rolling radius R (the circle) uses its true disc: the
 //     closest point q of the obstacle to the centre, d = R − |p − q|,
-//     n = (p − q)/|p − q|, c = p − R·n. (The ground keeps SPEC's single point
+//     n = (p − q)/|p − q|, c = p − R·n. (The ground keeps the model's single point
 //     below the centre; against a flat top face the two agree exactly.) A
 //     centre inside a box is pushed out through the nearest face, with
 //     d = R + its distance to that face (continuous with the outside formula).

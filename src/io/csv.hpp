@@ -1,4 +1,4 @@
-// Trajectory CSV (SPEC §6), written atomically: rows go to a temporary file
+// Trajectory CSV (docs/cli.md), written atomically: rows go to a temporary file
 // beside the target, which is renamed into place only by commit(). A run that
 // fails or diverges leaves no file behind.
 #pragma once

@@ -1,4 +1,4 @@
-// Scene files (TOML, SPEC §6) and command-line overrides.
+// Scene files (TOML, docs/scenes.md) and command-line overrides.
 #pragma once
 
 #include <string>

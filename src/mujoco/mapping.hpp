@@ -8,7 +8,7 @@
 // direct form (−stiffness, −damping) gives K = stiffness/d_max²,
 // B = damping/d_max. Three named mappings:
 //
-//   seed        timeconst = √(m/k), dampratio ζ = c/(2√(m·k))   (the slides):
+//   seed        timeconst = √(m/k), dampratio ζ = c/(2√(m·k))   (the common rule of thumb):
 //               K·d_max² = 1/(tc²ζ²) = (k/m)/ζ², B·d_max = 2/tc = (c/m)/ζ,
 //               so it reproduces k/m and c/m only when ζ = 1.
 //   exact       timeconst = 2m/c, dampratio = c/(2√(m·k)):

@@ -1,4 +1,4 @@
-// MJCF for a scene (SPEC §5), written with tinyxml2: same scene and options,
+// MJCF for a scene (docs/mujoco.md), written with tinyxml2: same scene and options,
 // same bytes.
 //
 // The plane of motion is MuJoCo's x–z plane (2D y = MuJoCo z). One body with

@@ -1,4 +1,4 @@
-// The contact2d program on good input: the CSV format of SPEC §6 and --help.
+// The contact2d program on good input: the trajectory CSV format and --help.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 

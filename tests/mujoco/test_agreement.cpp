@@ -265,7 +265,7 @@ TEST_P(FrictionDrop, AgreesWithinTheMeasuredFrictionDifference) {
 
 INSTANTIATE_TEST_SUITE_P(AllBodies, FrictionDrop, ::testing::ValuesIn(drop_cases()), drop_name);
 
-// The slides' timeconst = √(m/k) reproduces k/m and c/m only at ζ = 1
+// The seed mapping's timeconst = √(m/k) reproduces k/m and c/m only at ζ = 1
 // (mapping.hpp): at ζ = 0.1 it is 100× too stiff, at ζ = 5 25× too soft.
 // The point mass's drop then differs from the reference by centimetres,
 // against micrometres (ζ = 5) and under a millimetre (ζ = 0.1, a long

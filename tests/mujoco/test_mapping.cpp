@@ -195,7 +195,7 @@ TEST(Mjcf, EveryContactGeomHasCondimSixAndTheSceneFriction) {
 }
 
 // Inertia about the hinge (MuJoCo y) is the 2D value; the circle's other
-// axes are those of a cylinder of length 2R (SPEC §5).
+// axes are those of a cylinder of length 2R (docs/mujoco.md).
 TEST(Mjcf, InertiaFromTheTwoDimensionalModel) {
   for (Shape shape : {Shape::Box, Shape::TShape, Shape::Circle}) {
     const Scene scene = default_scene(shape);

@@ -1,4 +1,4 @@
-// The MuJoCo stepper (mujoco/stepper.hpp): state read-back conventions (SPEC §1), sample times,
+// The MuJoCo stepper (mujoco/stepper.hpp): state read-back conventions (docs/physics.md), sample times,
 // runtime warnings and divergence.
 #include <cmath>
 #include <string>
@@ -29,7 +29,7 @@ TEST(MujocoStepper, FreeFlightReadsBackTheReferenceState) {
   EXPECT_NEAR(end.q.z(), 0.7 - 3.1 * 0.5, 1e-12);  // ω < 0 turns clockwise: θ falls
 }
 
-// SPEC §1: a body-fixed point c_loc is at p + R(θ)·c_loc with θ counter-
+// docs/physics.md: a body-fixed point c_loc is at p + R(θ)·c_loc with θ counter-
 // clockwise. MuJoCo's forward kinematics of the generated model put every
 // corner sphere there (MuJoCo z = 2D y), for any (x, y, θ).
 TEST(MujocoStepper, CornerSpheresSitWhereTheTwoDimensionalRotationPutsThem) {
