@@ -1,5 +1,5 @@
-// The MuJoCo stepper (mujoco/stepper.hpp): state read-back conventions (docs/physics.md), sample times,
-// runtime warnings and divergence.
+// The MuJoCo stepper (mujoco/stepper.hpp): state read-back conventions (docs/physics.md), sample
+// times, runtime warnings and divergence.
 #include <cmath>
 #include <string>
 
