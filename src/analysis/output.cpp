@@ -264,17 +264,19 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
 
   // Two panels side by side above one legend for both.
   const int legend_rows = static_cast<int>((series.size() + 2 + 2) / 3);
-  const double legend = std::min(0.45, 0.05 + 0.04 * legend_rows);
+  const int height = 600 + 22 * legend_rows;
+  const double legend = (30.0 + 22.0 * legend_rows) / height;
   const int blocks = static_cast<int>(series.size());
   std::ostringstream s;
-  s << gnuplot_png(png_tmp, 1400, 700) << "set multiplot title '" << gnuplot_text(r.scene_name)
+  s << gnuplot_png(png_tmp, 1400, height) << "set multiplot title '" << gnuplot_text(r.scene_name)
     << " (" << number(r.duration, 3)
     << " s): max position error against the converged reference' font ',13'\n"
     << "set logscale xy\nset grid\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
     << "set ylabel 'max position error (m)'\n"
-    << gnuplot_range("y", errors.lo, errors.hi, true) << "set size 0.5," << 0.92 - legend
-    << "\nset origin 0," << legend << "\n"
-    << "set key at screen 0.5," << legend << " center top horizontal maxcols 3 font ',10'\n"
+    << gnuplot_range("y", errors.lo, errors.hi, true) << "set size 0.5,"
+    << 1.0 - legend - 40.0 / height << "\nset origin 0," << legend << "\n"
+    << "set key at screen 0.5," << legend << " center top vertical maxrows " << legend_rows
+    << " reverse Left samplen 3 font ',10'\n"
     << "set xlabel 'wall-clock time of the run (s)'\n"
     << gnuplot_range("x", seconds.lo, seconds.hi, true) << "set title 'work–precision'\n";
   auto plot_lines = [&](const char* using_cols, bool with_dense) {
@@ -531,18 +533,21 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
 
   const size_t entries = series.size() + 3;
   const int legend_rows = static_cast<int>((entries + 2) / 3);
-  const double legend = std::min(0.45, 0.05 + 0.035 * legend_rows);
+  const int height = 650 + 22 * legend_rows;
+  const double legend = (30.0 + 22.0 * legend_rows) / height;
   std::ostringstream s;
-  s << gnuplot_png(png_tmp, 1400, 750) << "set multiplot title '" << gnuplot_text(r.scene_name)
+  s << gnuplot_png(png_tmp, 1400, height) << "set multiplot title '" << gnuplot_text(r.scene_name)
     << ": largest stable time step against contact stiffness"
     << (r.zeta ? " (ζ = " + number(*r.zeta, 3) + " at every k)"
                : std::string(" (c of the scene file at every k)"))
     << "; ω = √(k/m_{eff})' font ',13'\n"
     << "set logscale xy\nset grid\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
     << "set datafile missing '?'\nset xlabel 'contact stiffness k (N/m)'\n"
-    << gnuplot_range("x", ks.lo, ks.hi * 4.0, true)  // room for the theory labels
-    << "set size 0.5," << 0.92 - legend << "\n"
-    << "set key at screen 0.5," << legend << " center top horizontal maxcols 3 font ',10'\n";
+    << "set rmargin 19\n"  // the theory lines' labels
+    << gnuplot_range("x", ks.lo, ks.hi, true) << "set size 0.5," << 1.0 - legend - 40.0 / height
+    << "\n"
+    << "set key at screen 0.5," << legend << " center top vertical maxrows " << legend_rows
+    << " reverse Left samplen 3 font ',10'\n";
   auto panel = [&](int offset, bool with_key) {
     // offset 0: columns in Δt, 4: in ω·Δt.
     for (size_t n = 0; n < theory_of.size(); ++n) {
@@ -566,6 +571,8 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
       const std::string colour = " lc " + integrator_colour(c.integrator);
       const std::string marker =
           " pt " + std::to_string(c.style.point_type) + " ps " + number(c.style.point_size, 2);
+      // Bound markers nest like the engines' markers when they coincide.
+      const std::string bound_size = " ps " + number(c.style.point_size + 0.8, 2);
       std::string title = c.title;
       if (c.has[0]) {
         element(i,
@@ -575,11 +582,11 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
         title.clear();
       }
       if (c.has[1]) {
-        element(i, col(4) + " with points pt 8 ps 2" + colour, title);
+        element(i, col(4) + " with points pt 8" + bound_size + colour, title);
         title.clear();
       }
       if (c.has[2]) {
-        element(i, col(5) + " with points pt 10 ps 2" + colour, title);
+        element(i, col(5) + " with points pt 10" + bound_size + colour, title);
         title.clear();
       }
     }
@@ -598,8 +605,7 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
   s << "set origin 0," << legend << "\nset ylabel 'largest stable Δt (s)'\n"
     << gnuplot_range("y", dts.lo, dts.hi, true) << "set title 'in seconds'\n";
   panel(0, true);
-  s << "unset key\nset origin 0.5," << legend
-    << "\nset ylabel 'largest stable ω·Δt (rad, dimensionless)'\n"
+  s << "unset key\nset origin 0.5," << legend << "\nset ylabel 'largest stable ω·Δt (rad)'\n"
     << gnuplot_range("y", wdts.lo, wdts.hi, true) << "set title 'in ω·Δt'\n";
   panel(4, false);
   s << "unset multiplot\n";

@@ -220,7 +220,7 @@ std::string gnuplot_range(const char* axis, double lo, double hi, bool log) {
   }
   double a = lo, b = hi;
   if (log) {
-    const double pad = b > a * (1 + 1e-12) ? 1.5 : 3.0;
+    const double pad = b > a * (1 + 1e-12) ? 2.0 : 3.0;
     a /= pad;
     b *= pad;
   } else if (b - a > 1e-12 * std::max(1.0, std::abs(b))) {
