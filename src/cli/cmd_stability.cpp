@@ -64,7 +64,7 @@ Command add_stability(CLI::App& app) {
   o->add_to(*cmd, "Write one row per engine, integrator and k to this CSV file",
             "Write the stability map (PNG, gnuplot)");
   cmd->add_option("--ks", o->ks, "Comma-separated contact stiffnesses (default 1e3,1e4,...,1e9)")
-      ->type_name("N/m,...")
+      ->type_name("N/m")
       ->delimiter(',');
   cmd->add_option(
          "--zeta", o->zeta,

@@ -115,17 +115,17 @@ Command add_sweep(CLI::App& app) {
             "Write the work-precision diagram (PNG, gnuplot)");
   cmd->add_option("--dts", o->dts,
                   "Comma-separated time steps (default: 1e-3,5e-4,2e-4,1e-4,5e-5,2e-5,1e-5)")
-      ->type_name("SECONDS,...")
+      ->type_name("SECONDS")
       ->delimiter(',');
   cmd->add_option("--mujoco-dts", o->mujoco_dts,
                   "Comma-separated time steps for MuJoCo only (default: --dts; a MuJoCo step costs "
                   "~100x a reference step)")
-      ->type_name("SECONDS,...")
+      ->type_name("SECONDS")
       ->delimiter(',');
   cmd->add_option("--mujoco-integrators", o->mujoco_integrators,
                   "Comma-separated integrators for MuJoCo only (default: --integrators; it has no "
                   "explicit_euler)")
-      ->type_name("NAME,...")
+      ->type_name("NAME")
       ->delimiter(',');
   cmd->add_option("--orders-csv", o->orders_csv, "Write the observed orders to this CSV file")
       ->type_name("FILE.csv");

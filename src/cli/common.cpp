@@ -145,12 +145,12 @@ void AnalysisOptions::add_to(CLI::App& cmd, const std::string& csv_help,
                  "Comma-separated list (default: explicit_euler,semi_implicit_euler,implicit_euler,"
                  "rk4; MuJoCo runs semi_implicit_euler as its Euler, implicit_euler as its "
                  "implicit and rk4 as its RK4)")
-      ->type_name("NAME,...")
+      ->type_name("NAME")
       ->delimiter(',');
   cmd.add_option("--engines", engines,
                  "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = "
                  "its default) (default: ref)")
-      ->type_name("ENGINE,...")
+      ->type_name("ENGINE")
       ->delimiter(',')
       ->check(CLI::IsMember(engines::engine_names()));
   cmd.add_option("--csv", csv, csv_help)->type_name("FILE.csv");
