@@ -571,8 +571,10 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
       const std::string colour = " lc " + integrator_colour(c.integrator);
       const std::string marker =
           " pt " + std::to_string(c.style.point_type) + " ps " + number(c.style.point_size, 2);
-      // Bound markers nest like the engines' markers when they coincide.
-      const std::string bound_size = " ps " + number(c.style.point_size + 0.8, 2);
+      // Bounds often coincide (every series stable at the largest Δt): their
+      // markers grow with the engine and the integrator, so they nest.
+      const std::string bound_size =
+          " ps " + number(c.style.point_size + 0.4 + 0.45 * static_cast<int>(c.integrator), 3);
       std::string title = c.title;
       if (c.has[0]) {
         element(i,
