@@ -157,13 +157,13 @@ void print_orders(std::ostream& out, const SweepResult& r) {
       << number(r.length_scale, 3) << " m (body size or largest COM displacement)\n";
   Table orders{{"engine", "integrator", "against", "nominal", "observed", "dt range", "note"}, {}};
   for (const OrderFit& f : r.orders) {
-    add_row(orders,
-            {f.engine, std::string(integrator_name(f.integrator)), f.against, number(f.nominal, 2),
-             f.order ? number(*f.order, 2) + " ± " + number(f.order_stderr, 1) : "-",
-             f.order ? number(f.dt_min, 2) + ".." + number(f.dt_max, 2) + " (" +
-                           std::to_string(f.points) + ")"
-                     : "-",
-             f.note});
+    add_row(orders, {f.engine, integrator_label(f.integrator, is_mujoco_engine(f.engine)),
+                     f.against, number(f.nominal, 2),
+                     f.order ? number(*f.order, 2) + " ± " + number(f.order_stderr, 1) : "-",
+                     f.order ? number(f.dt_min, 2) + ".." + number(f.dt_max, 2) + " (" +
+                                   std::to_string(f.points) + ")"
+                             : "-",
+                     f.note});
   }
   out << to_text(orders);
 }
@@ -384,8 +384,8 @@ void print_stability(std::ostream& out, const StabilityResult& r) {
     if (!row.note.empty()) tail += (tail.empty() ? "" : "; ") + row.note;
     add_row(
         t,
-        {row.engine, std::string(integrator_name(row.integrator)), number(row.k, 2),
-         number(row.zeta, 3), number(row.omega, 4), stable,
+        {row.engine, integrator_label(row.integrator, is_mujoco_engine(row.engine)),
+         number(row.k, 2), number(row.zeta, 3), number(row.omega, 4), stable,
          std::isnan(row.dt_stable)
              ? "-"
              : (row.verdict == StabilityVerdict::StableAtMax ? ">=" : "") + number(observed, 3),
