@@ -72,10 +72,10 @@ Command add_stability(CLI::App& app) {
       ->type_name("ZETA");
   cmd->add_option("--dt-max", o->dt_max, "Largest dt tried (default 1e-2)")
       ->type_name("SECONDS")
-      ->check(CLI::PositiveNumber);
+      ->check(number_in(0.0, 1e5, true, "(0, 1e5] s"));
   cmd->add_option("--precision", o->precision, "Relative width of the final bracket (default 0.02)")
       ->type_name("FRACTION")
-      ->check(CLI::Range(1e-4, 1.0));
+      ->check(number_in(1e-4, 1.0, false, "[1e-4, 1]"));
   return {cmd, [o] { return stability(*o); }};
 }
 

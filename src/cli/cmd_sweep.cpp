@@ -136,7 +136,7 @@ Command add_sweep(CLI::App& app) {
       ->check(CLI::Range(1, 100));
   cmd->add_option("--tol", o->tol, "Tolerance of the converged reference (default 1e-12)")
       ->type_name("TOL")
-      ->check(CLI::Range(1e-15, 1e-3));
+      ->check(number_in(1e-15, 1e-3, false, "[1e-15, 1e-3]"));
   cmd->add_flag(
       "--reference-study", o->reference_study,
       "First show the reference's self-consistency error at tolerances 1e-3..1e-13 against 1e-14");

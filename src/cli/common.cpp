@@ -53,6 +53,19 @@ Scene SceneOptions::load() const {
   return load_scene(path, overrides);
 }
 
+CLI::Validator number_in(double lo, double hi, bool lo_open, const std::string& range) {
+  return CLI::Validator(
+      [lo, hi, lo_open, range](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0') return text + " is not a number in " + range;
+        if (!((lo_open ? v > lo : v >= lo) && v <= hi))
+          return text + " is out of range: must be in " + range;
+        return std::string();
+      },
+      range);
+}
+
 void MujocoOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--mapping", mapping,
                  "solref/solimp mapping: seed | exact | calibrated (default calibrated)")

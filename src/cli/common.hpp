@@ -56,6 +56,11 @@ std::function<void(size_t, size_t, const std::string&)> progress_reporter(const 
 Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
                       const std::optional<double>& duration);
 
+// A CLI11 check of a number in [lo, hi] ((lo, hi] when `lo_open`) whose
+// message reads "VALUE is out of range: must be in RANGE", with the range as
+// written (CLI11's Range prints 1e-15 as 0.000000).
+CLI::Validator number_in(double lo, double hi, bool lo_open, const std::string& range);
+
 // --mapping and --geometry: the MuJoCo model of a scene (simulate, compare).
 // Empty means the generator's default (calibrated, corners).
 struct MujocoOptions {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -137,6 +138,19 @@ TEST(Cli, SetErrorsNameTheOptionNotTheSceneFile) {
             0u)
       << o.err;
   EXPECT_EQ(o.err.find("box.toml"), std::string::npos) << o.err;
+  // Ranges as written, not CLI11's "0.000000 to 0.001000".
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"sweep " CONTACT2D_SCENES_DIR "/box.toml --tol 1",
+            "contact2d: --tol: 1 is out of range: must be in [1e-15, 1e-3]"},
+           {"stability " CONTACT2D_SCENES_DIR "/box.toml --dt-max -1",
+            "contact2d: --dt-max: -1 is out of range: must be in (0, 1e5] s"},
+           {"stability " CONTACT2D_SCENES_DIR "/box.toml --precision 2",
+            "contact2d: --precision: 2 is out of range: must be in [1e-4, 1]"}}) {
+    const Output bad = capture(args);
+    EXPECT_EQ(bad.status, 2) << args;
+    EXPECT_EQ(bad.err.rfind(message, 0), 0u) << args << ": " << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  }
 }
 
 TEST(Cli, SimulateNamesMujocoIntegratorsByTheSceneNameAndMujocosOwn) {
