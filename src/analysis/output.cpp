@@ -285,7 +285,10 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
       const Series& c = series[static_cast<size_t>(i)];
       s << (i ? ", " : "") << gnuplot_quoted(data) << " index " << i << " using " << using_cols
         << " with linespoints lw 2 lc " << integrator_colour(c.integrator) << " dt "
-        << c.style.dash_type << " pt " << c.style.point_type << " ps " << c.style.point_size
+        << c.style.dash_type << " pt " << c.style.point_type
+        << " ps "
+        // Grows with the integrator too: one engine's flat curves nest.
+        << number(c.style.point_size + 0.35 * static_cast<int>(c.integrator), 3)
         << (with_dense ? " title '" + gnuplot_text(c.title) + "'" : std::string(" notitle"));
     }
     if (with_dense && dense_points > 0) {
