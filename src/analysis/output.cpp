@@ -250,10 +250,12 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
   }
   // The adaptive method: tolerance in column 1 (no dt), its time and error.
   int dense_points = 0;
+  Extent tols;
   for (const ToleranceRow& row : r.dense_curve) {
     if (!row.failure.empty()) continue;
     const double t = std::max(row.seconds, 1e-9), e = std::max(row.error.max_pos, floor / 10);
     std::fprintf(f, "%.9g %.9g %.9g\n", row.tol, t, e);
+    tols.add(row.tol);
     seconds.add(t);
     errors.add(e);
     ++dense_points;
@@ -294,7 +296,8 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
     if (with_dense && dense_points > 0) {
       s << ", " << gnuplot_quoted(data) << " index " << blocks
         << " using 2:3 with linespoints lw 2 lc 'black' pt 5 ps 0.8 title 'adaptive DOPRI5 + "
-           "events (tol 1e-4..1e-10)'";
+           "events (tol "
+        << number(tols.hi, 2) << ".." << number(tols.lo, 2) << ")'";
     }
     s << ", " << number(floor, 3) << " with lines dt 3 lw 2 lc 'gray40' "
       << (with_dense ? "title 'the reference''s own error (" + number(floor, 2) + " m)'"

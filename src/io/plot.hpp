@@ -39,7 +39,7 @@ std::string gnuplot_range(const char* axis, double lo, double hi, bool log);
 
 // Okabe–Ito colours as gnuplot specs ("rgb '#0072B2'"), one per integrator:
 // explicit Euler vermillion, semi-implicit Euler blue, implicit Euler bluish
-// green, RK4 reddish purple (grey levels 0.47, 0.34, 0.42, 0.59).
+// green, RK4 reddish purple (Rec. 601 grey levels 0.47, 0.34, 0.42, 0.59).
 std::string integrator_colour(Integrator integrator);
 inline constexpr const char* kColourRef = "rgb '#0072B2'";     // blue
 inline constexpr const char* kColourMujoco = "rgb '#D55E00'";  // vermillion
