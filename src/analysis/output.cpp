@@ -273,7 +273,7 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
   s << gnuplot_png(png_tmp, 1400, height) << "set multiplot title '" << gnuplot_text(r.scene_name)
     << " (" << number(r.duration, 3)
     << " s): max position error against the converged reference' font ',13'\n"
-    << "set logscale xy\nset grid\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
+    << "set logscale xy\nset grid\n"
     << "set ylabel 'max position error (m)'\n"
     << gnuplot_range("y", errors.lo, errors.hi, true) << "set size 0.5,"
     << 1.0 - legend - 40.0 / height << "\nset origin 0," << legend << "\n"
@@ -547,7 +547,7 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
     << (r.zeta ? " (ζ = " + number(*r.zeta, 3) + " at every k)"
                : std::string(" (c of the scene file at every k)"))
     << "; ω = √(k/m_{eff})' font ',13'\n"
-    << "set logscale xy\nset grid\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
+    << "set logscale xy\nset grid\n"
     << "set datafile missing '?'\nset xlabel 'contact stiffness k (N/m)'\n"
     << "set rmargin 19\n"  // the theory lines' labels
     << gnuplot_range("x", ks.lo, ks.hi, true) << "set size 0.5," << 1.0 - legend - 40.0 / height

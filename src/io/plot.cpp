@@ -232,8 +232,27 @@ std::string gnuplot_range(const char* axis, double lo, double hi, bool log) {
     a -= pad;
     b += pad;
   }
-  return std::string("set ") + axis + "range [" + format_number(a, 17) + ":" +
-         format_number(b, 17) + "]\n";
+  std::string out = std::string("set ") + axis + "range [" + format_number(a, 17) + ":" +
+                    format_number(b, 17) + "]\n";
+  if (!log) return out + "set " + axis + "tics autofreq\n";
+  if (b / a >= 100)
+    return out + "set " + axis + "tics autofreq\nset format " + axis + " '10^{%L}'\n";
+  // Under two decades a log axis has one power of ten or none to label:
+  // tics at 1, 2, 5 × 10^n (every digit when that gives fewer than 3).
+  std::vector<double> tics;
+  for (const std::vector<int>& digits : {std::vector<int>{1, 2, 5}, {1, 2, 3, 4, 5, 6, 7, 8, 9}}) {
+    tics.clear();
+    for (int e = static_cast<int>(std::floor(std::log10(a))); e <= std::ceil(std::log10(b)); ++e) {
+      for (int d : digits) {
+        const double v = d * std::pow(10.0, e);
+        if (v >= a && v <= b) tics.push_back(v);
+      }
+    }
+    if (tics.size() >= 3) break;
+  }
+  out += std::string("set ") + axis + "tics (";
+  for (size_t i = 0; i < tics.size(); ++i) out += (i ? ", " : "") + format_number(tics[i], 3);
+  return out + ")\nset format " + axis + " '%g'\n";
 }
 
 std::string integrator_colour(Integrator integrator) {

@@ -34,7 +34,8 @@ std::string gnuplot_png(const std::string& png_tmp, int width, int height);
 
 // "set xrange [lo:hi]\n" for `axis` ("x", "y") around data in [lo, hi],
 // padded (by a factor on a log axis), never empty: a constant curve gets a
-// range around its value.
+// range around its value. On a log axis also its tic format: powers of ten
+// over two decades or more, plain numbers below.
 std::string gnuplot_range(const char* axis, double lo, double hi, bool log);
 
 // Okabe–Ito colours as gnuplot specs ("rgb '#0072B2'"), one per integrator:

@@ -64,11 +64,15 @@ TEST(GnuplotText, EscapesEnhancedTextSoNamesReadAsWritten) {
 
 TEST(GnuplotRange, NeverEmptyAndPadded) {
   EXPECT_EQ(gnuplot_range("y", 2.0, 2.0, false),
-            "set yrange [1.8999999999999999:2.1000000000000001]\n");
-  EXPECT_EQ(gnuplot_range("y", 0.0, 0.0, false), "set yrange [-0.001:0.001]\n");
+            "set yrange [1.8999999999999999:2.1000000000000001]\nset ytics autofreq\n");
+  EXPECT_EQ(gnuplot_range("y", 0.0, 0.0, false), "set yrange [-0.001:0.001]\nset ytics autofreq\n");
   EXPECT_EQ(gnuplot_range("x", 1e-3, 1e-3, true),
-            "set xrange [0.00033333333333333332:0.0030000000000000001]\n");
+            "set xrange [0.00033333333333333332:0.0030000000000000001]\n"
+            "set xtics (0.0005, 0.001, 0.002)\nset format x '%g'\n");
   EXPECT_EQ(gnuplot_range("x", 0.0, 1.0, true), "set xrange [1e-16:1]\n");  // log of 0: a default
+  EXPECT_EQ(
+      gnuplot_range("y", 1e-6, 1e-2, true),
+      "set yrange [4.9999999999999998e-07:0.02]\nset ytics autofreq\nset format y '10^{%L}'\n");
 }
 
 }  // namespace
