@@ -311,7 +311,7 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
     << "set title 'error against Δt (slope = observed order)'\n";
   plot_lines("1:3", false);
   s << "unset multiplot\n";
-  run_gnuplot(s.str(), png_tmp);
+  run_gnuplot(s.str(), png_path);
   png.commit();
 }
 
@@ -617,7 +617,7 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
     << gnuplot_range("y", wdts.lo, wdts.hi, true) << "set title 'in ω·Δt'\n";
   panel(4, false);
   s << "unset multiplot\n";
-  run_gnuplot(s.str(), png_tmp);
+  run_gnuplot(s.str(), png_path);
   png.commit();
 }
 
