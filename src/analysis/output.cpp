@@ -1,6 +1,7 @@
 #include "analysis/output.hpp"
 
 #include "core/format.hpp"
+#include "core/integrator_label.hpp"
 
 #include <sys/wait.h>
 
@@ -10,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -42,25 +44,46 @@ std::string kind_text(DivergenceKind kind) {
   return "?";
 }
 
-// "RK4" for the reference, "MuJoCo Euler" etc. for MuJoCo (its Euler is
-// semi-implicit; it has no explicit Euler).
-std::string series_title(const std::string& engine, Integrator integrator) {
-  if (engine == "ref") return std::string(integrator_title(integrator));
-  if (engine.rfind("mujoco", 0) == 0) {
-    // "mujoco" or "mujoco:MAPPING"
-    const std::string prefix = engine.size() > 7 ? "MuJoCo (" + engine.substr(7) + ") " : "MuJoCo ";
-    switch (integrator) {
-      case Integrator::SemiImplicitEuler: return prefix + "Euler";
-      case Integrator::ImplicitEuler: return prefix + "implicit";
-      case Integrator::RK4: return prefix + "RK4";
-      case Integrator::ExplicitEuler: return prefix + "explicit Euler";
-    }
+// The smallest and largest finite value seen (axis ranges of the plots).
+struct Extent {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void add(double v) {
+    if (!std::isfinite(v)) return;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
   }
-  return engine + " " + std::string(integrator_title(integrator));
+};
+
+// "ref: rk4", "mujoco:seed: semi_implicit_euler (MuJoCo Euler)": the
+// engine and integrator as --engines and --integrators name them.
+std::string series_title(const std::string& engine, Integrator integrator) {
+  return engine + ": " + integrator_label(integrator, is_mujoco_engine(engine));
 }
 
-// Text for gnuplot's enhanced mode inside single quotes: '_' and '^' would
-// start a subscript or superscript.
+// How a series of an engine is drawn: the reference solid with small
+// filled circles; each MuJoCo engine dashed with open markers of its own
+// shape, each larger than the last, so curves that coincide (MuJoCo's
+// mappings often do) show as nested markers. Colour = integrator.
+struct EngineStyle {
+  int point_type;
+  double point_size;
+  int dash_type;
+};
+EngineStyle engine_style(size_t engine_index) {
+  static const EngineStyle styles[] = {{7, 1.0, 1}, {4, 1.6, 2}, {6, 2.1, 4}, {12, 2.6, 5}};
+  return styles[std::min<size_t>(engine_index, 3)];
+}
+
+// The position of `engine` in the order the engines first appear.
+size_t engine_index(std::vector<std::string>& engines, const std::string& engine) {
+  auto it = std::find(engines.begin(), engines.end(), engine);
+  if (it == engines.end()) {
+    engines.push_back(engine);
+    return engines.size() - 1;
+  }
+  return static_cast<size_t>(it - engines.begin());
+}
 
 }  // namespace
 
@@ -87,7 +110,8 @@ void print_sweep(std::ostream& out, const SweepResult& r) {
               "own-finest err", "time (ms)", "note"},
              {}};
   for (const SweepRow& row : r.rows) {
-    const std::string engine = row.engine, integrator(integrator_name(row.integrator)),
+    const std::string engine = row.engine,
+                      integrator = integrator_label(row.integrator, is_mujoco_engine(row.engine)),
                       dt = number(row.dt, 3);
     if (row.status == RunStatus::Ok) {
       add_row(runs, {engine, integrator, dt, number(row.error.max_pos), number(row.error.end_pos),
@@ -133,13 +157,13 @@ void print_orders(std::ostream& out, const SweepResult& r) {
       << number(r.length_scale, 3) << " m (body size or largest COM displacement)\n";
   Table orders{{"engine", "integrator", "against", "nominal", "observed", "dt range", "note"}, {}};
   for (const OrderFit& f : r.orders) {
-    add_row(orders,
-            {f.engine, std::string(integrator_name(f.integrator)), f.against, number(f.nominal, 2),
-             f.order ? number(*f.order, 2) + " ± " + number(f.order_stderr, 1) : "-",
-             f.order ? number(f.dt_min, 2) + ".." + number(f.dt_max, 2) + " (" +
-                           std::to_string(f.points) + ")"
-                     : "-",
-             f.note});
+    add_row(orders, {f.engine, integrator_label(f.integrator, is_mujoco_engine(f.engine)),
+                     f.against, number(f.nominal, 2),
+                     f.order ? number(*f.order, 2) + " ± " + number(f.order_stderr, 1) : "-",
+                     f.order ? number(f.dt_min, 2) + ".." + number(f.dt_max, 2) + " (" +
+                                   std::to_string(f.points) + ")"
+                             : "-",
+                     f.note});
   }
   out << to_text(orders);
 }
@@ -192,75 +216,102 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
   std::FILE* f = data_file.get();
   const std::string& data = data_file.temp_path();
   // One block per engine/integrator: dt, seconds, max position error.
-  std::vector<std::string> titles;
   std::vector<std::pair<std::string, Integrator>> keys;
   for (const SweepRow& row : r.rows) {
     const auto key = std::make_pair(row.engine, row.integrator);
     if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
   }
   const double floor = std::max(r.reference_error, 1e-16);
-  int blocks = 0;
+  struct Series {
+    std::string title;
+    Integrator integrator;
+    EngineStyle style;
+  };
+  std::vector<Series> series;
+  std::vector<std::string> engines;
+  Extent seconds, dts, errors;
+  errors.add(floor);
   for (const auto& key : keys) {
     int points = 0;
     for (const SweepRow& row : r.rows) {
       if (row.engine != key.first || row.integrator != key.second || row.status != RunStatus::Ok)
         continue;
-      std::fprintf(f, "%.9g %.9g %.9g\n", row.dt, std::max(row.seconds, 1e-9),
-                   std::max(row.error.max_pos, 1e-16));
+      const double t = std::max(row.seconds, 1e-9), e = std::max(row.error.max_pos, floor / 10);
+      std::fprintf(f, "%.9g %.9g %.9g\n", row.dt, t, e);
+      seconds.add(t);
+      dts.add(row.dt);
+      errors.add(e);
       ++points;
     }
     if (points == 0) continue;
     std::fprintf(f, "\n\n");
-    titles.push_back(series_title(key.first, key.second));
-    ++blocks;
+    series.push_back({series_title(key.first, key.second), key.second,
+                      engine_style(engine_index(engines, key.first))});
   }
   // The adaptive method: tolerance in column 1 (no dt), its time and error.
   int dense_points = 0;
+  Extent tols;
   for (const ToleranceRow& row : r.dense_curve) {
     if (!row.failure.empty()) continue;
-    std::fprintf(f, "%.9g %.9g %.9g\n", row.tol, std::max(row.seconds, 1e-9),
-                 std::max(row.error.max_pos, 1e-16));
+    const double t = std::max(row.seconds, 1e-9), e = std::max(row.error.max_pos, floor / 10);
+    std::fprintf(f, "%.9g %.9g %.9g\n", row.tol, t, e);
+    tols.add(row.tol);
+    seconds.add(t);
+    errors.add(e);
     ++dense_points;
   }
   std::fprintf(f, "\n\n");
   if (std::fflush(f) != 0) throw std::runtime_error(data + ": cannot write plot data");
-  if (blocks == 0) throw std::runtime_error(png_path + ": no run finished, nothing to plot");
+  if (series.empty()) throw std::runtime_error(png_path + ": no run finished, nothing to plot");
 
+  // Two panels side by side above one legend for both.
+  const int legend_rows = static_cast<int>((series.size() + 2 + 2) / 3);
+  const int height = 600 + 22 * legend_rows;
+  const double legend = (30.0 + 22.0 * legend_rows) / height;
+  const int blocks = static_cast<int>(series.size());
   std::ostringstream s;
-  s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1400,600 font "
-       "',11' } "
-       "else { set terminal png size 1400,600 }\n"
-    << "set output " << gnuplot_quoted(png_tmp) << "\n"
-    << "set multiplot layout 1,2 title '" << gnuplot_text(r.scene_name) << " ("
-    << number(r.duration, 3)
-    << " s): max position error against the converged reference (its own error: "
-    << number(floor, 2) << " m)'\n"
-    << "set logscale xy\nset grid\nset format y '10^{%L}'\nset key bottom right font ',9'\n"
+  s << gnuplot_png(png_tmp, 1400, height) << "set multiplot title '" << gnuplot_text(r.scene_name)
+    << " (" << number(r.duration, 3)
+    << " s): max position error against the converged reference' font ',13'\n"
+    << "set logscale xy\nset grid\n"
     << "set ylabel 'max position error (m)'\n"
-    << "set xlabel 'wall-clock time of the run (s)'\nset format x '10^{%L}'\n"
-    << "set title 'work–precision'\n";
+    << gnuplot_range("y", errors.lo, errors.hi, true) << "set size 0.5,"
+    << 1.0 - legend - 40.0 / height << "\nset origin 0," << legend << "\n"
+    << "set key at screen 0.5," << legend << " center top vertical maxrows " << legend_rows
+    << " reverse Left samplen 3 font ',10'\n"
+    << "set xlabel 'wall-clock time of the run (s)'\n"
+    << gnuplot_range("x", seconds.lo, seconds.hi, true) << "set title 'work–precision'\n";
   auto plot_lines = [&](const char* using_cols, bool with_dense) {
     s << "plot ";
     for (int i = 0; i < blocks; ++i) {
-      // MuJoCo dashed, the reference solid.
-      const bool mujoco = titles[i].rfind("MuJoCo", 0) == 0;
+      const Series& c = series[static_cast<size_t>(i)];
       s << (i ? ", " : "") << gnuplot_quoted(data) << " index " << i << " using " << using_cols
-        << " with linespoints lw 2 pt " << (i % 7) + 1 << (mujoco ? " dt 2" : "") << " title '"
-        << gnuplot_text(titles[i]) << "'";
+        << " with linespoints lw 2 lc " << integrator_colour(c.integrator) << " dt "
+        << c.style.dash_type << " pt " << c.style.point_type
+        << " ps "
+        // Grows with the integrator too: one engine's flat curves nest.
+        << number(c.style.point_size + 0.35 * static_cast<int>(c.integrator), 3)
+        << (with_dense ? " title '" + gnuplot_text(c.title) + "'" : std::string(" notitle"));
     }
     if (with_dense && dense_points > 0) {
       s << ", " << gnuplot_quoted(data) << " index " << blocks
-        << " using 2:3 with linespoints lw 2 lc 'black' pt 7 ps 0.7 title 'adaptive DOPRI5 + "
-           "events (tol 1e-4..1e-10)'";
+        << " using 2:3 with linespoints lw 2 lc 'black' pt 5 ps 0.8 title 'adaptive DOPRI5 + "
+           "events (tol "
+        << number(tols.hi, 2) << ".." << number(tols.lo, 2) << ")'";
     }
-    s << ", " << number(floor, 3) << " with lines dt 3 lc 'gray' title 'reference error'\n";
+    s << ", " << number(floor, 3) << " with lines dt 3 lw 2 lc 'gray40' "
+      << (with_dense ? "title 'the reference''s own error (" + number(floor, 2) + " m)'"
+                     : std::string("notitle"))
+      << "\n";
   };
-  s << "set yrange [" << number(floor / 10.0, 3) << ":*]\n";
   plot_lines("2:3", true);
-  s << "set xlabel 'time step dt (s)'\nset title 'error against dt (slope = observed order)'\n";
+  s << "unset key\nset origin 0.5," << legend << "\n"
+    << "set xlabel 'time step Δt (s)'\n"
+    << gnuplot_range("x", dts.lo, dts.hi, true)
+    << "set title 'error against Δt (slope = observed order)'\n";
   plot_lines("1:3", false);
   s << "unset multiplot\n";
-  run_gnuplot(s.str(), png_tmp);
+  run_gnuplot(s.str(), png_path);
   png.commit();
 }
 
@@ -339,8 +390,8 @@ void print_stability(std::ostream& out, const StabilityResult& r) {
     if (!row.note.empty()) tail += (tail.empty() ? "" : "; ") + row.note;
     add_row(
         t,
-        {row.engine, std::string(integrator_name(row.integrator)), number(row.k, 2),
-         number(row.zeta, 3), number(row.omega, 4), stable,
+        {row.engine, integrator_label(row.integrator, is_mujoco_engine(row.engine)),
+         number(row.k, 2), number(row.zeta, 3), number(row.omega, 4), stable,
          std::isnan(row.dt_stable)
              ? "-"
              : (row.verdict == StabilityVerdict::StableAtMax ? ">=" : "") + number(observed, 3),
@@ -415,82 +466,162 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
     const auto key = std::make_pair(row.engine, row.integrator);
     if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
   }
-  // Per block: k, bracketed ω·Δt, theory ω·Δt, lower bound (stable up to
-  // dt_max), upper bound (unstable down to dt_min); '?' where absent.
-  std::vector<std::string> titles;
-  std::vector<bool> has_theory;
-  std::vector<std::array<bool, 3>> has;  // bracketed, lower bound, upper bound
+  // Per block, in Δt (s) then in ω·Δt: bracketed, theory, lower bound
+  // (stable up to dt_max), upper bound (unstable down to dt_min); '?' where
+  // absent. Column 1 is k.
+  struct Series {
+    std::string title;
+    Integrator integrator = Integrator::RK4;
+    EngineStyle style{};
+    std::array<bool, 3> has{false, false, false};  // bracketed, lower, upper
+    std::vector<double> theory;                    // ω·Δt per k (NaN: none)
+    double last_k = 0, last_theory_dt = 0, last_theory = 0;
+  };
+  std::vector<Series> series;
+  std::vector<std::string> engines;
+  Extent ks, dts, wdts;
+  auto field = [](bool present, double v) { return present ? number(v, 6) : std::string("?"); };
   for (const auto& key : keys) {
-    bool theory = false;
-    std::array<bool, 3> any{false, false, false};
+    Series c;
+    c.title = series_title(key.first, key.second);
+    c.integrator = key.second;
+    c.style = engine_style(engine_index(engines, key.first));
     for (const StabilityRow& row : r.rows) {
       if (row.engine != key.first || row.integrator != key.second) continue;
-      const double observed = row.omega * row.dt_stable;
       const bool bracketed = row.verdict == StabilityVerdict::Bracketed;
       const bool lower = row.verdict == StabilityVerdict::StableAtMax;
       const bool upper = row.verdict == StabilityVerdict::UnstableAtMin;
-      std::fprintf(f, "%.9g %s %s %s %s\n", row.k, bracketed ? number(observed, 6).c_str() : "?",
-                   std::isfinite(row.theory) ? number(row.theory, 6).c_str() : "?",
-                   lower ? number(observed, 6).c_str() : "?",
-                   upper ? number(row.omega * row.dt_min, 6).c_str() : "?");
-      theory = theory || std::isfinite(row.theory);
-      any[0] = any[0] || bracketed;
-      any[1] = any[1] || lower;
-      any[2] = any[2] || upper;
+      const bool theory = std::isfinite(row.theory) && row.omega > 0;
+      const double dt = bracketed || lower ? row.dt_stable : row.dt_min;
+      std::fprintf(f, "%.9g %s %s %s %s %s %s %s %s\n", row.k, field(bracketed, dt).c_str(),
+                   field(theory, row.theory / row.omega).c_str(), field(lower, dt).c_str(),
+                   field(upper, dt).c_str(), field(bracketed, row.omega * dt).c_str(),
+                   field(theory, row.theory).c_str(), field(lower, row.omega * dt).c_str(),
+                   field(upper, row.omega * dt).c_str());
+      ks.add(row.k);
+      if (bracketed || lower || upper) {
+        dts.add(dt);
+        wdts.add(row.omega * dt);
+      }
+      if (theory) {
+        dts.add(row.theory / row.omega);
+        wdts.add(row.theory);
+        c.last_k = row.k;
+        c.last_theory_dt = row.theory / row.omega;
+        c.last_theory = row.theory;
+      }
+      c.theory.push_back(theory ? row.theory : std::nan(""));
+      c.has[0] = c.has[0] || bracketed;
+      c.has[1] = c.has[1] || lower;
+      c.has[2] = c.has[2] || upper;
     }
-    has.push_back(any);
     std::fprintf(f, "\n\n");
-    titles.push_back(series_title(key.first, key.second));
-    has_theory.push_back(theory);
+    series.push_back(c);
   }
   if (std::fflush(f) != 0) throw std::runtime_error(data + ": cannot write plot data");
-
-  std::ostringstream s;
-  s << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1000,650 font "
-       "',11' } "
-       "else { set terminal png size 1000,650 }\n"
-    << "set output " << gnuplot_quoted(png_tmp) << "\n"
-    << "set title '" << gnuplot_text(r.scene_name)
-    << ": largest stable {/Symbol w}{/Symbol D}t against contact stiffness"
-    << (r.zeta ? " ({/Symbol z} = " + number(*r.zeta, 3) + " at every k)"
-               : std::string(" (c of the scene file at every k)"))
-    << "'\n"
-    << "set logscale xy\nset grid\nset format x '10^{%L}'\nset datafile missing '?'\nset key "
-       "outside right font ',9'\n"
-    << "set xlabel 'contact stiffness k (N/m)'\nset ylabel 'largest stable {/Symbol w}{/Symbol "
-       "D}t'\n"
-    << "plot ";
-  bool first = true;
-  for (size_t i = 0; i < keys.size(); ++i) {
-    // The first plotted element of each series carries its title.
-    std::string title = " title '" + gnuplot_text(titles[i]) + "'";
-    auto element = [&](const std::string& spec) {
-      s << (first ? "" : ", ") << gnuplot_quoted(data) << " index " << i << " using " << spec
-        << title;
-      first = false;
-      title = " notitle";
-    };
-    if (has[i][0])
-      element("1:2 with linespoints pt " + std::to_string(i % 7 + 1) + " ps 1.5 lc " +
-              std::to_string(i + 1));
-    if (has[i][1]) element("1:4 with points pt 8 ps 1.5 lc " + std::to_string(i + 1));
-    if (has[i][2]) element("1:5 with points pt 10 ps 1.5 lc " + std::to_string(i + 1));
-    if (has_theory[i]) {
-      title = " notitle";
-      element("1:3 with lines dt 2 lc " + std::to_string(i + 1));
+  if (!(dts.hi > 0)) throw std::runtime_error(png_path + ": nothing to plot");
+  // One theory line per integrator (engines that share it share the line),
+  // labelled with the integrator at its right end.
+  std::vector<size_t> theory_of;
+  for (size_t i = 0; i < series.size(); ++i) {
+    if (series[i].last_k <= 0) continue;
+    bool same = false;
+    for (size_t j : theory_of) {
+      same = same || (series[j].integrator == series[i].integrator &&
+                      series[j].theory.size() == series[i].theory.size() &&
+                      std::equal(series[j].theory.begin(), series[j].theory.end(),
+                                 series[i].theory.begin(), [](double a, double b) {
+                                   return a == b || (std::isnan(a) && std::isnan(b));
+                                 }));
     }
+    if (!same) theory_of.push_back(i);
   }
-  if (first) throw std::runtime_error(png_path + ": nothing to plot");
-  s << ", NaN with lines dt 2 lc 'black' title 'linear theory', NaN with points pt 8 lc 'black' "
-       "title "
-       "'stable up to the largest dt tried', NaN with points pt 10 lc 'black' title 'unstable at "
-       "the smallest dt tried'";
-  s << "\n";
-  run_gnuplot(s.str(), png_tmp);
+
+  const size_t entries = series.size() + 3;
+  const int legend_rows = static_cast<int>((entries + 2) / 3);
+  const int height = 650 + 22 * legend_rows;
+  const double legend = (30.0 + 22.0 * legend_rows) / height;
+  std::ostringstream s;
+  s << gnuplot_png(png_tmp, 1400, height) << "set multiplot title '" << gnuplot_text(r.scene_name)
+    << ": largest stable time step against contact stiffness"
+    << (r.zeta ? " (ζ = " + number(*r.zeta, 3) + " at every k)"
+               : std::string(" (c of the scene file at every k)"))
+    << "; ω = √(k/m_{eff})' font ',13'\n"
+    << "set logscale xy\nset grid\n"
+    << "set datafile missing '?'\nset xlabel 'contact stiffness k (N/m)'\n"
+    << "set rmargin 19\n"  // the theory lines' labels
+    << gnuplot_range("x", ks.lo, ks.hi, true) << "set size 0.5," << 1.0 - legend - 40.0 / height
+    << "\n"
+    << "set key at screen 0.5," << legend << " center top vertical maxrows " << legend_rows
+    << " reverse Left samplen 3 font ',10'\n";
+  auto panel = [&](int offset, bool with_key) {
+    // offset 0: columns in Δt, 4: in ω·Δt.
+    for (size_t n = 0; n < theory_of.size(); ++n) {
+      const Series& c = series[theory_of[n]];
+      s << "set label " << n + 1 << " '" << gnuplot_text(std::string(integrator_name(c.integrator)))
+        << " theory' at " << number(c.last_k * 1.15, 6) << ","
+        << number(offset ? c.last_theory : c.last_theory_dt, 6) << " left tc "
+        << integrator_colour(c.integrator) << " font ',9'\n";
+    }
+    s << "plot ";
+    bool first = true;
+    auto element = [&](size_t i, const std::string& spec, const std::string& title) {
+      s << (first ? "" : ", ") << gnuplot_quoted(data) << " index " << i << " using " << spec
+        << (with_key && !title.empty() ? " title '" + gnuplot_text(title) + "'"
+                                       : std::string(" notitle"));
+      first = false;
+    };
+    auto col = [&](int c) { return "1:" + std::to_string(c + offset); };
+    for (size_t i = 0; i < series.size(); ++i) {
+      const Series& c = series[i];
+      const std::string colour = " lc " + integrator_colour(c.integrator);
+      const std::string marker =
+          " pt " + std::to_string(c.style.point_type) + " ps " + number(c.style.point_size, 2);
+      // Bounds often coincide (every series stable at the largest Δt): their
+      // markers grow with the engine and the integrator, so they nest.
+      const std::string bound_size =
+          " ps " + number(c.style.point_size + 0.4 + 0.45 * static_cast<int>(c.integrator), 3);
+      std::string title = c.title;
+      if (c.has[0]) {
+        element(i,
+                col(2) + " with linespoints lw 2 dt " + std::to_string(c.style.dash_type) + marker +
+                    colour,
+                title);
+        title.clear();
+      }
+      if (c.has[1]) {
+        element(i, col(4) + " with points pt 8" + bound_size + colour, title);
+        title.clear();
+      }
+      if (c.has[2]) {
+        element(i, col(5) + " with points pt 10" + bound_size + colour, title);
+        title.clear();
+      }
+    }
+    for (size_t i : theory_of) {
+      element(i, col(3) + " with lines lw 1.5 dt 3 lc " + integrator_colour(series[i].integrator),
+              "");
+    }
+    if (with_key) {
+      s << ", NaN with lines lw 1.5 dt 3 lc 'black' title 'linear theory (labelled with its "
+           "integrator)', NaN with points pt 8 ps 2 lc 'black' title 'stable up to the largest Δt "
+           "tried', NaN with points pt 10 ps 2 lc 'black' title 'unstable at the smallest Δt "
+           "tried'";
+    }
+    s << "\n";
+  };
+  s << "set origin 0," << legend << "\nset ylabel 'largest stable Δt (s)'\n"
+    << gnuplot_range("y", dts.lo, dts.hi, true) << "set title 'in seconds'\n";
+  panel(0, true);
+  s << "unset key\nset origin 0.5," << legend << "\nset ylabel 'largest stable ω·Δt (rad)'\n"
+    << gnuplot_range("y", wdts.lo, wdts.hi, true) << "set title 'in ω·Δt'\n";
+  panel(4, false);
+  s << "unset multiplot\n";
+  run_gnuplot(s.str(), png_path);
   png.commit();
 }
 
-// ---------------------------------------------------------------- gnuplot
+// ------------------------------------------------------------ simulate
 
 std::string run_summary(const Scene& scene, const std::string& engine, const EngineRun& run) {
   const Model model = make_model(scene);
@@ -500,11 +631,10 @@ std::string run_summary(const Scene& scene, const std::string& engine, const Eng
   const State& first = samples.front().state;
   const State& last = samples.back().state;
   return std::string(shape_name(scene.shape)) + " [" + engine + ", " +
-         std::string(integrator_name(scene.sim.integrator)) +
+         integrator_label(scene.sim.integrator, is_mujoco_engine(engine)) +
          ", dt = " + format_number(scene.sim.dt) + " s, " + format_number(scene.sim.duration) +
-         " s in " + format_number(run.seconds * 1e3, 3) +
-         " ms]: final x = " + format_number(last.q.x()) + " m, y = " + format_number(last.q.y()) +
-         " m, theta = " + format_number(last.q.z()) +
+         " s in " + format_duration(run.seconds) + "]: final x = " + format_number(last.q.x()) +
+         " m, y = " + format_number(last.q.y()) + " m, theta = " + format_number(last.q.z()) +
          " rad, |v| = " + format_number(last.v.head<2>().norm()) +
          " m/s; max sampled penetration " + format_number(deepest) + " m; energy " +
          format_number(energy(model, first)) + " -> " + format_number(energy(model, last)) +

@@ -18,6 +18,7 @@
 #include "analysis/trajectory_error.hpp"
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
+#include "core/integrator_label.hpp"
 #include "io/csv.hpp"
 #include "io/plot.hpp"
 #include "io/table.hpp"
@@ -200,8 +201,8 @@ void print_table(const Comparison& c) {
   const Energies em = energies(c.scene, c.mujoco.trajectory);
   const analysis::ConvergedSolution& conv = c.three.converged;
   auto f = [](double v) { return format_number(v, 4); };
-  std::cout << shape_name(c.scene.shape) << ": ref " << integrator_name(c.scene.sim.integrator)
-            << " vs MuJoCo " << mj::mujoco_integrator(c.scene.sim.integrator) << ", mapping "
+  std::cout << shape_name(c.scene.shape) << ": ref vs MuJoCo, "
+            << integrator_label(c.scene.sim.integrator, true) << ", mapping "
             << mj::mapping_name(c.mjcf.mapping) << ", geometry "
             << mj::geometry_name(c.mjcf.geometry) << ", "
             << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt")
@@ -347,10 +348,11 @@ int compare(const CompareOptions& options) {
   if (csv) write_csv(*csv, c);
   if (!options.plot.empty()) {
     const std::string title =
-        std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo (" +
-        std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping, " +
+        std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo, " +
+        integrator_label(c.scene.sim.integrator, true) + ", Δt = " + format_number(c.scene.sim.dt) +
+        " s, " + std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping, " +
         (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
-        " damping)";
+        " damping";
     plot_comparison(options.plot, title, c.ref.trajectory, c.mujoco.trajectory);
   }
 #ifdef CONTACT2D_WITH_WINDOW
@@ -360,9 +362,8 @@ int compare(const CompareOptions& options) {
     in.reference = &c.ref.trajectory;
     in.mujoco = &c.mujoco.trajectory;
     in.converged = c.three.converged.available ? &c.three.converged.trajectory : nullptr;
-    in.title = std::string(shape_name(c.scene.shape)) + ": ref " +
-               std::string(integrator_name(c.scene.sim.integrator)) + " vs MuJoCo " +
-               mj::mujoco_integrator(c.scene.sim.integrator) + ", " +
+    in.title = std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo, " +
+               integrator_label(c.scene.sim.integrator, true) + ", " +
                std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping";
     in.reference_label = "ref";
     game::write_comparison_video(options.video, in);
@@ -384,15 +385,19 @@ Command add_compare(CLI::App& app) {
       "compare", "Run the reference solver and MuJoCo on a scene and compare them");
   options->scene.add_to(*cmd);
   options->mujoco.add_to(*cmd);
-  cmd->add_option("--csv", options->csv, "Write both trajectories side by side to this file");
+  cmd->add_option("--csv", options->csv, "Write both trajectories side by side to this file")
+      ->type_name("FILE.csv");
   cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
   cmd->add_option("--plot", options->plot,
-                  "Draw x, y, theta of both engines and the errors into this PNG (gnuplot)");
+                  "Draw x, y, theta of both engines and their distance into this PNG (gnuplot)")
+      ->type_name("FILE.png");
   cmd->add_option("--video", options->video,
                   "Draw both engines overlaid in real time into this .mp4 or .gif (reference "
-                  "filled, MuJoCo outlined, the converged solution as a thin line)");
+                  "filled, MuJoCo outlined, the converged solution as a thin line)")
+      ->type_name("FILE.mp4|.gif");
   cmd->add_option("--converged-tol", options->converged_tol,
                   "Tolerance of the converged solution (rtol = atol; default 1e-12)")
+      ->type_name("TOL")
       ->check(CLI::Validator(
           [](std::string& text) {
             char* end = nullptr;
@@ -401,7 +406,7 @@ Command add_compare(CLI::App& app) {
               return text + " is out of range: must be in [1e-14, 1e-6]";
             return std::string();
           },
-          "TOL in [1e-14, 1e-6]"));
+          "[1e-14, 1e-6]"));
   cmd->add_flag("--no-diagnosis", options->no_diagnosis,
                 "Skip the diagnosis (the re-runs that remove each cause of the difference)");
   return {cmd, [options] { return compare(*options); }};

@@ -45,7 +45,8 @@ Command add_generate(CLI::App& app) {
   options->scene.add_to(*cmd);
   options->mujoco.add_to(*cmd);
   cmd->add_option("-o,--output", options->output,
-                  "Write the MJCF to this file (default: standard output)");
+                  "Write the MJCF to this file (default: standard output)")
+      ->type_name("FILE.xml");
   return {cmd, [options] { return generate(*options); }};
 }
 

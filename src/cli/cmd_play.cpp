@@ -137,21 +137,29 @@ Command add_play(CLI::App& app) {
       "resets\n"
       "to the next pass, F1 or H shows the help, Esc quits. Prints one JSON line at the end.");
   cmd->add_option(
-      "pitch", o->pitch,
-      "Pitch file: a circle scene with [[obstacle]] and [game] (default: the built-in pitch)");
-  cmd->add_option("--engine", o->engine, "ref | mujoco")->check(CLI::IsMember({"ref", "mujoco"}));
+         "pitch", o->pitch,
+         "Pitch file: a circle scene with [[obstacle]] and [game] (default: the built-in pitch)")
+      ->type_name("PITCH.toml");
+  cmd->add_option("--engine", o->engine, "ref | mujoco")
+      ->type_name("ENGINE")
+      ->check(CLI::IsMember({"ref", "mujoco"}));
   cmd->add_option("--seed", o->seed,
-                  "Seed of the passes (default: random; the JSON and the replay say which)");
+                  "Seed of the passes (default: random; the JSON and the replay say which)")
+      ->type_name("N");
   cmd->add_option("--record-input", o->record_input,
-                  "Save the key events (stamped with physics steps) to this replay file");
+                  "Save the key events (stamped with physics steps) to this replay file")
+      ->type_name("FILE");
   cmd->add_option("--replay", o->replay,
-                  "Play back a replay file (its seed, its inputs; live keys are ignored)");
+                  "Play back a replay file (its seed, its inputs; live keys are ignored)")
+      ->type_name("FILE");
   cmd->add_flag("--headless", o->headless,
                 "No window: run as fast as possible and print the JSON line");
   cmd->add_option("--record", o->record,
-                  "Write a video of the window to this .mp4 file (through ffmpeg)");
+                  "Write a video of the window to this .mp4 file (through ffmpeg)")
+      ->type_name("FILE.mp4");
   cmd->add_option("--frames", o->frames,
                   "Close the window after this many frames (to measure the frame rate)")
+      ->type_name("N")
       ->check(CLI::Range(1LL, 100000000LL));
   cmd->add_flag("--no-vsync", o->no_vsync,
                 "Do not wait for the display's refresh (to measure the frame rate)");

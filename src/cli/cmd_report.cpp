@@ -339,12 +339,16 @@ Command add_report(CLI::App& app) {
       "report",
       "Run every case of the validation report and write its pages and plots (from the "
       "repository root)");
-  cmd->add_option("--out", o->out, "Directory of the pages and plots (default validation/report)");
-  cmd->add_option("--models", o->models, "Directory of the generated MJCF models (default models)");
+  cmd->add_option("--out", o->out, "Directory of the pages and plots (default validation/report)")
+      ->type_name("DIR");
+  cmd->add_option("--models", o->models, "Directory of the generated MJCF models (default models)")
+      ->type_name("DIR");
   cmd->add_option("--bench", o->bench,
                   "The contact2d_bench program (default: bench/contact2d_bench beside contact2d; "
-                  "the cost section is left out when there is none)");
-  cmd->add_option("--seed", o->seed, "Seed of the random scenes (default 20260101)");
+                  "the cost section is left out when there is none)")
+      ->type_name("PATH");
+  cmd->add_option("--seed", o->seed, "Seed of the random scenes (default 20260101)")
+      ->type_name("N");
   return {cmd, [o] {
             try {
               return report(*o);

@@ -59,9 +59,11 @@ Command add_simulate(CLI::App& app) {
       app.add_subcommand("simulate", "Run one engine on a scene and write its trajectory");
   options->scene.add_to(*cmd);
   cmd->add_option("--engine", options->engine, "ref | mujoco")
+      ->type_name("ENGINE")
       ->check(CLI::IsMember({"ref", "mujoco"}));
   cmd->add_option("--csv", options->csv,
-                  "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file");
+                  "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file")
+      ->type_name("FILE.csv");
   if (engines::mujoco_available()) options->mujoco.add_to(*cmd);
   return {cmd, [options] { return simulate(*options); }};
 }

@@ -38,7 +38,7 @@ int stability(const StabilityOptions& o) {
     config.precision = o.precision;
     config.threads = o.threads;
     config.progress =
-        terminal_progress("stability " + std::string(shape_name(scene.shape)), o.quiet);
+        progress_reporter("stability " + std::string(shape_name(scene.shape)), o.quiet);
     result = analysis::run_stability(scene, config);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
@@ -63,16 +63,19 @@ Command add_stability(CLI::App& app) {
                                      "(bisection), against the linear theory");
   o->add_to(*cmd, "Write one row per engine, integrator and k to this CSV file",
             "Write the stability map (PNG, gnuplot)");
-  cmd->add_option("--ks", o->ks,
-                  "Comma-separated contact stiffnesses, N/m (default 1e3,1e4,...,1e9)")
+  cmd->add_option("--ks", o->ks, "Comma-separated contact stiffnesses (default 1e3,1e4,...,1e9)")
+      ->type_name("N/m")
       ->delimiter(',');
   cmd->add_option(
-      "--zeta", o->zeta,
-      "Damping ratio held at every k: c = 2*zeta*sqrt(k*m_eff) (default: keep the scene's c)");
-  cmd->add_option("--dt-max", o->dt_max, "Largest dt tried, s (default 1e-2)")
-      ->check(CLI::PositiveNumber);
+         "--zeta", o->zeta,
+         "Damping ratio held at every k: c = 2*zeta*sqrt(k*m_eff) (default: keep the scene's c)")
+      ->type_name("ZETA");
+  cmd->add_option("--dt-max", o->dt_max, "Largest dt tried (default 1e-2)")
+      ->type_name("SECONDS")
+      ->check(number_in(0.0, 1e5, true, "(0, 1e5] s"));
   cmd->add_option("--precision", o->precision, "Relative width of the final bracket (default 0.02)")
-      ->check(CLI::Range(1e-4, 1.0));
+      ->type_name("FRACTION")
+      ->check(number_in(1e-4, 1.0, false, "[1e-4, 1]"));
   return {cmd, [o] { return stability(*o); }};
 }
 

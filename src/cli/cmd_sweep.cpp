@@ -57,7 +57,7 @@ int sweep(const SweepOptions& o) {
   config.repeats = o.repeats;
   config.reference_tol = o.tol;
   config.threads = o.threads;
-  config.progress = terminal_progress("sweep " + std::string(shape_name(scene.shape)), o.quiet);
+  config.progress = progress_reporter("sweep " + std::string(shape_name(scene.shape)), o.quiet);
 
   if (o.reference_study || study_csv) {
     const std::vector<double> tols{1e-3, 1e-4,  1e-5,  1e-6,  1e-7, 1e-8,
@@ -114,28 +114,35 @@ Command add_sweep(CLI::App& app) {
   o->add_to(*cmd, "Write one row per run to this CSV file",
             "Write the work-precision diagram (PNG, gnuplot)");
   cmd->add_option("--dts", o->dts,
-                  "Comma-separated time steps, s (default: 1e-3,5e-4,2e-4,1e-4,5e-5,2e-5,1e-5)")
+                  "Comma-separated time steps (default: 1e-3,5e-4,2e-4,1e-4,5e-5,2e-5,1e-5)")
+      ->type_name("SECONDS")
       ->delimiter(',');
   cmd->add_option("--mujoco-dts", o->mujoco_dts,
                   "Comma-separated time steps for MuJoCo only (default: --dts; a MuJoCo step costs "
                   "~100x a reference step)")
+      ->type_name("SECONDS")
       ->delimiter(',');
   cmd->add_option("--mujoco-integrators", o->mujoco_integrators,
                   "Comma-separated integrators for MuJoCo only (default: --integrators; it has no "
-                  "explicit Euler)")
+                  "explicit_euler)")
+      ->type_name("NAME")
       ->delimiter(',');
-  cmd->add_option("--orders-csv", o->orders_csv, "Write the observed orders to this CSV file");
+  cmd->add_option("--orders-csv", o->orders_csv, "Write the observed orders to this CSV file")
+      ->type_name("FILE.csv");
   cmd->add_option(
          "--repeats", o->repeats,
          "Time each run as the best of N repeats (default 3; 1 when a run takes over 0.25 s)")
+      ->type_name("N")
       ->check(CLI::Range(1, 100));
   cmd->add_option("--tol", o->tol, "Tolerance of the converged reference (default 1e-12)")
-      ->check(CLI::Range(1e-15, 1e-3));
+      ->type_name("TOL")
+      ->check(number_in(1e-15, 1e-3, false, "[1e-15, 1e-3]"));
   cmd->add_flag(
       "--reference-study", o->reference_study,
       "First show the reference's self-consistency error at tolerances 1e-3..1e-13 against 1e-14");
   cmd->add_option("--study-csv", o->study_csv,
-                  "Write the reference study to this CSV file (implies --reference-study)");
+                  "Write the reference study to this CSV file (implies --reference-study)")
+      ->type_name("FILE.csv");
   return {cmd, [o] { return sweep(*o); }};
 }
 

@@ -1,8 +1,11 @@
 #include "cli/common.hpp"
 
 #include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 
 #include "io/scene_file.hpp"
 
@@ -24,37 +27,59 @@ std::string number_option(const char* name, const std::string& text, const char*
 }  // namespace
 
 void SceneOptions::add_to(CLI::App& cmd) {
-  cmd.add_option("scene", path, "Scene file (TOML)")->required();
-  cmd.add_option(
-      "--integrator", integrator,
-      "explicit_euler | semi_implicit_euler | implicit_euler | rk4 (overrides sim.integrator)");
-  cmd.add_option("--dt", dt, "Time step, s (overrides sim.dt)");
-  cmd.add_option("--duration", duration, "Simulated time, s (overrides sim.duration)");
-  cmd.add_option("--set", sets, "Override any scene key, e.g. --set contact.k=1e6 (repeatable)");
+  cmd.add_option("scene", path, "Scene file (TOML)")->required()->type_name("SCENE.toml");
+  cmd.add_option("--integrator", integrator,
+                 "explicit_euler | semi_implicit_euler | implicit_euler | rk4 (overrides "
+                 "sim.integrator; MuJoCo runs semi_implicit_euler as its Euler, implicit_euler as "
+                 "its implicit and rk4 as its RK4)")
+      ->type_name("NAME");
+  cmd.add_option("--dt", dt, "Time step (overrides sim.dt)")->type_name("SECONDS");
+  cmd.add_option("--duration", duration, "Simulated time (overrides sim.duration)")
+      ->type_name("SECONDS");
+  cmd.add_option("--set", sets, "Override any scene key, e.g. --set contact.k=1e6 (repeatable)")
+      ->type_name("KEY=VALUE");
 }
 
 Scene SceneOptions::load() const {
   std::vector<Override> overrides;
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
-  if (!integrator.empty()) overrides.push_back({"sim.integrator", "\"" + integrator + "\""});
-  if (dt) overrides.push_back({"sim.dt", number_option("--dt", *dt, "a time step in s")});
+  if (!integrator.empty())
+    overrides.push_back({"sim.integrator", "\"" + integrator + "\"", "--integrator"});
+  if (dt) overrides.push_back({"sim.dt", number_option("--dt", *dt, "a time step in s"), "--dt"});
   if (duration) {
-    overrides.push_back({"sim.duration", number_option("--duration", *duration, "a time in s")});
+    overrides.push_back(
+        {"sim.duration", number_option("--duration", *duration, "a time in s"), "--duration"});
   }
   return load_scene(path, overrides);
+}
+
+CLI::Validator number_in(double lo, double hi, bool lo_open, const std::string& range) {
+  return CLI::Validator(
+      [lo, hi, lo_open, range](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0') return text + " is not a number in " + range;
+        if (!((lo_open ? v > lo : v >= lo) && v <= hi))
+          return text + " is out of range: must be in " + range;
+        return std::string();
+      },
+      range);
 }
 
 void MujocoOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--mapping", mapping,
                  "solref/solimp mapping: seed | exact | calibrated (default calibrated)")
+      ->type_name("NAME")
       ->check(CLI::IsMember({"seed", "exact", "calibrated"}));
   cmd.add_option("--geometry", geometry,
                  "MuJoCo geoms of a box or T: corners (a small sphere per 2D contact point, "
                  "default) | boxes")
+      ->type_name("NAME")
       ->check(CLI::IsMember({"corners", "boxes"}));
   cmd.add_option("--model-dt", model_dt,
                  "Compute MuJoCo's Δt-dependent values (the calibrated impratio) for this Δt "
                  "instead of the timestep: holds the model fixed while --dt changes")
+      ->type_name("SECONDS")
       ->check(CLI::Validator(
           [](std::string& text) {
             char* end = nullptr;
@@ -63,7 +88,7 @@ void MujocoOptions::add_to(CLI::App& cmd) {
               return text + " is out of range: must be in (0, 1] s";
             return std::string();
           },
-          "DT in (0, 1] s"));
+          "(0, 1]"));
 }
 
 engines::EngineSpec MujocoOptions::spec(const std::string& source) const {
@@ -76,13 +101,43 @@ engines::EngineSpec MujocoOptions::spec(const std::string& source) const {
   return spec;
 }
 
-// Progress on stderr, rewritten in place, only when stderr is a terminal.
-std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label,
+std::function<void(size_t, size_t, const std::string&)> progress_reporter(const std::string& label,
                                                                           bool quiet) {
-  if (quiet || !::isatty(2)) return {};
-  return [label](size_t done, size_t total, const std::string& what) {
-    std::fprintf(stderr, "\r\033[K%s: %zu/%zu %s", label.c_str(), done, total, what.c_str());
-    if (done == total) std::fprintf(stderr, "\r\033[K");
+  if (quiet) return {};
+  double every = 5.0;
+  if (const char* text = std::getenv("CONTACT2D_PROGRESS_SECONDS")) every = std::atof(text);
+  struct State {
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    double last_line = 0.0;  // seconds since start of the last line (pipes)
+    bool printed = false;
+  };
+  auto state = std::make_shared<State>();
+  const bool tty = ::isatty(2) != 0;
+  return [label, every, state, tty](size_t done, size_t total, const std::string& what) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - state->start).count();
+    std::string text = label + ": " + std::to_string(done) + "/" + std::to_string(total);
+    if (done == total) {
+      text += " done in " + format_duration(elapsed);
+    } else {
+      text += " " + what;
+      if (done > 0) {
+        const double left = elapsed / static_cast<double>(done) * static_cast<double>(total - done);
+        text += ", about " + format_duration(left) + " left";
+      }
+    }
+    if (tty) {
+      std::fprintf(stderr, "\r\033[K%s", text.c_str());
+      if (done == total) std::fprintf(stderr, "\r\033[K");
+    } else {
+      // Not a terminal (a log, CI): a line every `every` seconds, and the
+      // final one only when earlier lines were printed.
+      const bool due = done == total ? state->printed : elapsed - state->last_line >= every;
+      if (!due) return;
+      std::fprintf(stderr, "%s\n", text.c_str());
+      state->last_line = elapsed;
+      state->printed = true;
+    }
     std::fflush(stderr);
   };
 }
@@ -92,29 +147,37 @@ Scene load_scene_with(const std::string& path, const std::vector<std::string>& s
   std::vector<Override> overrides;
   overrides.reserve(sets.size() + 1);
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
-  if (duration) overrides.push_back({"sim.duration", format_number(*duration, 17)});
+  if (duration) overrides.push_back({"sim.duration", format_number(*duration, 17), "--duration"});
   return load_scene(path, overrides);
 }
 
 void AnalysisOptions::add_to(CLI::App& cmd, const std::string& csv_help,
                              const std::string& plot_help) {
-  cmd.add_option("scene", path, "Scene file (TOML)")->required();
-  cmd.add_option(
-         "--integrators", integrators,
-         "Comma-separated list (default: explicit_euler,semi_implicit_euler,implicit_euler,rk4)")
+  cmd.add_option("scene", path, "Scene file (TOML)")->required()->type_name("SCENE.toml");
+  cmd.add_option("--integrators", integrators,
+                 "Comma-separated list (default: explicit_euler,semi_implicit_euler,implicit_euler,"
+                 "rk4; MuJoCo runs semi_implicit_euler as its Euler, implicit_euler as its "
+                 "implicit and rk4 as its RK4)")
+      ->type_name("NAME")
       ->delimiter(',');
   cmd.add_option("--engines", engines,
                  "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = "
                  "its default) (default: ref)")
+      ->type_name("ENGINE")
       ->delimiter(',')
       ->check(CLI::IsMember(engines::engine_names()));
-  cmd.add_option("--csv", csv, csv_help);
-  cmd.add_option("--plot", plot, plot_help);
+  cmd.add_option("--csv", csv, csv_help)->type_name("FILE.csv");
+  cmd.add_option("--plot", plot, plot_help)->type_name("FILE.png");
   cmd.add_option("--threads", threads, "Worker threads (default: one per core)")
+      ->type_name("N")
       ->check(CLI::Range(1u, 256u));
-  cmd.add_option("--duration", duration, "Simulated time of each run, s (overrides sim.duration)");
-  cmd.add_option("--set", sets, "Override any scene key, e.g. --set contact.k=1e6 (repeatable)");
-  cmd.add_flag("--quiet", quiet, "No progress on stderr");
+  cmd.add_option("--duration", duration, "Simulated time of each run (overrides sim.duration)")
+      ->type_name("SECONDS");
+  cmd.add_option("--set", sets, "Override any scene key, e.g. --set contact.k=1e6 (repeatable)")
+      ->type_name("KEY=VALUE");
+  cmd.add_flag("--quiet", quiet,
+               "No progress on stderr (else: the time left, in place on a terminal, a line every "
+               "5 s otherwise)");
 }
 
 Scene AnalysisOptions::load() const { return load_scene_with(path, sets, duration); }

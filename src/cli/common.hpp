@@ -46,13 +46,20 @@ struct AnalysisOptions {
   Scene load() const;  // throws InputError
 };
 
-// sweep and stability: progress on stderr, rewritten in place, only when
-// stderr is a terminal and not quiet (else an empty function).
-std::function<void(size_t, size_t, const std::string&)> terminal_progress(const std::string& label,
+// sweep and stability: progress on stderr with an estimate of the time left,
+// rewritten in place on a terminal; otherwise one line every 5 s
+// (CONTACT2D_PROGRESS_SECONDS overrides the interval) and a last "done in"
+// line if any was printed. --quiet: an empty function.
+std::function<void(size_t, size_t, const std::string&)> progress_reporter(const std::string& label,
                                                                           bool quiet);
 // The scene with --set overrides and an optional --duration.
 Scene load_scene_with(const std::string& path, const std::vector<std::string>& sets,
                       const std::optional<double>& duration);
+
+// A CLI11 check of a number in [lo, hi] ((lo, hi] when `lo_open`) whose
+// message reads "VALUE is out of range: must be in RANGE", with the range as
+// written (CLI11's Range prints 1e-15 as 0.000000).
+CLI::Validator number_in(double lo, double hi, bool lo_open, const std::string& range);
 
 // --mapping and --geometry: the MuJoCo model of a scene (simulate, compare).
 // Empty means the generator's default (calibrated, corners).

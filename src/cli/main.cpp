@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/version.hpp"
 #include "core/input_error.hpp"
 #include "io/interrupt.hpp"
 
@@ -15,6 +16,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "contact2d: a 2D rigid-body penalty-contact reference solver, cross-validated against MuJoCo "
       "2.2"};
+  app.set_version_flag("--version", version_text(),
+                       "Print the version and git revision of this contact2d and exit");
   app.require_subcommand(1);
 
   std::vector<Command> commands = {add_simulate(app), add_play(app)};
@@ -25,7 +28,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     std::cerr << "contact2d: " << e.what() << " (see contact2d --help)\n";
     return kExitBadInput;
   }

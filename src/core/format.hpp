@@ -35,4 +35,17 @@ inline std::string format_shortest(double value, int min_digits = 1) {
   return text;
 }
 
+// A duration for people: "850 µs", "12.3 ms", "4.56 s", "2 min 05 s",
+// "1 h 03 min" (never "1e+03 ms"); "-" when negative or not finite.
+inline std::string format_duration(double seconds) {
+  if (!(seconds >= 0.0) || seconds > 1e15) return "-";
+  if (seconds < 0.9995e-3) return format_text("%.3g µs", seconds * 1e6);
+  if (seconds < 0.9995) return format_text("%.3g ms", seconds * 1e3);
+  if (seconds < 59.95) return format_text("%.3g s", seconds);
+  const long long whole = static_cast<long long>(seconds + 0.5);
+  if (whole < 3600) return format_text("%lld min %02lld s", whole / 60, whole % 60);
+  const long long minutes = (whole + 30) / 60;
+  return format_text("%lld h %02lld min", minutes / 60, minutes % 60);
+}
+
 }  // namespace contact2d

@@ -1,58 +1,124 @@
 #include "io/plot.hpp"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <vector>
 
+#include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "io/csv.hpp"
 
 namespace contact2d {
 namespace {
 
-// Columns: t, x, y, θ (ref), x, y, θ (MuJoCo), position error, angle error.
-// Errors of exactly 0 are written as 1e-300 so the log axis keeps them.
+// The distance between the runs as drawn on a log axis: exact zeros (the
+// first sample) become this, below every range the plot sets.
+constexpr double kZero = 1e-300;
+
+// Columns: t, x, y, θ (ref), x, y, θ (MuJoCo), position distance, angle
+// difference.
 void write_data(std::FILE* out, const Trajectory& ref, const Trajectory& mj) {
   const size_t n = std::min(ref.samples.size(), mj.samples.size());
   for (size_t i = 0; i < n; ++i) {
     const State& a = ref.samples[i].state;
     const State& b = mj.samples[i].state;
-    const double pos = std::max((a.q.head<2>() - b.q.head<2>()).norm(), 1e-300);
-    const double angle = std::max(std::abs(a.q.z() - b.q.z()), 1e-300);
+    const double pos = std::max((a.q.head<2>() - b.q.head<2>()).norm(), kZero);
+    const double angle = std::max(std::abs(a.q.z() - b.q.z()), kZero);
     std::fprintf(out, "%.9g %.12g %.12g %.12g %.12g %.12g %.12g %.6g %.6g\n", ref.samples[i].t,
                  a.q.x(), a.q.y(), a.q.z(), b.q.x(), b.q.y(), b.q.z(), pos, angle);
   }
 }
 
-std::string script(const std::string& data, const std::string& png, const std::string& title) {
-  const std::string d = "'" + data + "'";
-  return "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,900 } "
-         "else { set terminal png size 1200,900 }\n"
-         "set output '" +
-         png +
-         "'\n"
-         "set multiplot layout 2,2 title '" +
-         title +
-         "'\n"
-         "set xlabel 't (s)'\nset grid\nset key top right\n"
-         "set ylabel 'x (m)'\nplot " +
-         d + " u 1:2 w l lw 2 t 'ref', " + d +
-         " u 1:5 w l dt 2 lw 2 t 'MuJoCo'\n"
-         "set ylabel 'y (m)'\nplot " +
-         d + " u 1:3 w l lw 2 t 'ref', " + d +
-         " u 1:6 w l dt 2 lw 2 t 'MuJoCo'\n"
-         "set ylabel 'theta (rad)'\nplot " +
-         d + " u 1:4 w l lw 2 t 'ref', " + d +
-         " u 1:7 w l dt 2 lw 2 t 'MuJoCo'\n"
-         "set logscale y\nset format y '10^{%L}'\nset yrange [1e-12:*]\nset ylabel 'error'\n"
-         "plot " +
-         d + " u 1:8 w l lw 2 t 'position (m)', " + d +
-         " u 1:9 w l lw 2 t 'angle (rad)'\n"
-         "unset multiplot\n";
+struct Extent {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void add(double v) {
+    if (!std::isfinite(v)) return;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+};
+
+// Range of a distance on a log axis: from 1e-9 of its largest value (and
+// not below 1e-16) to above it; a distance that is 0 throughout gets a
+// range of its own and the panel says so.
+std::string distance_range(double largest) {
+  if (!(largest > 1e-290)) return "set yrange [1e-16:1e-12]\n";
+  return gnuplot_range("y", std::max(largest * 1e-9, 1e-16), largest, true);
+}
+
+std::string script(const std::string& data, const std::string& png, const std::string& title,
+                   const Trajectory& ref, const Trajectory& mj, const std::string& ref_label,
+                   const std::string& mujoco_label) {
+  const size_t n = std::min(ref.samples.size(), mj.samples.size());
+  Extent t, x, y, theta;
+  double pos_max = 0.0, angle_max = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const State& a = ref.samples[i].state;
+    const State& b = mj.samples[i].state;
+    t.add(ref.samples[i].t);
+    x.add(a.q.x());
+    x.add(b.q.x());
+    y.add(a.q.y());
+    y.add(b.q.y());
+    theta.add(a.q.z());
+    theta.add(b.q.z());
+    pos_max = std::max(pos_max, (a.q.head<2>() - b.q.head<2>()).norm());
+    angle_max = std::max(angle_max, std::abs(a.q.z() - b.q.z()));
+  }
+  // A point mass (or a body that never turns) gets no θ panels.
+  const bool turns = theta.lo != 0.0 || theta.hi != 0.0;
+  const std::string d = gnuplot_quoted(data);
+  std::ostringstream s;
+  s << gnuplot_png(png, 1400, 900) << "set multiplot title '" << gnuplot_text(title)
+    << "' font ',13'\n"
+    << "set grid\nset xlabel 't (s)'\n"
+    << gnuplot_range("x", t.lo, t.hi, false)
+    // The key above each panel, outside the data.
+    << "set key outside top center horizontal\n";
+  const int top = turns ? 3 : 2;
+  const double w = 1.0 / top;
+  auto panel = [&](int i, const char* label, int ref_col, int mj_col, const Extent& e) {
+    s << "set size " << w << ",0.46\nset origin " << i * w << ",0.47\n"
+      << "set ylabel '" << label << "'\n"
+      << gnuplot_range("y", e.lo, e.hi, false) << "plot " << d << " using 1:" << ref_col
+      << " with lines lw 2 lc " << kColourRef << " title '" << gnuplot_text(ref_label) << "', " << d
+      << " using 1:" << mj_col << " with lines lw 2 dt 2 lc " << kColourMujoco << " title '"
+      << gnuplot_text(mujoco_label) << "'\n";
+  };
+  panel(0, "x (m)", 2, 5, x);
+  panel(1, "y (m)", 3, 6, y);
+  if (turns) panel(2, "θ (rad)", 4, 7, theta);
+  // The distance between the engines, one panel per unit.
+  const int bottom = turns ? 2 : 1;
+  const double wb = 1.0 / bottom;
+  s << "unset key\nset logscale y\nset format y '10^{%L}'\n";
+  auto distance = [&](int i, const char* label, int col, double largest) {
+    s << "set size " << wb << ",0.46\nset origin " << i * wb << ",0.0\n"
+      << "set ylabel '" << label << "'\n"
+      << distance_range(largest);
+    if (!(largest > 1e-290)) {
+      s << "set label 1 'identical: the distance is 0 at every sample' at graph 0.5,0.5 center\n"
+        << "plot NaN notitle\nunset label 1\n";
+      return;
+    }
+    s << "plot " << d << " using 1:" << col << " with lines lw 2 lc 'black' notitle\n";
+  };
+  distance(0, "position distance ref ↔ MuJoCo (m)", 8, pos_max);
+  if (turns) distance(1, "angle difference ref ↔ MuJoCo (rad)", 9, angle_max);
+  s << "unset multiplot\n";
+  return s.str();
 }
 
 void require_quotable(const std::string& text, const std::string& what) {
@@ -65,29 +131,54 @@ void require_quotable(const std::string& text, const std::string& what) {
 }  // namespace
 
 void plot_comparison(const std::string& png_path, const std::string& title, const Trajectory& ref,
-                     const Trajectory& mujoco) {
+                     const Trajectory& mujoco, const std::string& ref_label,
+                     const std::string& mujoco_label) {
   require_quotable(png_path, "--plot");
-  require_quotable(title, "plot title");
   AtomicFile png(png_path);             // gnuplot writes here; renamed on success
   AtomicFile data(png_path + ".data");  // never committed: removed on return
   write_data(data.get(), ref, mujoco);
   if (std::fflush(data.get()) != 0) throw InputError(data.temp_path() + ": cannot write plot data");
-  run_gnuplot(script(data.temp_path(), png.temp_path(), title), png_path);
+  run_gnuplot(
+      script(data.temp_path(), png.temp_path(), title, ref, mujoco, ref_label, mujoco_label),
+      png_path);
   png.commit();
 }
 
 void run_gnuplot(const std::string& script, const std::string& png_path) {
-  // gnuplot's own warnings go to stderr; stdout stays the command's.
-  std::FILE* pipe = ::popen("gnuplot >/dev/null", "w");
-  if (!pipe) throw InputError(png_path + ": cannot start gnuplot");
+  // gnuplot's stdout is dropped; its stderr goes to a temporary file, read
+  // back and passed on below.
+  const char* dir = std::getenv("TMPDIR");
+  std::string errors_path = std::string(dir && *dir ? dir : "/tmp") + "/contact2d_gnuplot_XXXXXX";
+  const int fd = ::mkstemp(errors_path.data());
+  if (fd < 0)
+    throw InputError(png_path + ": cannot create a temporary file for gnuplot's messages");
+  ::close(fd);
+  std::FILE* pipe = ::popen(("gnuplot >/dev/null 2>" + gnuplot_quoted(errors_path)).c_str(), "w");
+  if (!pipe) {
+    std::remove(errors_path.c_str());
+    throw InputError(png_path + ": cannot start gnuplot");
+  }
   std::fwrite(script.data(), 1, script.size(), pipe);
   const int raw = ::pclose(pipe);
+  std::vector<std::string> messages;
+  {
+    std::ifstream in(errors_path);
+    std::string line;
+    while (std::getline(in, line)) {
+      // gnuplot marks the place in the script with "^" lines and blanks.
+      if (line.find_first_not_of(" \t^") != std::string::npos) messages.push_back(line);
+    }
+  }
+  std::remove(errors_path.c_str());
   const int status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 1;
   if (status == 127)
     throw InputError(png_path + ": gnuplot not found (install Debian package gnuplot-nox)");
   if (status != 0) {
-    throw InputError(png_path + ": gnuplot failed (exit status " + std::to_string(status) + ")");
+    throw InputError(png_path + ": gnuplot failed (exit status " + std::to_string(status) + ")" +
+                     (messages.empty() ? "" : ": " + messages.front()));
   }
+  for (const std::string& m : messages)
+    std::cerr << "contact2d: gnuplot warning drawing " << png_path << ": " << m << "\n";
 }
 
 std::string gnuplot_quoted(const std::string& path) {
@@ -100,14 +191,78 @@ std::string gnuplot_quoted(const std::string& path) {
 std::string gnuplot_text(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (c == '_' || c == '^' || c == '{' || c == '}' || c == '@' || c == '&') out += '\\';
+    if (c == '_' || c == '^' || c == '{' || c == '}' || c == '@' || c == '&' || c == '~')
+      out += '\\';
     if (c == '\'') {
       out += "''";
+      continue;
+    }
+    if (c == '\n') {
+      out += ' ';
       continue;
     }
     out += c;
   }
   return out;
+}
+
+std::string gnuplot_png(const std::string& png_tmp, int width, int height) {
+  const std::string size = std::to_string(width) + "," + std::to_string(height);
+  return "set encoding utf8\n"
+         "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size " +
+         size + " font ',11' } else { set terminal png size " + size + " }\nset output " +
+         gnuplot_quoted(png_tmp) + "\n";
+}
+
+std::string gnuplot_range(const char* axis, double lo, double hi, bool log) {
+  if (!std::isfinite(lo) || !std::isfinite(hi) || (log && !(lo > 0.0))) {
+    return std::string("set ") + axis + "range [" + (log ? "1e-16:1" : "-1:1") + "]\n";
+  }
+  double a = lo, b = hi;
+  if (log) {
+    const double pad = b > a * (1 + 1e-12) ? 2.0 : 3.0;
+    a /= pad;
+    b *= pad;
+  } else if (b - a > 1e-12 * std::max(1.0, std::abs(b))) {
+    const double pad = 0.05 * (b - a);
+    a -= pad;
+    b += pad;
+  } else {
+    const double pad = std::max(0.05 * std::abs(a), 1e-3);
+    a -= pad;
+    b += pad;
+  }
+  std::string out = std::string("set ") + axis + "range [" + format_number(a, 17) + ":" +
+                    format_number(b, 17) + "]\n";
+  if (!log) return out + "set " + axis + "tics autofreq\n";
+  if (b / a >= 100)
+    return out + "set " + axis + "tics autofreq\nset format " + axis + " '10^{%L}'\n";
+  // Under two decades a log axis has one power of ten or none to label:
+  // tics at 1, 2, 5 × 10^n (every digit when that gives fewer than 3).
+  std::vector<double> tics;
+  for (const std::vector<int>& digits : {std::vector<int>{1, 2, 5}, {1, 2, 3, 4, 5, 6, 7, 8, 9}}) {
+    tics.clear();
+    for (int e = static_cast<int>(std::floor(std::log10(a))); e <= std::ceil(std::log10(b)); ++e) {
+      for (int d : digits) {
+        const double v = d * std::pow(10.0, e);
+        if (v >= a && v <= b) tics.push_back(v);
+      }
+    }
+    if (tics.size() >= 3) break;
+  }
+  out += std::string("set ") + axis + "tics (";
+  for (size_t i = 0; i < tics.size(); ++i) out += (i ? ", " : "") + format_number(tics[i], 3);
+  return out + ")\nset format " + axis + " '%g'\n";
+}
+
+std::string integrator_colour(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::ExplicitEuler: return "rgb '#D55E00'";
+    case Integrator::SemiImplicitEuler: return "rgb '#0072B2'";
+    case Integrator::ImplicitEuler: return "rgb '#009E73'";
+    case Integrator::RK4: return "rgb '#CC79A7'";
+  }
+  return "rgb '#000000'";
 }
 
 }  // namespace contact2d

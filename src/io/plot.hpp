@@ -1,21 +1,24 @@
-// PNG plot of a comparison with gnuplot (Debian package gnuplot-nox):
-// x, y and θ of both engines against t, and the position and angle errors
-// on a log scale. The PNG appears (renamed from a temporary) only when
-// gnuplot succeeded.
+// gnuplot is the one plotting back end: every plot of the project is a
+// script piped to `gnuplot` (Debian gnuplot-nox) by run_gnuplot(), which
+// reports anything gnuplot prints on stderr. The rules every plot follows:
+// units on every axis (metres and radians never share one); legends outside
+// the data; titles escaped (gnuplot_text); no empty panel; every axis range
+// set from the data (an empty range would make gnuplot warn); the Okabe–Ito
+// palette (readable by colour-blind readers) with markers and dash types
+// that also tell the series apart in grey.
 #pragma once
 
 #include <string>
 
+#include "core/integrators.hpp"
 #include "core/run.hpp"
 
 namespace contact2d {
 
-// Throws InputError when the path cannot be written or gnuplot fails.
-// gnuplot is the one plotting back end: every plot of the project is a
-// script piped to `gnuplot` (Debian gnuplot-nox) by run_gnuplot().
-
 // Runs gnuplot on the script. Throws InputError when gnuplot is missing or
-// fails, naming `png_path` (the plot it was drawing).
+// fails, naming `png_path` (the plot it was drawing). Whatever gnuplot
+// prints on stderr is passed on, one "contact2d: gnuplot warning" line each:
+// a plot that makes gnuplot warn is a bug (tests/cli checks every plot).
 void run_gnuplot(const std::string& script, const std::string& png_path);
 
 // 'path' for a gnuplot script; InputError if it contains a quote or newline.
@@ -25,7 +28,31 @@ std::string gnuplot_quoted(const std::string& path);
 // escaped, quotes doubled, so "point_mass" is not set as a subscript.
 std::string gnuplot_text(const std::string& text);
 
+// The opening of every plot script: UTF-8, a PNG terminal (pngcairo when
+// gnuplot has it) of this size, output to `png_tmp`.
+std::string gnuplot_png(const std::string& png_tmp, int width, int height);
+
+// "set xrange [lo:hi]\n" for `axis` ("x", "y") around data in [lo, hi],
+// padded (by a factor on a log axis), never empty: a constant curve gets a
+// range around its value. On a log axis also its tic format: powers of ten
+// over two decades or more, plain numbers below.
+std::string gnuplot_range(const char* axis, double lo, double hi, bool log);
+
+// Okabe–Ito colours as gnuplot specs ("rgb '#0072B2'"), one per integrator:
+// explicit Euler vermillion, semi-implicit Euler blue, implicit Euler bluish
+// green, RK4 reddish purple (Rec. 601 grey levels 0.47, 0.34, 0.42, 0.59).
+std::string integrator_colour(Integrator integrator);
+inline constexpr const char* kColourRef = "rgb '#0072B2'";     // blue
+inline constexpr const char* kColourMujoco = "rgb '#D55E00'";  // vermillion
+
+// x, y (and θ unless it stays 0 in both runs, as for a point mass) of both
+// engines against t, and below them the distance between them: position
+// (m) and angle (rad) in separate panels, each on a log axis. `ref_label` and
+// `mujoco_label` name the curves. The PNG appears (renamed from a temporary)
+// only when gnuplot succeeded. Throws InputError when the path cannot be
+// written or gnuplot fails.
 void plot_comparison(const std::string& png_path, const std::string& title, const Trajectory& ref,
-                     const Trajectory& mujoco);
+                     const Trajectory& mujoco, const std::string& ref_label = "ref",
+                     const std::string& mujoco_label = "MuJoCo");
 
 }  // namespace contact2d

@@ -185,8 +185,16 @@ void read_obstacles(const toml::table& root, Scene& scene, const std::string& or
   }
 }
 
+// "--set contact.k=-5" or "--dt 0": the command-line text of an override.
+std::string option_text(const Override& o) {
+  if (o.option.empty()) return "--set " + o.key + "=" + o.value;
+  // --integrator's value is passed as a TOML string: shown as typed.
+  const bool quoted = o.value.size() >= 2 && o.value.front() == '"' && o.value.back() == '"';
+  return o.option + " " + (quoted ? o.value.substr(1, o.value.size() - 2) : o.value);
+}
+
 // Inserts "a.b=value" into the document, creating tables as needed.
-void apply_override(toml::table& root, const Override& o, const std::string& origin) {
+void apply_override(toml::table& root, const Override& o) {
   toml::table* table = &root;
   std::string_view path = o.key;
   size_t dot;
@@ -197,8 +205,7 @@ void apply_override(toml::table& root, const Override& o, const std::string& ori
       table->insert(part, toml::table{});
       node = table->get(part);
     }
-    if (!node->is_table())
-      throw InputError(origin + ": --set " + o.key + ": '" + part + "' is not a table");
+    if (!node->is_table()) throw InputError(option_text(o) + ": '" + part + "' is not a table");
     table = node->as_table();
     path.remove_prefix(dot + 1);
   }
@@ -223,8 +230,37 @@ Override parse_override(const std::string& assignment) {
   return {assignment.substr(0, eq), assignment.substr(eq + 1)};
 }
 
+namespace {
+
+Scene read_scene(const std::string& toml_text, const std::string& origin,
+                 const std::vector<Override>& overrides);
+
+}  // namespace
+
 Scene parse_scene(const std::string& toml_text, const std::string& origin,
                   const std::vector<Override>& overrides) {
+  try {
+    return read_scene(toml_text, origin, overrides);
+  } catch (const InputError& e) {
+    // An error about a key an override set names the option, not the file:
+    // "origin: contact.k = -5 ..." becomes "--set contact.k=-5: contact.k = -5 ...".
+    const std::string message = e.what();
+    const std::string prefix = origin + ": ";
+    if (message.rfind(prefix, 0) != 0) throw;
+    const std::string rest = message.substr(prefix.size());
+    for (auto o = overrides.rbegin(); o != overrides.rend(); ++o) {
+      const bool about_key =
+          rest.rfind(o->key + " ", 0) == 0 || rest.find("'" + o->key + "'") != std::string::npos;
+      if (about_key) throw InputError(option_text(*o) + ": " + rest);
+    }
+    throw;
+  }
+}
+
+namespace {
+
+Scene read_scene(const std::string& toml_text, const std::string& origin,
+                 const std::vector<Override>& overrides) {
   toml::table root;
   try {
     root = toml::parse(toml_text, origin);
@@ -234,7 +270,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
           << ": malformed TOML: " << e.description();
     throw InputError(where.str());
   }
-  for (const Override& o : overrides) apply_override(root, o, origin);
+  for (const Override& o : overrides) apply_override(root, o);
 
   TableReader top(&root, "", origin);
   std::string shape_text;
@@ -267,6 +303,8 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
   }
   return scene;
 }
+
+}  // namespace
 
 Scene load_scene(const std::string& path, const std::vector<Override>& overrides) {
   std::error_code ec;

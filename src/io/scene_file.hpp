@@ -12,9 +12,12 @@ namespace contact2d {
 // "key=value" assignments applied on top of the file, e.g. "contact.k=1e6" or
 // "sim.integrator=rk4". The value is read as a TOML value (a bare word is a
 // string), so overrides pass the same type and range checks as the file.
+// `option` names the command-line option it came from ("--dt"; empty:
+// "--set key=value"), so an error in the value names the option, not the file.
 struct Override {
   std::string key;
   std::string value;
+  std::string option = {};
 };
 Override parse_override(const std::string& assignment);  // throws InputError
 

@@ -148,7 +148,7 @@ std::string mujoco_integrator(Integrator integrator) {
   throw InputError(
       "sim.integrator = explicit_euler has no MuJoCo 2.2 counterpart: use semi_implicit_euler "
       "(MuJoCo Euler), "
-      "rk4 (RK4) or implicit_euler (implicit)");
+      "rk4 (MuJoCo RK4) or implicit_euler (MuJoCo implicit)");
 }
 
 }  // namespace contact2d::mujoco

@@ -23,6 +23,7 @@
 #include "cli/common.hpp"
 #include "core/divergence.hpp"
 #include "core/input_error.hpp"
+#include "core/integrator_label.hpp"
 #include "engines/engines.hpp"
 #include "io/csv.hpp"
 #include "io/plot.hpp"
@@ -85,10 +86,11 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
   const analysis::TrajectoryError e = analysis::error_between(ref.trajectory, mujoco.trajectory);
   if (!plot_png.empty()) {
     const std::string title =
-        std::string(shape_name(scene.shape)) + ": ref vs MuJoCo (" +
-        std::string(mj::mapping_name(options.mapping)) + " mapping, " +
+        std::string(shape_name(scene.shape)) + ": ref vs MuJoCo, " +
+        integrator_label(scene.sim.integrator, true) + ", Δt = " + format_number(scene.sim.dt) +
+        " s, " + std::string(mj::mapping_name(options.mapping)) + " mapping, " +
         (scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
-        " damping)";
+        " damping";
     plot_comparison(plot_png, title, ref.trajectory, mujoco.trajectory);
   }
   c.shape = std::string(shape_name(scene.shape));
@@ -134,9 +136,8 @@ ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
       in.reference = &ref.trajectory;
       in.mujoco = &mujoco.trajectory;
       in.converged = three.converged.available ? &three.converged.trajectory : nullptr;
-      in.title = c.scene + " (" + law + "): ref " +
-                 std::string(integrator_name(scene.sim.integrator)) + " vs MuJoCo " +
-                 contact2d::mujoco::mujoco_integrator(scene.sim.integrator) + ", calibrated";
+      in.title = c.scene + " (" + law + "): ref vs MuJoCo, " +
+                 integrator_label(scene.sim.integrator, true) + ", calibrated";
       in.reference_label = "ref";
       game::write_comparison_video(video, in, 20, 640, 360);
       c.animation = std::filesystem::path(video).filename().string();

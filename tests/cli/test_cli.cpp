@@ -1,12 +1,19 @@
-// The contact2d program on good input: the trajectory CSV format and --help.
+// The contact2d program on good input: the trajectory CSV format, --help and
+// its metavariables, --version, progress on a pipe, and every plot the
+// program draws (compare, sweep, stability --plot) with nothing printed on
+// stderr by gnuplot.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -15,6 +22,44 @@ namespace {
 int run(const std::string& args) {
   const int raw = std::system((std::string("'") + CONTACT2D_EXE + "' " + args).c_str());
   return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+struct Output {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Runs contact2d with `env` before it (e.g. "VAR=1"), capturing both streams.
+Output capture(const std::string& args, const std::string& env = "") {
+  const fs::path base =
+      fs::temp_directory_path() / ("contact2d_cli_out_" + std::to_string(::getpid()));
+  const fs::path out = base.string() + ".out", err = base.string() + ".err";
+  const int raw = std::system((env + (env.empty() ? "" : " ") + "'" + CONTACT2D_EXE + "' " + args +
+                               " >'" + out.string() + "' 2>'" + err.string() + "'")
+                                  .c_str());
+  Output o{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  fs::remove(out);
+  fs::remove(err);
+  return o;
+}
+
+fs::path temp_png(const std::string& name) {
+  return fs::temp_directory_path() /
+         ("contact2d_plot_" + name + "_" + std::to_string(::getpid()) + ".png");
+}
+
+// A PNG that gnuplot finished: the signature and more than a header.
+void expect_png(const fs::path& png) {
+  ASSERT_TRUE(fs::exists(png)) << png;
+  EXPECT_GT(fs::file_size(png), 10000u) << png;
+  EXPECT_EQ(slurp(png).substr(1, 3), "PNG") << png;
 }
 
 TEST(Cli, SimulateWritesTheTrajectoryCsv) {
@@ -50,6 +95,141 @@ TEST(Cli, HelpOnTheProgramAndEverySubcommand) {
   EXPECT_EQ(run("--help >/dev/null"), 0);
   for (const char* command : {"simulate", "generate", "compare", "sweep", "stability", "play"}) {
     EXPECT_EQ(run(std::string(command) + " --help >/dev/null"), 0) << command;
+  }
+}
+
+TEST(Cli, VersionNamesTheProjectVersionAndTheGitRevision) {
+  const Output o = capture("--version");
+  EXPECT_EQ(o.status, 0);
+  EXPECT_EQ(o.err, "");
+  // "contact2d 0.1.0 (git 0123456789ab)", "+dirty" with uncommitted changes.
+  EXPECT_TRUE(std::regex_match(
+      o.out, std::regex(std::string("contact2d ") +
+                        std::regex_replace(CONTACT2D_PROJECT_VERSION, std::regex("\\."), "\\.") +
+                        "( \\(git [0-9a-f]{12}(\\+dirty)?\\))?\n")))
+      << o.out;
+  // Built from a git checkout (as this test is): the revision is known.
+  if (fs::exists(fs::path(CONTACT2D_SOURCE_DIR) / ".git") &&
+      std::system("git --version >/dev/null 2>&1") == 0) {
+    EXPECT_NE(o.out.find("(git "), std::string::npos) << o.out;
+  }
+}
+
+TEST(Cli, HelpShowsTypedMetavariables) {
+  const Output simulate = capture("simulate --help");
+  EXPECT_NE(simulate.out.find("--dt SECONDS"), std::string::npos) << simulate.out;
+  EXPECT_NE(simulate.out.find("--duration SECONDS"), std::string::npos) << simulate.out;
+  EXPECT_NE(simulate.out.find("--set KEY=VALUE"), std::string::npos) << simulate.out;
+  EXPECT_NE(capture("play --help").out.find("--seed N"), std::string::npos);
+  // No option of any subcommand falls back to CLI11's untyped "TEXT".
+  for (const char* command :
+       {"simulate", "generate", "compare", "sweep", "stability", "play", "report"}) {
+    const Output o = capture(std::string(command) + " --help");
+    if (o.status != 0) continue;  // generate, compare, report: built with MuJoCo only
+    EXPECT_EQ(o.out.find(" TEXT"), std::string::npos) << command << ":\n" << o.out;
+  }
+}
+
+TEST(Cli, SetErrorsNameTheOptionNotTheSceneFile) {
+  const Output o =
+      capture("simulate " CONTACT2D_SCENES_DIR "/box.toml --set contact.k=1e20 --duration 0.1");
+  EXPECT_EQ(o.status, 2);
+  EXPECT_EQ(o.err.rfind("contact2d: --set contact.k=1e20: contact.k = 1e+20 is out of range", 0),
+            0u)
+      << o.err;
+  EXPECT_EQ(o.err.find("box.toml"), std::string::npos) << o.err;
+  // Ranges as written, not CLI11's "0.000000 to 0.001000".
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"sweep " CONTACT2D_SCENES_DIR "/box.toml --tol 1",
+            "contact2d: --tol: 1 is out of range: must be in [1e-15, 1e-3]"},
+           {"stability " CONTACT2D_SCENES_DIR "/box.toml --dt-max -1",
+            "contact2d: --dt-max: -1 is out of range: must be in (0, 1e5] s"},
+           {"stability " CONTACT2D_SCENES_DIR "/box.toml --precision 2",
+            "contact2d: --precision: 2 is out of range: must be in [1e-4, 1]"}}) {
+    const Output bad = capture(args);
+    EXPECT_EQ(bad.status, 2) << args;
+    EXPECT_EQ(bad.err.rfind(message, 0), 0u) << args << ": " << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  }
+}
+
+TEST(Cli, SimulateNamesMujocoIntegratorsByTheSceneNameAndMujocosOwn) {
+#ifdef CONTACT2D_WITH_MUJOCO
+  const Output o =
+      capture("simulate " CONTACT2D_SCENES_DIR "/box.toml --engine mujoco --duration 0.05");
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.out.find("[mujoco, semi_implicit_euler (MuJoCo Euler), "), std::string::npos)
+      << o.out;
+#endif
+  const Output r = capture("simulate " CONTACT2D_SCENES_DIR "/box.toml --duration 0.05");
+  EXPECT_NE(r.out.find("[ref, semi_implicit_euler, "), std::string::npos) << r.out;
+  // Durations read as durations: "0.05 s in 3.2 ms", never "1e+03 ms".
+  EXPECT_TRUE(std::regex_search(r.out, std::regex(" s in [0-9.]+ (µs|ms|s)\\]"))) << r.out;
+}
+
+// Progress when stderr is a pipe: lines with the time left (every
+// CONTACT2D_PROGRESS_SECONDS, here at every run) and a last "done in" line;
+// nothing with --quiet.
+TEST(Cli, SweepProgressOnAPipeEstimatesTheTimeLeft) {
+  const std::string args = "sweep " CONTACT2D_SCENES_DIR
+                           "/point_mass.toml --duration 0.2 --integrators semi_implicit_euler "
+                           "--dts 1e-3,5e-4,2e-4 --repeats 1 --threads 1";
+  const Output o = capture(args, "CONTACT2D_PROGRESS_SECONDS=0");
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.err.find("sweep point_mass: 1/"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find(" left\n"), std::string::npos) << o.err;
+  EXPECT_TRUE(std::regex_search(o.err, std::regex("sweep point_mass: ([0-9]+)/\\1 done in ")))
+      << o.err;
+  EXPECT_EQ(o.err.find('\r'), std::string::npos) << "no terminal codes on a pipe";
+  const Output quiet = capture(args + " --quiet", "CONTACT2D_PROGRESS_SECONDS=0");
+  EXPECT_EQ(quiet.status, 0);
+  EXPECT_EQ(quiet.err, "");
+  // The default interval (5 s) prints nothing on a run this short.
+  EXPECT_EQ(capture(args).err, "");
+}
+
+// Every plot the program draws, on scenes that exercise the edge cases
+// (the point mass: no θ; a single Δt; one k), must leave gnuplot silent:
+// run_gnuplot passes on anything gnuplot prints on stderr.
+TEST(Cli, EveryPlotDrawsWithoutAGnuplotWarning) {
+  if (std::system("gnuplot --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "no gnuplot";
+  struct Case {
+    std::string name, args;
+  };
+  std::vector<Case> cases = {
+      {"sweep", "sweep " CONTACT2D_SCENES_DIR
+                "/box.toml --duration 0.3 --integrators semi_implicit_euler,rk4 --dts "
+                "1e-3,5e-4,2e-4 --repeats 1 --quiet"},
+      {"sweep_one_dt", "sweep " CONTACT2D_SCENES_DIR
+                       "/point_mass.toml --duration 0.2 --integrators rk4 --dts 1e-3 --repeats 1 "
+                       "--quiet"},
+      {"stability", "stability " CONTACT2D_SCENES_DIR
+                    "/point_mass.toml --duration 0.2 --ks 1e4,1e6 --integrators "
+                    "explicit_euler,semi_implicit_euler,rk4 --quiet"},
+      {"stability_one_k", "stability " CONTACT2D_SCENES_DIR
+                          "/box.toml --duration 0.2 --ks 1e5 --integrators implicit_euler --quiet"},
+  };
+#ifdef CONTACT2D_WITH_MUJOCO
+  for (const char* scene : {"point_mass", "box", "tshape", "circle"}) {
+    cases.push_back(
+        {std::string("compare_") + scene, std::string("compare " CONTACT2D_SCENES_DIR "/") + scene +
+                                              ".toml --duration 0.3 --no-diagnosis"});
+  }
+  cases.push_back({"sweep_mujoco", "sweep " CONTACT2D_SCENES_DIR
+                                   "/box.toml --duration 0.2 --integrators semi_implicit_euler "
+                                   "--dts 1e-3,5e-4 --engines ref,mujoco:seed,mujoco:exact "
+                                   "--repeats 1 --quiet"});
+#endif
+  for (const Case& c : cases) {
+    const fs::path png = temp_png(c.name);
+    fs::remove(png);
+    const Output o = capture(c.args + " --plot '" + png.string() + "'");
+    EXPECT_EQ(o.status, 0) << c.name << ": " << o.err;
+    // run_gnuplot passes gnuplot's stderr on as "contact2d: gnuplot warning …"
+    // (tests/io/test_plot.cpp checks that it does).
+    EXPECT_EQ(o.err.find("gnuplot"), std::string::npos) << c.name << ":\n" << o.err;
+    expect_png(png);
+    fs::remove(png);
   }
 }
 
