@@ -47,9 +47,9 @@ std::string option_line(const MappingOutcome& o) {
 
 std::string friction_attribute(const SolrefInput& in, int condim, bool pair) {
   if (condim == 1) return "";
-  const std::vector<double> values = pair ? std::vector<double>{in.mu, in.mu, 0.0, in.mu_roll,
-                                                                in.mu_roll}
-                                          : std::vector<double>{in.mu, 0.0, in.mu_roll};
+  const std::vector<double> values =
+      pair ? std::vector<double>{in.mu, in.mu, 0.0, in.mu_roll, in.mu_roll}
+           : std::vector<double>{in.mu, 0.0, in.mu_roll};
   return " friction=\"" + join(values) + "\"";
 }
 
@@ -115,8 +115,7 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
   o.impedance_at_rest = mujoco_impedance(s.solimp, -o.static_penetration);
   o.nominal_penetration = report.load / in.k;
   const std::string options = option_line(o);
-  o.default_snippet = options +
-                      "<default>\n  <default class=\"contact2d\">\n    <geom" +
+  o.default_snippet = options + "<default>\n  <default class=\"contact2d\">\n    <geom" +
                       contact_attributes(in, o, false) +
                       " priority=\"1\"/>\n  </default>\n</default>\n";
   o.pair_snippet = options + "<contact>\n  <pair geom1=\"BODY_GEOM\" geom2=\"ground\"" +
@@ -139,9 +138,7 @@ std::string json_string(const std::string& text) {
   return out + "\"";
 }
 
-std::string json_number(double v) {
-  return std::isfinite(v) ? format_number("%.17g", v) : "null";
-}
+std::string json_number(double v) { return std::isfinite(v) ? format_number("%.17g", v) : "null"; }
 
 }  // namespace
 
@@ -250,11 +247,11 @@ ModelBody read_model_body(const std::string& path, const std::string& body) {
   std::replace(warning.begin(), warning.end(), '\n', ' ');
   out.load_warning = warning;
   if (!(out.mass > 0.0))
-    throw InputError("--body " + body + ": has mass " + g(out.mass) +
-                     " kg in " + path + "; it must be > 0");
+    throw InputError("--body " + body + ": has mass " + g(out.mass) + " kg in " + path +
+                     "; it must be > 0");
   if (!(out.inv_weight > 0.0))
-    throw InputError("--body " + body + ": body_invweight0 is " + g(out.inv_weight) +
-                     " in " + path + " (the body has no translational joint)");
+    throw InputError("--body " + body + ": body_invweight0 is " + g(out.inv_weight) + " in " +
+                     path + " (the body has no translational joint)");
   return out;
 }
 
@@ -264,17 +261,19 @@ std::string format_report_text(const SolrefReport& r) {
   o << "k = " << g(in.k) << " N/m, c = " << g(in.c) << " N·s/m, Δt = " << g(in.dt)
     << " s; body: " << in.body_source << "\n";
   o << "m = " << g(in.mass) << " kg; A = 1/m" << (in.lever > 0.0 ? " + r²/I" : "") << " = "
-    << g(r.inv_mass) << " 1/kg (the contact's true inverse mass); Â = body_invweight0 = "
-    << g(r.inv_weight) << " 1/kg"
+    << g(r.inv_mass)
+    << " 1/kg (the contact's true inverse mass); Â = body_invweight0 = " << g(r.inv_weight)
+    << " 1/kg"
     << (in.inv_weight > 0.0 ? " (read from the compiled model)"
                             : " (2/(3m): slide joints along x and z, as contact2d generates)")
     << "\n";
   o << "at rest each of " << in.contacts << " contact" << (in.contacts > 1 ? "s" : "")
-    << " carries f = m·g/" << in.contacts << " = " << g(r.load) << " N; f/k = "
-    << g(r.load / in.k) << " m\n";
+    << " carries f = m·g/" << in.contacts << " = " << g(r.load) << " N; f/k = " << g(r.load / in.k)
+    << " m\n";
   for (const MappingOutcome& m : r.mappings) {
-    o << "\n" << mapping_name(m.mapping)
-      << (m.mapping == kDefaultMapping ? " (the default mapping)" : "") << "\n";
+    o << "\n"
+      << mapping_name(m.mapping) << (m.mapping == kDefaultMapping ? " (the default mapping)" : "")
+      << "\n";
     if (!m.unavailable.empty()) {
       o << "  not available: " << m.unavailable << "\n";
       continue;
@@ -288,8 +287,8 @@ std::string format_report_text(const SolrefReport& r) {
       o << "  refsafe: "
         << (s.refsafe_clamped ? "BITES: timeconst " + g(s.solref[0]) + " s < 2Δt; MuJoCo uses " +
                                     g(m.timeconst_used) + " s, a softer contact than k"
-                              : "does not bite (timeconst " + g(s.solref[0]) + " s ≥ 2Δt = " +
-                                    g(2.0 * in.dt) + " s)")
+                              : "does not bite (timeconst " + g(s.solref[0]) +
+                                    " s ≥ 2Δt = " + g(2.0 * in.dt) + " s)")
         << "\n";
     } else {
       o << "  refsafe: does not apply (direct form)\n";
@@ -298,11 +297,12 @@ std::string format_report_text(const SolrefReport& r) {
       o << "  pyramidal cone with friction: the normal sees Â·μ²(1 + μ²)/((condim − 1)·impratio) "
            "= "
         << g(m.normal_weight) << " 1/kg in place of Â (a stiffer contact)\n";
-    o << "  MuJoCo: K = " << g(m.K) << " 1/s², B = " << g(m.B) << " 1/s, impedance d = "
-      << g(m.impedance) << " (max), " << g(m.impedance_at_rest) << " at rest\n";
+    o << "  MuJoCo: K = " << g(m.K) << " 1/s², B = " << g(m.B)
+      << " 1/s, impedance d = " << g(m.impedance) << " (max), " << g(m.impedance_at_rest)
+      << " at rest\n";
     o << "  natural frequency ω = " << g(m.omega) << " rad/s, ζ = " << g(m.zeta)
-      << " (the reference: ω = " << g(std::sqrt(in.k * r.inv_mass)) << ", ζ = "
-      << g(in.c * r.inv_mass / (2.0 * std::sqrt(in.k * r.inv_mass))) << ")\n";
+      << " (the reference: ω = " << g(std::sqrt(in.k * r.inv_mass))
+      << ", ζ = " << g(in.c * r.inv_mass / (2.0 * std::sqrt(in.k * r.inv_mass))) << ")\n";
     o << "  ω·Δt = " << g(m.omega_dt) << ": limit " << g(m.euler_limit)
       << " for MuJoCo's Euler and implicit (" << (m.omega_dt < m.euler_limit ? "ok" : "EXCEEDED")
       << "), " << g(m.rk4_limit) << " for RK4 (" << (m.omega_dt < m.rk4_limit ? "ok" : "EXCEEDED")
@@ -356,8 +356,9 @@ std::string format_report_json(const SolrefReport& r) {
       << ",\n      \"normal_weight\": " << json_number(m.normal_weight)
       << ",\n      \"impedance\": " << json_number(m.impedance)
       << ",\n      \"impedance_at_rest\": " << json_number(m.impedance_at_rest)
-      << ",\n      \"omega\": " << json_number(m.omega) << ",\n      \"zeta\": "
-      << json_number(m.zeta) << ",\n      \"omega_dt\": " << json_number(m.omega_dt)
+      << ",\n      \"omega\": " << json_number(m.omega)
+      << ",\n      \"zeta\": " << json_number(m.zeta)
+      << ",\n      \"omega_dt\": " << json_number(m.omega_dt)
       << ",\n      \"euler_limit\": " << json_number(m.euler_limit)
       << ",\n      \"rk4_limit\": " << json_number(m.rk4_limit)
       << ",\n      \"static_penetration\": " << json_number(m.static_penetration)

@@ -65,7 +65,7 @@ struct MappingOutcome {
   double omega_dt = 0.0;
   double euler_limit = 0.0;  // MuJoCo Euler and implicit (contacts explicit): semi-implicit Euler
   double rk4_limit = 0.0;
-  double static_penetration = 0.0;  // m, per contact at rest
+  double static_penetration = 0.0;   // m, per contact at rest
   double nominal_penetration = 0.0;  // f/k, m
   std::string default_snippet;       // <option> + <default class>
   std::string pair_snippet;          // <option> + <contact><pair>
