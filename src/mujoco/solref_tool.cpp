@@ -138,7 +138,8 @@ std::string json_string(const std::string& text) {
   return out + "\"";
 }
 
-std::string json_number(double v) { return std::isfinite(v) ? format_number("%.17g", v) : "null"; }
+// The shortest text that reads back as the same double; null when not finite.
+std::string json_number(double v) { return std::isfinite(v) ? format_exact(v) : "null"; }
 
 }  // namespace
 
