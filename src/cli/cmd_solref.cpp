@@ -65,6 +65,9 @@ int solref(const SolrefOptions& options) {
     in.body_source = "--mass " + format_number(in.mass, 6);
   }
   const mj::SolrefReport report = mj::solref_report(in, mappings);
+  // One mapping asked for by name and it cannot express k, c: bad input.
+  if (report.mappings.size() == 1 && !report.mappings[0].unavailable.empty())
+    throw InputError(report.mappings[0].unavailable);
   std::cout << (options.json ? mj::format_report_json(report) : mj::format_report_text(report));
   return kExitOk;
 }

@@ -79,7 +79,14 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
   try {
     o.settings = solver_settings(contact, body, in.dt, mapping, report.inv_weight, 1);
   } catch (const InputError& e) {
+    // The mapping code names the scene keys; here they are options.
     o.unavailable = e.what();
+    for (const auto& [key, option] :
+         {std::pair<std::string, std::string>{"contact.k", "--k"}, {"contact.c", "--c"}}) {
+      for (size_t at = o.unavailable.find(key); at != std::string::npos;
+           at = o.unavailable.find(key, at))
+        o.unavailable.replace(at, key.size(), option);
+    }
     return o;
   }
   if (o.condim == 1) o.settings.impratio = 1.0;  // no friction rows: not written, MuJoCo's 1

@@ -169,11 +169,13 @@ double rest_tolerance(double penetration) {
 struct DropCase {
   mj::Mapping mapping;
   double mu;
-  bool pair;  // paste the <pair> snippet instead of the <default> class
+  bool pair;             // paste the <pair> snippet instead of the <default> class
+  double mu_roll = 0.0;  // > 0: condim 6, the sphere's radius and inertia given
 };
 
 void PrintTo(const DropCase& c, std::ostream* os) {
-  *os << mj::mapping_name(c.mapping) << ", mu = " << c.mu << (c.pair ? ", pair" : ", default");
+  *os << mj::mapping_name(c.mapping) << ", mu = " << c.mu << ", mu_roll = " << c.mu_roll
+      << (c.pair ? ", pair" : ", default");
 }
 
 class SolrefDrop : public ::testing::TestWithParam<DropCase> {};
@@ -187,6 +189,11 @@ TEST_P(SolrefDrop, RestsAtThePrintedStaticPenetration) {
   fs::remove(path);
   mj::SolrefInput in = input_for(body.mass, k, c, dt, dc.mu);
   in.inv_weight = body.inv_weight;
+  if (dc.mu_roll > 0.0) {
+    in.mu_roll = dc.mu_roll;
+    in.inertia = 0.4 * m * kRadius * kRadius;
+    in.lever = kRadius;
+  }
   const mj::SolrefReport report = mj::solref_report(in, {dc.mapping});
   const mj::MappingOutcome& o = report.mappings.at(0);
   ASSERT_TRUE(o.unavailable.empty()) << o.unavailable;
@@ -204,10 +211,12 @@ TEST_P(SolrefDrop, RestsAtThePrintedStaticPenetration) {
   ASSERT_EQ(rest.contacts, 1) << xml;  // a pair is merged with, not added to, the dynamic contact
   const double nominal = m * g / k;
   std::printf(
-      "%s mu = %g (%s): p = %.12g m, printed %.12g m (%.6g of m·g/k), residual %.3g of p; "
+      "%s mu = %g, mu_roll = %g (%s): p = %.12g m, printed %.12g m (%.6g of m·g/k), residual %.3g "
+      "of p; "
       "MuJoCo ω = %.4g rad/s, ζ = %.4g\n",
-      std::string(mj::mapping_name(dc.mapping)).c_str(), dc.mu, dc.pair ? "pair" : "default class",
-      rest.penetration, o.static_penetration, o.static_penetration / nominal,
+      std::string(mj::mapping_name(dc.mapping)).c_str(), dc.mu, dc.mu_roll,
+      dc.pair ? "pair" : "default class", rest.penetration, o.static_penetration,
+      o.static_penetration / nominal,
       (rest.penetration - o.static_penetration) / o.static_penetration, o.omega, o.zeta);
   EXPECT_NEAR(rest.penetration, o.static_penetration, rest_tolerance(o.static_penetration)) << xml;
   if (dc.mapping == mj::Mapping::Calibrated) {
@@ -224,7 +233,9 @@ INSTANTIATE_TEST_SUITE_P(Mappings, SolrefDrop,
                                            DropCase{mj::Mapping::Exact, 0.0, false},
                                            DropCase{mj::Mapping::Exact, 0.5, false},
                                            DropCase{mj::Mapping::Seed, 0.0, false},
-                                           DropCase{mj::Mapping::Seed, 0.5, true}));
+                                           DropCase{mj::Mapping::Seed, 0.5, true},
+                                           DropCase{mj::Mapping::Calibrated, 0.5, false, 0.01},
+                                           DropCase{mj::Mapping::Exact, 0.5, false, 0.01}));
 
 // refsafe: at Δt = 1e-3 the seed mapping's timeconst √(m/k) = 1e-3 s is
 // below 2Δt; the tool says so, and the penetration it prints with the
@@ -317,6 +328,8 @@ TEST(SolrefCli, BadInputExitsTwoWithOneLine) {
   expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --mass 1 --mapping fancy", "--mapping");
   expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --mass 1 --contacts 0", "--contacts");
   expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --mass 1 --lever 0.1", "--lever");
+  expect_one_line_error("--k 1e4 --c 0 --dt 1e-4 --mass 1 --mapping seed", "--c = 0 must be > 0");
+  expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --mass 1 --model x.xml --body b", "--mass");
   expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --model /nonexistent.xml --body b", "--model");
   const fs::path path = temp_file("cli.xml", user_model(1.0, 1e-4));
   expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --model '" + path.string() + "' --body nobody",
