@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <fstream>
 #include <sstream>
 
@@ -249,7 +250,7 @@ ModelBody read_model_body(const std::string& path, const std::string& body) {
                               : "no body of that name in " + path));
   ModelBody out;
   out.mass = model->body_mass[id];
-  out.inv_weight = model->body_invweight0[2 * id];
+  out.inv_weight = model->body_invweight0[2 * static_cast<std::ptrdiff_t>(id)];
   std::string warning = error;
   for (const std::string& w : warnings) warning += (warning.empty() ? "" : "; ") + w;
   std::replace(warning.begin(), warning.end(), '\n', ' ');
