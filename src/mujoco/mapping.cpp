@@ -18,14 +18,14 @@ constexpr double kMinMu = 1e-5;  // MuJoCo's mjMINMU
 
 std::string number(double v) { return format_number("%g", v); }
 
-void require_spring_and_damper(const Scene& scene, Mapping mapping) {
+void require_spring_and_damper(const ContactParams& contact, Mapping mapping) {
   const std::string why =
       std::string(" for --mapping ") + std::string(mapping_name(mapping)) +
       " (its timeconst and dampratio need k > 0 and c > 0; use --mapping calibrated)";
-  if (!(scene.contact.k > 0.0))
-    throw InputError("contact.k = " + number(scene.contact.k) + " must be > 0 N/m" + why);
-  if (!(scene.contact.c > 0.0))
-    throw InputError("contact.c = " + number(scene.contact.c) + " must be > 0 N·s/m" + why);
+  if (!(contact.k > 0.0))
+    throw InputError("contact.k = " + number(contact.k) + " must be > 0 N/m" + why);
+  if (!(contact.c > 0.0))
+    throw InputError("contact.c = " + number(contact.c) + " must be > 0 N·s/m" + why);
 }
 
 // Largest inverse mass a contact point can present along the ground
@@ -46,12 +46,11 @@ double max_tangential_inverse_mass(const RigidBody& body) {
 // what remains of MuJoCo's friction (coefficients are clamped at 1e-5) in a
 // contact of condim > 1. The generated model has condim 1 then (mjcf.hpp),
 // with no friction rows at all, and does not write impratio.
-double calibrated_impratio(const Scene& scene, const RigidBody& body) {
-  const ContactParams& p = scene.contact;
+double calibrated_impratio(const ContactParams& p, const RigidBody& body, double dt) {
   const bool rolls = body.roll_radius > 0.0 && p.mu_roll > 0.0;
   if (!(p.c > 0.0)) return 1.0;  // no damper: MuJoCo's friction has no velocity term at all
   if (p.mu <= 0.0 && !rolls) return kMinImpratio;
-  const double step = p.c * scene.sim.dt;
+  const double step = p.c * dt;
   double ratio = 1.0 / (step * max_tangential_inverse_mass(body));
   if (rolls) {
     const double mu = std::max(p.mu, kMinMu);
@@ -95,22 +94,26 @@ int contacts_per_point(Shape shape, Geometry geometry) {
 }
 
 SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_mass, int split) {
+  return solver_settings(scene.contact, make_body(scene), scene.sim.dt, mapping, inv_mass, split);
+}
+
+SolverSettings solver_settings(const ContactParams& contact, const RigidBody& body, double dt,
+                               Mapping mapping, double inv_mass, int split) {
   SolverSettings s;
   s.mapping = mapping;
-  const RigidBody body = make_body(scene);
   const double m = body.mass;
-  const double k = scene.contact.k;
-  const double c = scene.contact.c;
+  const double k = contact.k;
+  const double c = contact.c;
   if (mapping == Mapping::Calibrated) {
     s.inv_mass = inv_mass;
     s.split = split;
     s.solref = {-k * inv_mass / split, -c * inv_mass / split};
     s.solimp = kMinimalSolimp;
     s.elliptic = true;
-    s.impratio = calibrated_impratio(scene, body);
+    s.impratio = calibrated_impratio(contact, body, dt);
     return s;
   }
-  require_spring_and_damper(scene, mapping);
+  require_spring_and_damper(contact, mapping);
   const double dampratio = c / (2.0 * std::sqrt(m * k));
   const double timeconst = mapping == Mapping::Seed ? std::sqrt(m / k) : 2.0 * m / c;
   // Extreme k, c or m overflow or underflow them (√(m/k) or 2m/c = inf,
@@ -127,7 +130,7 @@ SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_m
         ": MuJoCo's solref needs both > 0, finite and not subnormal; use --mapping calibrated");
   }
   s.solref = {timeconst, dampratio};
-  s.refsafe_clamped = timeconst < 2.0 * scene.sim.dt;
+  s.refsafe_clamped = timeconst < 2.0 * dt;
   return s;
 }
 

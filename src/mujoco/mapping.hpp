@@ -102,6 +102,12 @@ struct SolverSettings {
 // (seed and exact need k > 0 and c > 0, and a timeconst and dampratio that
 // are positive normal floating-point numbers: not 0, subnormal or inf).
 SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_mass, int split);
+// The same from the contact law, the body (its mass; for impratio its
+// inertia, contact points and roll radius) and the Δt: the scene version
+// calls this one with make_body(scene) (`contact2d solref` calls it with a
+// body it describes by its mass, inertia and lever).
+SolverSettings solver_settings(const ContactParams& contact, const RigidBody& body, double dt,
+                               Mapping mapping, double inv_mass, int split);
 
 // MuJoCo's contact spring and damper per unit of approximate inverse mass
 // as its solver computes them from solref/solimp (K·d_max², B·d_max): the

@@ -1,0 +1,109 @@
+// `contact2d solref`: the MuJoCo numbers for a user's own model.
+//
+// Given a contact's k, c, the timestep Δt and the body (a mass, optionally an
+// inertia and a lever; or body_invweight0 read from the user's compiled
+// model), it runs the generator's own mapping code (mapping.hpp,
+// solver_settings) and says what MuJoCo 2.2 will then do with each mapping's
+// solref/solimp (engine_core_constraint.c; docs/mujoco.md):
+//
+//   K = S/d_max², B = D/d_max with (S, D) = acceleration_gains(solref) after
+//   refsafe (standard form: timeconst raised to 2Δt); R = (1 − d)/d·Â.
+//
+// Natural frequency and damping ratio of the contact point (flat impedance
+// at d_max, the stiffest value the impedance reaches):
+//   ω² = A·d²K/(d·A + (1 − d)·Â),   2ζω = A·d·B/(d·A + (1 − d)·Â).
+//
+// Static penetration: at rest every contact row has J·qacc = 0, and in the
+// solver's quadratic zone f = −(J·qacc − aref)/R, so f·R = aref = K·d·p
+// (v = 0, p = −efc_pos): p = f·(1 − d)·Â/(K·d²), whatever A and however
+// many contacts share the load. d depends on p for a non-flat solimp (the
+// default 0.9 → 0.95 over 1 mm), so p solves p·K·d(p)² = f·Â·(1 − d(p)),
+// found by bisection (the left side grows and the right side falls with p).
+// For calibrated (K·d² = k·Â, flat d = 1e-4): p = (1 − d)·f/k. With
+// MuJoCo's default pyramidal cone and friction (seed, exact with μ > 0) the
+// normal force is the sum of 2(condim − 1) edge rows whose regulariser is
+// 2μ²(1 + μ²)·R/impratio: Â becomes Â·μ²(1 + μ²)/((condim − 1)·impratio) in
+// all of the above (0.16·Â at μ = 0.5, condim 3: a 6× stiffer contact).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mujoco/mapping.hpp"
+
+namespace contact2d::mujoco {
+
+struct SolrefInput {
+  double k = 0.0;         // N/m, per MuJoCo contact
+  double c = 0.0;         // N·s/m, per MuJoCo contact
+  double dt = 0.0;        // s, MuJoCo's timestep
+  double mass = 0.0;      // kg
+  double inertia = 0.0;   // kg·m² about the axis the lever turns the body (0: no rotation)
+  double lever = 0.0;     // m, distance of the contact point from the COM across the normal
+  double inv_weight = 0;  // Â = body_invweight0, 1/kg; 0: 2/(3m), contact2d's planar body
+  double mu = 0.0;        // sliding friction
+  double mu_roll = 0.0;   // rolling friction, m (needs inertia and lever, the rolling radius)
+  int contacts = 1;       // MuJoCo contacts that share the body's weight at rest
+  double gravity = 9.81;  // m/s²
+  // Where the numbers come from, for the text ("--mass 1" or "model.xml, body 'box'").
+  std::string body_source;
+};
+
+struct MappingOutcome {
+  Mapping mapping = kDefaultMapping;
+  std::string unavailable;  // non-empty: why this mapping cannot express k, c
+  SolverSettings settings;
+  int condim = 1;
+  double timeconst_used = 0.0;  // standard form: after refsafe; 0 for the direct form
+  double K = 0.0, B = 0.0;      // MuJoCo's KBIP[0], KBIP[1]
+  double normal_weight = 0.0;   // Â, or Â·φ for a pyramidal cone with friction (.cpp)
+  double impedance = 0.0;       // d_max (solimp[1], clamped to [1e-4, 0.9999])
+  double impedance_at_rest = 0.0;
+  double omega = 0.0, zeta = 0.0;
+  double omega_dt = 0.0;
+  double euler_limit = 0.0;  // MuJoCo Euler and implicit (contacts explicit): semi-implicit Euler
+  double rk4_limit = 0.0;
+  double static_penetration = 0.0;   // m, per contact at rest
+  double nominal_penetration = 0.0;  // f/k, m
+  std::string default_snippet;       // <option> + <default class>
+  std::string pair_snippet;          // <option> + <contact><pair>
+};
+
+struct SolrefReport {
+  SolrefInput input;
+  double inv_mass = 0.0;    // A = 1/m + lever²/I
+  double inv_weight = 0.0;  // Â
+  double load = 0.0;        // f = m·g/contacts, N per contact
+  std::vector<MappingOutcome> mappings;
+};
+
+// Throws InputError naming the option for a value outside its range.
+void validate(const SolrefInput& input);
+
+SolrefReport solref_report(const SolrefInput& input, const std::vector<Mapping>& mappings);
+
+// MuJoCo 2.2's impedance d at a constraint distance `pos` (margin 0), from
+// the solimp function as MuJoCo's documentation defines it, with MuJoCo's
+// clamps (d in [1e-4, 0.9999]).
+double mujoco_impedance(const std::array<double, 5>& solimp, double pos);
+
+// p solving p·K·d(p)² = f·Â·(1 − d(p)) (see the header comment).
+double static_penetration(const std::array<double, 5>& solimp, double K, double inv_weight,
+                          double force);
+
+// A body of a MuJoCo model file: mass and body_invweight0 (translational).
+struct ModelBody {
+  double mass = 0.0;
+  double inv_weight = 0.0;
+  std::string load_warning;  // MuJoCo's warning while loading, if any
+};
+// Throws InputError "--model FILE: ..." when MuJoCo cannot load it and
+// "--body NAME: ..." when the model has no such body (or it is the world).
+ModelBody read_model_body(const std::string& path, const std::string& body);
+
+std::string format_report_text(const SolrefReport& report);
+std::string format_report_json(const SolrefReport& report);
+
+}  // namespace contact2d::mujoco
