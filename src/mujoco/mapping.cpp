@@ -51,7 +51,8 @@ double calibrated_impratio(const Scene& scene, const RigidBody& body) {
   const bool rolls = body.roll_radius > 0.0 && p.mu_roll > 0.0;
   if (!(p.c > 0.0)) return 1.0;  // no damper: MuJoCo's friction has no velocity term at all
   if (p.mu <= 0.0 && !rolls) return kMinImpratio;
-  const double step = p.c * scene.sim.dt;
+  // impratio is one value for every contact: the bound of the stiffest damper.
+  const double step = largest_damping(scene) * scene.sim.dt;
   double ratio = 1.0 / (step * max_tangential_inverse_mass(body));
   if (rolls) {
     const double mu = std::max(p.mu, kMinMu);
@@ -61,6 +62,12 @@ double calibrated_impratio(const Scene& scene, const RigidBody& body) {
 }
 
 }  // namespace
+
+double largest_damping(const Scene& scene) {
+  double c = scene.contact.c;
+  for (const Obstacle& o : scene.obstacles) c = std::max(c, o.contact.apply(scene.contact).c);
+  return c;
+}
 
 std::string_view mapping_name(Mapping mapping) {
   switch (mapping) {

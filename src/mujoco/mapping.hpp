@@ -103,6 +103,10 @@ struct SolverSettings {
 // are positive normal floating-point numbers: not 0, subnormal or inf).
 SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_mass, int split);
 
+// The largest c of the scene's [contact] and its obstacles' own laws: the
+// damper that bounds calibrated's impratio (one value for every contact).
+double largest_damping(const Scene& scene);
+
 // MuJoCo's contact spring and damper per unit of approximate inverse mass
 // as its solver computes them from solref/solimp (K·d_max², B·d_max): the
 // quantity each mapping is meant to set equal to (k·Â, c·Â) or (k/m, c/m).

@@ -95,7 +95,9 @@ double json_number(const std::string& json, const std::string& key, size_t from 
   return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
 }
 
-TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
+// The window on one engine: keys reach the game, the screen shows it, and
+// the live recording replays headless (on the same engine) to the same kick.
+void keys_move_the_ball(const std::string& engine) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
   ASSERT_EQ(sh("command -v xdotool >/dev/null && command -v ffmpeg >/dev/null"), 0)
       << "needs xdotool and ffmpeg (scripts/setup installs them)";
@@ -120,8 +122,9 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
 
   const fs::path out = temp("out.json"), err = temp("err.txt"), replay = temp("live.replay");
   const std::string command = std::string("exec '") + CONTACT2D_EXE + "' play '" + pitch.string() +
-                              "' --seed 5 --record-input '" + replay.string() + "' >'" +
-                              out.string() + "' 2>'" + err.string() + "'";
+                              "' --engine " + engine + " --seed 5 --record-input '" +
+                              replay.string() + "' >'" + out.string() + "' 2>'" + err.string() +
+                              "'";
   pid_t pid = -1;
   const char* argv[] = {"sh", "-c", command.c_str(), nullptr};
   ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
@@ -214,9 +217,10 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
 
   // What the live window recorded replays headless to the same kick.
   const fs::path replay_out = temp("replay.json");
-  ASSERT_EQ(sh(std::string("'") + CONTACT2D_EXE + "' play '" + pitch.string() +
-               "' --headless --replay '" + replay.string() + "' >'" + replay_out.string() + "'"),
-            0);
+  ASSERT_EQ(
+      sh(std::string("'") + CONTACT2D_EXE + "' play '" + pitch.string() + "' --headless --engine " +
+         engine + " --replay '" + replay.string() + "' >'" + replay_out.string() + "'"),
+      0);
   const std::string replayed = slurp(replay_out);
   const auto kicks = [](const std::string& j) {
     return j.substr(j.find("\"kicks\""), j.find("\"rounds\"") - j.find("\"kicks\""));
@@ -227,7 +231,14 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
   fs::remove(replay);
   fs::remove(replay_out);
   fs::remove(pitch);
+  EXPECT_NE(json.find("\"engine\":\"" + engine + "\""), std::string::npos) << json;
 }
+
+TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) { keys_move_the_ball("ref"); }
+
+#ifdef CONTACT2D_WITH_MUJOCO
+TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGameOnMujoco) { keys_move_the_ball("mujoco"); }
+#endif
 
 TEST(Window, RecordingTheGoalReplayWritesAVideoOfEveryFrame) {
   // While recording, each frame advances exactly 1/60 s of game time, and a
