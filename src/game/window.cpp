@@ -147,7 +147,7 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
         if (game.divergence()) break;
         game.step();
         accumulator -= dt;
-        if (!video && o.physics_budget > 0.0 && ++stepped % 64 == 0 &&
+        if (!video && o.physics_budget > 0.0 && ++stepped % 16 == 0 &&
             std::chrono::duration<double>(std::chrono::steady_clock::now() - physics_start)
                     .count() > o.physics_budget) {
           accumulator = 0.0;  // what is left of this frame's time is not simulated

@@ -28,8 +28,9 @@ struct WindowOptions {
   long long max_frames = 0;  // > 0: close after this many frames (measuring)
   bool start_with_help = false;
   // Live play: at most this much wall clock a frame for physics, s (0: no
-  // limit). 4 ms leaves a 120 fps frame (8.3 ms) room to draw.
-  double physics_budget = 0.004;
+  // limit). 3 ms leaves a 120 fps frame (8.3 ms) room for the 2.4-4 ms that
+  // llvmpipe takes to draw one under load (scripts/measure-fps).
+  double physics_budget = 0.003;
 };
 
 struct WindowStats {
