@@ -108,7 +108,7 @@ int play(const PlayOptions& o) {
     std::cerr << "contact2d play: " << stats.frames << " frames in "
               << format_number(stats.seconds, 4) << " s (" << format_number(fps, 4)
               << " fps, drawing " << format_number(render_ms, 3) << " ms/frame), " << stats.steps
-              << " physics steps\n";
+              << " physics steps, engine " << o.engine << ", renderer " << stats.renderer << "\n";
 #else
     throw InputError(
         "play: the window is not available (contact2d was built without GLFW/OpenGL); use "

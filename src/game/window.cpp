@@ -101,6 +101,8 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
   double fps_window_start = last;
   long long fps_window_frames = 0;
   WindowStats stats;
+  if (const GLubyte* name = glGetString(GL_RENDERER))
+    stats.renderer = reinterpret_cast<const char*>(name);
   bool quit = false;
   long long steps_before = game.steps();
   double sim_advanced = 0.0, wall_advanced = 0.0;  // for the real-time factor

@@ -38,6 +38,7 @@ struct WindowStats {
   double seconds = 0.0;         // wall clock from the first to the last frame
   double render_seconds = 0.0;  // drawing and swapping alone
   long long steps = 0;
+  std::string renderer;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
 };
 
 // Opens the window and plays until Esc, the window is closed, the replay is
