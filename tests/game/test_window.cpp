@@ -240,6 +240,25 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) { keys_move_the_ball("ref"
 TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGameOnMujoco) { keys_move_the_ball("mujoco"); }
 #endif
 
+// The help overlay pauses the game: 60 frames with it open from the start
+// take no physics step (without it, 60 frames at any frame rate advance the
+// clock and so the steps; a replay is used so no key is needed).
+TEST(Window, TheHelpOverlayPausesTheGame) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
+  const fs::path out = temp("help.json"), err = temp("help.err");
+  const std::string base = std::string("'") + CONTACT2D_EXE +
+                           "' play --replay '" CONTACT2D_SOURCE_DIR
+                           "/validation/replays/goal.replay' --frames 60 --no-vsync";
+  ASSERT_EQ(sh(base + " --help-overlay >'" + out.string() + "' 2>'" + err.string() + "'"), 0)
+      << slurp(err);
+  EXPECT_NE(slurp(err).find(", 0 physics steps"), std::string::npos) << slurp(err);
+  EXPECT_NE(slurp(out).find("\"steps\":0,"), std::string::npos) << slurp(out);
+  ASSERT_EQ(sh(base + " >'" + out.string() + "' 2>'" + err.string() + "'"), 0) << slurp(err);
+  EXPECT_EQ(slurp(out).find("\"steps\":0,"), std::string::npos) << slurp(out);
+  fs::remove(out);
+  fs::remove(err);
+}
+
 TEST(Window, RecordingTheGoalReplayWritesAVideoOfEveryFrame) {
   // While recording, each frame advances exactly 1/60 s of game time, and a
   // window replay ends result_time (2 s) after the goal was given: the video
