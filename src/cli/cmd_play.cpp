@@ -138,8 +138,11 @@ Command add_play(CLI::App& app) {
       "to the next pass, F1 or H shows the help, Esc quits. Prints one JSON line at the end.");
   cmd->add_option(
       "pitch", o->pitch,
-      "Pitch file: a circle scene with [[obstacle]] and [game] (default: the built-in pitch)");
-  cmd->add_option("--engine", o->engine, "ref | mujoco")->check(CLI::IsMember({"ref", "mujoco"}));
+      "Pitch file: any circle scene; its [game] table names the crossbar and the rules, without "
+      "one it plays on the built-in goal (default: the built-in pitch)");
+  cmd->add_option("--engine", o->engine,
+                  "ref | mujoco: the physics (same keys, replays and recording on both)")
+      ->check(CLI::IsMember({"ref", "mujoco"}));
   cmd->add_option("--seed", o->seed,
                   "Seed of the passes (default: random; the JSON and the replay say which)");
   cmd->add_option("--record-input", o->record_input,

@@ -101,6 +101,32 @@ TEST(BothEngines, ABallKickedIntoTheNetComesToRestInsideTheGoal) {
   }
 }
 
+// A ball pushed over the line (no kick): "no goal, the last touch was a
+// push", and the ball is still in the goal for as long as the verdict is
+// shown (the result phase): the net holds it.
+TEST(BothEngines, APushedInBallStaysInTheGoalUnderItsVerdict) {
+  for (const std::string& engine : engines_to_test()) {
+    Pitch p = default_pitch();
+    p.rules.pass_speed_min = p.rules.pass_speed_max = 0.0;
+    p.rules.pass_x = 9.0;
+    Game game(p, engine, 1);
+    game.handle(Key::Right, true);
+    while (game.phase() == Phase::Playing) game.step();
+    game.handle(Key::Right, false);
+    ASSERT_EQ(game.current_round().outcome, Outcome::Pushed) << engine;
+    double min_x = 1e9, max_x = 0.0;
+    while (game.steps_since_end() + 1 < game.result_steps()) {
+      game.step();
+      min_x = std::min(min_x, game.ball().q.x());
+      max_x = std::max(max_x, game.ball().q.x());
+    }
+    std::printf("%s: pushed in, x in [%.3f, %.3f] m while the verdict shows\n", engine.c_str(),
+                min_x, max_x);
+    EXPECT_GT(min_x, p.rules.goal_line) << engine << ": the centre stays past the line";
+    EXPECT_LT(max_x, p.scene.obstacles[2].a.x()) << engine << ": inside the back net";
+  }
+}
+
 // Closed forms of a ball falling straight onto the top face of the crossbar
 // with gravity off (a disc on a flat face has the ground's law along +y;
 // the normal passes through the centre, so only the mass m moves it):
