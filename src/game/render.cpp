@@ -53,7 +53,8 @@ std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
 // pitch's ends, so the whole goal is in view once the ball is within ~3 m of
 // it; the grass line sits 90 px above the bottom. The whole 13 m pitch in
 // 800 px drew the 0.22 m ball 13.5 px across; 7 m draw it 25 px across
-// (2R·800/7 = 25.1 px; measured in a recorded frame: the README says how).
+// (2R·800/7 = 25.1 px; tests/game/test_window.cpp measures 22 px of white
+// inside the outline).
 constexpr double kViewWidth = 7.0;  // m
 constexpr double kLead = 0.4;
 

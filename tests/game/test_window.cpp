@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -73,8 +74,10 @@ struct Image {
 Image screenshot(const std::string& name, const std::string& screen_size) {
   const fs::path file = temp(name + ".ppm");
   const std::string display = std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "";
-  sh("ffmpeg -loglevel error -y -f x11grab -video_size " + screen_size + " -i '" + display +
-     "' -frames:v 1 -f image2 -c:v ppm '" + file.string() + "'");
+  // -draw_mouse 0: the X cursor (at the screen's centre, over the window)
+  // is not part of the picture.
+  sh("ffmpeg -loglevel error -y -f x11grab -draw_mouse 0 -video_size " + screen_size + " -i '" +
+     display + "' -frames:v 1 -f image2 -c:v ppm '" + file.string() + "'");
   Image image;
   std::ifstream in(file, std::ios::binary);
   std::string magic;
@@ -214,6 +217,28 @@ void keys_move_the_ball(const std::string& engine) {
   }
   std::printf("\n");
   EXPECT_GT(changed, 50) << "the ball did not move on screen";
+
+  // The ball is big enough to see: below the HUD (y > 110) and above the
+  // goal line's white mark on the grass (y < 505) only the ball is pure
+  // white. The camera shows 7 m in 800 px, so its 0.22 m are 25.1 px; inside
+  // its 1.5 px outline 22 px are white (render.cpp). Before the camera
+  // followed the ball, the whole 13 m pitch drew it 13.5 px across.
+  int left = 800, right = -1, top = 600, bottom = -1;
+  for (int yy = 111; yy < 505; ++yy) {
+    for (int xx = 0; xx < 800; ++xx) {
+      if ((after.pixel(xx, yy) & 0xffffff) == 0xffffff) {
+        left = std::min(left, xx);
+        right = std::max(right, xx);
+        top = std::min(top, yy);
+        bottom = std::max(bottom, yy);
+      }
+    }
+  }
+  std::printf("ball on screen: %d x %d px of white\n", right - left + 1, bottom - top + 1);
+  EXPECT_GE(right - left + 1, 20);
+  EXPECT_LE(right - left + 1, 25);
+  EXPECT_GE(bottom - top + 1, 20);
+  EXPECT_LE(bottom - top + 1, 25);
 
   // What the live window recorded replays headless to the same kick.
   const fs::path replay_out = temp("replay.json");
