@@ -108,7 +108,7 @@ int play(const PlayOptions& o) {
     std::cerr << "contact2d play: " << stats.frames << " frames in "
               << format_number(stats.seconds, 4) << " s (" << format_number(fps, 4)
               << " fps, drawing " << format_number(render_ms, 3) << " ms/frame), " << stats.steps
-              << " physics steps\n";
+              << " physics steps, engine " << o.engine << ", renderer " << stats.renderer << "\n";
 #else
     throw InputError(
         "play: the window is not available (contact2d was built without GLFW/OpenGL); use "
@@ -137,10 +137,12 @@ Command add_play(CLI::App& app) {
       "resets\n"
       "to the next pass, F1 or H shows the help, Esc quits. Prints one JSON line at the end.");
   cmd->add_option(
-         "pitch", o->pitch,
-         "Pitch file: a circle scene with [[obstacle]] and [game] (default: the built-in pitch)")
+      "pitch", o->pitch,
+      "Pitch file: any circle scene; its [game] table names the crossbar and the rules, without "
+      "one it plays on the built-in goal (default: the built-in pitch)")
       ->type_name("PITCH.toml");
-  cmd->add_option("--engine", o->engine, "ref | mujoco")
+  cmd->add_option("--engine", o->engine,
+                  "ref | mujoco: the physics (same keys, replays and recording on both)")
       ->type_name("ENGINE")
       ->check(CLI::IsMember({"ref", "mujoco"}));
   cmd->add_option("--seed", o->seed,

@@ -40,9 +40,10 @@ void find_contacts(const Model& model, const Vec3& q, ContactSet& out) {
   if (!model.obstacles.empty()) {
     ObstacleContact hit;
     if (body.roll_radius > 0.0) {
-      for (const Obstacle& o : model.obstacles) {
-        if (disc_contact(o, p, body.roll_radius, hit))
-          *next++ = {hit.depth, hit.normal.x(), hit.normal.y(), hit.r.x(), hit.r.y()};
+      for (size_t j = 0; j < model.obstacles.size(); ++j) {
+        if (disc_contact(model.obstacles[j], p, body.roll_radius, hit))
+          *next++ = {hit.depth, hit.normal.x(), hit.normal.y(),
+                     hit.r.x(), hit.r.y(),      static_cast<int>(j)};
       }
     } else {
       for (size_t i = 0; i < n_points; ++i) {
@@ -50,20 +51,22 @@ void find_contacts(const Model& model, const Vec3& q, ContactSet& out) {
         const double rx = ct * local.x() - st * local.y();
         const double ry = st * local.x() + ct * local.y();
         const Vec2 c(p.x() + rx, p.y() + ry);
-        for (const Obstacle& o : model.obstacles) {
-          if (point_contact(o, c, hit))
-            *next++ = {hit.depth, hit.normal.x(), hit.normal.y(), rx, ry};
+        for (size_t j = 0; j < model.obstacles.size(); ++j) {
+          if (point_contact(model.obstacles[j], c, hit))
+            *next++ = {hit.depth, hit.normal.x(), hit.normal.y(), rx, ry, static_cast<int>(j)};
         }
       }
       // Obstacle vertices (box corners, segment caps) against the body's edges.
-      for (const Obstacle& o : model.obstacles) {
+      for (size_t j = 0; j < model.obstacles.size(); ++j) {
+        const Obstacle& o = model.obstacles[j];
         Vec2 vertices[4];
         double radius = 0.0;
         const int n_vertices = obstacle_vertices(o, vertices, radius);
         for (int k = 0; k < n_vertices; ++k) {
           for (const PartOutline& part : body.parts) {
             if (vertex_part_contact(vertices[k], radius, p, ct, st, part, hit))
-              *next++ = {hit.depth, hit.normal.x(), hit.normal.y(), hit.r.x(), hit.r.y()};
+              *next++ = {hit.depth, hit.normal.x(), hit.normal.y(),
+                         hit.r.x(), hit.r.y(),      static_cast<int>(j)};
           }
         }
       }

@@ -57,6 +57,7 @@ struct Contact {
   double depth = 0.0;         // penetration d > 0, m
   double nx = 0.0, ny = 1.0;  // unit normal out of the touched surface
   double rx = 0.0, ry = 0.0;  // lever arm: contact point − COM, world frame
+  int obstacle = -1;          // index of the obstacle touched; −1: the ground
   Vec2 normal() const { return {nx, ny}; }
   Vec2 r() const { return {rx, ry}; }
 };

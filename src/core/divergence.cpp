@@ -13,7 +13,8 @@ ContactStiffness contact_stiffness(const Model& model) {
   ContactStiffness cs;
   cs.m_eff = min_effective_mass(model.body);
   if (model.contact.k > 0.0) {
-    cs.omega = std::sqrt(model.contact.k / cs.m_eff);
+    // The stiffest law (an obstacle's may be stiffer than the ground's).
+    cs.omega = std::sqrt(model.max_k() / cs.m_eff);
     cs.zeta = model.contact.c / (2.0 * std::sqrt(model.contact.k * cs.m_eff));
   }
   return cs;
@@ -43,7 +44,8 @@ DivergenceMonitor::DivergenceMonitor(const Model& model, const State& initial,
 
 double DivergenceMonitor::depth_limit(double energy) const {
   const double mg = model_->body.mass * model_->gravity;
-  const double k = model_->contact.k;
+  // The softest law lets a spring hold the energy deepest.
+  const double k = model_->min_k();
   return k > 0.0 ? 2.0 * (mg + std::sqrt(mg * mg + 2.0 * k * energy)) / k
                  : std::numeric_limits<double>::infinity();
 }

@@ -1,5 +1,7 @@
 #include "core/dynamics.hpp"
 
+#include <algorithm>
+
 namespace contact2d {
 
 Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v) {
@@ -27,11 +29,12 @@ Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v)
     const Vec2 r = contact.r();
     const Vec2 t(n.y(), -n.x());
     const Vec2 vc(v.x() - omega * r.y(), v.y() + omega * r.x());  // v + ω × r
-    const double fn = normal_force(law, contact.depth, vc.dot(n));
-    const double ft = friction_force(law, fn, vc.dot(t));
+    const ContactParams& own = model.law(contact);
+    const double fn = normal_force(own, contact.depth, vc.dot(n));
+    const double ft = friction_force(own, fn, vc.dot(t));
     const Vec2 f = fn * n + ft * t;
     force += f;
-    torque += r.x() * f.y() - r.y() * f.x() + rolling_torque(law, fn, body.roll_radius, v.z());
+    torque += r.x() * f.y() - r.y() * f.x() + rolling_torque(own, fn, body.roll_radius, v.z());
   }
 
   const double alpha = (body.rotates && body.inertia > 0.0) ? torque / body.inertia : 0.0;
@@ -42,8 +45,20 @@ double energy(const Model& model, const ContactSet& contacts, const State& s) {
   const RigidBody& body = model.body;
   double e = 0.5 * body.mass * (s.v.x() * s.v.x() + s.v.y() * s.v.y()) +
              0.5 * body.inertia * s.v.z() * s.v.z() + body.mass * model.gravity * s.q.y();
-  for (const Contact& c : contacts) e += 0.5 * model.contact.k * c.depth * c.depth;
+  for (const Contact& c : contacts) e += 0.5 * model.law(c).k * c.depth * c.depth;
   return e;
+}
+
+double Model::min_k() const {
+  double k = contact.k;
+  for (const ContactParams& p : obstacle_laws) k = std::min(k, p.k);
+  return k;
+}
+
+double Model::max_k() const {
+  double k = contact.k;
+  for (const ContactParams& p : obstacle_laws) k = std::max(k, p.k);
+  return k;
 }
 
 Vec3 acceleration(const Model& model, const Vec3& q, const Vec3& v) {

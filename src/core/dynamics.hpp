@@ -29,14 +29,28 @@ struct Model {
   ContactParams contact;
   double gravity = 9.81;
   Vec3 applied = Vec3::Zero();      // external (Fx, Fy, τ), e.g. from a player
-  std::vector<Obstacle> obstacles;  // static geometry with the ground's contact law
+  std::vector<Obstacle> obstacles;  // static geometry
+  // The law of each obstacle (its ContactOverride applied to `contact`);
+  // an obstacle without an entry uses `contact`. make_model fills it.
+  std::vector<ContactParams> obstacle_laws;
+
+  // The law a contact is computed with.
+  const ContactParams& law(const Contact& c) const {
+    return c.obstacle >= 0 && static_cast<size_t>(c.obstacle) < obstacle_laws.size()
+               ? obstacle_laws[static_cast<size_t>(c.obstacle)]
+               : contact;
+  }
+  // Smallest and largest k of the ground's and the obstacles' laws.
+  double min_k() const;
+  double max_k() const;
 };
 
 // a = M⁻¹·F(q, v) with `contacts` found at q (q enters only through them).
 // Allocation-free.
 Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v);
 
-// Mechanical energy: ½m|v|² + ½Iω² + m·g·y + Σ ½·k·d² over the contacts.
+// Mechanical energy: ½m|v|² + ½Iω² + m·g·y + Σ ½·k·d² over the contacts
+// (each contact's own k).
 double energy(const Model& model, const ContactSet& contacts, const State& s);
 
 // Conveniences that run the contact stage themselves (they allocate a

@@ -1,7 +1,7 @@
 // Static obstacles: fixed geometry the body touches with the ground's contact
-// law (docs/physics.md), applied along the normal n out of the touched surface instead
-// of +y. This file is the geometry (depth and normal of one point or disc
-// against one obstacle, of one obstacle vertex against one part of the body);
+// law (docs/physics.md) or with the obstacle's own k, c, μ, … (ContactOverride), applied along the normal n
+// out of the touched surface instead of +y. This file is the geometry (depth and normal of one
+// point or disc against one obstacle, of one obstacle vertex against one part of the body);
 // core/contacts.hpp enumerates the contacts and core/dynamics.hpp
 // applies the law to them.
 //
@@ -94,17 +94,42 @@
 #include <string_view>
 #include <vector>
 
+#include <optional>
+
 #include "core/body.hpp"
+#include "core/contact.hpp"
 
 namespace contact2d {
 
 enum class ObstacleShape { Box, Segment };
 
+// An obstacle's own contact law: each key it sets replaces the scene's
+// [contact] value, each key it leaves unset follows the scene's (also when a
+// sweep or --set changes the scene's), so a goal's net can be soft and
+// absorbing while its crossbar keeps the scene's hard law.
+struct ContactOverride {
+  std::optional<double> k, c, mu, alpha, mu_roll, mu_torsion;
+  std::optional<DampingLaw> damping;
+
+  bool any() const { return k || c || mu || alpha || mu_roll || mu_torsion || damping; }
+  ContactParams apply(ContactParams base) const {
+    if (k) base.k = *k;
+    if (c) base.c = *c;
+    if (mu) base.mu = *mu;
+    if (alpha) base.alpha = *alpha;
+    if (mu_roll) base.mu_roll = *mu_roll;
+    if (mu_torsion) base.mu_torsion = *mu_torsion;
+    if (damping) base.damping = *damping;
+    return base;
+  }
+};
+
 struct Obstacle {
   ObstacleShape shape = ObstacleShape::Box;
-  Vec2 a = Vec2::Zero();  // box: lower-left corner lo; segment: first end
-  Vec2 b = Vec2::Zero();  // box: upper-right corner hi; segment: second end
-  double radius = 0.0;    // segment: half thickness (≥ 0); box: unused
+  Vec2 a = Vec2::Zero();    // box: lower-left corner lo; segment: first end
+  Vec2 b = Vec2::Zero();    // box: upper-right corner hi; segment: second end
+  double radius = 0.0;      // segment: half thickness (≥ 0); box: unused
+  ContactOverride contact;  // unset keys: the scene's [contact]
 };
 
 // A box from its centre and size (width, height > 0).

@@ -48,6 +48,26 @@ bool positive(double x) { return std::isfinite(x) && x > 0.0; }
 bool non_negative(double x) { return std::isfinite(x) && x >= 0.0; }
 bool bounded(double x, double limit) { return std::isfinite(x) && std::abs(x) <= limit; }
 
+// The contact law's ranges; `prefix` names its table ("contact." or
+// "obstacle[2]." for an obstacle's own keys).
+std::optional<ValidationError> validate_contact(const ContactParams& p, const std::string& prefix) {
+  const std::optional<ValidationError> checks[] = {
+      require(non_negative(p.k) && p.k <= 1e12, p.k, prefix + "k", "must be in [0, 1e12] N/m"),
+      require(non_negative(p.c) && p.c <= 1e9, p.c, prefix + "c", "must be in [0, 1e9] N·s/m"),
+      require(non_negative(p.mu) && p.mu <= 100, p.mu, prefix + "mu", "must be in [0, 100]"),
+      require(positive(p.alpha) && p.alpha <= 1e9, p.alpha, prefix + "alpha",
+              "must be in (0, 1e9] s/m"),
+      require(non_negative(p.mu_roll) && p.mu_roll <= 10, p.mu_roll, prefix + "mu_roll",
+              "must be in [0, 10] m"),
+      require(non_negative(p.mu_torsion) && p.mu_torsion <= 10, p.mu_torsion, prefix + "mu_torsion",
+              "must be in [0, 10] m"),
+  };
+  for (const auto& check : checks) {
+    if (check) return check;
+  }
+  return std::nullopt;
+}
+
 // Obstacles are stored as corners (box) or ends (segment); the messages name
 // the scene file's keys: a box's x, y (centre), width, height; a segment's
 // x1, y1, x2, y2, radius.
@@ -101,18 +121,6 @@ std::optional<ValidationError> validate(const Scene& s) {
               "must be in (0, 1e3] m"),
       require(positive(s.radius) && s.radius <= 1e3, s.radius, "body.radius",
               "must be in (0, 1e3] m"),
-      require(non_negative(s.contact.k) && s.contact.k <= 1e12, s.contact.k, "contact.k",
-              "must be in [0, 1e12] N/m"),
-      require(non_negative(s.contact.c) && s.contact.c <= 1e9, s.contact.c, "contact.c",
-              "must be in [0, 1e9] N·s/m"),
-      require(non_negative(s.contact.mu) && s.contact.mu <= 100, s.contact.mu, "contact.mu",
-              "must be in [0, 100]"),
-      require(positive(s.contact.alpha) && s.contact.alpha <= 1e9, s.contact.alpha, "contact.alpha",
-              "must be in (0, 1e9] s/m"),
-      require(non_negative(s.contact.mu_roll) && s.contact.mu_roll <= 10, s.contact.mu_roll,
-              "contact.mu_roll", "must be in [0, 10] m"),
-      require(non_negative(s.contact.mu_torsion) && s.contact.mu_torsion <= 10,
-              s.contact.mu_torsion, "contact.mu_torsion", "must be in [0, 10] m"),
       require(bounded(s.initial.q.x(), kMaxCoord), s.initial.q.x(), "initial.x",
               "must be finite, |x| <= 1e6 m"),
       require(bounded(s.initial.q.y(), kMaxCoord), s.initial.q.y(), "initial.y",
@@ -161,8 +169,11 @@ std::optional<ValidationError> validate(const Scene& s) {
       }
     }
   }
+  if (auto error = validate_contact(s.contact, "contact.")) return error;
   for (size_t i = 0; i < s.obstacles.size(); ++i) {
-    if (auto error = validate_obstacle(s.obstacles[i], "obstacle[" + std::to_string(i) + "]"))
+    const std::string name = "obstacle[" + std::to_string(i) + "]";
+    if (auto error = validate_obstacle(s.obstacles[i], name)) return error;
+    if (auto error = validate_contact(s.obstacles[i].contact.apply(s.contact), name + "."))
       return error;
   }
   return std::nullopt;
@@ -184,6 +195,7 @@ Model make_model(const Scene& s) {
   model.contact = s.contact;
   model.gravity = s.sim.gravity;
   model.obstacles = s.obstacles;
+  for (const Obstacle& o : s.obstacles) model.obstacle_laws.push_back(o.contact.apply(s.contact));
   return model;
 }
 

@@ -57,14 +57,13 @@ std::string outcome_text(Outcome outcome, double min_kick_distance) {
 
 namespace {
 
-std::unique_ptr<Stepper> make_game_stepper(const std::string& engine, const Scene& scene) {
-  const engines::EngineSpec spec = engines::parse_engine(engine);
-  if (spec.kind != "ref") {
-    throw InputError(
-        "--engine " + engine +
-        ": not available for play (the MuJoCo model has no obstacles yet); use --engine ref");
-  }
-  return engines::make_stepper(spec, scene);
+// Either engine: the MuJoCo model carries the goal's obstacles with their
+// own laws (mujoco/mjcf.hpp) and takes the player's force as xfrc_applied on
+// the ball (MujocoStepper::set_applied), the same force profile step by step.
+std::unique_ptr<Stepper> make_game_stepper(const std::string& engine, const Pitch& pitch) {
+  engines::EngineSpec spec = engines::parse_engine(engine);
+  spec.source = pitch.path;
+  return engines::make_stepper(spec, pitch.scene);
 }
 
 }  // namespace
@@ -72,7 +71,7 @@ std::unique_ptr<Stepper> make_game_stepper(const std::string& engine, const Scen
 Game::Game(Pitch pitch, const std::string& engine, std::uint64_t seed)
     : pitch_(std::move(pitch)),
       engine_name_(engine),
-      stepper_(make_game_stepper(engine, pitch_.scene)),
+      stepper_(make_game_stepper(engine, pitch_)),
       seed_(seed),
       rng_(seed) {
   const Rules& r = pitch_.rules;
@@ -166,7 +165,13 @@ void Game::handle(Key key, bool down) {
       start_round();
       return;
     case Key::Kick: {
-      if (phase_ != Phase::Playing || kick_steps_left_ > 0) return;
+      if (phase_ != Phase::Playing || kick_steps_left_ > 0) {
+        // Shown on screen (ignored_kick()): the key was seen, and why nothing happened.
+        ignored_kick_step_ = steps_;
+        ignored_kick_why_ =
+            phase_ != Phase::Playing ? IgnoredKick::RoundOver : IgnoredKick::StillKicking;
+        return;
+      }
       KickRecord kick;
       kick.round = round();
       kick.step = steps_;

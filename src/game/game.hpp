@@ -14,7 +14,8 @@
 //   * arrows push the ball with rules.push_force (a force, not a teleport);
 //     the kick key applies a force of kick_impulse/kick_duration for
 //     kick_duration towards the goal at the current kick angle above the
-//     horizontal. A kick pressed while one is still acting is ignored.
+//     horizontal. A kick pressed while one is still acting, or after the
+//     round has ended, is ignored, and the game says so (ignored_kick()).
 //   * a kick counts when the ball's centre is at least min_kick_distance
 //     from the goal line when it is taken.
 //   * the last touch decides: a push or a kick replaces the previous one.
@@ -32,6 +33,7 @@
 //     the reset key).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -62,6 +64,7 @@ std::string_view outcome_name(Outcome outcome);  // "goal", "kick_too_close", â€
 std::string outcome_text(Outcome outcome, double min_kick_distance);  // for the screen
 
 enum class Phase { Playing, Over };
+enum class IgnoredKick { None, RoundOver, StillKicking };
 enum class Touch { None, Push, Kick };
 
 struct KickRecord {
@@ -85,8 +88,8 @@ struct RoundRecord {
 
 class Game {
  public:
-  // `engine`: a name of the engine registry (engines/engines.hpp); play
-  // refuses MuJoCo for now (its MJCF has no obstacles). Throws InputError.
+  // `engine`: a name of the engine registry (engines/engines.hpp): ref or
+  // mujoco[:MAPPING]. Throws InputError.
   Game(Pitch pitch, const std::string& engine, std::uint64_t seed);
 
   // Input between steps (applies from the next step on).
@@ -119,6 +122,14 @@ class Game {
   long long result_steps() const { return result_steps_; }
   const std::optional<Divergence>& divergence() const { return divergence_; }
   double applied_work() const { return work_; }
+  // The last kick key that did nothing: why, and how many steps ago (for
+  // the screen); None when no kick was ignored.
+  IgnoredKick ignored_kick() const { return ignored_kick_why_; }
+  long long steps_since_ignored_kick() const { return steps_ - ignored_kick_step_; }
+  // Steps until the next pass starts (0 while playing).
+  long long steps_to_next_pass() const {
+    return phase_ == Phase::Over ? std::max(0LL, result_steps_ - over_steps_) : 0;
+  }
 
  private:
   void start_round();
@@ -149,6 +160,8 @@ class Game {
   long long rest_steps_ = 0;
   long long over_steps_ = 0;
   double work_ = 0.0;
+  IgnoredKick ignored_kick_why_ = IgnoredKick::None;
+  long long ignored_kick_step_ = 0;
   std::unique_ptr<DivergenceMonitor> monitor_;
   std::optional<Divergence> divergence_;
   std::vector<RoundRecord> rounds_;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "io/scene_file.hpp"
 #include "io/toml_table.hpp"
@@ -16,6 +17,8 @@ namespace contact2d::game {
 extern const char* const kDefaultPitchToml;  // generated from validation/scenes/game/pitch.toml
 
 namespace {
+
+constexpr const char* kBuiltInOrigin = "the built-in pitch (validation/scenes/game/pitch.toml)";
 
 std::string format_value(double v) { return format_number("%g", v); }
 
@@ -101,6 +104,11 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
   g.check("goal_line", r.goal_line, r.goal_line != r.pass_x,
           "must differ from game.pass_x (the goal is on one side)");
   const int boxes = static_cast<int>(scene.obstacles.size());
+  if (boxes == 0 && table && !table->contains("crossbar")) {
+    throw InputError(origin +
+                     ": [game] needs a crossbar, a box in [[obstacle]] named by game.crossbar "
+                     "(the scene has no obstacles); leave [game] out to play on the built-in goal");
+  }
   g.check("crossbar", r.crossbar,
           r.crossbar < boxes &&
               scene.obstacles[static_cast<size_t>(r.crossbar)].shape == ObstacleShape::Box,
@@ -133,7 +141,21 @@ Pitch parse_pitch(const std::string& toml_text, const std::string& origin) {
                      "\" cannot be played: the game needs scene = \"circle\" (the ball)");
   }
   const toml::table root = toml::parse(toml_text, origin);  // parsed fine above
-  pitch.rules = read_rules(root["game"].as_table(), pitch.scene, origin);
+  const toml::table* game = root["game"].as_table();
+  if (!game && origin != kBuiltInOrigin) {
+    // Any circle scene plays: without [game] it gets the built-in pitch's
+    // goal (its obstacles first, so that game.crossbar = 0 is its crossbar,
+    // then the scene's own) and rules. The goal's obstacles keep the laws
+    // they set (the net's) and take the scene's [contact] for the rest.
+    const Pitch built_in = default_pitch();
+    std::vector<Obstacle> obstacles = built_in.scene.obstacles;
+    obstacles.insert(obstacles.end(), pitch.scene.obstacles.begin(), pitch.scene.obstacles.end());
+    pitch.scene.obstacles = std::move(obstacles);
+    pitch.rules = built_in.rules;
+    pitch.goal_from_built_in = true;
+  } else {
+    pitch.rules = read_rules(game, pitch.scene, origin);
+  }
   pitch.path = origin;
   pitch.fingerprint = fnv1a(toml_text);
   return pitch;
@@ -150,8 +172,6 @@ Pitch load_pitch(const std::string& path) {
   return parse_pitch(text.str(), path);
 }
 
-Pitch default_pitch() {
-  return parse_pitch(kDefaultPitchToml, "the built-in pitch (validation/scenes/game/pitch.toml)");
-}
+Pitch default_pitch() { return parse_pitch(kDefaultPitchToml, kBuiltInOrigin); }
 
 }  // namespace contact2d::game

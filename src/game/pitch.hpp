@@ -43,8 +43,9 @@ struct Rules {
 struct Pitch {
   Scene scene;  // shape circle; sim.dt is the physics step
   Rules rules;
-  std::string path;               // where it was read from
-  std::uint64_t fingerprint = 0;  // FNV-1a of the file's bytes (stamped into replays)
+  std::string path;                 // where it was read from
+  std::uint64_t fingerprint = 0;    // FNV-1a of the file's bytes (stamped into replays)
+  bool goal_from_built_in = false;  // the file had no [game]: the built-in goal and rules
 
   // Derived: +1 when the goal is towards +x from the pass.
   double direction() const { return rules.goal_line >= rules.pass_x ? 1.0 : -1.0; }
@@ -55,7 +56,9 @@ struct Pitch {
 Pitch default_pitch();
 
 // Reads and checks a pitch file: the scene (parse_scene) and its [game]
-// table. Throws InputError with one line naming the key and its range.
+// table. A circle scene without [game] is played on the built-in pitch's
+// goal (its obstacles, then the scene's) with the built-in rules. Throws
+// InputError with one line naming the key and its range.
 Pitch load_pitch(const std::string& path);
 Pitch parse_pitch(const std::string& toml_text, const std::string& origin);
 

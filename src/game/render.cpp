@@ -6,6 +6,7 @@
 #include <GL/gl.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -46,14 +47,26 @@ std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
   return format_text(format, a, b, c);
 }
 
-// World-to-screen mapping: the pitch's width fills the window, the grass
-// line sits 90 px above the bottom.
+// World-to-screen mapping: a camera kViewWidth metres wide (the whole pitch
+// if it is narrower) that follows the ball, the ball kLead of the width from
+// its left edge for a goal towards +x (mirrored for −x), and stops at the
+// pitch's ends, so the whole goal is in view once the ball is within ~3 m of
+// it; the grass line sits 90 px above the bottom. The whole 13 m pitch in
+// 800 px drew the 0.22 m ball 13.5 px across; 7 m draw it 25 px across
+// (2R·800/7 = 25.1 px; tests/game/test_window.cpp measures 22 px of white
+// inside the outline).
+constexpr double kViewWidth = 7.0;  // m
+constexpr double kLead = 0.4;
+
 struct View {
   double x0, x1, y0, y1, scale;  // metres; pixels per metre
-  View(const Rules& r, int width, int height) {
-    x0 = r.pitch_min_x;
-    x1 = r.pitch_max_x;
-    scale = width / (x1 - x0);
+  View(const Pitch& pitch, double ball_x, int width, int height) {
+    const Rules& r = pitch.rules;
+    const double w = std::min(kViewWidth, r.pitch_max_x - r.pitch_min_x);
+    const double lead = pitch.direction() > 0 ? kLead : 1.0 - kLead;
+    x0 = std::clamp(ball_x - lead * w, r.pitch_min_x, r.pitch_max_x - w);
+    x1 = x0 + w;
+    scale = width / w;
     y0 = -90.0 / scale;
     y1 = y0 + height / scale;
   }
@@ -161,6 +174,13 @@ void draw_world(const Game& game, const View& v) {
   }
 }
 
+// "REF" or "MUJOCO" (with a mapping: "MUJOCO:EXACT"), as the HUD names it.
+std::string engine_label(std::string_view name) {
+  std::string out(name);
+  for (char& ch : out) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return out;
+}
+
 void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width, int height) {
   const Pitch& pitch = game.pitch();
   const Rules& r = pitch.rules;
@@ -179,10 +199,15 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
        2.0, kText);
   // A recording shows neither the frame rate (that of the encoder, not the
   // game) nor a REC mark.
-  std::string right = "F1/H: HELP";
+  std::string right = "ENGINE " + engine_label(game.engine_name()) + "   F1/H: HELP";
   if (overlay.fps > 0.0 && !overlay.recording) right = fmt("%.0f FPS", overlay.fps) + "   " + right;
   text(width - 10 - text_width(right, 1.5), 10, right, 1.5, kText);
   if (overlay.replaying) text(width - 10 - text_width("REPLAY", 2.0), 34, "REPLAY", 2.0, kGoal);
+  // The engine cannot keep up at this frame rate: the game runs slower.
+  if (!overlay.recording && overlay.speed < 0.97) {
+    const std::string slow = fmt("SLOW MOTION x%.2f", overlay.speed);
+    text(width - 10 - text_width(slow, 1.5), 58, slow, 1.5, kNoGoal);
+  }
 
   // Label of the 1 m line, at its foot.
   const Vec2 zone = v.pixel(r.goal_line - pitch.direction() * r.min_kick_distance, 0.0, height);
@@ -198,6 +223,19 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
                                                k.distance, r.min_kick_distance);
       text(10, 88, what, 2.0, k.counted ? kGoal : kNoGoal);
     }
+  }
+
+  // A kick key that did nothing, for a second: why.
+  if (game.ignored_kick() != IgnoredKick::None &&
+      static_cast<double>(game.steps_since_ignored_kick()) * game.dt() < 1.0) {
+    const std::string what = game.ignored_kick() == IgnoredKick::RoundOver
+                                 ? fmt("KICK IGNORED: THE ROUND IS OVER, NEXT PASS IN %.1f s",
+                                       static_cast<double>(game.steps_to_next_pass()) * game.dt())
+                                 : std::string("KICK IGNORED: THE LAST KICK IS STILL ACTING");
+    const double w = text_width(what, 2.0);
+    rect(0.5 * (width - w) - 10, 0.38 * height + 70, 0.5 * (width + w) + 10, 0.38 * height + 98,
+         kPanel);
+    text(0.5 * (width - w), 0.38 * height + 76, what, 2.0, kNoGoal);
   }
 
   // Result of the round.
@@ -229,7 +267,7 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
         "ARROWS        push the ball (a force)",
         "K / ENTER     kick towards the goal",
         "W / S         raise / lower the kick angle",
-        "SPACE         pause",
+        "SPACE         pause (this help pauses too)",
         "BACKSPACE     next pass",
         "F1 / H        this help",
         "ESC           quit",
@@ -257,7 +295,7 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
 }  // namespace
 
 void draw_frame(const Game& game, const Overlay& overlay, int width, int height) {
-  const View v(game.pitch().rules, width, height);
+  const View v(game.pitch(), game.ball().q.x(), width, height);
   glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);

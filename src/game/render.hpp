@@ -13,7 +13,8 @@ struct Overlay {
   bool help = false;
   bool replaying = false;
   bool recording = false;
-  double fps = 0.0;  // measured, 0 = unknown
+  double fps = 0.0;    // measured, 0 = unknown
+  double speed = 1.0;  // simulated seconds per wall-clock second (< 1: slow motion)
 };
 
 void draw_frame(const Game& game, const Overlay& overlay, int width, int height);

@@ -2,6 +2,8 @@
 
 #include "core/format.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace contact2d::game {
@@ -48,6 +50,34 @@ void run_headless(Game& game, InputFeed& feed) {
     if (session_over(game, feed)) return;
     game.step();
   }
+}
+
+ReplayRun run_replay(const Pitch& pitch, const Replay& replay, const std::string& engine,
+                     double sample_dt) {
+  Game game(pitch, engine, replay.seed);
+  InputFeed feed(game, &replay);
+  ReplayRun run;
+  run.engine = engine;
+  const long long stride = std::max(1LL, std::llround(sample_dt / game.dt()));
+  for (;;) {
+    if (game.steps() % stride == 0) run.samples.push_back({game.time(), game.ball()});
+    feed.apply_due();
+    if (session_over(game, feed)) break;
+    game.step();
+  }
+  run.json = report_json(game);
+  run.outcome = game.current_round().outcome;
+  return run;
+}
+
+std::optional<double> parting_time(const ReplayRun& a, const ReplayRun& b, double distance) {
+  const size_t n = std::min(a.samples.size(), b.samples.size());
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& p = a.samples[i].state.q;
+    const Vec3& q = b.samples[i].state.q;
+    if (std::hypot(p.x() - q.x(), p.y() - q.y()) > distance) return a.samples[i].t;
+  }
+  return std::nullopt;
 }
 
 namespace {

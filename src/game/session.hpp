@@ -5,6 +5,9 @@
 
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "core/run.hpp"
 
 #include "game/game.hpp"
 #include "game/replay.hpp"
@@ -41,6 +44,23 @@ bool session_over(const Game& game, const InputFeed& feed);
 
 // Steps the game until session_over (or divergence), as fast as it can.
 void run_headless(Game& game, InputFeed& feed);
+
+// A replay played headless on one engine, with the ball sampled along the
+// way: what the report shows for both engines.
+struct ReplayRun {
+  std::string engine;
+  std::string json;                 // report_json at the end
+  Outcome outcome = Outcome::None;  // of the last round
+  std::vector<Sample> samples;      // session time and ball state every sample_dt
+};
+// Throws InputError when the engine cannot run the pitch.
+ReplayRun run_replay(const Pitch& pitch, const Replay& replay, const std::string& engine,
+                     double sample_dt = 1e-3);
+
+// Where two runs of the same replay part: the first sample time at which
+// the ball centres are more than `distance` apart; nullopt when they never
+// are (over the samples both have).
+std::optional<double> parting_time(const ReplayRun& a, const ReplayRun& b, double distance);
 
 // One JSON line (no newline): goal, goals, outcome, rounds, kicks, time,
 // steps, engine, seed, ball.

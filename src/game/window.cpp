@@ -101,7 +101,11 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
   double fps_window_start = last;
   long long fps_window_frames = 0;
   WindowStats stats;
+  if (const GLubyte* name = glGetString(GL_RENDERER))
+    stats.renderer = reinterpret_cast<const char*>(name);
   bool quit = false;
+  long long steps_before = game.steps();
+  double sim_advanced = 0.0, wall_advanced = 0.0;  // for the real-time factor
 
   while (!quit && !glfwWindowShouldClose(window)) {
     glfwPollEvents();
@@ -123,8 +127,16 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
     // Recording: exactly one video frame of simulated time per frame.
     const double frame_time = video ? 1.0 / o.record_fps : now - last;
     last = now;
-    if (!overlay.paused) {
+    // The help overlay pauses the game too: nobody plays while reading it.
+    if (!overlay.paused && !overlay.help) {
       accumulator += std::min(frame_time, 0.25);
+      // Live play spends at most o.physics_budget of wall clock a frame on
+      // physics, so the frame rate holds when an engine cannot step in real
+      // time (MuJoCo at the pitch's Δt = 1e-5 s): the game then runs in slow
+      // motion and the HUD says how slow. A recording steps every frame's
+      // simulated time whatever it costs.
+      const auto physics_start = std::chrono::steady_clock::now();
+      long long stepped = 0;
       while (accumulator >= dt) {
         feed.apply_due();
         // A replay ends once its last round has been decided and its result
@@ -137,7 +149,18 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
         if (game.divergence()) break;
         game.step();
         accumulator -= dt;
+        if (!video && o.physics_budget > 0.0 && ++stepped % 16 == 0 &&
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - physics_start)
+                    .count() > o.physics_budget) {
+          accumulator = 0.0;  // what is left of this frame's time is not simulated
+          break;
+        }
       }
+      sim_advanced += static_cast<double>(game.steps() - steps_before) * dt;
+      steps_before = game.steps();
+      wall_advanced += std::min(frame_time, 0.25);
+    } else {
+      steps_before = game.steps();
     }
     if (game.divergence()) quit = true;
 
@@ -156,6 +179,8 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
     ++fps_window_frames;
     if (now - fps_window_start >= 0.5) {
       overlay.fps = static_cast<double>(fps_window_frames) / (now - fps_window_start);
+      overlay.speed = wall_advanced > 0.0 ? sim_advanced / wall_advanced : 1.0;
+      sim_advanced = wall_advanced = 0.0;
       fps_window_start = now;
       fps_window_frames = 0;
     }

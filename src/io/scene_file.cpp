@@ -120,6 +120,43 @@ void read_sim(const toml::table* table, Scene& scene, const std::string& origin)
   scene.sim.integrator = *parsed;
 }
 
+// An obstacle's own contact keys (k, c, mu, alpha, mu_roll, mu_torsion,
+// damping); a key left out follows the scene's [contact].
+void read_obstacle_contact(TableReader& reader, const toml::table& table, ContactOverride& out) {
+  auto optional = [&](const char* key, std::optional<double>& value) {
+    if (!table.contains(key)) {
+      reader.mark_used(key);
+      return;
+    }
+    double v = 0.0;
+    reader.number(key, v);
+    value = v;
+  };
+  optional("k", out.k);
+  optional("c", out.c);
+  optional("mu", out.mu);
+  optional("alpha", out.alpha);
+  optional("mu_roll", out.mu_roll);
+  optional("mu_torsion", out.mu_torsion);
+  if (table.contains("damping")) {
+    std::string damping;
+    reader.string("damping", damping);
+    if (damping == "compression") {
+      out.damping = DampingLaw::Compression;
+    } else if (damping == "kelvin_voigt") {
+      out.damping = DampingLaw::KelvinVoigt;
+    } else {
+      reader.fail(
+          "damping",
+          "= \"" + damping + "\" is not a damping law: use \"compression\" or \"kelvin_voigt\"");
+    }
+  } else {
+    reader.mark_used("damping");
+  }
+}
+
+constexpr const char* kObstacleContactKeys = "k, c, mu, alpha, mu_roll, mu_torsion, damping";
+
 // [[obstacle]]: an array of tables, each a box { x, y, width, height } (centre
 // and size) or a segment { x1, y1, x2, y2, radius } chosen by `type`.
 void read_obstacles(const toml::table& root, Scene& scene, const std::string& origin) {
@@ -149,7 +186,9 @@ void read_obstacles(const toml::table& root, Scene& scene, const std::string& or
       reader.number("y", y);
       reader.number("width", width);
       reader.number("height", height);
-      reader.reject_unknown("type, x, y, width, height");
+      ContactOverride contact;
+      read_obstacle_contact(reader, *table, contact);
+      reader.reject_unknown(std::string("type, x, y, width, height, ") + kObstacleContactKeys);
       require_keys({"x", "y", "width", "height"});
       // validate() sees the corners; check the keys as written, so that an
       // infinite width is reported as the width and not as a centre of NaN.
@@ -164,6 +203,7 @@ void read_obstacles(const toml::table& root, Scene& scene, const std::string& or
       check("width", width, width > 0.0 && width <= 1e6, "must be in (0, 1e6] m");
       check("height", height, height > 0.0 && height <= 1e6, "must be in (0, 1e6] m");
       scene.obstacles.push_back(make_box_obstacle(x, y, width, height));
+      scene.obstacles.back().contact = contact;
     } else if (type == "segment") {
       Vec2 a = Vec2::Zero(), b = Vec2::Zero();
       double radius = 0.0;
@@ -172,9 +212,12 @@ void read_obstacles(const toml::table& root, Scene& scene, const std::string& or
       reader.number("x2", b.x());
       reader.number("y2", b.y());
       reader.number("radius", radius);
-      reader.reject_unknown("type, x1, y1, x2, y2, radius");
+      ContactOverride contact;
+      read_obstacle_contact(reader, *table, contact);
+      reader.reject_unknown(std::string("type, x1, y1, x2, y2, radius, ") + kObstacleContactKeys);
       require_keys({"x1", "y1", "x2", "y2"});
       scene.obstacles.push_back(make_segment_obstacle(a, b, radius));
+      scene.obstacles.back().contact = contact;
     } else if (!table->contains("type")) {
       reader.fail(
           "type",

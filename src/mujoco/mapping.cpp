@@ -46,11 +46,13 @@ double max_tangential_inverse_mass(const RigidBody& body) {
 // what remains of MuJoCo's friction (coefficients are clamped at 1e-5) in a
 // contact of condim > 1. The generated model has condim 1 then (mjcf.hpp),
 // with no friction rows at all, and does not write impratio.
-double calibrated_impratio(const ContactParams& p, const RigidBody& body, double dt) {
+double calibrated_impratio(const ContactParams& p, const RigidBody& body, double dt,
+                           double largest_c) {
   const bool rolls = body.roll_radius > 0.0 && p.mu_roll > 0.0;
   if (!(p.c > 0.0)) return 1.0;  // no damper: MuJoCo's friction has no velocity term at all
   if (p.mu <= 0.0 && !rolls) return kMinImpratio;
-  const double step = p.c * dt;
+  // impratio is one value for every contact: the bound of the stiffest damper.
+  const double step = largest_c * dt;
   double ratio = 1.0 / (step * max_tangential_inverse_mass(body));
   if (rolls) {
     const double mu = std::max(p.mu, kMinMu);
@@ -60,6 +62,12 @@ double calibrated_impratio(const ContactParams& p, const RigidBody& body, double
 }
 
 }  // namespace
+
+double largest_damping(const Scene& scene) {
+  double c = scene.contact.c;
+  for (const Obstacle& o : scene.obstacles) c = std::max(c, o.contact.apply(scene.contact).c);
+  return c;
+}
 
 std::string_view mapping_name(Mapping mapping) {
   switch (mapping) {
@@ -94,11 +102,12 @@ int contacts_per_point(Shape shape, Geometry geometry) {
 }
 
 SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_mass, int split) {
-  return solver_settings(scene.contact, make_body(scene), scene.sim.dt, mapping, inv_mass, split);
+  return solver_settings(scene.contact, make_body(scene), scene.sim.dt, mapping, inv_mass, split,
+                         largest_damping(scene));
 }
 
 SolverSettings solver_settings(const ContactParams& contact, const RigidBody& body, double dt,
-                               Mapping mapping, double inv_mass, int split) {
+                               Mapping mapping, double inv_mass, int split, double largest_c) {
   SolverSettings s;
   s.mapping = mapping;
   const double m = body.mass;
@@ -110,7 +119,8 @@ SolverSettings solver_settings(const ContactParams& contact, const RigidBody& bo
     s.solref = {-k * inv_mass / split, -c * inv_mass / split};
     s.solimp = kMinimalSolimp;
     s.elliptic = true;
-    s.impratio = calibrated_impratio(contact, body, dt);
+    s.impratio =
+        calibrated_impratio(contact, body, dt, largest_c > 0.0 ? largest_c : contact.c);
     return s;
   }
   require_spring_and_damper(contact, mapping);

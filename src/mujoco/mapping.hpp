@@ -104,10 +104,17 @@ struct SolverSettings {
 SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_mass, int split);
 // The same from the contact law, the body (its mass; for impratio its
 // inertia, contact points and roll radius) and the Δt: the scene version
-// calls this one with make_body(scene) (`contact2d solref` calls it with a
-// body it describes by its mass, inertia and lever).
+// calls this one with make_body(scene) and largest_damping(scene) (`contact2d
+// solref` calls it with a body it describes by its mass, inertia and lever).
+// largest_c: the largest damper of every contact law of the model, which
+// bounds calibrated's one impratio (0: contact.c).
 SolverSettings solver_settings(const ContactParams& contact, const RigidBody& body, double dt,
-                               Mapping mapping, double inv_mass, int split);
+                               Mapping mapping, double inv_mass, int split,
+                               double largest_c = 0.0);
+
+// The largest c of the scene's [contact] and its obstacles' own laws: the
+// damper that bounds calibrated's impratio (one value for every contact).
+double largest_damping(const Scene& scene);
 
 // MuJoCo's contact spring and damper per unit of approximate inverse mass
 // as its solver computes them from solref/solimp (K·d_max², B·d_max): the

@@ -49,6 +49,7 @@ struct Layout {
   bool hinge = true;
   std::vector<Geom> geoms;
   int max_contacts = 0;      // P: contacts the body can make with the ground
+  int obstacles = 0;         // N: static obstacles of the scene
   std::string contacts_why;  // how P is counted, for the header
 };
 
@@ -142,7 +143,7 @@ Layout circle_layout(const Scene& scene) {
   return layout;
 }
 
-Layout make_layout(const Scene& scene, Geometry geometry) {
+Layout shape_layout(const Scene& scene, Geometry geometry) {
   switch (scene.shape) {
     case Shape::PointMass: return point_mass_layout(scene);
     case Shape::Circle: return circle_layout(scene);
@@ -150,6 +151,12 @@ Layout make_layout(const Scene& scene, Geometry geometry) {
     case Shape::TShape: return box_layout(scene, geometry);
   }
   return {};
+}
+
+Layout make_layout(const Scene& scene, Geometry geometry) {
+  Layout layout = shape_layout(scene, geometry);
+  layout.obstacles = static_cast<int>(scene.obstacles.size());
+  return layout;
 }
 
 // Rows of the constraint Jacobian per contact of dimension `condim`: condim
@@ -165,7 +172,12 @@ int rows_per_contact(int condim, bool elliptic) {
 constexpr int kAddedGeoms = 10;
 constexpr int kContactsPerAddedGeom = 4;
 
-int nconmax_of(const Layout& l) { return 2 * l.max_contacts + kAddedGeoms * kContactsPerAddedGeom; }
+// Every contact geom of the body can touch the ground and each obstacle at
+// once: P (1 + N), twice for headroom (a box geom meets a box obstacle with up
+// to 8 contacts, the ground with 4).
+int nconmax_of(const Layout& l) {
+  return 2 * l.max_contacts * (1 + l.obstacles) + kAddedGeoms * kContactsPerAddedGeom;
+}
 
 // Rows per contact at condim 6, the most any contact needs: geoms a user
 // adds may carry any condim.
@@ -250,10 +262,72 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
           (rolls ? "impratio = min(1/(c Δt A_t), I (max(mu, 1e-5)/mu_roll)^2/(c Δt)) = "
                  : "impratio = 1/(c Δt A_t) = ") +
           f(s.impratio) +
+          (largest_damping(scene) != p.c
+               ? " with c = " + f(largest_damping(scene)) +
+                     " N s/m, the largest of the ground's and the obstacles' c"
+               : std::string()) +
           (model_dt > 0.0 ? " with Δt = " + f(model_dt) + " (--model-dt), not the timestep"
                           : std::string()) +
           " (depends on Δt; kept within [1e-15, 1e10]: the largest value at which MuJoCo's "
           "viscous friction does not reverse a slip within one step)\n";
+  return text;
+}
+
+// One obstacle's contact as MuJoCo gets it: its own law (the scene's
+// [contact] with the obstacle's keys applied) mapped like the ground's, set
+// on an explicit <pair> with each contact geom of the body, so that MuJoCo's
+// per-pair mixing of geom values plays no part.
+struct ObstacleContactSettings {
+  ContactParams law;
+  std::array<double, 2> solref{};
+  int condim = 1;
+};
+
+ObstacleContactSettings obstacle_settings(const Scene& scene, const Obstacle& o,
+                                          const SolverSettings& s) {
+  ObstacleContactSettings out;
+  out.law = o.contact.apply(scene.contact);
+  out.condim = contact_condim(out.law);
+  if (s.mapping == Mapping::Calibrated) {
+    out.solref = {-out.law.k * s.inv_mass / s.split, -out.law.c * s.inv_mass / s.split};
+  } else {
+    Scene own = scene;
+    own.contact = out.law;
+    out.solref = solver_settings(own, s.mapping, s.inv_mass, s.split).solref;
+  }
+  return out;
+}
+
+// Half the depth (along MuJoCo y) of an obstacle's box: the body's geoms lie
+// within |y| ≤ its farthest contact point (twice that, and at least 1 m).
+double obstacle_half_depth(const Scene& scene) {
+  return std::max(1.0, 2.0 * body_extent(make_body(scene)));
+}
+
+std::string obstacle_lines(const Scene& scene, const SolverSettings& s) {
+  if (scene.obstacles.empty()) return "";
+  auto f = [](double v) { return format_exact(v); };
+  std::string text =
+      "  obstacles: geom obstacle<i> in the world body, contype = conaffinity = 0, touched only "
+      "through one <contact><pair> with each contact geom of the body, which sets the pair's "
+      "values exactly (no mixing); a box is a box geom of half-size (w/2, " +
+      f(obstacle_half_depth(scene)) +
+      ", h/2) at (x, 0, y), a segment a capsule from (x1, 0, y1) to (x2, 0, y2) of its radius (a "
+      "sphere when the ends coincide); each law is the scene's contact with the obstacle's own "
+      "keys, mapped as above with the same A and n\n";
+  for (size_t i = 0; i < scene.obstacles.size(); ++i) {
+    const Obstacle& o = scene.obstacles[i];
+    const ObstacleContactSettings os = obstacle_settings(scene, o, s);
+    const ContactParams& p = os.law;
+    text += "    obstacle" + std::to_string(i) + " (" + std::string(obstacle_shape_name(o.shape)) +
+            (o.contact.any() ? ", own law" : ", the scene's law") + "): k " + f(p.k) + " N/m, c " +
+            f(p.c) + " N s/m, damping " +
+            (p.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") + ", mu " +
+            f(p.mu) + ", mu_roll " + f(p.mu_roll) + " m, mu_torsion " + f(p.mu_torsion) +
+            "; solref = (" + f(os.solref[0]) + ", " + f(os.solref[1]) + ")" +
+            (s.mapping == Mapping::Calibrated ? " = (-k A/n, -c A/n)" : "") + ", condim " +
+            std::to_string(os.condim) + ", friction (mu, mu, mu_torsion, mu_roll, mu_roll)\n";
+  }
   return text;
 }
 
@@ -304,12 +378,17 @@ std::string header(const Scene& scene, const MjcfOptions& options, const SolverS
       "  derived values: each is the formula stated, evaluated with the values above; only "
       "those marked \"depends on Δt\" change with the time step\n";
   text += mapping_lines(scene, s, condim, options.model_dt);
+  text += obstacle_lines(scene, s);
   text += "  condim " + std::to_string(condim) +
           ": 1 without friction (mu = mu_roll = mu_torsion = 0), 3 with sliding friction only, "
           "6 with rolling or torsional friction\n";
   text += "  size: P = " + std::to_string(l.max_contacts) +
           " (contacts the body can make with the ground: " + l.contacts_why +
-          "); nconmax = 2 P + " + std::to_string(kAddedGeoms * kContactsPerAddedGeom) + " = " +
+          (l.obstacles > 0 ? "), N = " + std::to_string(l.obstacles) +
+                                 " (obstacles: each contact geom can touch the ground and every "
+                                 "obstacle at once); nconmax = 2 P (1 + N) + "
+                           : std::string("); nconmax = 2 P + ")) +
+          std::to_string(kAddedGeoms * kContactsPerAddedGeom) + " = " +
           std::to_string(nconmax_of(l)) + " (twice P, and " + std::to_string(kAddedGeoms) +
           " added geoms of up to " + std::to_string(kContactsPerAddedGeom) +
           " contacts each); njmax = " + std::to_string(rows_per_contact(6, s.elliptic)) +
@@ -335,8 +414,11 @@ void add_options(XMLDocument& doc, XMLElement* root, const Scene& scene, const S
                             {"integrator", mujoco_integrator(scene.sim.integrator)},
                             {"gravity", join({0.0, 0.0, -scene.sim.gravity})}});
   if (s.elliptic) option->SetAttribute("cone", "elliptic");
-  // impratio scales the friction rows only: none at condim 1.
-  if (condim > 1 && s.impratio != 1.0)
+  // impratio scales the friction rows only: none at condim 1 (on every pair).
+  int most = condim;
+  for (const Obstacle& o : scene.obstacles)
+    most = std::max(most, contact_condim(o.contact.apply(scene.contact)));
+  if (most > 1 && s.impratio != 1.0)
     option->SetAttribute("impratio", format_exact(s.impratio).c_str());
   add(doc, root, "size",
       {{"nconmax", std::to_string(nconmax_of(l))}, {"njmax", std::to_string(njmax_of(l, s))}});
@@ -383,6 +465,66 @@ void add_body(XMLDocument& doc, XMLElement* world, const Scene& scene, const Lay
       e->SetAttribute("contype", "0");
       e->SetAttribute("conaffinity", "0");
       e->SetAttribute("group", "1");
+    }
+  }
+}
+
+// The static obstacles (mjcf.hpp): world-body geoms that touch only through
+// the pairs of add_pairs.
+void add_obstacles(XMLDocument& doc, XMLElement* world, const Scene& scene) {
+  const double depth = obstacle_half_depth(scene);
+  for (size_t i = 0; i < scene.obstacles.size(); ++i) {
+    const Obstacle& o = scene.obstacles[i];
+    const std::string name = "obstacle" + std::to_string(i);
+    XMLElement* e = nullptr;
+    if (o.shape == ObstacleShape::Box) {
+      const Vec2 c = 0.5 * (o.a + o.b), half = 0.5 * (o.b - o.a);
+      e = add(doc, world, "geom",
+              {{"name", name},
+               {"type", "box"},
+               {"size", join({half.x(), depth, half.y()})},
+               {"pos", join({c.x(), 0.0, c.y()})}});
+    } else {
+      // MuJoCo needs a radius above mjMINVAL: a zero-thickness segment gets
+      // the corner spheres' radius.
+      const double radius = std::max(o.radius, kCornerRadius);
+      if (o.a == o.b) {
+        e = add(doc, world, "geom",
+                {{"name", name},
+                 {"type", "sphere"},
+                 {"size", format_exact(radius)},
+                 {"pos", join({o.a.x(), 0.0, o.a.y()})}});
+      } else {
+        e = add(doc, world, "geom",
+                {{"name", name},
+                 {"type", "capsule"},
+                 {"size", format_exact(radius)},
+                 {"fromto", join({o.a.x(), 0.0, o.a.y(), o.b.x(), 0.0, o.b.y()})}});
+      }
+    }
+    e->SetAttribute("contype", "0");
+    e->SetAttribute("conaffinity", "0");
+  }
+}
+
+// One explicit pair per (contact geom of the body, obstacle) with the
+// obstacle's own law.
+void add_pairs(XMLDocument& doc, XMLElement* root, const Scene& scene, const SolverSettings& s,
+               const Layout& l) {
+  if (scene.obstacles.empty()) return;
+  XMLElement* contact = add(doc, root, "contact", {});
+  for (size_t i = 0; i < scene.obstacles.size(); ++i) {
+    const ObstacleContactSettings os = obstacle_settings(scene, scene.obstacles[i], s);
+    const ContactParams& p = os.law;
+    for (const Geom& g : l.geoms) {
+      if (g.visual) continue;
+      add(doc, contact, "pair",
+          {{"geom1", g.name},
+           {"geom2", "obstacle" + std::to_string(i)},
+           {"condim", std::to_string(os.condim)},
+           {"friction", join({p.mu, p.mu, p.mu_torsion, p.mu_roll, p.mu_roll})},
+           {"solref", join(os.solref)},
+           {"solimp", join(s.solimp)}});
     }
   }
 }
@@ -437,7 +579,9 @@ std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
   add_options(doc, root, scene, settings, layout, condim_of(scene, options));
   XMLElement* world = add(doc, root, "worldbody", {});
   add(doc, world, "geom", {{"name", "ground"}, {"type", "plane"}, {"size", "0 0 1"}});
+  add_obstacles(doc, world, scene);
   add_body(doc, world, scene, layout);
+  add_pairs(doc, root, scene, settings, layout);
   add_keyframe(doc, root, scene, layout);
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
@@ -446,11 +590,6 @@ std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
 
 GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options) {
   mujoco_integrator(scene.sim.integrator);  // explicit Euler: fail before any work
-  if (!scene.obstacles.empty()) {
-    throw InputError("[[obstacle]]: the MuJoCo model has the ground plane only; remove the " +
-                     std::to_string(scene.obstacles.size()) +
-                     " obstacle(s) to run the scene in MuJoCo");
-  }
   const int split = contacts_per_point(scene.shape, options.geometry);
   const double inv_mass =
       options.mapping == Mapping::Calibrated ? read_inv_mass(scene, options, split) : 0.0;

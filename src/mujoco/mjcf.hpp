@@ -35,6 +35,19 @@
 //               contacts per point)
 // Visual-only geoms (contype = conaffinity = 0, group 1) draw the shape.
 //
+// Static obstacles (core/obstacles.hpp) are world-body geoms "obstacle<i>":
+// a box obstacle a box geom (centre (x, 0, y), half-size (w/2, D, h/2), D
+// deep enough to hold every body geom), a segment a capsule from (x1, 0, y1)
+// to (x2, 0, y2) of its radius, whose cut by the plane y = 0 is the 2D
+// capsule (a sphere when a = b). They have contype = conaffinity = 0 and
+// touch the body only through an explicit <contact><pair> per (contact
+// geom, obstacle), which carries the obstacle's own law (its keys over the
+// scene's [contact]) mapped like the ground's: solref from its k, c (same Â
+// and n), friction (μ, μ, μ_torsion, μ_roll, μ_roll), its condim, the
+// scene's solimp. A pair's values are used as given, where geom values
+// would be mixed (friction: max, direct solref: min, solimp: average).
+// calibrated's impratio, one value for all contacts, uses the largest c.
+//
 // The header comment states every derived value with the formula that
 // computes it (tests/mujoco/test_mjcf_header.cpp recomputes them) and marks
 // the ones that depend on Δt: calibrated's impratio, and the timeconst
@@ -89,7 +102,7 @@ struct GeneratedModel {
 // to read body_invweight0 (the effective-mass factor Â) from MuJoCo, then
 // writes the final model. Throws InputError when the scene cannot be mapped
 // (explicit Euler; seed/exact with k or c = 0 or a timeconst or dampratio
-// that overflows or underflows; obstacles, which the model does not carry)
+// that overflows or underflows, the ground's or an obstacle's)
 // or MuJoCo rejects the final model or warns while loading it (it is loaded
 // once to check).
 GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options);

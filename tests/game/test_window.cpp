@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -73,8 +74,10 @@ struct Image {
 Image screenshot(const std::string& name, const std::string& screen_size) {
   const fs::path file = temp(name + ".ppm");
   const std::string display = std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "";
-  sh("ffmpeg -loglevel error -y -f x11grab -video_size " + screen_size + " -i '" + display +
-     "' -frames:v 1 -f image2 -c:v ppm '" + file.string() + "'");
+  // -draw_mouse 0: the X cursor (at the screen's centre, over the window)
+  // is not part of the picture.
+  sh("ffmpeg -loglevel error -y -f x11grab -draw_mouse 0 -video_size " + screen_size + " -i '" +
+     display + "' -frames:v 1 -f image2 -c:v ppm '" + file.string() + "'");
   Image image;
   std::ifstream in(file, std::ios::binary);
   std::string magic;
@@ -95,7 +98,9 @@ double json_number(const std::string& json, const std::string& key, size_t from 
   return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
 }
 
-TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
+// The window on one engine: keys reach the game, the screen shows it, and
+// the live recording replays headless (on the same engine) to the same kick.
+void keys_move_the_ball(const std::string& engine) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
   ASSERT_EQ(sh("command -v xdotool >/dev/null && command -v ffmpeg >/dev/null"), 0)
       << "needs xdotool and ffmpeg (scripts/setup installs them)";
@@ -120,8 +125,9 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
 
   const fs::path out = temp("out.json"), err = temp("err.txt"), replay = temp("live.replay");
   const std::string command = std::string("exec '") + CONTACT2D_EXE + "' play '" + pitch.string() +
-                              "' --seed 5 --record-input '" + replay.string() + "' >'" +
-                              out.string() + "' 2>'" + err.string() + "'";
+                              "' --engine " + engine + " --seed 5 --record-input '" +
+                              replay.string() + "' >'" + out.string() + "' 2>'" + err.string() +
+                              "'";
   pid_t pid = -1;
   const char* argv[] = {"sh", "-c", command.c_str(), nullptr};
   ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
@@ -212,11 +218,34 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
   std::printf("\n");
   EXPECT_GT(changed, 50) << "the ball did not move on screen";
 
+  // The ball is big enough to see: below the HUD (y > 110) and above the
+  // goal line's white mark on the grass (y < 505) only the ball is pure
+  // white. The camera shows 7 m in 800 px, so its 0.22 m are 25.1 px; inside
+  // its 1.5 px outline 22 px are white (render.cpp). Before the camera
+  // followed the ball, the whole 13 m pitch drew it 13.5 px across.
+  int left = 800, right = -1, top = 600, bottom = -1;
+  for (int yy = 111; yy < 505; ++yy) {
+    for (int xx = 0; xx < 800; ++xx) {
+      if ((after.pixel(xx, yy) & 0xffffff) == 0xffffff) {
+        left = std::min(left, xx);
+        right = std::max(right, xx);
+        top = std::min(top, yy);
+        bottom = std::max(bottom, yy);
+      }
+    }
+  }
+  std::printf("ball on screen: %d x %d px of white\n", right - left + 1, bottom - top + 1);
+  EXPECT_GE(right - left + 1, 20);
+  EXPECT_LE(right - left + 1, 25);
+  EXPECT_GE(bottom - top + 1, 20);
+  EXPECT_LE(bottom - top + 1, 25);
+
   // What the live window recorded replays headless to the same kick.
   const fs::path replay_out = temp("replay.json");
-  ASSERT_EQ(sh(std::string("'") + CONTACT2D_EXE + "' play '" + pitch.string() +
-               "' --headless --replay '" + replay.string() + "' >'" + replay_out.string() + "'"),
-            0);
+  ASSERT_EQ(
+      sh(std::string("'") + CONTACT2D_EXE + "' play '" + pitch.string() + "' --headless --engine " +
+         engine + " --replay '" + replay.string() + "' >'" + replay_out.string() + "'"),
+      0);
   const std::string replayed = slurp(replay_out);
   const auto kicks = [](const std::string& j) {
     return j.substr(j.find("\"kicks\""), j.find("\"rounds\"") - j.find("\"kicks\""));
@@ -227,6 +256,32 @@ TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) {
   fs::remove(replay);
   fs::remove(replay_out);
   fs::remove(pitch);
+  EXPECT_NE(json.find("\"engine\":\"" + engine + "\""), std::string::npos) << json;
+}
+
+TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) { keys_move_the_ball("ref"); }
+
+#ifdef CONTACT2D_WITH_MUJOCO
+TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGameOnMujoco) { keys_move_the_ball("mujoco"); }
+#endif
+
+// The help overlay pauses the game: 60 frames with it open from the start
+// take no physics step (without it, 60 frames at any frame rate advance the
+// clock and so the steps; a replay is used so no key is needed).
+TEST(Window, TheHelpOverlayPausesTheGame) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
+  const fs::path out = temp("help.json"), err = temp("help.err");
+  const std::string base = std::string("'") + CONTACT2D_EXE +
+                           "' play --replay '" CONTACT2D_SOURCE_DIR
+                           "/validation/replays/goal.replay' --frames 60 --no-vsync";
+  ASSERT_EQ(sh(base + " --help-overlay >'" + out.string() + "' 2>'" + err.string() + "'"), 0)
+      << slurp(err);
+  EXPECT_NE(slurp(err).find(", 0 physics steps"), std::string::npos) << slurp(err);
+  EXPECT_NE(slurp(out).find("\"steps\":0,"), std::string::npos) << slurp(out);
+  ASSERT_EQ(sh(base + " >'" + out.string() + "' 2>'" + err.string() + "'"), 0) << slurp(err);
+  EXPECT_EQ(slurp(out).find("\"steps\":0,"), std::string::npos) << slurp(out);
+  fs::remove(out);
+  fs::remove(err);
 }
 
 TEST(Window, RecordingTheGoalReplayWritesAVideoOfEveryFrame) {
