@@ -137,9 +137,9 @@ Command add_play(CLI::App& app) {
       "resets\n"
       "to the next pass, F1 or H shows the help, Esc quits. Prints one JSON line at the end.");
   cmd->add_option(
-      "pitch", o->pitch,
-      "Pitch file: any circle scene; its [game] table names the crossbar and the rules, without "
-      "one it plays on the built-in goal (default: the built-in pitch)")
+         "pitch", o->pitch,
+         "Pitch file: any circle scene; its [game] table names the crossbar and the rules, without "
+         "one it plays on the built-in goal (default: the built-in pitch)")
       ->type_name("PITCH.toml");
   cmd->add_option("--engine", o->engine,
                   "ref | mujoco: the physics (same keys, replays and recording on both)")

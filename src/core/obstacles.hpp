@@ -1,7 +1,7 @@
 // Static obstacles: fixed geometry the body touches with the ground's contact
-// law (docs/physics.md) or with the obstacle's own k, c, μ, … (ContactOverride), applied along the normal n
-// out of the touched surface instead of +y. This file is the geometry (depth and normal of one
-// point or disc against one obstacle, of one obstacle vertex against one part of the body);
+// law (docs/physics.md) or with the obstacle's own k, c, μ, … (ContactOverride), applied along the
+// normal n out of the touched surface instead of +y. This file is the geometry (depth and normal of
+// one point or disc against one obstacle, of one obstacle vertex against one part of the body);
 // core/contacts.hpp enumerates the contacts and core/dynamics.hpp
 // applies the law to them.
 //

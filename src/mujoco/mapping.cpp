@@ -119,8 +119,7 @@ SolverSettings solver_settings(const ContactParams& contact, const RigidBody& bo
     s.solref = {-k * inv_mass / split, -c * inv_mass / split};
     s.solimp = kMinimalSolimp;
     s.elliptic = true;
-    s.impratio =
-        calibrated_impratio(contact, body, dt, largest_c > 0.0 ? largest_c : contact.c);
+    s.impratio = calibrated_impratio(contact, body, dt, largest_c > 0.0 ? largest_c : contact.c);
     return s;
   }
   require_spring_and_damper(contact, mapping);

@@ -109,8 +109,7 @@ SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_m
 // largest_c: the largest damper of every contact law of the model, which
 // bounds calibrated's one impratio (0: contact.c).
 SolverSettings solver_settings(const ContactParams& contact, const RigidBody& body, double dt,
-                               Mapping mapping, double inv_mass, int split,
-                               double largest_c = 0.0);
+                               Mapping mapping, double inv_mass, int split, double largest_c = 0.0);
 
 // The largest c of the scene's [contact] and its obstacles' own laws: the
 // damper that bounds calibrated's impratio (one value for every contact).
