@@ -118,6 +118,8 @@ rp::ReadmeData readme_runs(const ReportOptions& o) {
       fs::remove(o.out + "/" + s + ".kelvin_voigt.png");
     }
   }
+  progress("the goal replay on both engines");
+  d.replay = rp::replay_on_both("validation/replays/goal.replay", o.out + "/goal_replay.png");
   progress("three-way comparisons, diagnoses and animations");
   d.named_share = analysis::kNamedShare;
   for (const std::string& s : kScenes) {

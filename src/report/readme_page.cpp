@@ -170,6 +170,22 @@ std::string plots(const std::vector<std::string>& scenes,
   return to_markdown(t);
 }
 
+std::string replay_section(const ReplayComparison& r) {
+  std::string out =
+      "## 9. The game's goal replay on both engines\n\n`contact2d play --headless --replay " +
+      r.replay + " [--engine mujoco]`: the same key events on both engines.\n\n";
+  Table t{{"engine", "outcome", "what `play` prints"}, {}};
+  for (const ReplayEngine& e : r.engines) add_row(t, {e.engine, e.outcome, "`" + e.json + "`"});
+  out += to_markdown(t);
+  auto when = [](const std::optional<double>& s) {
+    return s ? "at t = " + g(*s) + " s" : std::string("never");
+  };
+  out += "\nThe two balls are 0.01 m apart " + when(r.part_1cm) + " and a ball radius (" +
+         g(r.radius) + " m) apart " + when(r.part_radius) +
+         ".\n\n![The goal replay on both engines](" + r.plot + ")\n";
+  return out;
+}
+
 // The first screen: which mapping, and how close MuJoCo then is, by damping
 // band, with and without friction, each line with the command behind it.
 std::string summary(const ReadmeData& d) {
@@ -438,6 +454,7 @@ scene as shipped (left) and with the Kelvin–Voigt law (right).
 )md";
   out += plots(d.scenes, d.law_independent);
   out += "\n";
+  if (d.replay.ran) out += replay_section(d.replay);
   return out;
 }
 

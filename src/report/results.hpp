@@ -42,6 +42,21 @@ struct ThreeWayCase {
   std::string animation;           // file name in the report directory; empty: not drawn
 };
 
+// The shipped goal replay on both engines (section 9).
+struct ReplayEngine {
+  std::string engine;   // "ref", "mujoco"
+  std::string outcome;  // "goal", …
+  std::string json;     // what `play --headless --replay` prints
+};
+struct ReplayComparison {
+  bool ran = false;
+  std::string replay;  // the file
+  std::vector<ReplayEngine> engines;
+  std::optional<double> part_1cm, part_radius;  // s: first time the balls are 0.01 m / R apart
+  double radius = 0.0;                          // m
+  std::string plot;                             // file name in the report directory
+};
+
 // Every scene under every mapping (sections 1 and 2).
 struct MappingCase {
   std::string scene, mapping;
@@ -93,7 +108,8 @@ struct ReadmeData {
   // Scenes whose shipped and Kelvin–Voigt runs are the same (calibrated:
   // every error equal), whose second plot the page leaves out.
   std::vector<std::string> law_independent;
-  std::string random_dir;  // where the random scenes' files are, as the reader types it
+  std::string random_dir;
+  ReplayComparison replay;  // where the random scenes' files are, as the reader types it
   double converged_tol = 1e-12;
   double named_share = 0.0;    // a cause is named from this share on (analysis::kNamedShare)
   std::string animation_note;  // why there are no animations, when there are none

@@ -25,6 +25,9 @@
 #include "core/input_error.hpp"
 #include "core/integrator_label.hpp"
 #include "engines/engines.hpp"
+#include "game/pitch.hpp"
+#include "game/replay.hpp"
+#include "game/session.hpp"
 #include "io/csv.hpp"
 #include "io/plot.hpp"
 #include "io/scene_file.hpp"
@@ -149,6 +152,27 @@ ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
 #endif
   }
   return c;
+}
+
+ReplayComparison replay_on_both(const std::string& replay_path, const std::string& plot_png) {
+  const game::Pitch pitch = game::default_pitch();
+  const game::Replay replay = game::read_replay(replay_path);
+  ReplayComparison out;
+  out.ran = true;
+  out.replay = replay_path;
+  out.radius = pitch.scene.radius;
+  const game::ReplayRun ref = game::run_replay(pitch, replay, "ref");
+  const game::ReplayRun mj = game::run_replay(pitch, replay, "mujoco");
+  for (const game::ReplayRun* r : {&ref, &mj})
+    out.engines.push_back({r->engine, std::string(game::outcome_name(r->outcome)), r->json});
+  out.part_1cm = game::parting_time(ref, mj, 0.01);
+  out.part_radius = game::parting_time(ref, mj, out.radius);
+  Trajectory a, b;
+  a.samples = ref.samples;
+  b.samples = mj.samples;
+  plot_comparison(plot_png, "the goal replay: the ball on both engines", a, b);
+  out.plot = std::filesystem::path(plot_png).filename().string();
+  return out;
 }
 
 void write_model(const Scene& scene, const std::string& source, const std::string& mapping,

@@ -40,6 +40,11 @@ ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
                                const std::string& law, double tol, const std::string& video,
                                std::string& video_failure);
 
+// `contact2d play --headless --replay REPLAY` on the reference and on
+// MuJoCo (the built-in pitch), where the two balls part, and both
+// trajectories drawn into `plot_png`.
+ReplayComparison replay_on_both(const std::string& replay_path, const std::string& plot_png);
+
 // `contact2d generate -o PATH`: the scene's MJCF under a mapping.
 void write_model(const Scene& scene, const std::string& source, const std::string& mapping,
                  const std::string& path);

@@ -78,6 +78,12 @@ inline ReadmeData readme() {
   d.three_way = {diagnosed, agrees, unconverged};
   d.named_share = 0.2;
   d.random_dir = "validation/report/random";
+  d.replay.ran = true;
+  d.replay.replay = "validation/replays/goal.replay";
+  d.replay.radius = 0.11;
+  d.replay.engines = {{"ref", "goal", "{\"goal\":true}"}, {"mujoco", "goal", "{\"goal\":true}"}};
+  d.replay.part_1cm = 0.38;  // the radius parting left out: printed as "never"
+  d.replay.plot = "goal_replay.png";
   d.random_config = {42, 4, 1e-5, 1e-4};
   // ζ = c/(2√(k·m)) chosen so that √(k·m) is round: s00 √(0.5·2e4) = 100,
   // ζ = 30/200 = 0.15; s01 √(2·5000) = 100, ζ = 0.5; s02 √(1.25·3e5) = 612.4,
