@@ -405,7 +405,8 @@ it.
 f = (aref − a0)/(A + R) with R = (1 − d)/d·Â, aref = −B·v − K·d·pos: with its
 default impedance d ≈ 0.9–0.95 the unconstrained acceleration a0 (gravity)
 enters with weight d, so at rest k·p = (1 − d)·m·g and the body sits at
-5–10 % of the reference's penetration (`seed`, `exact`). With d at
+5–10 % of the reference's penetration (`seed`, `exact`, without friction;
+MuJoCo's pyramidal cone stiffens a contact with friction further). With d at
 MuJoCo's minimum 1e-4 and solref = (−k·Â, −c·Â) the force is
 k·p − c·v to a relative 1e-4 (the static penetration is (1 − 1e-4)·m·g/k,
 asserted in `tests/mujoco/test_contact_laws.cpp`); what is left is the
