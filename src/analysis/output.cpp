@@ -66,12 +66,12 @@ std::string series_title(const std::string& engine, Integrator integrator) {
 // shape, each larger than the last, so curves that coincide (MuJoCo's
 // mappings often do) show as nested markers. Colour = integrator.
 struct EngineStyle {
-  int point_type;
   double point_size;
+  int point_type;
   int dash_type;
 };
 EngineStyle engine_style(size_t engine_index) {
-  static const EngineStyle styles[] = {{7, 1.0, 1}, {4, 1.6, 2}, {6, 2.1, 4}, {12, 2.6, 5}};
+  static const EngineStyle styles[] = {{1.0, 7, 1}, {1.6, 4, 2}, {2.1, 6, 4}, {2.6, 12, 5}};
   return styles[std::min<size_t>(engine_index, 3)];
 }
 

@@ -2,6 +2,7 @@
 // io, analysis, game, MuJoCo and CLI layers, tables and reports).
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -42,7 +43,7 @@ inline std::string format_duration(double seconds) {
   if (seconds < 0.9995e-3) return format_text("%.3g µs", seconds * 1e6);
   if (seconds < 0.9995) return format_text("%.3g ms", seconds * 1e3);
   if (seconds < 59.95) return format_text("%.3g s", seconds);
-  const long long whole = static_cast<long long>(seconds + 0.5);
+  const long long whole = std::llround(seconds);
   if (whole < 3600) return format_text("%lld min %02lld s", whole / 60, whole % 60);
   const long long minutes = (whole + 30) / 60;
   return format_text("%lld h %02lld min", minutes / 60, minutes % 60);
