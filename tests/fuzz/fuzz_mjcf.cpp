@@ -80,7 +80,7 @@ double test_step_qacc_bound(const Scene& scene, Mapping mapping, Geometry geomet
 
 // Must generate_mjcf refuse this valid scene (documented reasons)?
 bool must_refuse(const Scene& scene, Mapping mapping) {
-  if (scene.sim.integrator == Integrator::ExplicitEuler || !scene.obstacles.empty()) return true;
+  if (scene.sim.integrator == Integrator::ExplicitEuler) return true;
   if (mapping == Mapping::Calibrated) return false;
   // MuJoCo's standard solref (timeconst, dampratio), as solver_settings computes it.
   const double m = make_body(scene).mass, k = scene.contact.k, c = scene.contact.c;
@@ -95,8 +95,7 @@ bool refusal_allowed(const Scene& scene, Mapping mapping, Geometry geometry,
                      const std::string& message) {
   if (must_refuse(scene, mapping)) {
     const bool contact_key = message.rfind("contact.", 0) == 0;
-    return scene.sim.integrator == Integrator::ExplicitEuler || !scene.obstacles.empty() ||
-           contact_key;
+    return scene.sim.integrator == Integrator::ExplicitEuler || contact_key;
   }
   const RigidBody body = make_body(scene);
   if (has(message, "must be larger than mjMINVAL"))
@@ -128,8 +127,15 @@ void check_model(const Scene& scene, Geometry geometry, const mjModel* m) {
   int geoms = 1 + 1;
   if (scene.shape == Shape::Box || scene.shape == Shape::TShape)
     geoms = 1 + points / 4 + (geometry == Geometry::CornerSpheres ? points : 0);
+  // One static geom per obstacle, touched through one explicit pair per
+  // (contact geom of the body, obstacle).
+  const int obstacles = static_cast<int>(scene.obstacles.size());
+  geoms += obstacles;
+  const int contact_geoms = (scene.shape == Shape::Box || scene.shape == Shape::TShape)
+                                ? (geometry == Geometry::CornerSpheres ? points : points / 4)
+                                : 1;
   if (m->nbody != 2 || m->njnt != (hinge ? 3 : 2) || m->nq != m->njnt || m->nv != m->njnt ||
-      m->ngeom != geoms || m->nkey != 1)
+      m->ngeom != geoms || m->nkey != 1 || m->npair != obstacles * contact_geoms)
     fail("unexpected model structure");
   if (!(m->opt.timestep == scene.sim.dt)) fail("timestep differs from sim.dt");
   if (!(m->opt.gravity[2] == -scene.sim.gravity)) fail("gravity differs from sim.gravity");
