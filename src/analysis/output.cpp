@@ -44,17 +44,6 @@ std::string kind_text(DivergenceKind kind) {
   return "?";
 }
 
-// The smallest and largest finite value seen (axis ranges of the plots).
-struct Extent {
-  double lo = std::numeric_limits<double>::infinity();
-  double hi = -std::numeric_limits<double>::infinity();
-  void add(double v) {
-    if (!std::isfinite(v)) return;
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-};
-
 // "ref: rk4", "mujoco:seed: semi_implicit_euler (MuJoCo Euler)": the
 // engine and integrator as --engines and --integrators name them.
 std::string series_title(const std::string& engine, Integrator integrator) {

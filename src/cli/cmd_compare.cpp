@@ -398,15 +398,7 @@ Command add_compare(CLI::App& app) {
   cmd->add_option("--converged-tol", options->converged_tol,
                   "Tolerance of the converged solution (rtol = atol; default 1e-12)")
       ->type_name("TOL")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            char* end = nullptr;
-            const double v = std::strtod(text.c_str(), &end);
-            if (end == text.c_str() || *end != '\0' || !(v >= 1e-14 && v <= 1e-6))
-              return text + " is out of range: must be in [1e-14, 1e-6]";
-            return std::string();
-          },
-          "[1e-14, 1e-6]"));
+      ->check(number_in(1e-14, 1e-6, false, "[1e-14, 1e-6]"));
   cmd->add_flag("--no-diagnosis", options->no_diagnosis,
                 "Skip the diagnosis (the re-runs that remove each cause of the difference)");
   return {cmd, [options] { return compare(*options); }};

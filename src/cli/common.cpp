@@ -80,15 +80,7 @@ void MujocoOptions::add_to(CLI::App& cmd) {
                  "Compute MuJoCo's Δt-dependent values (the calibrated impratio) for this Δt "
                  "instead of the timestep: holds the model fixed while --dt changes")
       ->type_name("SECONDS")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            char* end = nullptr;
-            const double v = std::strtod(text.c_str(), &end);
-            if (end == text.c_str() || *end != '\0' || !(v > 0.0 && v <= 1.0))
-              return text + " is out of range: must be in (0, 1] s";
-            return std::string();
-          },
-          "(0, 1]"));
+      ->check(number_in(0.0, 1.0, true, "(0, 1] s"));
 }
 
 engines::EngineSpec MujocoOptions::spec(const std::string& source) const {

@@ -40,16 +40,6 @@ void write_data(std::FILE* out, const Trajectory& ref, const Trajectory& mj) {
   }
 }
 
-struct Extent {
-  double lo = std::numeric_limits<double>::infinity();
-  double hi = -std::numeric_limits<double>::infinity();
-  void add(double v) {
-    if (!std::isfinite(v)) return;
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-};
-
 // Range of a distance on a log axis: from 1e-9 of its largest value (and
 // not below 1e-16) to above it; a distance that is 0 throughout gets a
 // range of its own and the panel says so.

@@ -8,12 +8,29 @@
 // that also tell the series apart in grey.
 #pragma once
 
+#include <limits>
+
+#include <cmath>
+
+#include <algorithm>
+
 #include <string>
 
 #include "core/integrators.hpp"
 #include "core/run.hpp"
 
 namespace contact2d {
+
+// The smallest and largest finite value seen (axis ranges of the plots).
+struct Extent {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  void add(double v) {
+    if (!std::isfinite(v)) return;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+};
 
 // Runs gnuplot on the script. Throws InputError when gnuplot is missing or
 // fails, naming `png_path` (the plot it was drawing). Whatever gnuplot
