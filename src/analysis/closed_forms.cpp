@@ -289,7 +289,7 @@ ClosedFormCase slide_case() {
   // contact), a tail far shorter than Δt·v0. Measured 8.6e-5 m short.
   coulomb_q.mujoco_bound = 2.0 * s.sim.dt * v0;
   coulomb_q.mujoco_why = "SIE's Δt·v0/2 = " + format_number(s.sim.dt * v0 / 2.0, 2) +
-                         " m short, doubled (measured 8.6e-5 m)";
+                         " m short, doubled; 8.6e-5 m short";
   coulomb_q.why = "MuJoCo only";
   cs.quantities.push_back(coulomb_q);
   return cs;
@@ -323,7 +323,8 @@ ClosedFormCase roll_case() {
   // R − p/2, a relative change of p/(2R) = 4.9e-4 in the deceleration's
   // factors; measured 1.3e-4 relative. Bound: 5e-4 relative.
   dec.mujoco_bound = 5e-4 * a;
-  dec.mujoco_why = "lever arm R − p/2: ≲ p/(2R) = 4.9e-4 relative (measured 1.3e-4)";
+  dec.mujoco_why =
+      "1.3e-4 relative high; lever arm R − p/2 of its contact point: ≲ p/(2R) = 4.9e-4";
   cs.quantities.push_back(dec);
 
   ClosedFormQuantity dist;
@@ -345,7 +346,7 @@ ClosedFormCase roll_case() {
   // damper term carries the weight). Bound: 2e-2 m.
   dist.mujoco_bound = 2e-2;
   dist.mujoco_why =
-      "MISS, measured 1.26e-2 m long: made in the first 50 ms (7.8e-3 m/s faster "
+      "MISS, 1.26e-2 m long: made in the first 50 ms (7.8e-3 m/s faster "
       "at 0.05 s; the disc rises from depth m·g/k to 1e-6 m), the deceleration "
       "then agrees to 1.3e-4";
   cs.quantities.push_back(dist);
@@ -378,7 +379,7 @@ ClosedFormCase bowling_case() {
   v.converged_tolerance = 10.0 * kConvergedTol;
   v.mujoco_bound = 3e-4;
   v.mujoco_why =
-      "measured 1.3e-4 m/s slow: contact point p/2 inside the disc, lever arm R − p/2 "
+      "1.3e-4 m/s slow: contact point p/2 inside the disc, lever arm R − p/2 "
       "(first-order estimate 2.2e-4 m/s)";
   cs.quantities.push_back(v);
 
@@ -400,7 +401,7 @@ ClosedFormCase bowling_case() {
           format_number(interpolation, 2) + " s";
   t.converged_tolerance = interpolation;
   t.mujoco_bound = 1e-3;
-  t.mujoco_why = "measured 6.1e-4 s late: no tanh, viscous friction inside the cone";
+  t.mujoco_why = "6.1e-4 s late: no tanh, viscous friction inside the cone";
   cs.quantities.push_back(t);
   return cs;
 }
@@ -448,7 +449,7 @@ ClosedFormCase slope_case(double degrees, double mu, double v0) {
     // mujoco.md). Bound: about twice the measurement, 1.2e-2 m/s².
     q.mujoco_bound = 1.2e-2;
     q.mujoco_why =
-        "MISS, measured 0.24 % slower: the box rattles and hops on the slope (the "
+        "MISS, 0.24 % slower: the box rattles and hops on the slope (the "
         "cone's slip term μ·c·|v_t| pushes it off)";
   } else {
     q.name = "creep speed down the slope over [0.3, 0.5] s (m/s)";
