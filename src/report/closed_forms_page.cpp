@@ -91,8 +91,9 @@ Kelvin–Voigt law unless the case names the compression-only damper.
 A row is listed when MuJoCo is further from the closed form than the
 tolerance derived for it (rest depths, Kelvin–Voigt restitution, its own
 creep) or, where its bound is only measured, than the tolerance the
-reference is held to (a MuJoCo-only row: than its own bound). These are findings about MuJoCo's contact model under
-the mapping, not tolerances to widen; `docs/closed-forms.md` explains each.
+reference is held to (a MuJoCo-only row: than its own bound). These are
+findings about MuJoCo's contact model under the mapping, not tolerances to
+widen; `docs/closed-forms.md` explains each.
 
 )md" + misses +
          "\nWall clock of all the runs of this page (this run: " + g(t.seconds, 2) + " s).\n";
