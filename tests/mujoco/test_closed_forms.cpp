@@ -25,7 +25,8 @@
 //         short of Coulomb's v0²/(2μg) (semi-implicit Euler's Δt·v0/2 =
 //         7.5e-5 m);
 //       rolling disc: deceleration 1.3e-4 relative high, distance 1.26e-2 m
-//         long (made in the first 50 ms);
+//         long (made in the first ~60 ms, where MuJoCo's disc hops and no
+//         rolling resistance acts in flight);
 //       bowling disc: final speed 1.3e-4 m/s slow, time to roll 6.1e-4 s late;
 //       slope: acceleration 5.6e-3 m/s² (0.24 %) low; creep 5.1e-4 m/s
 //         against the tanh law's 6.0e-3 m/s (its own viscous creep, exact);
@@ -256,7 +257,7 @@ TEST_F(ClosedForms, BoxSlidesToRest) {
 // semi-implicit Euler (its Δt·v0/2, doubled). MuJoCo: deceleration within
 // 5e-4 relative (its contact point sits p/2 inside the disc: lever R − p/2,
 // p/(2R) = 4.9e-4; measured 1.3e-4), distance within 2e-2 m (measured
-// 1.26e-2 m long, made in the first 50 ms).
+// 1.26e-2 m long: the disc hops in the first ~60 ms, docs/closed-forms.md).
 TEST_F(ClosedForms, DiscRollsToRestUnderRollingResistance) {
   const Scene& s = scene("roll.disc");
   const double g = s.sim.gravity, R = s.radius, m = s.mass, alpha = s.contact.alpha;
