@@ -725,59 +725,75 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
       zetas.push_back(r->zeta);
     }
     const Cells kc = cells_of(ks), zc = cells_of(zetas);
-    // Per cell: the largest distance of its ok points, and whether any
-    // point failed.
-    std::vector<double> worst(kc.size() * zc.size(), -1.0);
-    std::vector<bool> failed(worst.size(), false);
+    // Two panels: MuJoCo ↔ converged and ref ↔ MuJoCo. Per cell: the
+    // largest distance of its ok points, and whether any point failed.
+    const size_t n = kc.size() * zc.size();
+    std::vector<double> worst[2] = {std::vector<double>(n, -1.0), std::vector<double>(n, -1.0)};
+    std::vector<bool> failed(n, false);
     Extent range;
     for (const AtlasRow* r : rows) {
       const size_t i = kc.cell(r->k) * zc.size() + zc.cell(r->zeta);
-      if (r->status != "ok" || std::isnan(r->mujoco_conv_pos)) {
+      if (r->status != "ok") {
         failed[i] = true;
-      } else {
-        worst[i] = std::max(worst[i], r->mujoco_conv_pos);
+        continue;
       }
+      const double values[2] = {r->mujoco_conv_pos, r->ref_mujoco_pos};
+      for (int panel = 0; panel < 2; ++panel)
+        if (!std::isnan(values[panel])) worst[panel][i] = std::max(worst[panel][i], values[panel]);
     }
-    for (double w : worst)
-      if (w > 0.0) range.add(std::log10(w));
+    for (const std::vector<double>& w : worst)
+      for (double v : w)
+        if (v > 0.0) range.add(std::log10(v));
+    const double lo = std::isfinite(range.lo) ? std::floor(range.lo) : -16.0;
+    const double hi = std::isfinite(range.hi) ? std::max(std::ceil(range.hi), lo + 1.0) : lo + 1.0;
     const std::string file = prefix + g.body + "." + g.mapping + "." + g.damping + ".png";
     const std::string png_path = (fs::path(out_dir) / file).string();
     AtomicFile png(png_path);
-    AtomicFile dat(png_path + ".data");
-    for (size_t ki = 0; ki < kc.size(); ++ki) {
-      for (size_t zi = 0; zi < zc.size(); ++zi) {
-        const size_t i = ki * zc.size() + zi;
-        const double w = worst[i];
-        std::string label = w < 0.0 ? (failed[i] ? "diverged" : "") : format_number("%.0e", w);
-        if (w >= 0.0 && failed[i]) label += "*";
-        // Columns: k cell, ζ cell, log10 of the distance (or the lowest
-        // value for an exact 0), the label.
-        const double shade = w > 0.0 ? std::log10(w) : (std::isfinite(range.lo) ? range.lo : -16);
-        if (w >= 0.0)
-          std::fprintf(dat.get(), "%zu %zu %.6g \"%s\"\n", ki, zi, shade, label.c_str());
-        else if (!label.empty())
-          std::fprintf(dat.get(), "%zu %zu NaN \"%s\"\n", ki, zi, label.c_str());
+    std::unique_ptr<AtomicFile> dat[2];
+    for (int panel = 0; panel < 2; ++panel) {
+      dat[panel] = std::make_unique<AtomicFile>(png_path + ".data" + std::to_string(panel));
+      for (size_t ki = 0; ki < kc.size(); ++ki) {
+        for (size_t zi = 0; zi < zc.size(); ++zi) {
+          const size_t i = ki * zc.size() + zi;
+          const double w = worst[panel][i];
+          std::string label = w < 0.0 ? (failed[i] ? "diverged" : "") : format_number("%.0e", w);
+          if (w >= 0.0 && failed[i]) label += "*";
+          // Columns: k cell, ζ cell, log10 of the distance (an exact 0 at
+          // the bottom of the colour range), the label.
+          const double shade = w > 0.0 ? std::log10(w) : lo;
+          if (w >= 0.0)
+            std::fprintf(dat[panel]->get(), "%zu %zu %.6g \"%s\"\n", ki, zi, shade, label.c_str());
+          else if (!label.empty())
+            std::fprintf(dat[panel]->get(), "%zu %zu NaN \"%s\"\n", ki, zi, label.c_str());
+        }
       }
+      // gnuplot refuses a data file without a point: one outside the range.
+      std::fprintf(dat[panel]->get(), "-10 -10 NaN \"\"\n");
+      if (std::fflush(dat[panel]->get()) != 0)
+        throw InputError(dat[panel]->temp_path() + ": cannot write");
     }
-    if (std::fflush(dat.get()) != 0) throw InputError(dat.temp_path() + ": cannot write");
-    const std::string d = gnuplot_quoted(dat.temp_path());
     std::ostringstream s;
-    const double lo = std::isfinite(range.lo) ? std::floor(range.lo) : -16.0;
-    const double hi = std::isfinite(range.hi) ? std::max(std::ceil(range.hi), lo + 1.0) : lo + 1.0;
-    s << gnuplot_png(png.temp_path(), 900, 650) << "set title '"
-      << gnuplot_text("MuJoCo ↔ converged, max position error: " + g.body + ", " + g.mapping +
-                      ", " + g.damping)
-      << "'\n"
+    s << gnuplot_png(png.temp_path(), 1400, 620) << "set multiplot title '"
+      << gnuplot_text("max position error over k × ζ: " + g.body + ", " + g.mapping + " mapping, " +
+                      g.damping + " (largest over the other axes in each cell)")
+      << "' font ',13'\n"
       << "set xlabel 'k (N/m)'\nset ylabel 'ζ = c/(2√(k·m))'\n"
       << "set xrange [-0.5:" << kc.size() - 0.5 << "]\nset yrange [-0.5:" << zc.size() - 0.5
       << "]\n"
       << tics("x", kc) << tics("y", zc) << "set cbrange [" << lo << ":" << hi << "]\n"
       << "set cblabel 'log_{10} of the max position error (m)'\n"
       << "set palette defined (0 '#0072B2', 0.5 '#F0E442', 1 '#D55E00')\n"
-      << "unset key\nset tics nomirror\n"
-      << "plot " << d
-      << " using 1:2:(0.5):(0.5):3 with boxxyerror fill solid 1.0 noborder lc palette, " << d
-      << " using 1:2:4 with labels font ',10'\n";
+      << "unset key\nset tics nomirror\n";
+    const char* titles[2] = {"MuJoCo ↔ converged solution", "ref ↔ MuJoCo (same Δt)"};
+    for (int panel = 0; panel < 2; ++panel) {
+      const std::string d = gnuplot_quoted(dat[panel]->temp_path());
+      s << "set size 0.5,0.92\nset origin " << 0.5 * panel << ",0.0\n"
+        << "set title '" << gnuplot_text(titles[panel]) << "'\n"
+        << "plot " << d
+        << " using 1:2:(0.5):(0.5):3 with boxxyerror fill solid 1.0 noborder lc palette, " << d
+        << " using 1:2:4 with labels font ',10'\n";
+    }
+    s << "unset multiplot\n";
     run_gnuplot(s.str(), png_path);
     png.commit();
     g.heatmap = file;
@@ -854,10 +870,11 @@ std::string atlas_summary_markdown(const AtlasSummary& s, const std::string& ima
   bool any = false;
   for (const AtlasGroup& g : s.groups) any = any || !g.heatmap.empty();
   if (any) {
-    md << "\n## Heat maps: MuJoCo ↔ converged over k × ζ\n\n"
-       << "Each cell shows the largest maximum position error of its points (over the other "
-          "axes); \"diverged\" marks a cell whose points all failed, \"*\" one where some "
-          "did.\n\n";
+    md << "\n## Heat maps over k × ζ\n\n"
+       << "Left, MuJoCo against the converged solution (its step error included); right, the "
+          "two engines against each other at the same Δt. Each cell shows the largest maximum "
+          "position error of its points (over the other axes); \"diverged\" marks a cell whose "
+          "points all failed, \"*\" one where some did.\n\n";
     for (const AtlasGroup& g : s.groups)
       if (!g.heatmap.empty())
         md << "![" << g.body << ", " << g.mapping << ", " << g.damping << "](" << image_dir

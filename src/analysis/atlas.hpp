@@ -179,8 +179,8 @@ struct AtlasSummary {
 
 AtlasSummary summarize_atlas(const AtlasData& data);
 
-// Heat maps of the MuJoCo ↔ converged maximum position distance over k × ζ,
-// one PNG per body × mapping × damping law, named
+// Heat maps of the maximum position distance over k × ζ, MuJoCo ↔ converged
+// and ref ↔ MuJoCo side by side, one PNG per body × mapping × damping law, named
 // PREFIX<body>.<mapping>.<damping>.png in out_dir (gnuplot); sets each
 // group's heatmap. Cells take the largest distance of their points; an axis
 // with more than 12 distinct values is cut into 8 log-spaced bins.
