@@ -62,7 +62,8 @@ size_t axis_size(const AtlasAxis& a) { return a.values.empty() ? 1 : a.values.si
 double draw(const AtlasAxis& a, double u, double fallback) {
   if (a.log_uniform) return a.min == a.max ? a.min : a.min * std::pow(a.max / a.min, u);
   if (a.values.empty()) return fallback;
-  const size_t i = std::min(a.values.size() - 1, static_cast<size_t>(u * a.values.size()));
+  const size_t i =
+      std::min(a.values.size() - 1, static_cast<size_t>(u * static_cast<double>(a.values.size())));
   return a.values[i];
 }
 
@@ -778,8 +779,8 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
                       g.damping + " (largest over the other axes in each cell)")
       << "' font ',13'\n"
       << "set xlabel 'k (N/m)'\nset ylabel 'ζ = c/(2√(k·m))'\n"
-      << "set xrange [-0.5:" << kc.size() - 0.5 << "]\nset yrange [-0.5:" << zc.size() - 0.5
-      << "]\n"
+      << "set xrange [-0.5:" << static_cast<double>(kc.size()) - 0.5
+      << "]\nset yrange [-0.5:" << static_cast<double>(zc.size()) - 0.5 << "]\n"
       << tics("x", kc) << tics("y", zc) << "set cbrange [" << lo << ":" << hi << "]\n"
       << "set cblabel 'log_{10} of the max position error (m)'\n"
       << "set palette defined (0 '#0072B2', 0.5 '#F0E442', 1 '#D55E00')\n"

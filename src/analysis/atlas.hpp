@@ -108,6 +108,13 @@ struct AtlasRunStats {
   long long points = 0, ok = 0, diverged = 0, errors = 0;
   double wall_seconds = 0.0;
   double cpu_seconds = 0.0;  // summed over the points
+  double cpu_per_point() const {
+    return points > 0 ? cpu_seconds / static_cast<double>(points) : 0.0;
+  }
+  // Throughput per core: points per CPU second.
+  double points_per_core() const {
+    return cpu_seconds > 0.0 ? static_cast<double>(points) / cpu_seconds : 0.0;
+  }
 };
 // Checks every point of the shard first (bad input throws InputError before
 // any file is created), then writes points.csv, times.csv and shard.txt to

@@ -29,20 +29,19 @@ struct AtlasOptions {
 
 int run(const AtlasOptions& o) {
   if (o.spec.empty()) throw InputError("atlas: a spec (SPEC.toml) or 'merge DIR...' is required");
-  const AtlasSpec spec = load_atlas_spec(o.spec);
   analysis::AtlasRunOptions options;
-  options.shard = analysis::parse_shard(o.shard);
+  options.shard = analysis::parse_shard(o.shard);  // before the spec: options first
+  const AtlasSpec spec = load_atlas_spec(o.spec);
   options.threads = o.threads == 0 ? analysis::default_threads() : o.threads;
   options.progress = progress_reporter("atlas " + o.shard, o.quiet);
   const analysis::AtlasRunStats stats = analysis::run_atlas(spec, o.out, options);
-  const double per_core = stats.cpu_seconds > 0.0 ? stats.points / stats.cpu_seconds : 0.0;
   std::cout << "atlas " << o.spec << " shard " << o.shard << ": " << stats.points << " of "
             << atlas_point_count(spec) << " points (" << stats.ok << " ok, " << stats.diverged
             << " diverged, " << stats.errors << " failed) in "
             << format_duration(stats.wall_seconds) << " on " << options.threads << " thread(s); "
-            << format_number(per_core, 3) << " points/s per core ("
-            << format_duration(stats.points ? stats.cpu_seconds / stats.points : 0.0)
-            << " CPU per point); written to " << o.out << "/points.csv\n";
+            << format_number(stats.points_per_core(), 3) << " points/s per core ("
+            << format_duration(stats.cpu_per_point()) << " CPU per point); written to " << o.out
+            << "/points.csv\n";
   return kExitOk;
 }
 

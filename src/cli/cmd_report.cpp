@@ -13,7 +13,6 @@
 #include <glob.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -330,13 +329,9 @@ int report(const ReportOptions& o) {
   const analysis::AtlasData atlas_data = analysis::read_atlas_shards({o.out + "/atlas"});
   analysis::AtlasSummary atlas_summary = analysis::summarize_atlas(atlas_data);
   analysis::draw_atlas_heatmaps(atlas_data, atlas_summary, o.out, "atlas.");
-  const rp::AtlasRunInfo atlas_info{
-      "validation/atlas/default.toml",
-      atlas_stats.points,
-      atlas_options.threads,
-      atlas_stats.wall_seconds,
-      atlas_stats.cpu_seconds / std::max(1LL, atlas_stats.points),
-      atlas_stats.cpu_seconds > 0.0 ? atlas_stats.points / atlas_stats.cpu_seconds : 0.0};
+  const rp::AtlasRunInfo atlas_info{"validation/atlas/default.toml", atlas_stats.points,
+                                    atlas_options.threads,           atlas_stats.wall_seconds,
+                                    atlas_stats.cpu_per_point(),     atlas_stats.points_per_core()};
   sweep.info.cores = std::thread::hardware_concurrency();
   sweep.info.load = load_average();
   sweep.info.sweep_seconds = static_cast<long long>(sweep_seconds);

@@ -315,8 +315,9 @@ AtlasSpec load_atlas_spec(const std::string& path) {
 }
 
 long long atlas_point_count(const AtlasSpec& spec) {
-  long long n =
-      static_cast<long long>(spec.bodies.size() * spec.mappings.size() * spec.damping.size());
+  long long n = static_cast<long long>(spec.bodies.size()) *
+                static_cast<long long>(spec.mappings.size()) *
+                static_cast<long long>(spec.damping.size());
   if (spec.random) return n * spec.count;
   for (const AtlasAxis* a :
        {&spec.mass, &spec.k, &spec.damping_value, &spec.mu, &spec.mu_roll, &spec.dt}) {

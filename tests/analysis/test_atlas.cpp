@@ -3,10 +3,12 @@
 // range, the same points give the same bytes whatever the sharding and
 // thread count, and the merge refuses a missing or duplicated shard.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -330,6 +332,56 @@ k = [1e4, 2e4, 4e4]
     out << atlas_csv_header() << "\n";
   }
   EXPECT_THROW(read_atlas_shards({s1, s2}), InputError);
+}
+
+// The program: a bad spec is one line on stderr and exit status 2, with no
+// output directory made; a good one writes the three files and says how
+// fast it went.
+TEST_F(AtlasRun, CommandLineExitStatusAndFiles) {
+  const fs::path bad = dir_ / "bad.toml";
+  {
+    std::ofstream out(bad);
+    out << "[atlas]\nbodies = [\"box\"]\nmappings = [\"calibrated\"]\n[axes]\nzeta = -1\n";
+  }
+  const fs::path out_dir = dir_ / "out";
+  const std::string exe = CONTACT2D_EXE;
+  const std::string err = (dir_ / "stderr").string();
+  int status = std::system(
+      (exe + " atlas " + bad.string() + " --out " + out_dir.string() + " 2>" + err).c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  const std::string message = slurp(err);
+  EXPECT_EQ(message, "contact2d: " + bad.string() +
+                         ": axes.zeta = -1 is out of range: must be in [0, 1e3]\n");
+  EXPECT_FALSE(fs::exists(out_dir));
+  status = std::system((exe + " atlas " + bad.string() + " --shard 3/2 2>" + err).c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_NE(slurp(err).find("--shard 3/2"), std::string::npos);
+
+  const fs::path good = dir_ / "good.toml";
+  {
+    std::ofstream out(good);
+    out << "[atlas]\nbodies = [\"point_mass\"]\nmappings = [\"calibrated\"]\nduration = "
+           "0.05\n[axes]\nk = [1e4, 1e5]\n";
+  }
+  const std::string log = (dir_ / "stdout").string();
+  status = std::system((exe + " atlas " + good.string() + " --out " + out_dir.string() +
+                        " --quiet >" + log + " 2>" + err)
+                           .c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 0) << slurp(err);
+  EXPECT_EQ(slurp(err), "");
+  EXPECT_NE(slurp(log).find("2 of 2 points (2 ok, 0 diverged, 0 failed)"), std::string::npos)
+      << slurp(log);
+  EXPECT_NE(slurp(log).find("points/s per core"), std::string::npos);
+  for (const char* file : {"points.csv", "times.csv", "shard.txt"})
+    EXPECT_TRUE(fs::exists(out_dir / file)) << file;
+  // Nothing temporary is left beside them.
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(out_dir)) {
+    (void)entry;
+    ++files;
+  }
+  EXPECT_EQ(files, 3);
 }
 
 }  // namespace
