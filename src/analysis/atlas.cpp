@@ -781,7 +781,8 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
       << "set xlabel 'k (N/m)'\nset ylabel 'ζ = c/(2√(k·m))'\n"
       << "set xrange [-0.5:" << static_cast<double>(kc.size()) - 0.5
       << "]\nset yrange [-0.5:" << static_cast<double>(zc.size()) - 0.5 << "]\n"
-      << tics("x", kc) << tics("y", zc) << "set cbrange [" << lo << ":" << hi << "]\n"
+      << tics("x", kc) << (kc.size() > 5 ? "set xtics rotate by -30\n" : "") << tics("y", zc)
+      << "set cbrange [" << lo << ":" << hi << "]\n"
       << "set cblabel 'log_{10} of the max position error (m)'\n"
       << "set palette defined (0 '#0072B2', 0.5 '#F0E442', 1 '#D55E00')\n"
       << "unset key\nset tics nomirror\n";
