@@ -390,8 +390,10 @@ AtlasRunStats run_atlas(const AtlasSpec& spec, const std::string& out_dir,
 
   AtlasRunStats stats;
   stats.points = static_cast<long long>(indices.size());
-  // Rows are written in index order as soon as every earlier row is done.
-  std::vector<std::optional<std::pair<std::string, std::string>>> pending(indices.size());
+  // Rows are written in index order as soon as every earlier row is done;
+  // only the rows waiting for an earlier one are held (the pool hands out
+  // points in order, so about one per thread).
+  std::map<size_t, std::pair<std::string, std::string>> pending;
   size_t next_to_write = 0, done = 0;
   std::mutex mutex;
   const auto start = std::chrono::steady_clock::now();
@@ -400,10 +402,11 @@ AtlasRunStats run_atlas(const AtlasSpec& spec, const std::string& out_dir,
     const AtlasResult result = run_atlas_point(point, spec.converged_tol);
     const std::lock_guard<std::mutex> lock(mutex);
     pending[i] = std::make_pair(atlas_csv_row(point, result), atlas_times_row(result));
-    while (next_to_write < pending.size() && pending[next_to_write]) {
-      std::fprintf(points_csv.get(), "%s\n", pending[next_to_write]->first.c_str());
-      std::fprintf(times_csv.get(), "%s\n", pending[next_to_write]->second.c_str());
-      pending[next_to_write].reset();
+    for (auto it = pending.find(next_to_write); it != pending.end();
+         it = pending.find(next_to_write)) {
+      std::fprintf(points_csv.get(), "%s\n", it->second.first.c_str());
+      std::fprintf(times_csv.get(), "%s\n", it->second.second.c_str());
+      pending.erase(it);
       ++next_to_write;
     }
     ++done;

@@ -33,7 +33,7 @@ int run(const AtlasOptions& o) {
   options.shard = analysis::parse_shard(o.shard);  // before the spec: options first
   const AtlasSpec spec = load_atlas_spec(o.spec);
   options.threads = o.threads == 0 ? analysis::default_threads() : o.threads;
-  options.progress = progress_reporter("atlas " + o.shard, o.quiet);
+  options.progress = progress_reporter("atlas shard " + o.shard, o.quiet);
   const analysis::AtlasRunStats stats = analysis::run_atlas(spec, o.out, options);
   std::cout << "atlas " << o.spec << " shard " << o.shard << ": " << stats.points << " of "
             << atlas_point_count(spec) << " points (" << stats.ok << " ok, " << stats.diverged
