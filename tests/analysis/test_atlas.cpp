@@ -19,6 +19,7 @@
 #include "analysis/atlas.hpp"
 #include "core/input_error.hpp"
 #include "io/atlas_spec.hpp"
+#include "report/pages.hpp"
 
 namespace contact2d::analysis {
 namespace {
@@ -281,6 +282,15 @@ TEST_F(AtlasRun, SameRowsWhateverTheShardingAndThreads) {
   }
   const std::string md = atlas_summary_markdown(summary);
   EXPECT_NE(md.find("| point_mass | calibrated | kelvin_voigt | 8 |"), std::string::npos) << md;
+  // The report's page: how it ran, then the same summary.
+  const report::AtlasRunInfo info{"tiny.toml", 16, 2, 1.5, 0.01, 100.0};
+  const std::string page = report::atlas_page(summary, info);
+  EXPECT_EQ(page.rfind("# A small fidelity atlas\n", 0), 0u);
+  EXPECT_NE(page.find("16 points in 1.5 s on 2 thread(s), 10 ms of CPU per point (100 points/s "
+                      "per core)"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find(md), std::string::npos);
 }
 
 TEST_F(AtlasRun, MergeRefusesAMissingOrDuplicatedShard) {
