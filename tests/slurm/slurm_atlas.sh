@@ -38,7 +38,8 @@ start=$SECONDS
 export SLURM_CONF="$cluster/slurm.conf"
 echo "cluster up after $((SECONDS - start)) s"
 
-read -r array merge < <("$root/scripts/atlas-slurm/submit" "$spec" "$tmp/out" 4 "$exe")
+ids="$("$root/scripts/atlas-slurm/submit" "$spec" "$tmp/out" 4 "$exe")"
+read -r array merge <<<"$ids"
 echo "submitted array $array and merge $merge"
 # The merge job leaves the queue when it is done (or cancelled: its
 # dependency failed).
