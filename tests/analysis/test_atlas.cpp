@@ -394,5 +394,31 @@ TEST_F(AtlasRun, CommandLineExitStatusAndFiles) {
   EXPECT_EQ(files, 3);
 }
 
+// SIGTERM in the middle of a run: exit status 143 and no file at all
+// (points.csv and times.csv are temporaries until the last point).
+TEST_F(AtlasRun, InterruptedRunLeavesNoFile) {
+  const fs::path spec = dir_ / "long.toml";
+  {
+    // 48 points of 2 s: over a second of work on two fast cores.
+    std::ofstream out(spec);
+    out << "[atlas]\nbodies = [\"point_mass\", \"box\", \"tshape\", \"circle\"]\n"
+           "mappings = [\"calibrated\"]\nduration = 2.0\n[axes]\nk = [1e4, 1e5, 1e6]\n"
+           "zeta = [0.2, 1.0]\nmu = [0.0, 0.5]\n[initial]\ny = 0.6\nvx = 0.5\n";
+  }
+  const fs::path out_dir = dir_ / "out";
+  const std::string script =
+      std::string(CONTACT2D_EXE) + " atlas " + spec.string() + " --out " + out_dir.string() +
+      " --quiet 2>/dev/null & pid=$!; sleep 0.3; kill -TERM $pid; wait $pid; "
+      "exit $?";
+  const int status = std::system(("sh -c '" + script + "'").c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 143);
+  // (The directory exists unless the signal came before the points were
+  // checked; either way it holds nothing.)
+  if (fs::exists(out_dir)) {
+    EXPECT_TRUE(fs::is_empty(out_dir));
+  }
+}
+
 }  // namespace
 }  // namespace contact2d::analysis
