@@ -566,7 +566,14 @@ AtlasData read_atlas_shards(const std::vector<std::string>& dirs) {
     const std::string times_path = (fs::path(dir) / "times.csv").string();
     if (fs::exists(times_path)) {
       const std::vector<std::string> t = lines_of(slurp(times_path));
-      for (size_t i = 1; i < t.size(); ++i) times[std::stoll(t[i])] = t[i];
+      for (size_t i = 1; i < t.size(); ++i) {
+        char* end = nullptr;
+        const long long index = std::strtoll(t[i].c_str(), &end, 10);
+        if (end == t[i].c_str() || *end != ',')
+          throw InputError(times_path + ": line " + std::to_string(i + 1) +
+                           " does not start with a point index");
+        times[index] = t[i];
+      }
     } else {
       all_times = false;
     }
