@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "analysis/closed_forms.hpp"
+#include "analysis/atlas.hpp"
 #include "analysis/comparison.hpp"
 #include "analysis/engine.hpp"
 #include "cli/common.hpp"
@@ -321,6 +322,19 @@ int report(const ReportOptions& o) {
   }
   progress("closed forms");
   const analysis::ClosedFormTable closed_forms = analysis::closed_form_table();
+  // atlas.md: the small default atlas (its rows in OUT/atlas/).
+  progress("atlas validation/atlas/default.toml");
+  const AtlasSpec atlas_spec = load_atlas_spec("validation/atlas/default.toml");
+  analysis::AtlasRunOptions atlas_options;
+  atlas_options.threads = analysis::default_threads();
+  const analysis::AtlasRunStats atlas_stats =
+      analysis::run_atlas(atlas_spec, o.out + "/atlas", atlas_options);
+  const analysis::AtlasData atlas_data = analysis::read_atlas_shards({o.out + "/atlas"});
+  analysis::AtlasSummary atlas_summary = analysis::summarize_atlas(atlas_data);
+  analysis::draw_atlas_heatmaps(atlas_data, atlas_summary, o.out, "atlas.");
+  const rp::AtlasRunInfo atlas_info{"validation/atlas/default.toml", atlas_stats.points,
+                                    atlas_options.threads,           atlas_stats.wall_seconds,
+                                    atlas_stats.cpu_per_point(),     atlas_stats.points_per_core()};
   sweep.info.cores = std::thread::hardware_concurrency();
   sweep.info.load = load_average();
   sweep.info.sweep_seconds = static_cast<long long>(sweep_seconds);
@@ -332,8 +346,9 @@ int report(const ReportOptions& o) {
   write_page(o.out + "/stability.md", rp::stability_page(stability, sweep.bench));
   write_page(o.out + "/extreme.md", rp::extreme_page(extreme));
   write_page(o.out + "/closed_forms.md", rp::closed_forms_page(closed_forms));
+  write_page(o.out + "/atlas.md", rp::atlas_page(atlas_summary, atlas_info));
   std::cout << "report written to " << o.out
-            << "/ (README.md, sweep.md, stability.md, extreme.md, closed_forms.md)\n";
+            << "/ (README.md, sweep.md, stability.md, extreme.md, closed_forms.md, atlas.md)\n";
   return kExitOk;
 }
 

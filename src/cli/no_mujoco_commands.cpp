@@ -1,4 +1,4 @@
-// Built without MuJoCo: no generate, compare or report subcommand (see
+// Built without MuJoCo: no generate, compare, report, solref or atlas subcommand (see
 // mujoco_commands.cpp).
 #include "cli/common.hpp"
 

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "analysis/atlas.hpp"
 #include "analysis/closed_forms.hpp"
 #include "report/results.hpp"
 
@@ -17,5 +18,15 @@ std::string stability_page(const StabilityData& data,
                            const Bench& bench);     // stability.md (bench: the cost ratio)
 std::string extreme_page(const ExtremeData& data);  // extreme.md
 std::string closed_forms_page(const analysis::ClosedFormTable& table);  // closed_forms.md
+
+// atlas.md: the default atlas (validation/atlas/default.toml), its summary
+// and how it ran (src/report/atlas_page.cpp).
+struct AtlasRunInfo {
+  std::string spec;  // the spec's path
+  long long points = 0;
+  unsigned threads = 0;
+  double wall_seconds = 0.0, cpu_per_point = 0.0, points_per_core = 0.0;
+};
+std::string atlas_page(const analysis::AtlasSummary& summary, const AtlasRunInfo& info);
 
 }  // namespace contact2d::report
