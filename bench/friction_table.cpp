@@ -149,9 +149,16 @@ std::string split_xml(const Scene& scene, const mujoco::SolverSettings& s, const
     g->SetAttribute("priority", 1);
     g->SetAttribute("condim", scene.contact.mu_roll > 0.0 ? 6 : 3);
     char friction[128];
+    // the cone's rolling coefficient of compensated (mjcf.cpp), for the share w
+    double mu_roll = scene.contact.mu_roll;
+    if (scene.shape == Shape::Circle && mu_roll > 0.0 && scene.contact.mu > 0.0) {
+      const double kappa = body.mass * scene.radius * scene.radius /
+                           (body.inertia + body.mass * scene.radius * scene.radius);
+      const double q = kappa * mu_roll / (scene.contact.mu * scene.radius);
+      if (q < 1.0) mu_roll /= std::sqrt(1.0 - q * q);
+    }
     std::snprintf(friction, sizeof friction, "%.17g %.17g %.17g", scene.contact.mu / w,
-                  std::max(scene.contact.mu_torsion / w, 1e-5),
-                  std::max(scene.contact.mu_roll / w, 1e-5));
+                  std::max(scene.contact.mu_torsion / w, 1e-5), std::max(mu_roll / w, 1e-5));
     g->SetAttribute("friction", friction);
     g->SetAttribute("solref", text(-w * k * scale, -w * rho * scale).c_str());
   }
@@ -219,10 +226,15 @@ int main(int argc, char** argv) {
           // with μ × 10 in MuJoCo (the disc never slides here)
           Scene wide = scene;
           wide.contact.mu *= 10;
-          const Row v = measure(scene, reference, mujoco::write_mjcf(wide, options, g.settings));
-          std::printf("%-15s %-12s %10.3g %10.3g %10.3g %10.3g %10.4g (mu x10 in MuJoCo)\n",
-                      fs.name.c_str(), std::string(mujoco::mapping_name(m)).c_str(), v.e.max_pos,
-                      v.e.max_angle, v.hop, v.slip, g.settings.impratio);
+          for (double factor : {1.0, 100.0}) {
+            // × 100 keeps the divisor 1 + μ²/impratio and the rolling slope
+            mujoco::SolverSettings s = g.settings;
+            s.impratio *= factor;
+            const Row v = measure(scene, reference, mujoco::write_mjcf(wide, options, s));
+            std::printf("%-15s %-12s %10.3g %10.3g %10.3g %10.3g %10.4g (mu x10 in MuJoCo)\n",
+                        fs.name.c_str(), std::string(mujoco::mapping_name(m)).c_str(), v.e.max_pos,
+                        v.e.max_angle, v.hop, v.slip, s.impratio);
+          }
         }
         if (m == mujoco::Mapping::Calibrated && scene.shape == Shape::Circle &&
             scene.contact.mu_roll > 0.0) {

@@ -80,6 +80,15 @@
 // error, 17 → 8 mm, but multiplies the T's by 14, 18 → 256 mm; μ·m·g·α/c
 // gives 15 mm and 136 mm). The reference's tanh slope μ·Fn·α
 // only shapes speeds below 1/α and is not matched.
+//
+// With rolling rows (condim 6) the same projection pushes by
+// c·√((μ·v_t)² + (μ_roll·ω)²): a disc rolling at ω is lifted by
+// μ_roll·c·|ω| even without slip. The cone also shares one budget,
+// (f_t/μ)² + (τ/μ_roll)² ≤ f_n²: a disc rolling steadily needs
+// f_t = κ·τ/R (κ = m·R²/(I + m·R²)), so compensated writes
+// μ_roll' = μ_roll/√(1 − q²), q = κ·μ_roll/(μ·R), which gives back the
+// reference's torque μ_roll·F_n (mjcf.cpp, cone_mu_roll; docs/mujoco.md
+// has the friction table and what remains).
 #pragma once
 
 #include <array>

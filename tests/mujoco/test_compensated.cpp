@@ -246,6 +246,49 @@ TEST(CompensatedFriction, TheConeProjectionAddsTheDampersSlipTermToTheNormalForc
   }
 }
 
+// The same projection with the rolling rows (condim 6): T = ‖(μ·u_t, μ_roll·u_r)‖
+// with u = B·(v_t, ω), so on the cone
+//   f_n = (k·p − c·v_n + c·√((μ·v_t)² + (μ_roll'·ω)²))/(1 + μ²/impratio):
+// a rolling disc is pushed up by μ_roll'·c·|ω| (40 N at ω = 20 rad/s for
+// the rolling scene below, four times its weight: it hops until
+// ω < m·g/(μ_roll·c) = 4.9 rad/s). MuJoCo's contact point lies p/2 above
+// the lowest point of the disc, so its slip is v + ω·(R − p/2). Same
+// tolerance as above.
+TEST(CompensatedFriction, RollingRowsPushTheDiscUpByMuRollTimesCTimesOmega) {
+  const Scene scene = test::scene_from(
+      "scene = \"circle\"\n[body]\nmass = 1.0\nradius = 0.1\n[contact]\nk = 1e4\nc = 200\nmu "
+      "= 0.5\nmu_roll = 0.01\nalpha = 100\ndamping = \"kelvin_voigt\"\n[initial]\ny = "
+      "0.099\n[sim]\ndt = 1e-4\nduration = 1\n");
+  mj::MjcfOptions options;
+  options.mapping = Mapping::Compensated;
+  const mj::GeneratedModel generated = mj::generate_mjcf(scene, options);
+  const mj::ModelPtr model = mj::load_model(generated.xml, "compensated disc");
+  const mj::DataPtr data = mj::make_data(model.get());
+  const mjModel* m = model.get();
+  mjData* d = data.get();
+  const double k = scene.contact.k, c = scene.contact.c, mu = scene.contact.mu;
+  const double q = (2.0 / 3.0) * 0.01 / (0.5 * 0.1);
+  const double mu_roll = 0.01 / std::sqrt(1 - q * q);  // cone_mu_roll
+  const double impratio = m->opt.impratio, p = 1e-3, radius = scene.radius;
+  for (double omega : {-20.0, -5.0}) {
+    for (double v : {2.0, 0.3}) {
+      mj_resetData(m, d);
+      d->qpos[1] = radius - p - m->body_pos[5];
+      d->qvel[0] = v;
+      d->qvel[2] = omega;
+      mj_forward(m, d);
+      ASSERT_EQ(d->ncon, 1);
+      const double vt = v + omega * (radius - p / 2);
+      const double fn = d->efc_force[d->contact[0].efc_address];
+      const double want =
+          (k * p + c * std::hypot(mu * vt, mu_roll * omega)) / (1 + mu * mu / impratio);
+      std::printf("omega %g, v %g: f_n %.12g (closed form %.12g), push %.4g N\n", omega, v, fn,
+                  want, want - k * p);
+      EXPECT_NEAR(fn, want, 1e-8 * want) << "omega " << omega << ", v " << v;
+    }
+  }
+}
+
 // The friction scenes of bench/friction_table.cpp (`build/bench/contact2d_friction`,
 // Δt = 1e-4, Kelvin–Voigt, k = 1e4 N/m, 1 kg). Measured max position
 // difference, calibrated → compensated:
@@ -255,8 +298,8 @@ TEST(CompensatedFriction, TheConeProjectionAddsTheDampersSlipTermToTheNormalForc
 //                              --variants) brings it to 0.87 mm
 //   tshape     3.02 → 3.06 mm  landings on a corner while sliding (push)
 //   roll       50.5 → 25.0 mm  the shared budget: μ_roll' removes the
-//                              torque deficit; the remaining 25 mm is the
-//                              slip the cone needs (below)
+//                              torque deficit; the rest is the rolling
+//                              rows' push and the cone's slip (below)
 //   slide_roll 4.25 → 4.25 mm  the push while sliding (hop 4.2 mm)
 //   backspin   16.0 → 16.0 mm  the push at landing, v_t = 4 m/s (hop 5.5 mm)
 // These are REGRESSION PINS (1.25 × measured, rounded up): the push is a
@@ -310,15 +353,18 @@ INSTANTIATE_TEST_SUITE_P(Scenes, CompensatedFrictionScene,
 // The rolling disc: the elliptic cone's shared budget (mjcf.cpp,
 // cone_mu_roll). With μ_roll = 0.01 m, μ = 0.5, R = 0.1 m, κ = 2/3:
 // q = κ·μ_roll/(μ·R) = 0.133, so calibrated's MuJoCo torque is
-// √(1 − q²) = 0.9911 of μ_roll·F_n and its stop (3.06 m) 0.9 % (27 mm) long.
-// The other half of calibrated's 50.5 mm is the slip the cone needs to give
-// the disc its tangential force: the projection's direction is that of
-// (μ²·v_t, μ_roll²·ω), so f_t = κ·τ/R needs v_t = κ·(μ_roll/μ)²·ω/R
-// (0.053 m/s at ω = 20, measured 0.049), built while the disc keeps
-// 1/(1 + m·R²/I) = 1/3 of it in v: ∫Δv dt = 0.018 m/s × 3.06 s/2 = 27 mm.
-// No friction coefficient removes it without changing sliding friction.
+// √(1 − q²) = 0.9911 of μ_roll·F_n and its stop (3.06 m) 0.9 % (27 mm)
+// long: calibrated 50.5 mm, compensated 25.0 mm. What is left, measured
+// (build/bench/contact2d_friction --variants): the rolling rows' push
+// μ_roll'·c·|ω| (test above; the disc hops, 2.1 mm above the reference,
+// while ω > 4.9 rad/s) — the friction split with the same coefficient,
+// which removes the push, leaves 7.8 to 13.2 mm — and the slip the cone
+// needs for the tangential force, v_t = κ·(μ_roll/μ)²·ω/R (the
+// projection's direction is that of (μ²·v_t, μ_roll²·ω); 0.04–0.05 m/s
+// measured in every variant), which μ × 10 with impratio × 100 in MuJoCo
+// (slip / 100, same divisor) shrinks: 25.0 → 19.2 mm.
 // Asserted: compensated's difference at most 0.6 of calibrated's
-// (measured 0.495: the deficit removed, the slip left).
+// (measured 0.495), and the coefficient written.
 TEST(CompensatedFriction, TheRollingCoefficientRemovesTheConesTorqueDeficit) {
   const Scene scene = test::scene_from(kRoll);
   const double calibrated = test::run_both(scene, Mapping::Calibrated).errors.max_pos;
