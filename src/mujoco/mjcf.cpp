@@ -597,13 +597,15 @@ void add_pairs(XMLDocument& doc, XMLElement* root, const Scene& scene, const Sol
     const ContactParams& p = os.law;
     for (const Geom& g : l.geoms) {
       if (g.visual) continue;
-      add(doc, contact, "pair",
-          {{"geom1", g.name},
-           {"geom2", "obstacle" + std::to_string(i)},
-           {"condim", std::to_string(os.condim)},
-           {"friction", join({p.mu, p.mu, p.mu_torsion, p.mu_roll, p.mu_roll})},
-           {"solref", join(os.solref)},
-           {"solimp", join(s.solimp)}});
+      XMLElement* pair = add(doc, contact, "pair",
+                             {{"geom1", g.name},
+                              {"geom2", "obstacle" + std::to_string(i)},
+                              {"condim", std::to_string(os.condim)},
+                              {"friction", join({p.mu, p.mu, p.mu_torsion, p.mu_roll, p.mu_roll})},
+                              {"solref", join(os.solref)},
+                              {"solimp", join(s.solimp)}});
+      // compensated: as the corner geoms' own gap (add_body); a pair uses its own
+      if (l.lever > 0.0 && g.corner) pair->SetAttribute("gap", format_exact(kCornerRadius).c_str());
     }
   }
 }
