@@ -55,7 +55,7 @@
 // 2D point: compensated gives it gap = ε, so MuJoCo includes the contact
 // from dist < −ε and measures the spring from there (includemargin =
 // margin − gap): from the 2D point itself. Measured frictionless (bench/
-// compensation_table.cpp): 2.3e-14 to 8.0e-9 m against calibrated's 1.3e-7
+// compensation_table.cpp): 2.1e-14 to 3.9e-8 m against calibrated's 1.3e-7
 // to 1.3e-3 m on the drops at ζ = 0.1…5; the one random scene above 1e-5 m
 // is one the reference itself moves 1.8e-5 m when its start is nudged by
 // 1e-15 m (rounding, amplified).

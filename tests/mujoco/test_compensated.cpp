@@ -13,9 +13,9 @@
 //    carries a rounding of a few ε·L (L·ε = 1e-13 m), i.e. k·16·ε·L in force.
 // 2. The drops of test_agreement.cpp (each body at ζ ∈ {0.1, 0.3, 1, 5}):
 //    issue 13's goal, 1e-5 m and 1e-4 rad, is the tolerance (a requirement).
-//    Measured (build/bench/contact2d_compensation): 2.3e-14 to 8.0e-9 m and
-//    ≤ 3.4e-8 rad, the largest the T at ζ = 0.1; under calibrated 1.3e-7 to
-//    1.3e-3 m and up to 6.2e-3 rad. So the goal holds with ≥ 1250× margin
+//    Measured (build/bench/contact2d_compensation): 2.1e-14 to 3.9e-8 m and
+//    ≤ 1.7e-7 rad, the largest the T at ζ = 0.1; under calibrated 1.3e-7 to
+//    1.3e-3 m and up to 6.2e-3 rad. So the goal holds with ≥ 250× margin
 //    (the T at ζ = 0.1), and the ζ < 1 error of calibrated was the mapping's
 //    (MuJoCo's O(d) force error), not MuJoCo's Euler step: with the force
 //    matched, the same step gives the same trajectory.
@@ -26,10 +26,10 @@
 //    own change when its initial height moves by 1e-15 m (≈ 5 ulp of 1 m):
 //    a floor no mapping can go below, since MuJoCo's arithmetic differs from
 //    the reference's by rounding at every step. Measured: 31 of 32 scenes
-//    ≤ 5.8e-8 m and ≤ 4.6e-7 rad; s10 (a three-part T at ζ = 0.114) 6.7e-5 m
-//    and 4.7e-4 rad, where the reference alone moves 1.8e-5 m and 2.2e-4 rad
+//    ≤ 1.3e-7 m and ≤ 1.1e-6 rad; s10 (a three-part T at ζ = 0.114) 5.7e-5 m
+//    and 8.8e-4 rad, where the reference alone moves 1.8e-5 m and 2.2e-4 rad
 //    under the 1e-15 m change (and 1.5e-4 m under 1e-13 m): chaos, not the
-//    mapping (a larger G, 1e8, leaves it at 1.3e-4 m).
+//    mapping (a larger G, 1e8, leaves it at 9.0e-5 m).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -145,8 +145,8 @@ INSTANTIATE_TEST_SUITE_P(AllBodies, CompensatedDrop, ::testing::ValuesIn(compens
 
 // Calibrated is measurably worse on the same drops below ζ = 1 (the step
 // the report shows): at ζ = 0.1 each body is at least 1000× better
-// compensated (measured ratios 2.4e8 point mass, 1.1e6 box, 1.6e5 T,
-// 6.3e7 disc).
+// compensated (measured ratios 5.0e7 point mass, 1.6e5 box, 3.3e4 T,
+// 1.6e7 disc).
 TEST(CompensatedDrop, IsFarBetterThanCalibratedAtLowDamping) {
   for (Shape s : {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle}) {
     const Scene scene = test::drop_scene(s, 2 * 0.1 * std::sqrt(1e4 * 1.0), 0.0);
