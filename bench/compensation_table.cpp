@@ -1,7 +1,7 @@
 // contact2d_compensation: the frictionless agreement table of issue 13
 // (body × ζ, before and after) and the same on seeded random scenes.
 //
-//   build-dir/bench/contact2d_compensation [--random N] [--seed S] [--mappings a,b]
+//   build-dir/bench/contact2d_compensation [--random N] [--seed S] [--mappings a,b] [--keep-mu]
 //
 // Table 1, the drops of tests/mujoco/test_agreement.cpp (the same TOML as
 // tests/mujoco/mj_test_util.hpp's drop_scene, μ = 0): each body (1 kg,
@@ -11,7 +11,9 @@
 // reference and MuJoCo under each mapping.
 // Table 2, N random scenes of report/random_scenes.hpp drawn from seed S
 // (default 7, not the report's 20260101) with μ = 0: the worst and the
-// median over the scenes, and each scene's ζ and difference.
+// median over the scenes, and each scene's ζ and difference; --keep-mu
+// keeps the drawn friction μ = U(0.1, 1) (then the push of docs/mujoco.md
+// dominates both mappings).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -85,10 +87,13 @@ int main(int argc, char** argv) {
   int random = 32;
   unsigned long long seed = 7;
   std::string mapping_list = "calibrated,compensated";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--random")) random = std::atoi(argv[i + 1]);
-    if (!std::strcmp(argv[i], "--seed")) seed = std::strtoull(argv[i + 1], nullptr, 10);
-    if (!std::strcmp(argv[i], "--mappings")) mapping_list = argv[i + 1];
+  bool keep_mu = false;
+  for (int i = 1; i < argc; ++i) {
+    const bool value = i + 1 < argc;
+    if (!std::strcmp(argv[i], "--random") && value) random = std::atoi(argv[++i]);
+    if (!std::strcmp(argv[i], "--seed") && value) seed = std::strtoull(argv[++i], nullptr, 10);
+    if (!std::strcmp(argv[i], "--mappings") && value) mapping_list = argv[++i];
+    if (!std::strcmp(argv[i], "--keep-mu")) keep_mu = true;
   }
   try {
     const std::vector<mujoco::Mapping> mappings = parse_mappings(mapping_list);
@@ -113,15 +118,15 @@ int main(int argc, char** argv) {
       }
     }
     if (random <= 0) return 0;
-    std::printf("\nRandom frictionless scenes (report/random_scenes.hpp, seed %llu, mu = 0)\n",
-                seed);
+    std::printf("\nRandom scenes (report/random_scenes.hpp, seed %llu, %s)\n", seed,
+                keep_mu ? "mu as drawn" : "mu = 0");
     std::printf("%-5s %-11s %-8s", "scene", "body", "zeta");
     for (mujoco::Mapping m : mappings)
       std::printf("  %-23s", std::string(mujoco::mapping_name(m)).c_str());
     std::printf("\n");
     std::vector<std::vector<double>> pos(mappings.size()), ang(mappings.size());
     for (report::RandomScene& r : report::draw_random_scenes(seed, random)) {
-      r.scene.contact.mu = 0.0;
+      if (!keep_mu) r.scene.contact.mu = 0.0;
       const Trajectory reference = simulate(r.scene);
       const double zeta = r.scene.contact.c / (2 * std::sqrt(r.scene.contact.k * r.mass));
       std::printf("%-5s %-11s %-8.3g", r.name.c_str(),
