@@ -1,7 +1,7 @@
 // contact2d report [--out DIR] [--models DIR] [--bench PATH] [--seed N]
 //
 // Writes every page of validation/report/ — README.md (the reference against
-// MuJoCo), sweep.md, stability.md, extreme.md — and their PNG plots, and the
+// MuJoCo), sweep.md, stability.md, extreme.md, closed_forms.md — and their PNG plots, and the
 // generated MJCF models, from one run. This file is the plan: which scenes,
 // with which overrides, through which seam function (report/runs.hpp, the
 // only code that runs an engine); the pages are written by report/pages.hpp
@@ -20,6 +20,7 @@
 #include <memory>
 #include <thread>
 
+#include "analysis/closed_forms.hpp"
 #include "analysis/comparison.hpp"
 #include "analysis/engine.hpp"
 #include "cli/common.hpp"
@@ -318,6 +319,8 @@ int report(const ReportOptions& o) {
         {path, expectations(path), rp::simulate_outcome(path, "ref"),
          mujoco ? std::optional(rp::simulate_outcome(path, "mujoco")) : std::nullopt});
   }
+  progress("closed forms");
+  const analysis::ClosedFormTable closed_forms = analysis::closed_form_table();
   sweep.info.cores = std::thread::hardware_concurrency();
   sweep.info.load = load_average();
   sweep.info.sweep_seconds = static_cast<long long>(sweep_seconds);
@@ -328,8 +331,9 @@ int report(const ReportOptions& o) {
   write_page(o.out + "/sweep.md", rp::sweep_page(sweep));
   write_page(o.out + "/stability.md", rp::stability_page(stability, sweep.bench));
   write_page(o.out + "/extreme.md", rp::extreme_page(extreme));
+  write_page(o.out + "/closed_forms.md", rp::closed_forms_page(closed_forms));
   std::cout << "report written to " << o.out
-            << "/ (README.md, sweep.md, stability.md, extreme.md)\n";
+            << "/ (README.md, sweep.md, stability.md, extreme.md, closed_forms.md)\n";
   return kExitOk;
 }
 

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "analysis/closed_forms.hpp"
 #include "report/results.hpp"
 
 namespace contact2d::report {
@@ -15,5 +16,6 @@ std::string sweep_page(const SweepData& data);    // sweep.md
 std::string stability_page(const StabilityData& data,
                            const Bench& bench);     // stability.md (bench: the cost ratio)
 std::string extreme_page(const ExtremeData& data);  // extreme.md
+std::string closed_forms_page(const analysis::ClosedFormTable& table);  // closed_forms.md
 
 }  // namespace contact2d::report

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <regex>
 #include <sstream>
 
@@ -102,6 +103,59 @@ TEST(ReportPages, ExtremeMatchesGolden) {
 
 // The mask hides wall clock and nothing else: a time changes nothing, an
 // error does.
+// closed_forms.md from a hand-written table: a row inside every tolerance,
+// a MuJoCo-only row, and a row without a converged solution where MuJoCo
+// misses (it must be listed under "Where MuJoCo misses").
+analysis::ClosedFormTable closed_forms_fixture() {
+  analysis::ClosedFormTable t;
+  t.reference_engine = "ref semi_implicit_euler";
+  t.mujoco_engine = "mujoco calibrated Euler";
+  t.seconds = 0.61;
+  analysis::ClosedFormRow a;
+  a.case_id = "static.point_mass";
+  a.case_name = "static penetration, point mass";
+  a.quantity.name = "depth at rest (m)";
+  a.quantity.formula = "m·g/k";
+  a.quantity.closed_form = 9.81e-4;
+  a.quantity.tolerance = 9.81e-13;
+  a.quantity.converged_tolerance = 1e-9;
+  a.quantity.why = "rounding";
+  a.quantity.mujoco_bound = 9.82e-8;
+  a.quantity.mujoco_bound_derived = true;
+  a.quantity.mujoco_why = "d·depth";
+  a.converged = 9.81e-4 - 2.8e-15;
+  a.reference = 9.81e-4 - 7.7e-15;
+  a.mujoco = 9.81e-4 - 9.81e-8;
+  analysis::ClosedFormRow own = a;
+  own.quantity.name = "MuJoCo's own rest depth (m)";
+  own.quantity.formula = "m·g·Â·(1−d)/(N·n·s)";
+  own.quantity.closed_form = 9.809019e-4;
+  own.quantity.reference_applies = false;
+  own.quantity.mujoco_bound = 9.81e-13;
+  own.quantity.mujoco_why = "its own law at rest";
+  own.converged = own.reference = std::numeric_limits<double>::quiet_NaN();
+  own.mujoco = 9.809019e-4;
+  analysis::ClosedFormRow slope;
+  slope.case_id = "slope.slides";
+  slope.case_name = "box on a 30° slope";
+  slope.quantity.name = "acceleration (m/s²)";
+  slope.quantity.formula = "g·(sinθ − μ·cosθ)";
+  slope.quantity.closed_form = 2.356;
+  slope.quantity.tolerance = 2.4e-9;
+  slope.quantity.why = "rounding";
+  slope.quantity.mujoco_bound = 1.2e-2;
+  slope.quantity.mujoco_why = "MISS: it rattles";
+  slope.reference = 2.356;
+  slope.mujoco = 2.350;
+  slope.converged_note = "no converged solution: obstacles";
+  t.rows = {a, own, slope};
+  return t;
+}
+
+TEST(ReportPages, ClosedFormsMatchesGolden) {
+  expect_golden("closed_forms.md", closed_forms_page(closed_forms_fixture()));
+}
+
 TEST(ReportPages, MaskHidesTimesOnly) {
   ReadmeData a = fixtures::readme();
   ReadmeData b = a;
