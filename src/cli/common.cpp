@@ -68,9 +68,10 @@ CLI::Validator number_in(double lo, double hi, bool lo_open, const std::string& 
 
 void MujocoOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--mapping", mapping,
-                 "solref/solimp mapping: seed | exact | calibrated (default calibrated)")
+                 "solref/solimp mapping: seed | exact | calibrated | compensated (default "
+                 "calibrated)")
       ->type_name("NAME")
-      ->check(CLI::IsMember({"seed", "exact", "calibrated"}));
+      ->check(CLI::IsMember({"seed", "exact", "calibrated", "compensated"}));
   cmd.add_option("--geometry", geometry,
                  "MuJoCo geoms of a box or T: corners (a small sphere per 2D contact point, "
                  "default) | boxes")

@@ -74,6 +74,7 @@ std::string_view mapping_name(Mapping mapping) {
     case Mapping::Seed: return "seed";
     case Mapping::Exact: return "exact";
     case Mapping::Calibrated: return "calibrated";
+    case Mapping::Compensated: return "compensated";
   }
   return "?";
 }
@@ -113,6 +114,20 @@ SolverSettings solver_settings(const ContactParams& contact, const RigidBody& bo
   const double m = body.mass;
   const double k = contact.k;
   const double c = contact.c;
+  if (mapping == Mapping::Compensated) {
+    // mapping.hpp: MuJoCo divides the direct solref by D = d·A + (1 − d)·Â;
+    // multiplying by D with A = 1/m undoes that exactly where A = 1/m and to
+    // d·(A − 1/m)/Â ≤ d/kCompensatingGain elsewhere.
+    s.inv_mass = inv_mass;
+    s.split = split;
+    s.assumed_inv_mass = 1.0 / m;
+    const double scale = solref_scale(s);
+    s.solref = {-k * scale / split, -c * scale / split};
+    s.solimp = kMinimalSolimp;
+    s.elliptic = true;
+    s.impratio = calibrated_impratio(contact, body, dt, largest_c > 0.0 ? largest_c : contact.c);
+    return s;
+  }
   if (mapping == Mapping::Calibrated) {
     s.inv_mass = inv_mass;
     s.split = split;
@@ -141,6 +156,22 @@ SolverSettings solver_settings(const ContactParams& contact, const RigidBody& bo
   s.solref = {timeconst, dampratio};
   s.refsafe_clamped = timeconst < 2.0 * dt;
   return s;
+}
+
+double solref_scale(const SolverSettings& s) {
+  const double d = kMinimalSolimp[0];
+  switch (s.mapping) {
+    case Mapping::Calibrated: return s.inv_mass;
+    case Mapping::Compensated: return d * s.assumed_inv_mass + (1.0 - d) * s.inv_mass;
+    case Mapping::Seed:
+    case Mapping::Exact: break;
+  }
+  return 0.0;
+}
+
+double compensating_lever(double mass, double hinge_inertia, double max_inverse_mass) {
+  // (2/m + L²/I)/3 = G·A_max  ⇔  L² = I·(3·G·A_max − 2/m)
+  return std::sqrt(hinge_inertia * (3.0 * kCompensatingGain * max_inverse_mass - 2.0 / mass));
 }
 
 AccelerationGains acceleration_gains(const std::array<double, 2>& solref) {

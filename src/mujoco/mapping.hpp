@@ -17,6 +17,10 @@
 //               i.e. the same as the direct form solref = (−k/m, −c/m).
 //   calibrated  direct form solref = (−k·Â/n, −c·Â/n), flat minimal impedance
 //               d = 1e-4, elliptic cone, impratio = 1/(c·Δt·A_t) (below).
+//   compensated calibrated's settings with MuJoCo's O(d) error removed
+//               (below): solref = (−k·D/n, −c·D/n), D = d/m + (1 − d)·Â,
+//               and the contact geoms on a massless body at a lever L that
+//               raises their Â to G·A_max (G = kCompensatingGain).
 //
 // Why calibrated reproduces F = k·p − c·v: for one contact the solver's
 // unconstrained (quadratic-zone) force is f = (aref − a0)/(A + R) with A the
@@ -28,7 +32,35 @@
 // impedance (0.9–0.95), under which gravity inside a contact is scaled by
 // (1 − d): the static penetration is only 5–10 % of m·g/k.
 //
-// Friction (calibrated): in the elliptic cone the tangential rows get
+// Why compensated reproduces it to 1e-10: with solref (−S, −D_) the exact
+// single-contact force is f = (S·p − D_·v + d·g)/(d·A + (1 − d)·Â) (docs/
+// mujoco.md, checked against MuJoCo by test_mujoco_contact_force.cpp).
+// S = k·D, D_ = c·D with D = d·A_c + (1 − d)·Â gives
+//   f = (k·p − c·v)·(1 + d·(A_c − A)/(d·A + (1 − d)·Â)) + d·g/(d·A + (1 − d)·Â):
+// exact where A = A_c (= 1/m: the point mass, the disc, a contact in line
+// with the COM) but for the offset d·g/(…), and elsewhere off by the
+// relative d·(A − A_c)/Â. mjMINIMP = 1e-4 bounds d, not Â: Â is
+// body_invweight0 of the geom's body (mj_diagApprox uses geom_bodyid, not
+// the weld root), the mean of the three translational diagonal entries of
+// J·M⁻¹·Jᵀ at that body's COM (engine_setconst.c). A massless body without
+// joints, fixed to the moving one at a lever L in the plane and turned by
+// its hinge of inertia I, has Â = (2/m + L²/I)/3; the contact geoms moved
+// onto it (each placed back at its own point) touch exactly as before, and
+// with Â = G·A_max both error terms fall by G: relative ≤ d/G = 1e-10, the
+// offset ≤ 1e-10·m·g. The coupling of several contacts (off-diagonal
+// A_ij) is of the same relative order d·A_ij/Â. The point mass has no
+// hinge; it gets one about MuJoCo z ("spin"), about which no contact force
+// has a moment (its contact lies on the vertical through the COM), so it
+// never turns. A corner sphere's surface is ε = kCornerRadius below its
+// 2D point: compensated gives it gap = ε, so MuJoCo includes the contact
+// from dist < −ε and measures the spring from there (includemargin =
+// margin − gap): from the 2D point itself. Measured frictionless (bench/
+// compensation_table.cpp): 2.1e-14 to 3.9e-8 m against calibrated's 1.3e-7
+// to 1.3e-3 m on the drops at ζ = 0.1…5; the one random scene above 1e-5 m
+// is one the reference itself moves 1.8e-5 m when its start is nudged by
+// 1e-15 m (rounding, amplified).
+//
+// Friction (calibrated and compensated alike): in the elliptic cone the tangential rows get
 // R_t = R/impratio and no spring, so inside the cone MuJoCo's friction is
 // viscous, f_t = −impratio·c·v_t, capped at μ·f_n. On the cone surface
 // (sliding) the normal force becomes
@@ -48,6 +80,15 @@
 // error, 17 → 8 mm, but multiplies the T's by 14, 18 → 256 mm; μ·m·g·α/c
 // gives 15 mm and 136 mm). The reference's tanh slope μ·Fn·α
 // only shapes speeds below 1/α and is not matched.
+//
+// With rolling rows (condim 6) the same projection pushes by
+// c·√((μ·v_t)² + (μ_roll·ω)²): a disc rolling at ω is lifted by
+// μ_roll·c·|ω| even without slip. The cone also shares one budget,
+// (f_t/μ)² + (τ/μ_roll)² ≤ f_n²: a disc rolling steadily needs
+// f_t = κ·τ/R (κ = m·R²/(I + m·R²)), so compensated writes
+// μ_roll' = μ_roll/√(1 − q²), q = κ·μ_roll/(μ·R), which gives back the
+// reference's torque μ_roll·F_n (mjcf.cpp, cone_mu_roll; docs/mujoco.md
+// has the friction table and what remains).
 #pragma once
 
 #include <array>
@@ -59,11 +100,13 @@
 
 namespace contact2d::mujoco {
 
-enum class Mapping { Seed, Exact, Calibrated };
-constexpr Mapping kAllMappings[] = {Mapping::Seed, Mapping::Exact, Mapping::Calibrated};
+enum class Mapping { Seed, Exact, Calibrated, Compensated };
+constexpr Mapping kAllMappings[] = {Mapping::Seed, Mapping::Exact, Mapping::Calibrated,
+                                    Mapping::Compensated};
 constexpr Mapping kDefaultMapping = Mapping::Calibrated;
 
-std::string_view mapping_name(Mapping mapping);  // "seed", "exact", "calibrated"
+// "seed", "exact", "calibrated", "compensated"
+std::string_view mapping_name(Mapping mapping);
 std::optional<Mapping> parse_mapping(std::string_view name);
 
 // Which MuJoCo geoms carry the 2D contact points of a box or T. The point
@@ -89,8 +132,12 @@ struct SolverSettings {
   std::array<double, 5> solimp = kMujocoDefaultSolimp;
   bool elliptic = false;  // cone="elliptic" (else MuJoCo's default pyramidal)
   double impratio = 1.0;
-  double inv_mass = 0.0;  // Â used by calibrated (body_invweight0), 0 otherwise
-  int split = 1;          // contacts per 2D point (calibrated divides k and c by it)
+  double inv_mass = 0.0;  // Â used by calibrated/compensated (body_invweight0), 0 otherwise
+  // compensated only: the lever (m) of the massless body that carries the
+  // contact geoms, and the inverse mass A_c its solref assumes (1/m).
+  double lever = 0.0;
+  double assumed_inv_mass = 0.0;
+  int split = 1;  // contacts per 2D point (calibrated divides k and c by it)
   // Standard form only: MuJoCo's refsafe raises timeconst to 2·timestep
   // (silently softening the contact); true when that happens here.
   bool refsafe_clamped = false;
@@ -114,6 +161,19 @@ SolverSettings solver_settings(const ContactParams& contact, const RigidBody& bo
 // The largest c of the scene's [contact] and its obstacles' own laws: the
 // damper that bounds calibrated's impratio (one value for every contact).
 double largest_damping(const Scene& scene);
+
+// compensated: Â of the contact geoms' body is raised to kCompensatingGain
+// times the largest true inverse mass A_max of a contact, so that MuJoCo's
+// dependence on A, d·A/Â relative, falls from ≤ 6e-4 to ≤ d/gain = 1e-10.
+constexpr double kCompensatingGain = 1e6;
+// The lever L (m) at which a massless body fixed to the moving one has
+// body_invweight0 = (2/m + L²/I)/3 = kCompensatingGain·max_inverse_mass
+// (I: the inertia about the hinge that turns it; mapping.hpp).
+double compensating_lever(double mass, double hinge_inertia, double max_inverse_mass);
+
+// What calibrated and compensated multiply k/n and c/n by in solref: Â
+// (calibrated), D = d/m + (1 − d)·Â (compensated); 0 for seed and exact.
+double solref_scale(const SolverSettings& settings);
 
 // MuJoCo's contact spring and damper per unit of approximate inverse mass
 // as its solver computes them from solref/solimp (K·d_max², B·d_max): the

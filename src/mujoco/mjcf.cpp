@@ -41,12 +41,19 @@ struct Geom {
   double x = 0.0;
   double z = 0.0;
   bool visual = false;  // contype = conaffinity = 0: drawn, never touches
+  bool corner = false;  // a corner sphere (its lowest point is kCornerRadius below the 2D point)
 };
 
 struct Layout {
   double mass = 0.0;
   std::array<double, 3> inertia{};  // diaginertia about MuJoCo x, y (hinge), z
   bool hinge = true;
+  // compensated: the lever of the massless body "contacts" that carries the
+  // contact geoms (0: none, the geoms are on the body itself), and for the
+  // point mass a hinge about MuJoCo z ("spin") that turns that body; no
+  // contact force has a moment about z, so it never moves.
+  double lever = 0.0;
+  bool spin = false;
   std::vector<Geom> geoms;
   int max_contacts = 0;      // P: contacts the body can make with the ground
   int obstacles = 0;         // N: static obstacles of the scene
@@ -106,7 +113,7 @@ Layout box_layout(const Scene& scene, Geometry geometry) {
   const RigidBody body = make_compound(parts);
   for (size_t i = 0; i < body.points.size(); ++i) {
     layout.geoms.push_back({"corner" + std::to_string(i), "sphere", format_exact(kCornerRadius),
-                            body.points[i].x(), body.points[i].y(), false});
+                            body.points[i].x(), body.points[i].y(), false, true});
   }
   layout.max_contacts = static_cast<int>(body.points.size());
   layout.contacts_why = "one per corner sphere";
@@ -153,9 +160,17 @@ Layout shape_layout(const Scene& scene, Geometry geometry) {
   return {};
 }
 
-Layout make_layout(const Scene& scene, Geometry geometry) {
+Layout make_layout(const Scene& scene, Geometry geometry, Mapping mapping) {
   Layout layout = shape_layout(scene, geometry);
   layout.obstacles = static_cast<int>(scene.obstacles.size());
+  if (mapping == Mapping::Compensated) {
+    // The point mass gets a hinge about MuJoCo z (its inertia is inertia[2]);
+    // the others turn the contacts' body with their own hinge (inertia[1]).
+    layout.spin = !layout.hinge;
+    const double turning = layout.spin ? layout.inertia[2] : layout.inertia[1];
+    layout.lever =
+        compensating_lever(layout.mass, turning, 1.0 / min_effective_mass(make_body(scene)));
+  }
   return layout;
 }
 
@@ -189,6 +204,25 @@ int condim_of(const Scene& scene, const MjcfOptions& options) {
   return options.condim != 0 ? options.condim : contact_condim(scene.contact);
 }
 
+// compensated's rolling coefficient for MuJoCo's elliptic cone, which
+// shares one budget (f_t/μ)² + (τ/μ_roll)² ≤ f_n² between sliding and
+// rolling where the reference bounds each alone: a disc rolling steadily
+// against τ = μ_roll·F_n needs f_t = κ·τ/R (κ = m·R²/(I + m·R²)), so the
+// torque MuJoCo leaves it is μ_roll'·F_n·√(1 − q²) with q = κ·μ_roll/(μ·R);
+// μ_roll' = μ_roll/√(1 − q²) gives back μ_roll·F_n. q ≥ 1 (the disc cannot
+// roll steadily: it slides) or no rolling: μ_roll as it is.
+double cone_mu_roll(const Scene& scene, const SolverSettings& s) {
+  const ContactParams& p = scene.contact;
+  if (s.mapping != Mapping::Compensated || scene.shape != Shape::Circle || !(p.mu_roll > 0.0) ||
+      !(p.mu > 0.0))
+    return p.mu_roll;
+  const RigidBody body = make_body(scene);
+  const double r = body.roll_radius;
+  const double kappa = body.mass * r * r / (body.inertia + body.mass * r * r);
+  const double q = kappa * p.mu_roll / (p.mu * r);
+  return q < 1.0 ? p.mu_roll / std::sqrt(1.0 - q * q) : p.mu_roll;
+}
+
 // The 2D inertia formula of the scene's shape (the value is Layout::inertia[1]).
 std::string inertia_formula(Shape shape) {
   switch (shape) {
@@ -207,7 +241,7 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
   auto f = [](double v) { return format_exact(v); };
   const std::string in = "    ";
   std::string text = "  mapping " + std::string(mapping_name(s.mapping)) + ":\n";
-  if (s.mapping != Mapping::Calibrated) {
+  if (s.mapping == Mapping::Seed || s.mapping == Mapping::Exact) {
     text += in + (s.mapping == Mapping::Seed ? "timeconst = sqrt(m/k) = " : "timeconst = 2m/c = ") +
             f(s.solref[0]) + " s, dampratio = c/(2 sqrt(m k)) = " + f(s.solref[1]) +
             (s.mapping == Mapping::Seed
@@ -226,13 +260,36 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
   }
   const RigidBody body = make_body(scene);
   const ContactParams& p = scene.contact;
-  text += in + "A = body_invweight0 = " + f(s.inv_mass) +
-          " 1/kg, read from the compiled model (MuJoCo's mean over the three translation axes "
-          "of the body's inverse mass: 2/(3m) for slides along x and z)\n";
-  text += in + "n = " + std::to_string(s.split) +
-          " (MuJoCo contacts per 2D contact point: 1 for a sphere, 2 for a box geom's edge)\n";
-  text += in + "solref = (-k A/n, -c A/n) = (" + f(s.solref[0]) + ", " + f(s.solref[1]) +
-          ") (direct form)\n";
+  if (s.mapping == Mapping::Compensated) {
+    text += in + "L = " + f(s.lever) +
+            " m, the lever of the massless body \"contacts\" that carries the contact geoms: "
+            "sqrt(I (3 G A_max - 2/m)) with G = " +
+            f(kCompensatingGain) + ", A_max = 1/m + r^2/I the largest inverse mass of a contact" +
+            (scene.shape == Shape::PointMass ? " (I about the hinge \"spin\", MuJoCo z)" : "") +
+            "\n";
+    text += in + "A = body_invweight0 of \"contacts\" = " + f(s.inv_mass) +
+            " 1/kg, read from the compiled model ((2/m + L^2/I)/3 = G A_max)\n";
+    text += in + "n = " + std::to_string(s.split) +
+            " (MuJoCo contacts per 2D contact point: 1 for a sphere, 2 for a box geom's edge)\n";
+    text += in +
+            "D = d/m + (1 - d) A with d = 1e-4 (MuJoCo's divisor for a contact of inverse "
+            "mass 1/m)\n";
+    text += in + "solref = (-k D/n, -c D/n) = (" + f(s.solref[0]) + ", " + f(s.solref[1]) +
+            ") (direct form)\n";
+    if (cone_mu_roll(scene, s) != scene.contact.mu_roll) {
+      text += in + "friction mu_roll' = mu_roll/sqrt(1 - q^2) = " + f(cone_mu_roll(scene, s)) +
+              " m, q = kappa mu_roll/(mu R), kappa = m R^2/(I + m R^2) (the elliptic cone's "
+              "shared budget gives a steadily rolling disc mu_roll F_n back)\n";
+    }
+  } else {
+    text += in + "A = body_invweight0 = " + f(s.inv_mass) +
+            " 1/kg, read from the compiled model (MuJoCo's mean over the three translation axes "
+            "of the body's inverse mass: 2/(3m) for slides along x and z)\n";
+    text += in + "n = " + std::to_string(s.split) +
+            " (MuJoCo contacts per 2D contact point: 1 for a sphere, 2 for a box geom's edge)\n";
+    text += in + "solref = (-k A/n, -c A/n) = (" + f(s.solref[0]) + ", " + f(s.solref[1]) +
+            ") (direct form)\n";
+  }
   text += in + "solimp = " + join(s.solimp) + " (flat minimal impedance d = 1e-4); cone elliptic\n";
   if (condim == 1) {
     text += in + "impratio: not written (condim 1 has no friction rows; MuJoCo's default 1)\n";
@@ -288,8 +345,9 @@ ObstacleContactSettings obstacle_settings(const Scene& scene, const Obstacle& o,
   ObstacleContactSettings out;
   out.law = o.contact.apply(scene.contact);
   out.condim = contact_condim(out.law);
-  if (s.mapping == Mapping::Calibrated) {
-    out.solref = {-out.law.k * s.inv_mass / s.split, -out.law.c * s.inv_mass / s.split};
+  if (s.mapping == Mapping::Calibrated || s.mapping == Mapping::Compensated) {
+    const double scale = solref_scale(s);
+    out.solref = {-out.law.k * scale / s.split, -out.law.c * scale / s.split};
   } else {
     Scene own = scene;
     own.contact = out.law;
@@ -325,8 +383,11 @@ std::string obstacle_lines(const Scene& scene, const SolverSettings& s) {
             (p.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") + ", mu " +
             f(p.mu) + ", mu_roll " + f(p.mu_roll) + " m, mu_torsion " + f(p.mu_torsion) +
             "; solref = (" + f(os.solref[0]) + ", " + f(os.solref[1]) + ")" +
-            (s.mapping == Mapping::Calibrated ? " = (-k A/n, -c A/n)" : "") + ", condim " +
-            std::to_string(os.condim) + ", friction (mu, mu, mu_torsion, mu_roll, mu_roll)\n";
+            (s.mapping == Mapping::Calibrated    ? " = (-k A/n, -c A/n)"
+             : s.mapping == Mapping::Compensated ? " = (-k D/n, -c D/n)"
+                                                 : "") +
+            ", condim " + std::to_string(os.condim) +
+            ", friction (mu, mu, mu_torsion, mu_roll, mu_roll)\n";
   }
   return text;
 }
@@ -426,7 +487,7 @@ void add_options(XMLDocument& doc, XMLElement* root, const Scene& scene, const S
   const ContactParams& p = scene.contact;
   add(doc, defaults, "geom",
       {{"condim", std::to_string(condim)},
-       {"friction", join({p.mu, p.mu_torsion, p.mu_roll})},
+       {"friction", join({p.mu, p.mu_torsion, cone_mu_roll(scene, s)})},
        {"solref", join(s.solref)},
        {"solimp", join(s.solimp)}});
 }
@@ -457,10 +518,28 @@ void add_body(XMLDocument& doc, XMLElement* world, const Scene& scene, const Lay
         add(doc, body, "joint", {{"name", "theta"}, {"type", "hinge"}, {"axis", "0 -1 0"}});
     if (theta != 0.0) hinge->SetAttribute("ref", format_exact(theta).c_str());
   }
+  if (l.spin) add(doc, body, "joint", {{"name", "spin"}, {"type", "hinge"}, {"axis", "0 0 1"}});
+  // compensated: the contact geoms on a massless body at the lever, each
+  // placed back where it was (its position less the lever).
+  XMLElement* contacts = nullptr;
+  if (l.lever > 0.0) {
+    contacts = add(doc, body, "body", {{"name", "contacts"}, {"pos", join({l.lever, 0.0, 0.0})}});
+    // Massless, with its inertial frame at its own origin: without an
+    // <inertial> MuJoCo 2.2.2 copies the body's pos into ipos and puts the
+    // (massless) COM at twice the lever, which body_invweight0 would see.
+    add(doc, contacts, "inertial", {{"pos", "0 0 0"}, {"mass", "0"}, {"diaginertia", "0 0 0"}});
+  }
   for (const Geom& g : l.geoms) {
-    XMLElement* e =
-        add(doc, body, "geom",
-            {{"name", g.name}, {"type", g.type}, {"size", g.size}, {"pos", join({g.x, 0.0, g.z})}});
+    const bool moved = contacts != nullptr && !g.visual;
+    XMLElement* e = add(doc, moved ? contacts : body, "geom",
+                        {{"name", g.name},
+                         {"type", g.type},
+                         {"size", g.size},
+                         {"pos", join({moved ? g.x - l.lever : g.x, 0.0, g.z})}});
+    // compensated: a corner sphere's contact is included from the 2D point's
+    // touching on (dist < −ε) and its spring measured from there
+    // (engine_collision_driver.c: includemargin = margin − gap).
+    if (moved && g.corner) e->SetAttribute("gap", format_exact(kCornerRadius).c_str());
     if (g.visual) {
       e->SetAttribute("contype", "0");
       e->SetAttribute("conaffinity", "0");
@@ -518,13 +597,15 @@ void add_pairs(XMLDocument& doc, XMLElement* root, const Scene& scene, const Sol
     const ContactParams& p = os.law;
     for (const Geom& g : l.geoms) {
       if (g.visual) continue;
-      add(doc, contact, "pair",
-          {{"geom1", g.name},
-           {"geom2", "obstacle" + std::to_string(i)},
-           {"condim", std::to_string(os.condim)},
-           {"friction", join({p.mu, p.mu, p.mu_torsion, p.mu_roll, p.mu_roll})},
-           {"solref", join(os.solref)},
-           {"solimp", join(s.solimp)}});
+      XMLElement* pair = add(doc, contact, "pair",
+                             {{"geom1", g.name},
+                              {"geom2", "obstacle" + std::to_string(i)},
+                              {"condim", std::to_string(os.condim)},
+                              {"friction", join({p.mu, p.mu, p.mu_torsion, p.mu_roll, p.mu_roll})},
+                              {"solref", join(os.solref)},
+                              {"solimp", join(s.solimp)}});
+      // compensated: as the corner geoms' own gap (add_body); a pair uses its own
+      if (l.lever > 0.0 && g.corner) pair->SetAttribute("gap", format_exact(kCornerRadius).c_str());
     }
   }
 }
@@ -532,8 +613,11 @@ void add_pairs(XMLDocument& doc, XMLElement* root, const Scene& scene, const Sol
 // qpos0 (the hinge's ref is θ0) and the initial velocities.
 void add_keyframe(XMLDocument& doc, XMLElement* root, const Scene& scene, const Layout& l) {
   const State& s = scene.initial;
-  const std::string qpos = l.hinge ? join({0.0, 0.0, s.q.z()}) : join({0.0, 0.0});
-  const std::string qvel = l.hinge ? join({s.v.x(), s.v.y(), s.v.z()}) : join({s.v.x(), s.v.y()});
+  const std::string qpos =
+      l.hinge ? join({0.0, 0.0, s.q.z()}) : (l.spin ? join({0.0, 0.0, 0.0}) : join({0.0, 0.0}));
+  const std::string qvel = l.hinge  ? join({s.v.x(), s.v.y(), s.v.z()})
+                           : l.spin ? join({s.v.x(), s.v.y(), 0.0})
+                                    : join({s.v.x(), s.v.y()});
   XMLElement* keyframe = add(doc, root, "keyframe", {});
   add(doc, keyframe, "key", {{"name", "initial"}, {"qpos", qpos}, {"qvel", qvel}});
 }
@@ -544,9 +628,12 @@ double read_inv_mass(const Scene& scene, const MjcfOptions& options, int split) 
   // compiler takes a test step, and the scene's k, c at a wrong Â (it was 1)
   // made a heavy body resting on a stiff contact fail it (huge qacc).
   SolverSettings probe = solver_settings(scene, Mapping::Calibrated, 0.0, split);
+  probe.mapping = options.mapping;  // compensated: with the contacts' body
   const ModelPtr model =
       load_model(write_mjcf(scene, options, probe), generated_origin(options.source));
-  return model->body_invweight0[2];  // body 1 (2 entries per body), translational
+  // 2 entries per body, translational first: body 1 is the moving body,
+  // body 2 compensated's "contacts"
+  return model->body_invweight0[options.mapping == Mapping::Compensated ? 4 : 2];
 }
 
 }  // namespace
@@ -570,7 +657,7 @@ std::string format_exact(double value) {
 
 std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
                        const SolverSettings& settings) {
-  const Layout layout = make_layout(scene, options.geometry);
+  const Layout layout = make_layout(scene, options.geometry, settings.mapping);
   XMLDocument doc;
   doc.InsertEndChild(doc.NewComment(header(scene, options, settings, layout).c_str()));
   XMLElement* root = doc.NewElement("mujoco");
@@ -592,11 +679,15 @@ GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options) {
   mujoco_integrator(scene.sim.integrator);  // explicit Euler: fail before any work
   const int split = contacts_per_point(scene.shape, options.geometry);
   const double inv_mass =
-      options.mapping == Mapping::Calibrated ? read_inv_mass(scene, options, split) : 0.0;
+      options.mapping == Mapping::Calibrated || options.mapping == Mapping::Compensated
+          ? read_inv_mass(scene, options, split)
+          : 0.0;
   GeneratedModel out;
   Scene model_scene = scene;  // the Δt the Δt-dependent values are for
   if (options.model_dt > 0.0) model_scene.sim.dt = options.model_dt;
   out.settings = solver_settings(model_scene, options.mapping, inv_mass, split);
+  if (options.mapping == Mapping::Compensated)
+    out.settings.lever = make_layout(scene, options.geometry, options.mapping).lever;
   // refsafe is MuJoCo's, at the real timestep.
   out.settings.refsafe_clamped =
       out.settings.solref[0] > 0.0 && out.settings.solref[0] < 2.0 * scene.sim.dt;
@@ -613,7 +704,8 @@ MjcfOptions mjcf_options(const std::string& mapping, const std::string& geometry
   MjcfOptions options;
   if (!mapping.empty()) {
     const auto parsed = parse_mapping(mapping);
-    if (!parsed) throw InputError("mapping " + mapping + ": unknown (seed, exact, calibrated)");
+    if (!parsed)
+      throw InputError("mapping " + mapping + ": unknown (seed, exact, calibrated, compensated)");
     options.mapping = *parsed;
   }
   if (!geometry.empty()) {

@@ -34,6 +34,15 @@
 //               becomes a 3D edge whose two end vertices both touch: 2
 //               contacts per point)
 // Visual-only geoms (contype = conaffinity = 0, group 1) draw the shape.
+// Under the compensated mapping (mapping.hpp) the contact geoms sit instead
+// on a massless child body "contacts" (explicit <inertial> of mass 0 at its
+// origin) placed at (L, 0, 0) in the body frame, each geom at its own
+// point less (L, 0, 0); corner spheres (and their obstacle pairs) get
+// gap = kCornerRadius, so that MuJoCo's contact starts and its spring is
+// measured at the 2D point; the point mass gets a hinge "spin" about
+// MuJoCo z that turns "contacts" (no contact force has a moment about it);
+// a disc with rolling resistance gets the cone coefficient μ_roll'
+// (docs/mujoco.md).
 //
 // Static obstacles (core/obstacles.hpp) are world-body geoms "obstacle<i>":
 // a box obstacle a box geom (centre (x, 0, y), half-size (w/2, D, h/2), D

@@ -46,7 +46,7 @@ TEST(Registry, ListsWhatItCanRun) {
   EXPECT_EQ(names.front(), "ref");
   for (const std::string& name : names) EXPECT_EQ(engines::parse_engine(name).name(), name);
 #ifdef CONTACT2D_WITH_MUJOCO
-  EXPECT_EQ(names.size(), 5u);  // ref, mujoco, mujoco:seed|exact|calibrated
+  EXPECT_EQ(names.size(), 6u);  // ref, mujoco, mujoco:seed|exact|calibrated|compensated
 #else
   EXPECT_EQ(names.size(), 1u);
 #endif

@@ -81,7 +81,7 @@ double test_step_qacc_bound(const Scene& scene, Mapping mapping, Geometry geomet
 // Must generate_mjcf refuse this valid scene (documented reasons)?
 bool must_refuse(const Scene& scene, Mapping mapping) {
   if (scene.sim.integrator == Integrator::ExplicitEuler) return true;
-  if (mapping == Mapping::Calibrated) return false;
+  if (mapping == Mapping::Calibrated || mapping == Mapping::Compensated) return false;
   // MuJoCo's standard solref (timeconst, dampratio), as solver_settings computes it.
   const double m = make_body(scene).mass, k = scene.contact.k, c = scene.contact.c;
   const double tc = mapping == Mapping::Seed ? std::sqrt(m / k) : 2.0 * m / c;

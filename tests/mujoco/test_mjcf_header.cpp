@@ -206,18 +206,40 @@ TEST_P(Header, EveryNumberIsItsStatedFormula) {
   }
 
   // Mapping.
-  const bool elliptic = c.mapping == Mapping::Calibrated;
-  if (c.mapping == Mapping::Calibrated) {
-    const double a = after(h, "A = body_invweight0 = ");
-    expect_rel(a, 2.0 / (3.0 * m), "A: MuJoCo's 2/(3m)");
+  const bool compensated = c.mapping == Mapping::Compensated;
+  const bool elliptic = c.mapping == Mapping::Calibrated || compensated;
+  if (elliptic) {
+    double a = 0.0, scale = 0.0;
+    std::string solref_label;
+    if (compensated) {
+      // The lever L = sqrt(I (3 G A_max - 2/m)) of the massless body
+      // "contacts", I about the hinge that turns it: the body's, or for the
+      // point mass the hinge "spin" about MuJoCo z, whose inertia is the
+      // generator's solid sphere 0.4 m max(h, 0.01)^2 (mjcf.cpp).
+      const double r_sphere = std::max(s.half_height, 0.01);
+      const double turning =
+          s.shape == Shape::PointMass ? 0.4 * m * r_sphere * r_sphere : b.inertia;
+      const bool lever_arm = s.shape == Shape::Box || s.shape == Shape::TShape;
+      const double a_max = lever_arm ? 1.0 / m + b.r * b.r / turning : 1.0 / m;
+      const double gain = mujoco::kCompensatingGain;
+      expect_rel(after(h, "L = "), std::sqrt(turning * (3 * gain * a_max - 2.0 / m)), "L");
+      a = after(h, "A = body_invweight0 of \"contacts\" = ");
+      expect_rel(a, gain * a_max, "A = G A_max");
+      scale = 1e-4 / m + (1 - 1e-4) * a;
+      solref_label = "solref = (-k D/n, -c D/n) = (";
+    } else {
+      a = after(h, "A = body_invweight0 = ");
+      expect_rel(a, 2.0 / (3.0 * m), "A: MuJoCo's 2/(3m)");
+      scale = a;
+      solref_label = "solref = (-k A/n, -c A/n) = (";
+    }
     const double n = after(h, "n = ");
     const bool box_geoms = c.geometry == Geometry::BoxGeoms && b.parts > 0;
     EXPECT_EQ(n, box_geoms ? 2.0 : 1.0);
-    const double solref0 = after(h, "solref = (-k A/n, -c A/n) = (");
-    const double solref1 =
-        after(h, "solref = (-k A/n, -c A/n) = (" + mujoco::format_exact(solref0) + ", ");
-    expect_rel(solref0, -k * a / n, "solref[0]");
-    expect_rel(solref1, -cd * a / n, "solref[1]");
+    const double solref0 = after(h, solref_label);
+    const double solref1 = after(h, solref_label + mujoco::format_exact(solref0) + ", ");
+    expect_rel(solref0, -k * scale / n, "solref[0]");
+    expect_rel(solref1, -cd * scale / n, "solref[1]");
     std::istringstream file_solref(geom->Attribute("solref"));
     double f0 = 0.0, f1 = 0.0;
     file_solref >> f0 >> f1;
