@@ -28,7 +28,8 @@ std::vector<contact2d::mujoco::Mapping> chosen_mappings(const std::string& name)
   using namespace contact2d::mujoco;
   if (name == "all") return {std::begin(kAllMappings), std::end(kAllMappings)};
   const auto parsed = parse_mapping(name);
-  if (!parsed) throw InputError("--mapping " + name + ": unknown (seed, exact, calibrated, all)");
+  if (!parsed)
+    throw InputError("--mapping " + name + ": unknown (seed, exact, calibrated, compensated, all)");
   return {*parsed};
 }
 
@@ -93,7 +94,8 @@ Command add_solref(CLI::App& app) {
   cmd->add_option("--mu", options->mu, "Sliding friction coefficient (>= 0; default 0)");
   cmd->add_option("--mu-roll", options->mu_roll,
                   "Rolling friction, m (>= 0; needs --inertia and --lever, the rolling radius)");
-  cmd->add_option("--mapping", options->mapping, "seed | exact | calibrated | all (default all)");
+  cmd->add_option("--mapping", options->mapping,
+                  "seed | exact | calibrated | compensated | all (default all)");
   cmd->add_option("--contacts", options->contacts,
                   "MuJoCo contacts sharing the weight at rest (>= 1; default 1)");
   cmd->add_flag("--json", options->json, "Print JSON instead of text");

@@ -154,7 +154,8 @@ void AnalysisOptions::add_to(CLI::App& cmd, const std::string& csv_help,
       ->type_name("NAME")
       ->delimiter(',');
   cmd.add_option("--engines", engines,
-                 "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated; mujoco = "
+                 "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated, "
+                 "compensated; mujoco = "
                  "its default) (default: ref)")
       ->type_name("ENGINE")
       ->delimiter(',')

@@ -63,7 +63,8 @@ EngineSpec parse_engine(const std::string& name, const std::string& option) {
   if (second != std::string::npos) spec.geometry = rest.substr(second + 1);
 #ifdef CONTACT2D_WITH_MUJOCO
   if (!spec.mapping.empty() && !mujoco::parse_mapping(spec.mapping))
-    throw InputError(option + " " + name + ": unknown mapping (seed, exact, calibrated)");
+    throw InputError(option + " " + name +
+                     ": unknown mapping (seed, exact, calibrated, compensated)");
   if (!spec.geometry.empty() && !mujoco::parse_geometry(spec.geometry))
     throw InputError(option + " " + name + ": unknown geometry (corners, boxes)");
 #endif

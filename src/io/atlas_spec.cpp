@@ -34,7 +34,7 @@ const Range kDt{0.0, 1.0, true, "(0, 1] s"};
 const Range kDuration{0.0, 1e4, true, "(0, 1e4] s"};
 const Range kTol{1e-14, 1e-6, false, "[1e-14, 1e-6]"};
 
-const char* const kMappings[] = {"seed", "exact", "calibrated"};
+const char* const kMappings[] = {"seed", "exact", "calibrated", "compensated"};
 
 [[noreturn]] void fail(const std::string& origin, const std::string& field,
                        const std::string& why) {
@@ -189,10 +189,11 @@ AtlasSpec parse_atlas_spec(const std::string& text, const std::string& origin,
     spec.bodies.push_back(b);
   }
   reader.mark_used("mappings");
-  spec.mappings = string_list(atlas, "mappings", origin, "seed, exact, calibrated");
+  spec.mappings = string_list(atlas, "mappings", origin, "seed, exact, calibrated, compensated");
   for (const std::string& m : spec.mappings)
     if (std::find(std::begin(kMappings), std::end(kMappings), m) == std::end(kMappings))
-      fail(origin, "atlas.mappings", "'" + m + "' is not a mapping: seed, exact or calibrated");
+      fail(origin, "atlas.mappings",
+           "'" + m + "' is not a mapping: seed, exact, calibrated or compensated");
   reader.mark_used("damping");
   if (atlas->get("damping")) {
     for (const std::string& d :

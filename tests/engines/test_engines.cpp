@@ -32,7 +32,7 @@ TEST(Registry, UnknownNamesAreOneLineErrorsNamingTheOption) {
   EXPECT_EQ(error_of("ref:exact"), "--engines ref:exact: unknown engine (use ref or mujoco)");
 #ifdef CONTACT2D_WITH_MUJOCO
   EXPECT_EQ(error_of("mujoco:stiff"),
-            "--engines mujoco:stiff: unknown mapping (seed, exact, calibrated)");
+            "--engines mujoco:stiff: unknown mapping (seed, exact, calibrated, compensated)");
   EXPECT_EQ(error_of("mujoco:exact:spheres"),
             "--engines mujoco:exact:spheres: unknown geometry (corners, boxes)");
 #else

@@ -94,6 +94,12 @@ inline ReadmeData readme() {
               {"s01", "box", 2, 5000, 100, 0.1, 5e-6, 2e-4, 0.01},
               {"s02", "tshape", 1.25, 300000, 1500, 1, 2e-5, 1e-5, 0.1},
               {"s03", "circle", 0.1, 100000, 50, 0.3, 3e-4, 1e-9, 0.002}};
+  // The same scenes under compensated: all four frictionless within the
+  // goal, so every band reports its whole count.
+  d.random_compensated = {{"s00", "point_mass", 0.5, 20000, 30, 0.5, 1e-11, 0, 0.0009},
+                          {"s01", "box", 2, 5000, 100, 0.1, 2e-12, 3e-11, 0.011},
+                          {"s02", "tshape", 1.25, 300000, 1500, 1, 4e-13, 1e-12, 0.1},
+                          {"s03", "circle", 0.1, 100000, 50, 0.3, 3e-12, 1e-14, 0.001}};
   return d;
 }
 

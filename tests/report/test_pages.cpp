@@ -183,11 +183,14 @@ TEST(ReportPages, ReadmeVerdictsAndCounts) {
   EXPECT_NE(
       page.find("| box, c = 200, frictionless | 1e-15 | 3e-06 | 1e-5 | 0.0002 | 1e-4 | **no** |"),
       std::string::npos);
-  EXPECT_NE(page.find("Without friction, 1 of 4 scenes are within 1e-5 m and 1e-4 rad: 1 of 2 "
-                      "with ζ < 0.3, 0 of 1 with 0.3 ≤ ζ < 1 and 0 of 1 with ζ ≥ 1."),
+  EXPECT_NE(page.find("Without friction, 1 of 4 scenes are within 1e-5 m and 1e-4 rad under "
+                      "calibrated: 1 of 2 with ζ < 0.3, 0 of 1 with 0.3 ≤ ζ < 1 and 0 of 1 with "
+                      "ζ ≥ 1.\nUnder compensated, 4 of 4: 2 of 2 with ζ < 0.3, 1 of 1 with "
+                      "0.3 ≤ ζ < 1 and 1 of 1 with ζ ≥ 1."),
             std::string::npos);
   EXPECT_NE(page.find("| s00 | point_mass | 0.5 | 20000 | 30 | 0.15 | 0.5 |"), std::string::npos);
-  EXPECT_NE(page.find("| ζ < 0.3 | 2 | 1 | 0.000151 | 0.0003 | 1e-09 | 0.002 |"),
+  EXPECT_NE(page.find("| ζ < 0.3 | calibrated | 2 | 1 | 0.000151 | 0.0003 | 1e-09 | 0.002 |\n"
+                      "| ζ < 0.3 | compensated | 2 | 2 | 6.5e-12 | 1e-11 | 1e-14 | 0.001 |"),
             std::string::npos);
   EXPECT_NE(page.find("Four scenes drawn by `contact2d report`\n(SplitMix64, seed 42)"),
             std::string::npos);
