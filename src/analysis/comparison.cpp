@@ -174,15 +174,21 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
     r.scene.contact.mu_roll = 0.0;
     reruns.push_back(r);
   }
-  if (mapping != "calibrated") {
-    engines::EngineSpec calibrated = mujoco;
-    calibrated.mapping = "calibrated";
-    reruns.push_back(rerun("mapping", scene, false, calibrated.name()));
+  // The mapping: seed and exact against calibrated (MuJoCo's default
+  // impedance), calibrated against compensated (the O(d) term of MuJoCo's
+  // soft contact, docs/mujoco.md). compensated has no better one to try.
+  const std::string better_mapping = mapping == "calibrated" ? "compensated" : "calibrated";
+  if (mapping != "compensated") {
+    engines::EngineSpec better = mujoco;
+    better.mapping = better_mapping;
+    reruns.push_back(rerun("mapping", scene, false, better.name()));
   }
   // The calibrated impratio = 1/(c·Δt·A_t) follows Δt unless the user held
   // it (--model-dt): the Δt/10 re-run then changes MuJoCo's model as well as
   // its step. This re-run steps at Δt/10 with the model of Δt.
-  const bool model_follows_dt = friction && mapping == "calibrated" && mujoco.model_dt == 0.0 &&
+  // (compensated keeps calibrated's friction rows, impratio included.)
+  const bool dt_dependent_impratio = mapping == "calibrated" || mapping == "compensated";
+  const bool model_follows_dt = friction && dt_dependent_impratio && mujoco.model_dt == 0.0 &&
                                 std::isfinite(mujoco_run.impratio);
   if (model_follows_dt) {
     Rerun r = rerun("dt_dependent_model", scene, true, mj);
@@ -282,9 +288,9 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
           f.explanation += ref_larger ? "The fixed-step reference's own error is the larger part."
                                       : "MuJoCo's own error is the larger part.";
       }
-      if (friction && mapping == "calibrated" && std::isfinite(mujoco_run.impratio) &&
+      if (friction && dt_dependent_impratio && std::isfinite(mujoco_run.impratio) &&
           std::isfinite(r.mujoco_run.impratio) && r.mujoco_run.impratio != mujoco_run.impratio)
-        f.explanation += " The calibrated mapping ties MuJoCo's impratio to Δt (" +
+        f.explanation += " The " + mapping + " mapping ties MuJoCo's impratio to Δt (" +
                          g3(mujoco_run.impratio) + " at Δt, " + g3(r.mujoco_run.impratio) +
                          " at Δt/10), so part of MuJoCo's change is a different model.";
     } else if (r.cause == "friction") {
@@ -321,6 +327,16 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
           "sliding force under one budget, (f_t/μ)² + (τ/μ_roll)² ≤ Fn², and resists rolling "
           "viscously inside it. Without rolling resistance in both engines (sliding friction "
           "kept), " +
+          falls + ".";
+    } else if (r.cause == "mapping" && mapping == "calibrated") {
+      f.fix = "--mapping compensated";
+      f.explanation =
+          "The calibrated force differs from the Kelvin–Voigt law by a relative d·A/Â and an "
+          "offset d·g/Â (MuJoCo's soft contact at its smallest impedance d = 1e-4): a slightly "
+          "different restitution at every impact, which a bouncing or tumbling body carries "
+          "from bounce to bounce. The compensated mapping scales solref by MuJoCo's own divisor "
+          "and raises Â by a lever, so that the term falls by 10⁶ (docs/mujoco.md). With the "
+          "compensated mapping, " +
           falls + ".";
     } else if (r.cause == "mapping") {
       f.fix = "--mapping calibrated";
