@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <utility>
 
 namespace contact2d {
 
@@ -85,7 +86,9 @@ bool implicit_euler(const Model& model, double dt, State& s, int depth, StepWork
   State trial = s;
   if (implicit_euler_newton(model, dt, trial, ws)) {
     s = trial;
-    find_contacts(model, s.q, ws.contacts);
+    // ws.scratch holds the contacts at q + Δt·v', computed by the same
+    // expression as the new s.q: the contacts of the new state, bit for bit.
+    std::swap(ws.contacts, ws.scratch);
     return true;
   }
   if (depth >= kMaxSplitDepth) return false;
@@ -141,14 +144,13 @@ bool implicit_euler_newton(const Model& model, double dt, State& s, StepWorkspac
     s.v = v;
     return true;
   };
+  AccelerationJacobian da;
   for (int iteration = 0; iteration < kNewtonMaxIterations; ++iteration) {
-    Eigen::Matrix3d jacobian;
-    for (int j = 0; j < 3; ++j) {
-      const double h = 1e-7 * std::max(1.0, std::abs(v_next[j]));
-      Vec3 probe = v_next;
-      probe[j] += h;
-      jacobian.col(j) = (implicit_residual(model, dt, s, probe, ws) - g) / h;
-    }
+    // ws.scratch holds the contacts at q' = q + Δt·v' of the current
+    // iterate (its residual was the last one evaluated).
+    const Vec3 q_next = s.q + dt * v_next;
+    acceleration_jacobian(model, ws.scratch, q_next, v_next, da, ws.probe);
+    const Eigen::Matrix3d jacobian = Eigen::Matrix3d::Identity() - dt * (dt * da.dq + da.dv);
     const Vec3 delta = jacobian.partialPivLu().solve(-g);
     if (!delta.allFinite()) return false;
     if (small(delta, v_next) && small(g, v_next)) return accept(v_next);
