@@ -14,9 +14,6 @@ namespace {
 // more than one batch, summed in the same order.
 constexpr size_t kBatch = 16;
 
-// d(·)/d(x, y, θ, vx, vy, ω) of one scalar.
-using Row = Eigen::Matrix<double, 1, 6>;
-
 // The contact forces and torques of contacts [first, last) of `contacts`
 // added to `force` and `torque`, in the order of the list — the order and
 // the arithmetic of every sum are those of the one-contact-at-a-time loop
@@ -26,11 +23,12 @@ using Row = Eigen::Matrix<double, 1, 6>;
 // then the sums.
 //
 // With a Jacobian (Newton, core/integrators.cpp) it also adds the analytic
-// derivatives of (F_x, F_y, τ) with respect to (q, v) to `d`, for contacts
+// derivatives of (F_x, F_y, τ) with respect to (q, v) = (x, y, θ, vx, vy, ω)
+// to the rows of `jac` (3 × 6, row-major), for contacts
 // whose normal does not turn with q (the ground); see acceleration_jacobian.
 template <bool kJacobian>
 void add_contacts(const Model& model, const ContactSet& contacts, size_t first, size_t last,
-                  const Vec3& v, Vec2& force, double& torque, Eigen::Matrix<double, 3, 6>* d) {
+                  const Vec3& v, Vec2& force, double& torque, double (*jac)[6]) {
   const RigidBody& body = model.body;
   const bool rotates = body.rotates;
   const double omega = rotates ? v.z() : 0.0;
@@ -97,42 +95,48 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
         torque += c.rx * f.y() - c.ry * f.x() + roll;
       }
       if constexpr (kJacobian) {
-        // Derivatives in (x, y, θ, vx, vy, ω). The lever arm turns with θ
-        // when the points rotate: ∂r/∂θ = (−r_y, r_x); the contact point
-        // c = p + r moves with ∂c/∂q = [I | ∂r/∂θ]; v_c = v + ω·(−r_y, r_x).
+        // Derivatives in (x, y, θ, vx, vy, ω), written out entry by entry
+        // (most are zero). The lever arm turns with θ when the points
+        // rotate: ∂r/∂θ = (rtx, rty) = (−r_y, r_x); the contact point
+        // c = p + r moves with ∂c/∂q = [I | ∂r/∂θ]; v_c = v + ω·(−r_y, r_x);
+        // the depth along a fixed normal is d = −n·c + const.
         const double nx = c.nx, ny = c.ny, tx = ny, ty = -nx;
         const double rtx = body.points_rotate ? -c.ry : 0.0;
         const double rty = body.points_rotate ? c.rx : 0.0;
         const double wf = rotates ? 1.0 : 0.0;
-        Row dvcx, dvcy, dd;
-        dvcx << 0.0, 0.0, -omega * rty, 1.0, 0.0, -c.ry * wf;
-        dvcy << 0.0, 0.0, omega * rtx, 0.0, 1.0, c.rx * wf;
-        // The depth along a fixed normal: d = −n·c + const.
-        dd << -nx, -ny, -(nx * rtx + ny * rty), 0.0, 0.0, 0.0;
-        const Row dvn = nx * dvcx + ny * dvcy;
-        const Row dvt = tx * dvcx + ty * dvcy;
+        const double dd_t = -(nx * rtx + ny * rty);
+        const double dvn_t = omega * (ny * rtx - nx * rty);
+        const double dvn_w = wf * (ny * c.rx - nx * c.ry);
+        const double dvt_t = omega * (ty * rtx - tx * rty);
+        const double dvt_w = wf * (ty * c.rx - tx * c.ry);
+        // The branch of the normal law: Fn = k_b·d − c_b·v_n + const.
         const double v_n = (v.x() - omega * c.ry) * nx + (v.y() + omega * c.rx) * ny;
-        Row dfn = Row::Zero();
+        double k_b = 0.0, c_b = 0.0;
         if (c.depth > 0.0) {
           if (law.damping == DampingLaw::Compression) {
-            dfn = law.k * dd;
-            if (v_n < 0.0) dfn -= law.c * dvn;
+            k_b = law.k;
+            c_b = v_n < 0.0 ? law.c : 0.0;
           } else if (law.k * c.depth - law.c * v_n > 0.0) {
-            dfn = law.k * dd - law.c * dvn;
+            k_b = law.k;
+            c_b = law.c;
           }
         }
-        const Row dft = -law.mu * (s * dfn + f_n * law.alpha * (1.0 - s * s) * dvt);
-        const Row dfx = nx * dfn + tx * dft;
-        const Row dfy = ny * dfn + ty * dft;
-        Row dtau = c.rx * dfy - c.ry * dfx;
-        dtau[2] += rtx * f_y - rty * f_x;
-        if (rolls) {
-          dtau -= law.mu_roll * s_roll * dfn;
-          dtau[5] -= law.mu_roll * f_n * law.alpha * radius * (1.0 - s_roll * s_roll);
+        const double dfn[6] = {-k_b * nx, -k_b * ny, k_b * dd_t - c_b * dvn_t,
+                               -c_b * nx, -c_b * ny, -c_b * dvn_w};
+        const double dvt[6] = {0.0, 0.0, dvt_t, tx, ty, dvt_w};
+        // Ft = −μ·Fn·s, s = tanh(α·v_t), s′ = α·(1 − s²).
+        const double slope = f_n * law.alpha * (1.0 - s * s);
+        const double roll_fn = rolls ? law.mu_roll * s_roll : 0.0;
+        for (int j = 0; j < 6; ++j) {
+          const double dft = -law.mu * (s * dfn[j] + slope * dvt[j]);
+          const double dfx = nx * dfn[j] + tx * dft;
+          const double dfy = ny * dfn[j] + ty * dft;
+          jac[0][j] += dfx;
+          jac[1][j] += dfy;
+          jac[2][j] += c.rx * dfy - c.ry * dfx - roll_fn * dfn[j];
         }
-        d->row(0) += dfx;
-        d->row(1) += dfy;
-        d->row(2) += dtau;
+        jac[2][2] += rtx * f_y - rty * f_x;
+        if (rolls) jac[2][5] -= law.mu_roll * f_n * law.alpha * radius * (1.0 - s_roll * s_roll);
       }
     }
   }
@@ -158,16 +162,18 @@ Vec3 acceleration_jacobian(const Model& model, const ContactSet& contacts, const
   const RigidBody& body = model.body;
   Vec2 force(model.applied.x(), model.applied.y() - body.mass * model.gravity);
   double torque = model.applied.z();
-  Eigen::Matrix<double, 3, 6> d = Eigen::Matrix<double, 3, 6>::Zero();
-  add_contacts<true>(model, contacts, 0, contacts.size(), v, force, torque, &d);
+  double d[3][6] = {};
+  add_contacts<true>(model, contacts, 0, contacts.size(), v, force, torque, d);
   const Vec3 a = to_acceleration(body, force, torque);
   // (F, τ) → a = (F/m, τ/I): the same scaling of the derivatives.
   const double inv_i = (body.rotates && body.inertia > 0.0) ? 1.0 / body.inertia : 0.0;
-  d.row(0) /= body.mass;
-  d.row(1) /= body.mass;
-  d.row(2) *= inv_i;
-  jacobian.dq = d.leftCols<3>();
-  jacobian.dv = d.rightCols<3>();
+  const double scale[3] = {1.0 / body.mass, 1.0 / body.mass, inv_i};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      jacobian.dq(i, j) = d[i][j] * scale[i];
+      jacobian.dv(i, j) = d[i][j + 3] * scale[i];
+    }
+  }
   if (contacts.size() > contacts.ground_count()) {
     // Obstacle contacts: their normal and depth depend on q in ways the
     // contact stage decides (a face, a capsule's round end, an obstacle
@@ -179,16 +185,12 @@ Vec3 acceleration_jacobian(const Model& model, const ContactSet& contacts, const
       add_contacts<false>(model, set, set.ground_count(), set.size(), v, f, tau, nullptr);
       return Vec3(f.x() / body.mass, f.y() / body.mass, tau * inv_i);
     };
-    Eigen::Matrix3d analytic = Eigen::Matrix3d::Zero();
+    double dobs[3][6] = {};
     {
-      Eigen::Matrix<double, 3, 6> dobs = Eigen::Matrix<double, 3, 6>::Zero();
       Vec2 f = Vec2::Zero();
       double tau = 0.0;
       add_contacts<true>(model, contacts, contacts.ground_count(), contacts.size(), v, f, tau,
-                         &dobs);
-      analytic.row(0) = dobs.row(0).leftCols<3>() / body.mass;
-      analytic.row(1) = dobs.row(1).leftCols<3>() / body.mass;
-      analytic.row(2) = dobs.row(2).leftCols<3>() * inv_i;
+                         dobs);
     }
     const Vec3 base = obstacle_part(contacts);
     for (int j = 0; j < 3; ++j) {
@@ -196,7 +198,8 @@ Vec3 acceleration_jacobian(const Model& model, const ContactSet& contacts, const
       Vec3 qp = q;
       qp[j] += h;
       find_contacts(model, qp, probe);
-      jacobian.dq.col(j) += (obstacle_part(probe) - base) / h - analytic.col(j);
+      const Vec3 fd = (obstacle_part(probe) - base) / h;
+      for (int i = 0; i < 3; ++i) jacobian.dq(i, j) += fd[i] - dobs[i][j] * scale[i];
     }
   }
   return a;

@@ -1,6 +1,5 @@
 #include "core/integrators.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -74,10 +73,30 @@ void rk4(const Model& model, double dt, State& s, StepWorkspace& ws) {
   s.v = v0 + dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
 }
 
-// G(v') = v' − v − Δt·a(q + Δt·v', v')
-Vec3 implicit_residual(const Model& model, double dt, const State& s, const Vec3& v_next,
-                       StepWorkspace& ws) {
-  return v_next - s.v - dt * acceleration_at(model, ws, s.q + dt * v_next, v_next);
+// J·x = b for a 3×3 J by Gaussian elimination with partial pivoting, written
+// out: the same method as Eigen's PartialPivLU, without its general-size
+// loops, which were the largest single cost of a Newton iteration.
+Vec3 solve3(Eigen::Matrix3d a, Vec3 b) {
+  for (int k = 0; k < 2; ++k) {
+    int p = k;
+    for (int i = k + 1; i < 3; ++i) {
+      if (std::abs(a(i, k)) > std::abs(a(p, k))) p = i;
+    }
+    if (p != k) {
+      a.row(p).swap(a.row(k));
+      std::swap(b[p], b[k]);
+    }
+    for (int i = k + 1; i < 3; ++i) {
+      const double f = a(i, k) / a(k, k);
+      for (int j = k + 1; j < 3; ++j) a(i, j) -= f * a(k, j);
+      b[i] -= f * b[k];
+    }
+  }
+  Vec3 x;
+  x[2] = b[2] / a(2, 2);
+  x[1] = (b[1] - a(1, 2) * x[2]) / a(1, 1);
+  x[0] = (b[0] - a(0, 1) * x[1] - a(0, 2) * x[2]) / a(0, 0);
+  return x;
 }
 
 // Newton, and on failure two half steps (recursively). Each successful
@@ -134,8 +153,18 @@ double scalar_stability_limit(double zeta, Amplification amplification) {
 // |G(v')|∞ ≤ tol·s (tol = 1e-10; G is a velocity, like δ) — checked at the
 // iterate before stepping, and after a step taken in full.
 bool implicit_euler_newton(const Model& model, double dt, State& s, StepWorkspace& ws) {
+  // Every residual is evaluated with the Jacobian of a at its point (one
+  // force stage gives both), so the iterate's Jacobian is at hand when the
+  // iterate is accepted; a backtracking trial that is rejected wastes it.
+  AccelerationJacobian da, da_trial;
+  auto residual = [&](const Vec3& v_next, AccelerationJacobian& jac) {
+    const Vec3 q_next = s.q + dt * v_next;
+    find_contacts(model, q_next, ws.scratch);
+    return Vec3(v_next - s.v -
+                dt * acceleration_jacobian(model, ws.scratch, q_next, v_next, jac, ws.probe));
+  };
   Vec3 v_next = s.v + dt * acceleration(model, ws.contacts, s.v);  // semi-implicit predictor
-  Vec3 g = implicit_residual(model, dt, s, v_next, ws);
+  Vec3 g = residual(v_next, da);
   auto small = [](const Vec3& x, const Vec3& v) {
     return x.lpNorm<Eigen::Infinity>() <= kNewtonTolerance * (1.0 + v.lpNorm<Eigen::Infinity>());
   };
@@ -144,27 +173,26 @@ bool implicit_euler_newton(const Model& model, double dt, State& s, StepWorkspac
     s.v = v;
     return true;
   };
-  AccelerationJacobian da;
   for (int iteration = 0; iteration < kNewtonMaxIterations; ++iteration) {
     // ws.scratch holds the contacts at q' = q + Δt·v' of the current
-    // iterate (its residual was the last one evaluated).
-    const Vec3 q_next = s.q + dt * v_next;
-    acceleration_jacobian(model, ws.scratch, q_next, v_next, da, ws.probe);
+    // iterate and da the derivatives of a there (its residual was the last
+    // one evaluated).
     const Eigen::Matrix3d jacobian = Eigen::Matrix3d::Identity() - dt * (dt * da.dq + da.dv);
-    const Vec3 delta = jacobian.partialPivLu().solve(-g);
+    const Vec3 delta = solve3(jacobian, -g);
     if (!delta.allFinite()) return false;
     if (small(delta, v_next) && small(g, v_next)) return accept(v_next);
     double fraction = 1.0;
     Vec3 trial = v_next + delta;
-    Vec3 g_trial = implicit_residual(model, dt, s, trial, ws);
+    Vec3 g_trial = residual(trial, da_trial);
     while (!(g_trial.lpNorm<Eigen::Infinity>() < g.lpNorm<Eigen::Infinity>())) {
       if (fraction < 1e-3) return false;  // no decrease down to δ/1024: stalled
       fraction *= 0.5;
       trial = v_next + fraction * delta;
-      g_trial = implicit_residual(model, dt, s, trial, ws);
+      g_trial = residual(trial, da_trial);
     }
     v_next = trial;
     g = g_trial;
+    da = da_trial;
     if (fraction == 1.0 && small(delta, v_next) && small(g, v_next)) return accept(v_next);
   }
   return false;
