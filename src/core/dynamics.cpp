@@ -164,7 +164,7 @@ Vec3 acceleration_jacobian(const Model& model, const ContactSet& contacts, const
   double torque = model.applied.z();
   double d[3][6] = {};
   add_contacts<true>(model, contacts, 0, contacts.size(), v, force, torque, d);
-  const Vec3 a = to_acceleration(body, force, torque);
+  Vec3 a = to_acceleration(body, force, torque);
   // (F, τ) → a = (F/m, τ/I): the same scaling of the derivatives.
   const double inv_i = (body.rotates && body.inertia > 0.0) ? 1.0 / body.inertia : 0.0;
   const double scale[3] = {1.0 / body.mass, 1.0 / body.mass, inv_i};
