@@ -53,7 +53,10 @@ double scalar_tanh(double x) {
 
 bool vector_tanh_available() {
 #if defined(CONTACT2D_WITH_SLEEF) && (defined(__x86_64__) || defined(__i386__))
-  static const bool avx2 = __builtin_cpu_supports("avx2") != 0;
+  static const bool avx2 = [] {
+    __builtin_cpu_init();  // harmless when libgcc's constructor already ran it
+    return __builtin_cpu_supports("avx2") != 0;
+  }();
   return avx2;
 #else
   return false;
