@@ -147,7 +147,7 @@ double scalar_stability_limit(double zeta, Amplification amplification) {
 // backtracks: δ, δ/2, δ/4, … down to δ/1024, accepting the first fraction
 // whose residual is strictly smaller in the max norm. If none is, the
 // iteration has stalled (the piecewise force put a kink between v' and the
-// root, or the finite-difference Jacobian points the wrong way): the solve
+// root, or the Jacobian of the branch at v' points the wrong way): the solve
 // fails and step() splits the step. Converged when, with s = 1 + |v'|∞,
 // both the full step and the residual are small: |δ|∞ ≤ tol·s and
 // |G(v')|∞ ≤ tol·s (tol = 1e-10; G is a velocity, like δ) — checked at the
