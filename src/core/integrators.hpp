@@ -52,6 +52,14 @@ struct StepWorkspace {
   ContactSet contacts;
   ContactSet scratch;
   ContactSet probe;  // Newton's finite differences for obstacle contacts
+  // Implicit Euler: a(q', v') at the state its last accepted solve ended in,
+  // with that state, the model and its applied force — the next step's
+  // predictor needs exactly this value, so it is reused (bit for bit the
+  // same) instead of evaluated again when all of them are unchanged.
+  struct Accepted {
+    Vec3 q = Vec3::Zero(), v = Vec3::Zero(), applied = Vec3::Zero(), a = Vec3::Zero();
+    const Model* model = nullptr;  // nullptr: nothing accepted yet
+  } accepted;
 };
 
 // Implicit Euler's Newton solve for one step of Δt, without splitting:
