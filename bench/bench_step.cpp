@@ -22,6 +22,7 @@
 
 #include "core/integrators.hpp"
 #include "core/run.hpp"
+#include "core/vector_math.hpp"
 #include "io/scene_file.hpp"
 
 #ifdef CONTACT2D_WITH_MUJOCO
@@ -43,7 +44,12 @@ std::string case_name(const Case& c) {
   return c.scene + "/" + std::string(integrator_name(c.integrator));
 }
 
-void reference_step(benchmark::State& state, const Case& c) {
+// The reference step on a given tanh path (core/vector_math.hpp): "ref" is
+// the path the program would choose (glibc's scalar tanh unless
+// CONTACT2D_TANH=vector), "ref_other" the other one (SLEEF's four-wide tanh,
+// when this build and CPU have it), measured in the same run.
+void reference_step(benchmark::State& state, const Case& c, TanhPath path) {
+  const TanhPath before = set_tanh_path(path);
   Scene scene = load_scene(std::string(CONTACT2D_SCENES_DIR) + "/" + c.scene + ".toml");
   scene.sim.integrator = c.integrator;
   ReferenceStepper stepper(scene);
@@ -58,7 +64,8 @@ void reference_step(benchmark::State& state, const Case& c) {
     }
     benchmark::DoNotOptimize(stepper.state());
   }
-  state.SetLabel("ref");
+  state.SetLabel(tanh_path_name(tanh_path()));
+  set_tanh_path(before);
 }
 
 #ifdef CONTACT2D_WITH_MUJOCO
@@ -121,6 +128,22 @@ void libm_tanh(benchmark::State& state) {
   }
 }
 
+// Four values through tanh_batch on the vector path (one SLEEF call), the
+// next four fed by the last result: the latency a force stage pays for it.
+void vector_tanh4(benchmark::State& state) {
+  if (!vector_tanh_available()) {
+    state.SkipWithError("no AVX2 or no SLEEF in this build");
+    return;
+  }
+  double x = 0.3;
+  for (auto _ : state) {
+    double y[4] = {x, 0.5 * x, 0.25 * x, -x};
+    tanh_vector(y, 4);
+    x = 0.1 + 0.5 * y[0];
+    benchmark::DoNotOptimize(x);
+  }
+}
+
 void free_flight_step(benchmark::State& state) {
   const Model model;  // default body: 1 kg, no contact points
   State s;
@@ -168,14 +191,20 @@ int main(int argc, char** argv) {
       cases.push_back({scene, integrator});
     }
   }
+  const TanhPath chosen = tanh_path();
+  const TanhPath other = chosen == TanhPath::Vector ? TanhPath::Scalar : TanhPath::Vector;
+  const bool both = vector_tanh_available();
   for (const Case& c : cases) {
-    benchmark::RegisterBenchmark(("ref/" + case_name(c)).c_str(), reference_step, c);
+    benchmark::RegisterBenchmark(("ref/" + case_name(c)).c_str(), reference_step, c, chosen);
+    if (both)
+      benchmark::RegisterBenchmark(("ref_other/" + case_name(c)).c_str(), reference_step, c, other);
 #ifdef CONTACT2D_WITH_MUJOCO
     benchmark::RegisterBenchmark(("mj_step/" + case_name(c)).c_str(), mujoco_step, c);
 #endif
   }
   benchmark::RegisterBenchmark("floor/libm_sincos", libm_sincos);
   benchmark::RegisterBenchmark("floor/libm_tanh", libm_tanh);
+  benchmark::RegisterBenchmark("floor/vector_tanh4", vector_tanh4);
   benchmark::RegisterBenchmark("floor/step_free_flight", free_flight_step);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
@@ -187,29 +216,37 @@ int main(int argc, char** argv) {
       "semi-implicit).\n"
       "ratio = mj_step / reference step, on CPU time (robust to other load on the machine) and "
       "wall clock\n");
-  std::printf("%-11s %-20s %10s %10s %9s %9s %9s\n", "scene", "integrator", "ref cpu", "mj cpu",
-              "ratio", "ref wall", "mj wall");
+  std::printf("ref: tanh path %s; other: %s\n", tanh_path_name(chosen),
+              both ? tanh_path_name(other) : "not available (no AVX2 or no SLEEF)");
+  std::printf("%-11s %-20s %9s %9s %9s %7s %7s %9s %9s\n", "scene", "integrator", "ref cpu",
+              "other", "mj cpu", "ratio", "other", "ref wall", "mj wall");
+  const auto cpu = [&](const std::string& name) {
+    const auto it = reporter.times().find(name);
+    return it == reporter.times().end() ? -1.0 : it->second.cpu_ns;
+  };
+  const auto wall = [&](const std::string& name) {
+    const auto it = reporter.times().find(name);
+    return it == reporter.times().end() ? -1.0 : it->second.real_ns;
+  };
   for (const Case& c : cases) {
-    const auto ref = reporter.times().find("ref/" + case_name(c));
-    const auto mj = reporter.times().find("mj_step/" + case_name(c));
-    if (ref == reporter.times().end()) continue;
+    const double ref = cpu("ref/" + case_name(c));
+    if (ref < 0.0) continue;
+    const double other_ns = cpu("ref_other/" + case_name(c));
+    const double mj = cpu("mj_step/" + case_name(c));
     const std::string integrator(integrator_name(c.integrator));
-    if (mj == reporter.times().end()) {
-      std::printf("%-11s %-20s %8.1fns %10s %9s %7.1fns %9s\n", c.scene.c_str(), integrator.c_str(),
-                  ref->second.cpu_ns, "-", "-", ref->second.real_ns, "-");
-    } else {
-      std::printf("%-11s %-20s %8.1fns %8.0fns %8.0fx %7.1fns %7.0fns\n", c.scene.c_str(),
-                  integrator.c_str(), ref->second.cpu_ns, mj->second.cpu_ns,
-                  mj->second.cpu_ns / ref->second.cpu_ns, ref->second.real_ns, mj->second.real_ns);
-    }
+    std::printf("%-11s %-20s %7.1fns %7.1fns %7.0fns %6.0fx %6.0fx %7.1fns %7.0fns\n",
+                c.scene.c_str(), integrator.c_str(), ref, other_ns, mj, mj > 0 ? mj / ref : 0.0,
+                mj > 0 && other_ns > 0 ? mj / other_ns : 0.0, wall("ref/" + case_name(c)),
+                wall("mj_step/" + case_name(c)));
   }
   const auto floor_ns = [&](const char* name) {
     const auto it = reporter.times().find(std::string("floor/") + name);
     return it == reporter.times().end() ? -1.0 : it->second.cpu_ns;
   };
   std::printf(
-      "\nfloor (CPU, each call feeding the next): sincos %.1fns, tanh %.1fns, a step with no "
-      "contact points %.1fns\n",
-      floor_ns("libm_sincos"), floor_ns("libm_tanh"), floor_ns("step_free_flight"));
+      "\nfloor (CPU, each call feeding the next): sincos %.1fns, tanh %.1fns, tanh_batch of 4 on "
+      "the vector path %.1fns, a step with no contact points %.1fns\n",
+      floor_ns("libm_sincos"), floor_ns("libm_tanh"), floor_ns("vector_tanh4"),
+      floor_ns("step_free_flight"));
   return 0;
 }

@@ -20,8 +20,11 @@ void find_contacts(const Model& model, const Vec3& q, ContactSet& out) {
   const RigidBody& body = model.body;
   const Vec2 p(q.x(), q.y());
   // One rotation of the body's points: R(θ), or the identity for a circle.
-  const double ct = body.points_rotate ? std::cos(q.z()) : 1.0;
-  const double st = body.points_rotate ? std::sin(q.z()) : 0.0;
+  // At θ = ±0 (a point mass always, which never turns) cos θ = 1 and
+  // sin θ = θ exactly, so the libm call is skipped with the same bits.
+  const bool turned = body.points_rotate && q.z() != 0.0;
+  const double ct = turned ? std::cos(q.z()) : 1.0;
+  const double st = turned ? std::sin(q.z()) : (body.points_rotate ? q.z() : 0.0);
   const Vec2* const points = body.points.data();
   const size_t n_points = body.points.size();
   Contact* const first = out.storage_.data();  // room for every contact at once

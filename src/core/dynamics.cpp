@@ -1,44 +1,208 @@
 #include "core/dynamics.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "core/vector_math.hpp"
 
 namespace contact2d {
 
-Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v) {
+namespace {
+
+// Contacts per tanh batch: the force stage's scratch lives on the stack
+// (allocation-free) and a model with more contacts touching at once takes
+// more than one batch, summed in the same order.
+constexpr size_t kBatch = 16;
+
+// The contact forces and torques of contacts [first, last) of `contacts`
+// added to `force` and `torque`, in the order of the list — the order and
+// the arithmetic of every sum are those of the one-contact-at-a-time loop
+// this replaced, so that on the scalar tanh path the result is bit for bit
+// the same. In two passes per batch: the normal forces and every tanh
+// argument (friction α·v_t, rolling α·R·ω) first, then one tanh_batch,
+// then the sums.
+//
+// With a Jacobian (Newton, core/integrators.cpp) it also adds the analytic
+// derivatives of (F_x, F_y, τ) with respect to (q, v) = (x, y, θ, vx, vy, ω)
+// to the rows of `jac` (3 × 6, row-major), for contacts
+// whose normal does not turn with q (the ground); see acceleration_jacobian.
+template <bool kJacobian>
+void add_contacts(const Model& model, const ContactSet& contacts, size_t first, size_t last,
+                  const Vec3& v, Vec2& force, double& torque, double (*jac)[6]) {
   const RigidBody& body = model.body;
-  const ContactParams& law = model.contact;
-  const double omega = body.rotates ? v.z() : 0.0;
-  Vec2 force(model.applied.x(), model.applied.y() - body.mass * model.gravity);
-  double torque = model.applied.z();
-
-  // Ground: n = (0, 1), t = (1, 0), so v_n = v_c,y, v_t = v_c,x, f = (Ft, Fn).
-  const Contact* ground_end = contacts.begin() + contacts.ground_count();
-  for (const Contact* it = contacts.begin(); it != ground_end; ++it) {
-    const double rx = it->rx, ry = it->ry;
-    const double vc_x = v.x() - omega * ry;
-    const double vc_y = v.y() + omega * rx;
-    const double fn = normal_force(law, it->depth, vc_y);
-    const double ft = friction_force(law, fn, vc_x);
-    force += Vec2(ft, fn);
-    torque += rx * fn - ry * ft + rolling_torque(law, fn, body.roll_radius, v.z());
+  const bool rotates = body.rotates;
+  const double omega = rotates ? v.z() : 0.0;
+  const double radius = body.roll_radius;
+  const size_t ground = contacts.ground_count();
+  const Contact* const list = contacts.begin();
+  double fn[kBatch];
+  double arg[2 * kBatch];  // friction arguments, then the rolling ones
+  for (size_t from = first; from < last; from += kBatch) {
+    const size_t to = std::min(last, from + kBatch);
+    size_t n_args = 0;
+    // Pass 1: normal forces and friction arguments.
+    for (size_t i = from; i < to; ++i) {
+      const Contact& c = list[i];
+      const ContactParams& law = i < ground ? model.contact : model.law(c);
+      double v_n, v_t;
+      if (i < ground) {  // n = (0, 1), t = (1, 0): v_n = v_c,y, v_t = v_c,x
+        v_t = v.x() - omega * c.ry;
+        v_n = v.y() + omega * c.rx;
+      } else {
+        const Vec2 vc(v.x() - omega * c.ry, v.y() + omega * c.rx);  // v + ω × r
+        v_n = vc.dot(c.normal());
+        v_t = vc.dot(Vec2(c.ny, -c.nx));
+      }
+      fn[i - from] = normal_force(law, c.depth, v_n);
+      arg[n_args++] = law.alpha * v_t;
+    }
+    // … and the rolling arguments (a rolling body with μ_roll > 0 only).
+    const size_t n_friction = n_args;
+    if (radius > 0.0) {
+      for (size_t i = from; i < to; ++i) {
+        const ContactParams& law = i < ground ? model.contact : model.law(list[i]);
+        if (law.mu_roll > 0.0) arg[n_args++] = law.alpha * radius * v.z();
+      }
+    }
+    tanh_batch(arg, n_args);
+    // Pass 2: the sums, contact by contact.
+    size_t rolling = n_friction;
+    for (size_t i = from; i < to; ++i) {
+      const Contact& c = list[i];
+      const ContactParams& law = i < ground ? model.contact : model.law(c);
+      const double f_n = fn[i - from];
+      const double s = arg[i - from];
+      const double ft = -law.mu * f_n * s;
+      double roll = 0.0, s_roll = 0.0;
+      const bool rolls = radius > 0.0 && law.mu_roll > 0.0;
+      if (rolls) {
+        s_roll = arg[rolling++];
+        roll = -law.mu_roll * f_n * s_roll;
+      }
+      double f_x, f_y;
+      if (i < ground) {
+        f_x = ft;
+        f_y = f_n;
+        force += Vec2(ft, f_n);
+        torque += c.rx * f_n - c.ry * ft + roll;
+      } else {
+        const Vec2 n = c.normal();
+        const Vec2 t(n.y(), -n.x());
+        const Vec2 f = f_n * n + ft * t;
+        f_x = f.x();
+        f_y = f.y();
+        force += f;
+        torque += c.rx * f.y() - c.ry * f.x() + roll;
+      }
+      if constexpr (kJacobian) {
+        // Derivatives in (x, y, θ, vx, vy, ω), written out entry by entry
+        // (most are zero). The lever arm turns with θ when the points
+        // rotate: ∂r/∂θ = (rtx, rty) = (−r_y, r_x); the contact point
+        // c = p + r moves with ∂c/∂q = [I | ∂r/∂θ]; v_c = v + ω·(−r_y, r_x);
+        // the depth along a fixed normal is d = −n·c + const.
+        const double nx = c.nx, ny = c.ny, tx = ny, ty = -nx;
+        const double rtx = body.points_rotate ? -c.ry : 0.0;
+        const double rty = body.points_rotate ? c.rx : 0.0;
+        const double wf = rotates ? 1.0 : 0.0;
+        const double dd_t = -(nx * rtx + ny * rty);
+        const double dvn_t = omega * (ny * rtx - nx * rty);
+        const double dvn_w = wf * (ny * c.rx - nx * c.ry);
+        const double dvt_t = omega * (ty * rtx - tx * rty);
+        const double dvt_w = wf * (ty * c.rx - tx * c.ry);
+        // The branch of the normal law: Fn = k_b·d − c_b·v_n + const.
+        const double v_n = (v.x() - omega * c.ry) * nx + (v.y() + omega * c.rx) * ny;
+        double k_b = 0.0, c_b = 0.0;
+        if (c.depth > 0.0) {
+          if (law.damping == DampingLaw::Compression) {
+            k_b = law.k;
+            c_b = v_n < 0.0 ? law.c : 0.0;
+          } else if (law.k * c.depth - law.c * v_n > 0.0) {
+            k_b = law.k;
+            c_b = law.c;
+          }
+        }
+        const double dfn[6] = {-k_b * nx, -k_b * ny, k_b * dd_t - c_b * dvn_t,
+                               -c_b * nx, -c_b * ny, -c_b * dvn_w};
+        const double dvt[6] = {0.0, 0.0, dvt_t, tx, ty, dvt_w};
+        // Ft = −μ·Fn·s, s = tanh(α·v_t), s′ = α·(1 − s²).
+        const double slope = f_n * law.alpha * (1.0 - s * s);
+        const double roll_fn = rolls ? law.mu_roll * s_roll : 0.0;
+        for (int j = 0; j < 6; ++j) {
+          const double dft = -law.mu * (s * dfn[j] + slope * dvt[j]);
+          const double dfx = nx * dfn[j] + tx * dft;
+          const double dfy = ny * dfn[j] + ty * dft;
+          jac[0][j] += dfx;
+          jac[1][j] += dfy;
+          jac[2][j] += c.rx * dfy - c.ry * dfx - roll_fn * dfn[j];
+        }
+        jac[2][2] += rtx * f_y - rty * f_x;
+        if (rolls) jac[2][5] -= law.mu_roll * f_n * law.alpha * radius * (1.0 - s_roll * s_roll);
+      }
+    }
   }
-  // Obstacles: the same law along their normal n and tangent t = (n_y, −n_x).
-  for (const Contact* it = ground_end; it != contacts.end(); ++it) {
-    const Contact& contact = *it;
-    const Vec2 n = contact.normal();
-    const Vec2 r = contact.r();
-    const Vec2 t(n.y(), -n.x());
-    const Vec2 vc(v.x() - omega * r.y(), v.y() + omega * r.x());  // v + ω × r
-    const ContactParams& own = model.law(contact);
-    const double fn = normal_force(own, contact.depth, vc.dot(n));
-    const double ft = friction_force(own, fn, vc.dot(t));
-    const Vec2 f = fn * n + ft * t;
-    force += f;
-    torque += r.x() * f.y() - r.y() * f.x() + rolling_torque(own, fn, body.roll_radius, v.z());
-  }
+}
 
+Vec3 to_acceleration(const RigidBody& body, const Vec2& force, double torque) {
   const double alpha = (body.rotates && body.inertia > 0.0) ? torque / body.inertia : 0.0;
   return {force.x() / body.mass, force.y() / body.mass, alpha};
+}
+
+}  // namespace
+
+Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v) {
+  const RigidBody& body = model.body;
+  Vec2 force(model.applied.x(), model.applied.y() - body.mass * model.gravity);
+  double torque = model.applied.z();
+  add_contacts<false>(model, contacts, 0, contacts.size(), v, force, torque, nullptr);
+  return to_acceleration(body, force, torque);
+}
+
+Vec3 acceleration_jacobian(const Model& model, const ContactSet& contacts, const Vec3& q,
+                           const Vec3& v, AccelerationJacobian& jacobian, ContactSet& probe) {
+  const RigidBody& body = model.body;
+  Vec2 force(model.applied.x(), model.applied.y() - body.mass * model.gravity);
+  double torque = model.applied.z();
+  double d[3][6] = {};
+  add_contacts<true>(model, contacts, 0, contacts.size(), v, force, torque, d);
+  Vec3 a = to_acceleration(body, force, torque);
+  // (F, τ) → a = (F/m, τ/I): the same scaling of the derivatives.
+  const double inv_i = (body.rotates && body.inertia > 0.0) ? 1.0 / body.inertia : 0.0;
+  const double scale[3] = {1.0 / body.mass, 1.0 / body.mass, inv_i};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      jacobian.dq(i, j) = d[i][j] * scale[i];
+      jacobian.dv(i, j) = d[i][j + 3] * scale[i];
+    }
+  }
+  if (contacts.size() > contacts.ground_count()) {
+    // Obstacle contacts: their normal and depth depend on q in ways the
+    // contact stage decides (a face, a capsule's round end, an obstacle
+    // vertex against a body edge), so ∂a/∂q of their part is taken by
+    // forward differences of that part alone (their ∂a/∂v above is exact).
+    auto obstacle_part = [&](const ContactSet& set) {
+      Vec2 f = Vec2::Zero();
+      double tau = 0.0;
+      add_contacts<false>(model, set, set.ground_count(), set.size(), v, f, tau, nullptr);
+      return Vec3(f.x() / body.mass, f.y() / body.mass, tau * inv_i);
+    };
+    double dobs[3][6] = {};
+    {
+      Vec2 f = Vec2::Zero();
+      double tau = 0.0;
+      add_contacts<true>(model, contacts, contacts.ground_count(), contacts.size(), v, f, tau,
+                         dobs);
+    }
+    const Vec3 base = obstacle_part(contacts);
+    for (int j = 0; j < 3; ++j) {
+      const double h = 1e-7 * std::max(1.0, std::abs(q[j]));
+      Vec3 qp = q;
+      qp[j] += h;
+      find_contacts(model, qp, probe);
+      const Vec3 fd = (obstacle_part(probe) - base) / h;
+      for (int i = 0; i < 3; ++i) jacobian.dq(i, j) += fd[i] - dobs[i][j] * scale[i];
+    }
+  }
+  return a;
 }
 
 double energy(const Model& model, const ContactSet& contacts, const State& s) {

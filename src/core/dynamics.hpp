@@ -12,6 +12,8 @@
 // The rolling term is there only for a rolling body (R > 0, μ_roll > 0).
 #pragma once
 
+#include <Eigen/Core>
+
 #include "core/body.hpp"
 #include "core/contact.hpp"
 #include "core/contacts.hpp"
@@ -48,6 +50,22 @@ struct Model {
 // a = M⁻¹·F(q, v) with `contacts` found at q (q enters only through them).
 // Allocation-free.
 Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v);
+
+// The same a together with its derivatives ∂a/∂q and ∂a/∂v, for implicit
+// Euler's Newton solve (core/integrators.cpp). `contacts` are those found at
+// q. Analytic for the ground contacts (d = −c_y with c = p + R(θ)·r_b, the
+// lever arm's rotation, both damping laws, friction's tanh′ = 1 − tanh²,
+// the rolling regularisation); for obstacle contacts ∂a/∂v is analytic and
+// ∂a/∂q is taken by forward differences of their part (three contact
+// stages into `probe`, sized for the model). At a kink of the law (d = 0,
+// v_n = 0 under compression, k·d = c·v_n under Kelvin–Voigt) it is the
+// derivative of the branch the state is on. Allocation-free.
+struct AccelerationJacobian {
+  Eigen::Matrix3d dq;  // ∂a/∂q
+  Eigen::Matrix3d dv;  // ∂a/∂v
+};
+Vec3 acceleration_jacobian(const Model& model, const ContactSet& contacts, const Vec3& q,
+                           const Vec3& v, AccelerationJacobian& jacobian, ContactSet& probe);
 
 // Mechanical energy: ½m|v|² + ½Iω² + m·g·y + Σ ½·k·d² over the contacts
 // (each contact's own k).

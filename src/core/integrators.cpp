@@ -1,10 +1,11 @@
 #include "core/integrators.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstring>
 #include <limits>
+#include <utility>
 
 namespace contact2d {
 
@@ -73,10 +74,30 @@ void rk4(const Model& model, double dt, State& s, StepWorkspace& ws) {
   s.v = v0 + dt / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
 }
 
-// G(v') = v' − v − Δt·a(q + Δt·v', v')
-Vec3 implicit_residual(const Model& model, double dt, const State& s, const Vec3& v_next,
-                       StepWorkspace& ws) {
-  return v_next - s.v - dt * acceleration_at(model, ws, s.q + dt * v_next, v_next);
+// J·x = b for a 3×3 J by Gaussian elimination with partial pivoting, written
+// out: the same method as Eigen's PartialPivLU, without its general-size
+// loops, which were the largest single cost of a Newton iteration.
+Vec3 solve3(Eigen::Matrix3d a, Vec3 b) {
+  for (int k = 0; k < 2; ++k) {
+    int p = k;
+    for (int i = k + 1; i < 3; ++i) {
+      if (std::abs(a(i, k)) > std::abs(a(p, k))) p = i;
+    }
+    if (p != k) {
+      a.row(p).swap(a.row(k));
+      std::swap(b[p], b[k]);
+    }
+    for (int i = k + 1; i < 3; ++i) {
+      const double f = a(i, k) / a(k, k);
+      for (int j = k + 1; j < 3; ++j) a(i, j) -= f * a(k, j);
+      b[i] -= f * b[k];
+    }
+  }
+  Vec3 x;
+  x[2] = b[2] / a(2, 2);
+  x[1] = (b[1] - a(1, 2) * x[2]) / a(1, 1);
+  x[0] = (b[0] - a(0, 1) * x[1] - a(0, 2) * x[2]) / a(0, 0);
+  return x;
 }
 
 // Newton, and on failure two half steps (recursively). Each successful
@@ -85,7 +106,9 @@ bool implicit_euler(const Model& model, double dt, State& s, int depth, StepWork
   State trial = s;
   if (implicit_euler_newton(model, dt, trial, ws)) {
     s = trial;
-    find_contacts(model, s.q, ws.contacts);
+    // ws.scratch holds the contacts at q + Δt·v', computed by the same
+    // expression as the new s.q: the contacts of the new state, bit for bit.
+    std::swap(ws.contacts, ws.scratch);
     return true;
   }
   if (depth >= kMaxSplitDepth) return false;
@@ -125,44 +148,63 @@ double scalar_stability_limit(double zeta, Amplification amplification) {
 // backtracks: δ, δ/2, δ/4, … down to δ/1024, accepting the first fraction
 // whose residual is strictly smaller in the max norm. If none is, the
 // iteration has stalled (the piecewise force put a kink between v' and the
-// root, or the finite-difference Jacobian points the wrong way): the solve
+// root, or the Jacobian of the branch at v' points the wrong way): the solve
 // fails and step() splits the step. Converged when, with s = 1 + |v'|∞,
 // both the full step and the residual are small: |δ|∞ ≤ tol·s and
 // |G(v')|∞ ≤ tol·s (tol = 1e-10; G is a velocity, like δ) — checked at the
 // iterate before stepping, and after a step taken in full.
 bool implicit_euler_newton(const Model& model, double dt, State& s, StepWorkspace& ws) {
-  Vec3 v_next = s.v + dt * acceleration(model, ws.contacts, s.v);  // semi-implicit predictor
-  Vec3 g = implicit_residual(model, dt, s, v_next, ws);
+  // Every residual is evaluated with the Jacobian of a at its point (one
+  // force stage gives both), so the iterate's Jacobian is at hand when the
+  // iterate is accepted; a backtracking trial that is rejected wastes it.
+  AccelerationJacobian da, da_trial;
+  Vec3 a_next, a_trial;  // a(q + Δt·v', v') of the iterate and of the trial
+  auto residual = [&](const Vec3& v_next, AccelerationJacobian& jac, Vec3& a) {
+    const Vec3 q_next = s.q + dt * v_next;
+    find_contacts(model, q_next, ws.scratch);
+    a = acceleration_jacobian(model, ws.scratch, q_next, v_next, jac, ws.probe);
+    return Vec3(v_next - s.v - dt * a);
+  };
+  // The semi-implicit predictor, with a(q, v) from the previous accepted
+  // solve when this step starts where it ended (bitwise) under the same
+  // model and applied force: the value the force stage would compute again.
+  const StepWorkspace::Accepted& last = ws.accepted;
+  const bool same = last.model == &model &&
+                    std::memcmp(last.q.data(), s.q.data(), sizeof(Vec3)) == 0 &&
+                    std::memcmp(last.v.data(), s.v.data(), sizeof(Vec3)) == 0 &&
+                    std::memcmp(last.applied.data(), model.applied.data(), sizeof(Vec3)) == 0;
+  Vec3 v_next = s.v + dt * (same ? last.a : acceleration(model, ws.contacts, s.v));
+  Vec3 g = residual(v_next, da, a_next);
   auto small = [](const Vec3& x, const Vec3& v) {
     return x.lpNorm<Eigen::Infinity>() <= kNewtonTolerance * (1.0 + v.lpNorm<Eigen::Infinity>());
   };
   auto accept = [&](const Vec3& v) {
     s.q += dt * v;
     s.v = v;
+    ws.accepted = {s.q, s.v, model.applied, a_next, &model};
     return true;
   };
   for (int iteration = 0; iteration < kNewtonMaxIterations; ++iteration) {
-    Eigen::Matrix3d jacobian;
-    for (int j = 0; j < 3; ++j) {
-      const double h = 1e-7 * std::max(1.0, std::abs(v_next[j]));
-      Vec3 probe = v_next;
-      probe[j] += h;
-      jacobian.col(j) = (implicit_residual(model, dt, s, probe, ws) - g) / h;
-    }
-    const Vec3 delta = jacobian.partialPivLu().solve(-g);
+    // ws.scratch holds the contacts at q' = q + Δt·v' of the current
+    // iterate and da the derivatives of a there (its residual was the last
+    // one evaluated).
+    const Eigen::Matrix3d jacobian = Eigen::Matrix3d::Identity() - dt * (dt * da.dq + da.dv);
+    const Vec3 delta = solve3(jacobian, -g);
     if (!delta.allFinite()) return false;
     if (small(delta, v_next) && small(g, v_next)) return accept(v_next);
     double fraction = 1.0;
     Vec3 trial = v_next + delta;
-    Vec3 g_trial = implicit_residual(model, dt, s, trial, ws);
+    Vec3 g_trial = residual(trial, da_trial, a_trial);
     while (!(g_trial.lpNorm<Eigen::Infinity>() < g.lpNorm<Eigen::Infinity>())) {
       if (fraction < 1e-3) return false;  // no decrease down to δ/1024: stalled
       fraction *= 0.5;
       trial = v_next + fraction * delta;
-      g_trial = implicit_residual(model, dt, s, trial, ws);
+      g_trial = residual(trial, da_trial, a_trial);
     }
     v_next = trial;
     g = g_trial;
+    da = da_trial;
+    a_next = a_trial;
     if (fraction == 1.0 && small(delta, v_next) && small(g, v_next)) return accept(v_next);
   }
   return false;

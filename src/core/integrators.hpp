@@ -7,9 +7,9 @@
 //
 // Implicit Euler solves G(v') = v' − v − Δt·a(q + Δt·v', v') = 0 by Newton's
 // method. The Jacobian ∂G/∂v' = I − Δt·(Δt·∂a/∂q + ∂a/∂v) includes the contact
-// forces' derivatives and is formed by forward differences of G (three extra
-// force evaluations per iteration; the force is only piecewise smooth, so an
-// analytic Jacobian would be no more exact at the kinks). Each Newton step is
+// forces' derivatives, analytic on the branch of the piecewise-smooth law the
+// iterate is on (acceleration_jacobian, core/dynamics.hpp; obstacle contacts'
+// ∂a/∂q by forward differences). Each Newton step is
 // backtracked until |G|∞ strictly decreases; when no fraction down to 1/1024
 // decreases it, the iteration has stalled and counts as not converged.
 // Converged when the full Newton step and the residual are both small:
@@ -48,15 +48,25 @@ enum class StepStatus { Ok, NewtonFailed, NonFinite };
 // in a step.
 struct StepWorkspace {
   StepWorkspace() = default;
-  explicit StepWorkspace(const Model& model) : contacts(model), scratch(model) {}
+  explicit StepWorkspace(const Model& model) : contacts(model), scratch(model), probe(model) {}
   ContactSet contacts;
   ContactSet scratch;
+  ContactSet probe;  // Newton's finite differences for obstacle contacts
+  // Implicit Euler: a(q', v') at the state its last accepted solve ended in,
+  // with that state, the model and its applied force — the next step's
+  // predictor needs exactly this value, so it is reused (bit for bit the
+  // same) instead of evaluated again when all of them are unchanged.
+  struct Accepted {
+    Vec3 q = Vec3::Zero(), v = Vec3::Zero(), applied = Vec3::Zero(), a = Vec3::Zero();
+    const Model* model = nullptr;  // nullptr: nothing accepted yet
+  } accepted;
 };
 
 // Implicit Euler's Newton solve for one step of Δt, without splitting:
 // true and the new state when it converged; false (state untouched) when it
 // did not. ws.contacts must be the contacts at state.q; on success they are
-// left stale (step() refreshes them). Exposed for its tests.
+// left stale and ws.scratch holds those of the new state (step() swaps them
+// in). Exposed for its tests.
 bool implicit_euler_newton(const Model& model, double dt, State& state, StepWorkspace& ws);
 
 // One step of Δt from `state`. On entry ws.contacts must be the contacts at

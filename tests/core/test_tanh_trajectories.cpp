@@ -1,0 +1,45 @@
+// The vector tanh path (SLEEF, core/vector_math.hpp) against glibc's on the
+// built-in scenes: its trajectories must stay within what one ulp of tanh
+// does to them (the perturbation study, bench/tanh_study.hpp, printed by
+// build/bench/contact2d_tanh_perturbation and quoted in docs/speed.md).
+//
+// The envelope P is the largest distance from the glibc run (position and
+// angle, over every step) of the runs with every tanh one ulp up, one ulp
+// down, and up or down at random (8 seeds). Value by value the vector path
+// differs from glibc by at most 1 + 2.021 ≈ 3 ulps (SLEEF's bound plus
+// glibc's measured worst, tests/core/test_tanh.cpp), so for a trajectory
+// that responds linearly to tanh's errors the margin is 3: the check is
+// D ≤ 3·P, position and angle. Where no ulp of tanh moves a trajectory at
+// all (P = 0: every difference rounds away), D must be 0 too. Measured
+// (docs/speed.md): D/P ≤ 1.0 on every scene and integrator.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/scene_file.hpp"
+#include "tanh_study.hpp"
+
+namespace contact2d {
+namespace {
+
+TEST(TanhTrajectories, VectorPathWithinOneUlpPerturbation) {
+  if (!vector_tanh_available()) GTEST_SKIP() << "no AVX2 or no SLEEF in this build";
+  int moved = 0;
+  for (const char* name : {"point_mass", "box", "tshape", "circle"}) {
+    for (Integrator integrator :
+         {Integrator::SemiImplicitEuler, Integrator::RK4, Integrator::ImplicitEuler}) {
+      Scene scene = load_scene(std::string(CONTACT2D_SCENES_DIR) + "/" + name + ".toml");
+      scene.sim.integrator = integrator;
+      const study::Perturbation p = study::perturbation(scene);
+      SCOPED_TRACE(std::string(name) + " " + std::string(integrator_name(integrator)));
+      EXPECT_TRUE(p.vector.same_length && p.ulp.same_length);
+      EXPECT_LE(p.vector.position, 3.0 * p.ulp.position);
+      EXPECT_LE(p.vector.angle, 3.0 * p.ulp.angle);
+      if (p.ulp.position > 0.0) ++moved;
+    }
+  }
+  EXPECT_GT(moved, 0) << "one ulp of tanh must move some trajectory, or the check is empty";
+}
+
+}  // namespace
+}  // namespace contact2d
