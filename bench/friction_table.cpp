@@ -10,10 +10,11 @@
 // value at Δt = 1e-6, 1e-5 and 1e-3 held at Δt = 1e-4: Δt-independent
 // choices), for the rolling disc calibrated's model with the cone
 // coefficient μ_roll' of compensated, and for compensated the friction
-// split (split_xml below) that removes the damper's push from the cone:
+// split (analysis::friction_split_xml) that removes the damper's push from the cone:
 // the measurement that attributes the remaining differences.
 //
-// Scenes (all 1 kg):
+// Scenes (analysis/friction_table.hpp, where the report's table comes from;
+// all 1 kg):
 //   box_slide      box 0.4 × 0.2 m lying flat, vx = 2 m/s, μ = 0.5, c = 50, 1.5 s
 //   box_slide_c200 the same with c = 200 N·s/m
 //   tshape         the T of tests/mujoco/mj_test_util.hpp's drop (θ = 0.2,
@@ -33,8 +34,7 @@
 #include <string>
 #include <vector>
 
-#include <tinyxml2.h>
-
+#include "analysis/friction_table.hpp"
 #include "analysis/trajectory_error.hpp"
 #include "core/body.hpp"
 #include "core/run.hpp"
@@ -45,37 +45,6 @@
 namespace {
 
 using namespace contact2d;
-
-struct FrictionScene {
-  std::string name;
-  std::string toml;
-};
-
-std::string law(double c, double mu, double mu_roll) {
-  return "[contact]\nk = 1e4\nc = " + std::to_string(c) + "\nmu = " + std::to_string(mu) +
-         "\nmu_roll = " + std::to_string(mu_roll) + "\nalpha = 100\ndamping = \"kelvin_voigt\"\n";
-}
-
-std::string sim(double duration) {
-  return "[sim]\ndt = 1e-4\nduration = " + std::to_string(duration) +
-         "\nintegrator = \"semi_implicit_euler\"\n";
-}
-
-std::vector<FrictionScene> friction_scenes() {
-  const std::string box = "scene = \"box\"\n[body]\nmass = 1.0\nwidth = 0.4\nheight = 0.2\n";
-  const std::string disc = "scene = \"circle\"\n[body]\nmass = 1.0\nradius = 0.1\n";
-  return {
-      {"box_slide", box + law(50, 0.5, 0) + "[initial]\ny = 0.0995\nvx = 2.0\n" + sim(1.5)},
-      {"box_slide_c200", box + law(200, 0.5, 0) + "[initial]\ny = 0.0995\nvx = 2.0\n" + sim(1.5)},
-      {"tshape", "scene = \"tshape\"\n" + law(200, 0.5, 0) +
-                     "[initial]\ny = 0.8\ntheta = 0.2\nvx = 0.3\n" + sim(2.0)},
-      {"roll",
-       disc + law(200, 0.5, 0.01) + "[initial]\ny = 0.099019\nvx = 2.0\nomega = -20\n" + sim(3.0)},
-      {"slide_roll", disc + law(200, 0.2, 0) + "[initial]\ny = 0.099019\nvx = 2.0\n" + sim(2.0)},
-      {"backspin",
-       disc + law(200, 0.5, 0) + "[initial]\ny = 0.3\nvx = 1.0\nomega = 30\n" + sim(2.0)},
-  };
-}
 
 struct Row {
   analysis::TrajectoryError e;
@@ -102,71 +71,6 @@ Row measure(const Scene& scene, const Trajectory& reference, const std::string& 
   return row;
 }
 
-// The friction split (docs/mujoco.md): every contact geom of "contacts"
-// becomes two at the same place, priority 1 (their values win over the
-// ground's): a frictional one carrying the share w of the spring, a damper
-// of w·rho and the friction coefficients divided by w, and a frictionless
-// one (condim 1) carrying the rest, (1 − w)·k and c − w·rho. impratio is the
-// chatter-free rule with the frictional damper w·rho.
-std::string split_xml(const Scene& scene, const mujoco::SolverSettings& s, const std::string& xml,
-                      double w, double rho) {
-  tinyxml2::XMLDocument doc;
-  doc.Parse(xml.c_str());
-  tinyxml2::XMLElement* root = doc.FirstChildElement("mujoco");
-  const double scale = mujoco::solref_scale(s) / s.split;
-  const double k = scene.contact.k, c = scene.contact.c;
-  const RigidBody body = make_body(scene);
-  const double r = body_extent(body);
-  const double a_t = body.rotates ? 1.0 / body.mass + r * r / body.inertia : 1.0 / body.mass;
-  double impratio = 1.0 / (w * rho * scene.sim.dt * a_t);
-  if (body.roll_radius > 0.0 && scene.contact.mu_roll > 0.0) {
-    const double ratio = scene.contact.mu / scene.contact.mu_roll;
-    impratio = std::min(impratio, body.inertia * ratio * ratio / (w * rho * scene.sim.dt));
-  }
-  root->FirstChildElement("option")->SetAttribute("impratio", impratio);
-  tinyxml2::XMLElement* contacts = nullptr;
-  for (auto* b = root->FirstChildElement("worldbody")
-                     ->FirstChildElement("body")
-                     ->FirstChildElement("body");
-       b; b = b->NextSiblingElement("body")) {
-    if (std::string(b->Attribute("name")) == "contacts") contacts = b;
-  }
-  auto text = [](double a, double b) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.17g %.17g", a, b);
-    return std::string(buf);
-  };
-  std::vector<tinyxml2::XMLElement*> geoms;
-  for (auto* g = contacts->FirstChildElement("geom"); g; g = g->NextSiblingElement("geom"))
-    geoms.push_back(g);
-  for (tinyxml2::XMLElement* g : geoms) {
-    auto* normal = g->DeepClone(&doc)->ToElement();
-    normal->SetAttribute("name", (std::string(g->Attribute("name")) + "_n").c_str());
-    normal->SetAttribute("priority", 1);
-    normal->SetAttribute("condim", 1);
-    normal->SetAttribute("solref", text(-(1 - w) * k * scale, -(c - w * rho) * scale).c_str());
-    contacts->InsertEndChild(normal);
-    g->SetAttribute("priority", 1);
-    g->SetAttribute("condim", scene.contact.mu_roll > 0.0 ? 6 : 3);
-    char friction[128];
-    // the cone's rolling coefficient of compensated (mjcf.cpp), for the share w
-    double mu_roll = scene.contact.mu_roll;
-    if (scene.shape == Shape::Circle && mu_roll > 0.0 && scene.contact.mu > 0.0) {
-      const double kappa = body.mass * scene.radius * scene.radius /
-                           (body.inertia + body.mass * scene.radius * scene.radius);
-      const double q = kappa * mu_roll / (scene.contact.mu * scene.radius);
-      if (q < 1.0) mu_roll /= std::sqrt(1.0 - q * q);
-    }
-    std::snprintf(friction, sizeof friction, "%.17g %.17g %.17g", scene.contact.mu / w,
-                  std::max(scene.contact.mu_torsion / w, 1e-5), std::max(mu_roll / w, 1e-5));
-    g->SetAttribute("friction", friction);
-    g->SetAttribute("solref", text(-w * k * scale, -w * rho * scale).c_str());
-  }
-  tinyxml2::XMLPrinter printer;
-  doc.Print(&printer);
-  return printer.CStr();
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -187,8 +91,8 @@ int main(int argc, char** argv) {
     }
     std::printf("%-15s %-12s %10s %10s %10s %10s %10s\n", "scene", "mapping", "max pos m",
                 "max ang rad", "hop m", "slip m/s", "impratio");
-    for (const FrictionScene& fs : friction_scenes()) {
-      const Scene scene = parse_scene(fs.toml, fs.name);
+    for (const analysis::FrictionScene& fs : analysis::friction_scenes()) {
+      const Scene& scene = fs.scene;
       const Trajectory reference = simulate(scene);
       for (mujoco::Mapping m : mappings) {
         mujoco::MjcfOptions options;
@@ -212,7 +116,7 @@ int main(int argc, char** argv) {
           for (double w : {0.3}) {
             for (double rho_share : {1e-3, 1e-4}) {
               const double rho = rho_share * scene.contact.c;
-              const Row v = measure(scene, reference, split_xml(scene, g.settings, g.xml, w, rho));
+              const Row v = measure(scene, reference, analysis::friction_split_xml(scene, w, rho));
               std::printf("%-15s %-12s %10.3g %10.3g %10.3g %10.3g (split w %g, rho %g c)\n",
                           fs.name.c_str(), "split", v.e.max_pos, v.e.max_angle, v.hop, v.slip, w,
                           rho_share);

@@ -24,6 +24,7 @@
 #include "analysis/closed_forms.hpp"
 #include "analysis/comparison.hpp"
 #include "analysis/engine.hpp"
+#include "analysis/friction_table.hpp"
 #include "cli/common.hpp"
 #include "io/csv.hpp"
 #include "io/scene_file.hpp"
@@ -326,6 +327,8 @@ int report(const ReportOptions& o) {
   }
   progress("closed forms");
   const analysis::ClosedFormTable closed_forms = analysis::closed_form_table();
+  progress("friction");
+  const std::vector<analysis::FrictionRow> friction = analysis::friction_table();
   // atlas.md: the small default atlas (its rows in OUT/atlas/).
   progress("atlas validation/atlas/default.toml");
   const AtlasSpec atlas_spec = load_atlas_spec("validation/atlas/default.toml");
@@ -350,9 +353,11 @@ int report(const ReportOptions& o) {
   write_page(o.out + "/stability.md", rp::stability_page(stability, sweep.bench));
   write_page(o.out + "/extreme.md", rp::extreme_page(extreme));
   write_page(o.out + "/closed_forms.md", rp::closed_forms_page(closed_forms));
+  write_page(o.out + "/friction.md", rp::friction_page(friction, 1e-3));
   write_page(o.out + "/atlas.md", rp::atlas_page(atlas_summary, atlas_info));
   std::cout << "report written to " << o.out
-            << "/ (README.md, sweep.md, stability.md, extreme.md, closed_forms.md, atlas.md)\n";
+            << "/ (README.md, sweep.md, stability.md, extreme.md, closed_forms.md, friction.md, "
+               "atlas.md)\n";
   return kExitOk;
 }
 

@@ -8,6 +8,7 @@
 
 #include "analysis/atlas.hpp"
 #include "analysis/closed_forms.hpp"
+#include "analysis/friction_table.hpp"
 #include "report/results.hpp"
 
 namespace contact2d::report {
@@ -18,6 +19,9 @@ std::string stability_page(const StabilityData& data,
                            const Bench& bench);     // stability.md (bench: the cost ratio)
 std::string extreme_page(const ExtremeData& data);  // extreme.md
 std::string closed_forms_page(const analysis::ClosedFormTable& table);  // closed_forms.md
+// friction.md: MuJoCo with friction, both mappings, the push's share; goal
+// in m (the 1e-3).
+std::string friction_page(const std::vector<analysis::FrictionRow>& rows, double goal);
 
 // atlas.md: the default atlas (validation/atlas/default.toml), its summary
 // and how it ran (src/report/atlas_page.cpp).

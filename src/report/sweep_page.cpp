@@ -526,9 +526,9 @@ a body that rotates, and per touching point the contact law with one tanh
 for friction while the point slips slower than 22/α — the disc, which never
 leaves the ground, pays one for its slip at every step and one more for
 rolling resistance once it spins slower than 22/(α·R); semi-implicit Euler evaluates
-the force once per step, RK4 four times, implicit Euler about ten times (a
-finite-difference Jacobian of three extra evaluations per Newton
-iteration). The run loop's divergence check (`run()`, an energy
+the force once per step, RK4 four times, implicit Euler once per Newton
+iteration (one evaluation gives the residual and its analytic Jacobian;
+docs/speed.md). The run loop's divergence check (`run()`, an energy
 evaluation after every step) is not part of this measurement; the sweep's
 wall-clock times (section 2) include it.
 

@@ -152,6 +152,30 @@ analysis::ClosedFormTable closed_forms_fixture() {
   return t;
 }
 
+// friction.md from three hand-written rows: the push removes most of one,
+// the split is worse on another, the third is within the goal.
+TEST(ReportPages, FrictionMatchesGolden) {
+  using analysis::FrictionOutcome;
+  const std::vector<analysis::FrictionRow> rows = {
+      {"box_slide",
+       "box sliding to rest, c = 50",
+       {0.005, 0, 0.004},
+       {0.005, 0, 0.0045},
+       {0.001, 0, 1e-5}},
+      {"tshape", "T landing", {0.003, 0.01, 0.001}, {0.0031, 0.01, 0.001}, {0.39, 1, 0.2}},
+      {"slide_roll",
+       "disc sliding into rolling",
+       {0.002, 0, 0.001},
+       {0.0008, 0, 0.0005},
+       {0.0002, 0, 1e-6}}};
+  const std::string page = friction_page(rows, 1e-3);
+  // (0.005 − 0.001)/0.005 = 80 %; 1 of 3 within 1e-3 m (0.0008 under compensated).
+  EXPECT_NE(page.find("| 80 % |"), std::string::npos);
+  EXPECT_NE(page.find("none: the split is worse (0.39 m)"), std::string::npos);
+  EXPECT_NE(page.find("1 of 3 scenes are within 0.001 m"), std::string::npos);
+  expect_golden("friction.md", page);
+}
+
 TEST(ReportPages, ClosedFormsMatchesGolden) {
   expect_golden("closed_forms.md", closed_forms_page(closed_forms_fixture()));
 }
