@@ -1,4 +1,5 @@
 #include "game/pitch.hpp"
+
 #include "core/format.hpp"
 
 #include <toml++/toml.h>
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/rng.hpp"
 #include "io/scene_file.hpp"
 #include "io/toml_table.hpp"
 
@@ -121,15 +123,6 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
 
 double Pitch::crossbar_bottom() const {
   return scene.obstacles.at(static_cast<size_t>(rules.crossbar)).a.y();
-}
-
-std::uint64_t fnv1a(const std::string& bytes) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
 }
 
 Pitch parse_pitch(const std::string& toml_text, const std::string& origin) {

@@ -62,6 +62,4 @@ Pitch default_pitch();
 Pitch load_pitch(const std::string& path);
 Pitch parse_pitch(const std::string& toml_text, const std::string& origin);
 
-std::uint64_t fnv1a(const std::string& bytes);
-
 }  // namespace contact2d::game

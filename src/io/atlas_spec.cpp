@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/format.hpp"
+#include "core/rng.hpp"
 #include "io/scene_file.hpp"
 #include "io/toml_table.hpp"
 
@@ -115,15 +116,6 @@ std::vector<std::string> string_list(const toml::table* atlas, const char* key,
     out.push_back(s->get());
   }
   return out;
-}
-
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  return h;
 }
 
 }  // namespace

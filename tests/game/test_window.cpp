@@ -237,7 +237,15 @@ void keys_move_the_ball(const std::string& engine) {
   std::printf("ball on screen: %d x %d px of white\n", right - left + 1, bottom - top + 1);
   EXPECT_GE(right - left + 1, 20);
   EXPECT_LE(right - left + 1, 25);
-  EXPECT_GE(bottom - top + 1, 20);
+  // The screenshot is taken at a wall-clock moment: a ball in the air shows
+  // its whole height, a ball on the ground (the grass line 90 px above the
+  // bottom, y = 510) has its lowest white rows below the scanned band, which
+  // stops at 504 (a clean-clone CI run saw 22 × 18 px so). A run cut by
+  // either edge of the band is measured by its width alone.
+  const bool clipped = top <= 111 || bottom >= 504;
+  if (!clipped) {
+    EXPECT_GE(bottom - top + 1, 20);
+  }
   EXPECT_LE(bottom - top + 1, 25);
 
   // What the live window recorded replays headless to the same kick.
