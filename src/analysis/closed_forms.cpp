@@ -104,7 +104,7 @@ MujocoConstants mujoco_constants(const Scene& scene) {
   out.stiffness = -g.settings.solref[0];
   out.impedance = g.settings.solimp[0];
   out.impratio = g.settings.impratio;
-  out.inv_weight = m->body_invweight0[2 * 1];  // body 1: the scene's body
+  out.inv_weight = m->body_invweight0[2];  // body 1 (the scene's body), its translational entry
   return out;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <utility>
@@ -37,6 +38,18 @@ std::optional<Integrator> parse_integrator(std::string_view name) {
 }
 
 namespace {
+
+// Bit for bit the same vector (+0 and −0 differ, a NaN equals itself): the
+// force stage's output is a function of these bits.
+bool same_bits(const Vec3& a, const Vec3& b) {
+  for (int i = 0; i < 3; ++i) {
+    std::uint64_t x = 0, y = 0;
+    std::memcpy(&x, &a[i], sizeof x);
+    std::memcpy(&y, &b[i], sizeof y);
+    if (x != y) return false;
+  }
+  return true;
+}
 
 constexpr int kNewtonMaxIterations = 30;
 constexpr int kMaxSplitDepth = 6;
@@ -169,10 +182,8 @@ bool implicit_euler_newton(const Model& model, double dt, State& s, StepWorkspac
   // solve when this step starts where it ended (bitwise) under the same
   // model and applied force: the value the force stage would compute again.
   const StepWorkspace::Accepted& last = ws.accepted;
-  const bool same = last.model == &model &&
-                    std::memcmp(last.q.data(), s.q.data(), sizeof(Vec3)) == 0 &&
-                    std::memcmp(last.v.data(), s.v.data(), sizeof(Vec3)) == 0 &&
-                    std::memcmp(last.applied.data(), model.applied.data(), sizeof(Vec3)) == 0;
+  const bool same = last.model == &model && same_bits(last.q, s.q) && same_bits(last.v, s.v) &&
+                    same_bits(last.applied, model.applied);
   Vec3 v_next = s.v + dt * (same ? last.a : acceleration(model, ws.contacts, s.v));
   Vec3 g = residual(v_next, da, a_next);
   auto small = [](const Vec3& x, const Vec3& v) {

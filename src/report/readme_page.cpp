@@ -148,6 +148,7 @@ std::string band_table(const ReadmeData& d) {
           {}};
   const std::vector<std::pair<std::string, const std::vector<RandomCase>*>> runs = random_runs(d);
   std::vector<std::vector<ZetaBand>> bands;
+  bands.reserve(runs.size());
   for (const auto& run : runs) bands.push_back(random_bands(*run.second, d.random_config));
   for (size_t b = 0; b < bands[0].size(); ++b) {
     for (size_t m = 0; m < runs.size(); ++m) {
@@ -227,6 +228,7 @@ std::string summary(const ReadmeData& d) {
           {}};
   const std::vector<std::pair<std::string, const std::vector<RandomCase>*>> runs = random_runs(d);
   std::vector<std::vector<ZetaBand>> by_mapping;
+  by_mapping.reserve(runs.size());
   for (const auto& run : runs) by_mapping.push_back(random_bands(*run.second, rc));
   for (size_t b = 0; b < bands.size(); ++b) {
     for (size_t m = 0; m < runs.size(); ++m) {
