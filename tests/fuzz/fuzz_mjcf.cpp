@@ -119,9 +119,12 @@ bool all_finite(const mjModel* m) {
   return true;
 }
 
-void check_model(const Scene& scene, Geometry geometry, const mjModel* m) {
+void check_model(const Scene& scene, Mapping mapping, Geometry geometry, const mjModel* m) {
   const RigidBody body = make_body(scene);
-  const bool hinge = scene.shape != Shape::PointMass;
+  // compensated moves the contact geoms onto a massless body ("contacts") at
+  // a lever, turned by the body's hinge; the point mass gets one ("spin").
+  const bool compensated = mapping == Mapping::Compensated;
+  const bool hinge = scene.shape != Shape::PointMass || compensated;
   const int points = static_cast<int>(body.points.size());
   // Ground + contact geoms (+ the parts drawn when corner spheres carry the contacts).
   int geoms = 1 + 1;
@@ -134,7 +137,7 @@ void check_model(const Scene& scene, Geometry geometry, const mjModel* m) {
   const int contact_geoms = (scene.shape == Shape::Box || scene.shape == Shape::TShape)
                                 ? (geometry == Geometry::CornerSpheres ? points : points / 4)
                                 : 1;
-  if (m->nbody != 2 || m->njnt != (hinge ? 3 : 2) || m->nq != m->njnt || m->nv != m->njnt ||
+  if (m->nbody != (compensated ? 3 : 2) || m->njnt != (hinge ? 3 : 2) || m->nq != m->njnt || m->nv != m->njnt ||
       m->ngeom != geoms || m->nkey != 1 || m->npair != obstacles * contact_geoms)
     fail("unexpected model structure");
   if (!(m->opt.timestep == scene.sim.dt)) fail("timestep differs from sim.dt");
@@ -176,7 +179,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (must_refuse(scene, mapping)) fail("generate_mjcf accepted a scene it must refuse");
       try {
         const ModelPtr model = load_model(generated.xml, "fuzz.toml");
-        check_model(scene, geometry, model.get());
+        check_model(scene, mapping, geometry, model.get());
       } catch (const std::exception& e) {
         fail(std::string("generated MJCF does not reload: ") + e.what());
       }
