@@ -137,8 +137,9 @@ void check_model(const Scene& scene, Mapping mapping, Geometry geometry, const m
   const int contact_geoms = (scene.shape == Shape::Box || scene.shape == Shape::TShape)
                                 ? (geometry == Geometry::CornerSpheres ? points : points / 4)
                                 : 1;
-  if (m->nbody != (compensated ? 3 : 2) || m->njnt != (hinge ? 3 : 2) || m->nq != m->njnt || m->nv != m->njnt ||
-      m->ngeom != geoms || m->nkey != 1 || m->npair != obstacles * contact_geoms)
+  if (m->nbody != (compensated ? 3 : 2) || m->njnt != (hinge ? 3 : 2) || m->nq != m->njnt ||
+      m->nv != m->njnt || m->ngeom != geoms || m->nkey != 1 ||
+      m->npair != obstacles * contact_geoms)
     fail("unexpected model structure");
   if (!(m->opt.timestep == scene.sim.dt)) fail("timestep differs from sim.dt");
   if (!(m->opt.gravity[2] == -scene.sim.gravity)) fail("gravity differs from sim.gravity");
