@@ -32,6 +32,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Creates OUT (or says it cannot) and removes an older run's shard.txt first:
+// shard.txt marks a finished run, so a run that stops halfway leaves no
+// directory that looks complete.
+void prepare_out_dir(const std::string& out_dir) {
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (!fs::is_directory(out_dir))
+    throw InputError("--out " + out_dir + ": cannot create directory");
+  fs::remove(fs::path(out_dir) / "shard.txt", ec);
+}
+
 double thread_cpu_seconds() {
   timespec ts{};
   ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
@@ -376,13 +387,7 @@ AtlasRunStats run_atlas(const AtlasSpec& spec, const std::string& out_dir,
   // Every point is checked before anything is written or run.
   for (long long i : indices) atlas_point(spec, i);
 
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (!fs::is_directory(out_dir))
-    throw InputError("--out " + out_dir + ": cannot create directory");
-  // shard.txt marks a finished run: an older one goes first, so that a run
-  // that stops halfway leaves no directory that looks complete.
-  fs::remove(fs::path(out_dir) / "shard.txt", ec);
+  prepare_out_dir(out_dir);
   AtomicFile points_csv((fs::path(out_dir) / "points.csv").string());
   AtomicFile times_csv((fs::path(out_dir) / "times.csv").string());
   std::fprintf(points_csv.get(), "%s\n", atlas_csv_header().c_str());
@@ -608,11 +613,7 @@ AtlasData read_atlas_shards(const std::vector<std::string>& dirs) {
 }
 
 void write_atlas_data(const AtlasData& data, const std::string& out_dir) {
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (!fs::is_directory(out_dir))
-    throw InputError("--out " + out_dir + ": cannot create directory");
-  fs::remove(fs::path(out_dir) / "shard.txt", ec);
+  prepare_out_dir(out_dir);
   {
     AtomicFile csv((fs::path(out_dir) / "points.csv").string());
     std::fprintf(csv.get(), "%s\n", atlas_csv_header().c_str());
