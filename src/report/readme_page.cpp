@@ -216,7 +216,16 @@ std::string summary(const ReadmeData& d) {
                     "):\n" +
                     "with MuJoCo's own damping law (Kelvin–Voigt) its geometric-mean error over "
                     "the built-in scenes is\n" +
-                    g(w.ratio_to_next) + "× below the next best mapping (section 2).\n\n";
+                    g(w.ratio_to_next) + "× below the next best mapping (section 2).";
+  if (w.mapping == "compensated") {
+    // Which model to take away: compensated's structure is for comparing.
+    out +=
+        " It is a model for comparing: it moves the contact geoms onto a massless body at a long "
+        "lever (docs/mujoco.md). For a model to build on, keep `calibrated`: it sets only "
+        "`solref`, `solimp` and MuJoCo's options, and its numbers follow from k, c and the "
+        "body's `body_invweight0` (`contact2d solref`).";
+  }
+  out += "\n\n";
   out += "**How close MuJoCo then is** — " + count_words(rc.count) +
          " random scenes (section 6), Δt = 1e-4, semi-implicit Euler against MuJoCo's Euler;\n"
          "each row of section 6 re-runs with `contact2d compare " +

@@ -210,6 +210,55 @@ std::string per_step_budget(const Bench& b) {
   return out;
 }
 
+// The 100× and 30× budgets of this run set against the libm links every
+// step in contact carries (the floors of the same run): which scenes' budgets
+// one tanh alone, or a sincos and a tanh, already exceed. Empty when the
+// bench did not time its floors.
+std::string budget_against_floors(const Bench& b) {
+  if (b.tanh_ns <= 0.0 || b.sincos_ns <= 0.0) return "";
+  const double pair = b.sincos_ns + b.tanh_ns;
+  std::string below_tanh, below_pair, implicit_tanh, implicit_pair;
+  auto add = [](std::string& list, const BenchRow& r, double budget) {
+    list += (list.empty() ? "" : ", ") + r.scene + " (" + fixed(budget, 0) + " ns)";
+  };
+  for (const BenchRow& r : b.rows) {
+    if (!r.mj_cpu_ns) continue;
+    if (r.integrator == "semi_implicit_euler") {
+      const double budget = *r.mj_cpu_ns / 100.0;
+      if (budget < b.tanh_ns)
+        add(below_tanh, r, budget);
+      else if (budget < pair)
+        add(below_pair, r, budget);
+    } else if (r.integrator == "implicit_euler") {
+      const double budget = *r.mj_cpu_ns / 30.0;
+      if (budget < 2.0 * b.tanh_ns)
+        add(implicit_tanh, r, budget);
+      else if (budget < 2.0 * pair)
+        add(implicit_pair, r, budget);
+    }
+  }
+  std::string out = "In this run one glibc tanh takes " + fixed(b.tanh_ns, 1) +
+                    " ns and a sincos " + fixed(b.sincos_ns, 1) + " ns.";
+  if (!below_tanh.empty())
+    out += " One tanh alone is longer than the whole 100× budget of " + below_tanh + ".";
+  if (!below_pair.empty())
+    out += " A sincos and a tanh, the chain of a body whose contact points turn (" +
+           fixed(pair, 1) + " ns), are longer than that of " + below_pair + ".";
+  if (!implicit_tanh.empty() || !implicit_pair.empty()) {
+    out +=
+        " Implicit Euler in contact evaluates the force stage at least twice a step (the Newton "
+        "step from the predictor, then the convergence test at its result), so its chain holds "
+        "two of each link:";
+    if (!implicit_tanh.empty())
+      out += " two tanh (" + fixed(2.0 * b.tanh_ns, 1) + " ns) exceed the 30× budget of " +
+             implicit_tanh + (implicit_pair.empty() ? "." : ";");
+    if (!implicit_pair.empty())
+      out += " two sincos and two tanh (" + fixed(2.0 * pair, 1) + " ns) exceed that of " +
+             implicit_pair + ".";
+  }
+  return out;
+}
+
 std::string targets(const SweepData& d) {
   std::string out;
   double worst = 0.0;
@@ -538,6 +587,8 @@ costs the latency of that chain, and the last line of the table measures the
 links that libm puts on it, each call feeding the next. For 100× a
 semi-implicit step must fit in 1/100 of mj_step: )md" +
          per_step_budget(d.bench) + R"md(.
+)md" + budget_against_floors(d.bench) +
+         R"md(
 A step with no contact point at all (call, gravity, state update) already
 takes the "empty step" time; the box and the T add a sincos and, on the
 ground, a tanh per slowly slipping corner; the disc adds a tanh for its slip,
@@ -547,7 +598,10 @@ call less per evaluation for a fast-sliding corner or a fast-spinning disc,
 a saving about as large as the run-to-run noise of a shared machine (compare
 the empty-step time of two runs of the report). Going further
 would mean replacing libm's tanh and sincos with approximations of our own;
-the reference keeps libm, whose accuracy nobody has to re-validate.
+the reference keeps libm, whose accuracy nobody has to re-validate. SLEEF's
+1-ULP four-wide tanh, the accurate vector alternative, is slower on this
+chain (about twice glibc's latency per call; docs/speed.md), so it is not the
+default either.
 
 ## Summary: the requirements
 

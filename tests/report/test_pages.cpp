@@ -226,6 +226,37 @@ TEST(ReportPages, ReadmeVerdictsAndCounts) {
             std::string::npos);
 }
 
+// The first screen names the model to build on when the winning mapping is
+// compensated (a model for comparing), and says nothing of it otherwise.
+TEST(ReportPages, ReadmeNamesTheModelToBuildOn) {
+  const std::string build_on = "For a model to build on, keep `calibrated`";
+  EXPECT_EQ(readme_page(fixtures::readme()).find(build_on), std::string::npos);
+  ReadmeData d = fixtures::readme();
+  d.mappings.push_back("compensated");
+  for (const std::string& scene : d.scenes)  // ten times below every other mapping
+    d.kelvin_voigt.push_back({scene, "compensated", fixtures::comparison(1e-4, 1e-4)});
+  const std::string page = readme_page(d);
+  EXPECT_NE(page.find("**Use the `compensated` mapping**"), std::string::npos);
+  EXPECT_NE(page.find(build_on), std::string::npos);
+}
+
+// Section 6 sets each 100× (semi-implicit) and 30× (implicit) budget of the
+// run against the libm floors of the same run: in the fixture one tanh is
+// 41.6 ns and a sincos 26.1 ns; mj_step 1000 ns gives the point mass 10 ns
+// (below one tanh) and 2000 ns implicit gives 66.7 ns (below two tanh, 83.2).
+TEST(ReportPages, SweepBudgetsAgainstFloors) {
+  const std::string page = sweep_page(fixtures::sweep());
+  EXPECT_NE(page.find("One tanh alone is longer than the whole 100× budget of point_mass (10 ns)."),
+            std::string::npos);
+  EXPECT_NE(page.find("two tanh (83.2 ns) exceed the 30× budget of point_mass (67 ns)."),
+            std::string::npos);
+  Bench bench = fixtures::sweep().bench;
+  bench.tanh_ns = -1.0;  // floors not timed: no sentence
+  SweepData d = fixtures::sweep();
+  d.bench = bench;
+  EXPECT_EQ(sweep_page(d).find("One tanh alone"), std::string::npos);
+}
+
 TEST(ReportPages, SweepProseNumbers) {
   const std::string page = sweep_page(fixtures::sweep());
   EXPECT_NE(page.find("its step costs 50–80× more"), std::string::npos);
