@@ -127,13 +127,26 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
         // Ft = −μ·Fn·s, s = tanh(α·v_t), s′ = α·(1 − s²).
         const double slope = f_n * law.alpha * (1.0 - s * s);
         const double roll_fn = rolls ? law.mu_roll * s_roll : 0.0;
-        for (int j = 0; j < 6; ++j) {
-          const double dft = -law.mu * (s * dfn[j] + slope * dvt[j]);
-          const double dfx = nx * dfn[j] + tx * dft;
-          const double dfy = ny * dfn[j] + ty * dft;
-          jac[0][j] += dfx;
-          jac[1][j] += dfy;
-          jac[2][j] += c.rx * dfy - c.ry * dfx - roll_fn * dfn[j];
+        if (i < ground) {
+          // n = (0, 1), t = (1, 0): ∂f_x = ∂F_t, ∂f_y = ∂F_n, and x never
+          // enters (column 0 only ever receives zeros). The general loop's
+          // products with 0 and 1 left out: the same sums, bit for bit (a
+          // ±0 term added to these +0-started sums leaves them unchanged).
+          for (int j = 1; j < 6; ++j) {
+            const double dft = -law.mu * (s * dfn[j] + slope * dvt[j]);
+            jac[0][j] += dft;
+            jac[1][j] += dfn[j];
+            jac[2][j] += c.rx * dfn[j] - c.ry * dft - roll_fn * dfn[j];
+          }
+        } else {
+          for (int j = 0; j < 6; ++j) {
+            const double dft = -law.mu * (s * dfn[j] + slope * dvt[j]);
+            const double dfx = nx * dfn[j] + tx * dft;
+            const double dfy = ny * dfn[j] + ty * dft;
+            jac[0][j] += dfx;
+            jac[1][j] += dfy;
+            jac[2][j] += c.rx * dfy - c.ry * dfx - roll_fn * dfn[j];
+          }
         }
         jac[2][2] += rtx * f_y - rty * f_x;
         if (rolls) jac[2][5] -= law.mu_roll * f_n * law.alpha * radius * (1.0 - s_roll * s_roll);

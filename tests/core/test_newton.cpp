@@ -4,7 +4,9 @@
 // force law itself; a stalled iteration is reported, not accepted.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/integrators.hpp"
 #include "core/rng.hpp"
@@ -87,6 +89,49 @@ TEST(Newton, EveryAcceptedSolveSatisfiesTheImplicitEquation) {
   std::printf("accepted %d of 20000, worst |G|/(1+|v'|) %.3g\n", accepted, worst);
   EXPECT_GT(accepted, 10000) << "the sample must exercise the solver";
   EXPECT_LE(worst, 1e-10);
+}
+
+// The bound that lets Newton accept an iterate without the solve that would
+// only confirm it: |(I − E)⁻¹·g|∞ ≤ |g|∞/(1 − ‖E‖∞) for ‖E‖∞ ≤ 1/2. Checked
+// against solve3 itself on random E (row sums of |E| up to 1/2, entries of
+// either sign, the largest row chosen at random) and random g over twenty
+// decades, allowing solve3 a relative 1e-13 of rounding (it is backward
+// stable on a matrix this well conditioned: ‖J‖·‖J⁻¹‖ ≤ 3). E = q·I meets the
+// bound with equality, so a looser formula could pass the random cases but
+// not that one, and a bound that forgot the 1/(1 − q) would fail it.
+TEST(Newton, StepBoundHoldsForTheSolve) {
+  std::uint64_t rng = 16;
+  auto u = [&rng] { return next_uniform(rng); };
+  double tightest = 0.0;  // the largest |δ|∞ / bound seen
+  for (int trial = 0; trial < 200000; ++trial) {
+    Eigen::Matrix3d e;
+    const double q = 0.5 * u();
+    for (int i = 0; i < 3; ++i) {
+      double w[3] = {u(), u(), u()};
+      const double row = (i == trial % 3 ? q : q * u()) / (w[0] + w[1] + w[2]);
+      for (int j = 0; j < 3; ++j) e(i, j) = (u() < 0.5 ? -1.0 : 1.0) * w[j] * row;
+    }
+    const double scale = std::pow(10.0, -15.0 + 20.0 * u());
+    const Vec3 g(scale * (2.0 * u() - 1.0), scale * (2.0 * u() - 1.0), scale * (2.0 * u() - 1.0));
+    const Vec3 delta = solve3(Eigen::Matrix3d::Identity() - e, -g);
+    const double bound = newton_step_bound(e, g);
+    ASSERT_LE(delta.lpNorm<Eigen::Infinity>(), bound * (1.0 + 1e-13)) << "trial " << trial;
+    tightest = std::max(tightest, delta.lpNorm<Eigen::Infinity>() / bound);
+  }
+  std::printf("largest |delta| / bound over the random cases: %.6f\n", tightest);
+  // Equality: E = q·I, δ = −g/(1 − q).
+  for (double q : {0.0, 0.1, 0.25, 0.5}) {
+    const Eigen::Matrix3d e = q * Eigen::Matrix3d::Identity();
+    const Vec3 g(0.3, -1.7, 0.9);
+    const Vec3 delta = solve3(Eigen::Matrix3d::Identity() - e, -g);
+    EXPECT_NEAR(delta.lpNorm<Eigen::Infinity>(), newton_step_bound(e, g), 1e-15 * 1.7 / (1 - q))
+        << "q = " << q;
+  }
+  // Beyond ‖E‖∞ = 1/2 there is no bound: Newton always solves there.
+  Eigen::Matrix3d e = Eigen::Matrix3d::Zero();
+  e(1, 0) = 0.3;
+  e(1, 2) = -0.3;
+  EXPECT_TRUE(std::isinf(newton_step_bound(e, Vec3(1.0, 1.0, 1.0))));
 }
 
 }  // namespace
