@@ -70,8 +70,8 @@ struct StepWorkspace {
 bool implicit_euler_newton(const Model& model, double dt, State& state, StepWorkspace& ws);
 
 // Newton's linear algebra (core/integrators.cpp), exposed for its tests.
-// J·x = b for a 3×3 J: Gaussian elimination with partial pivoting, written out.
-Vec3 solve3(Eigen::Matrix3d j, Vec3 b);
+// a·x = b for a 3×3 a: Gaussian elimination with partial pivoting, written out.
+Vec3 solve3(Eigen::Matrix3d a, Vec3 b);
 // An upper bound on |(I − E)⁻¹·g|∞: |g|∞/(1 − ‖E‖∞) when ‖E‖∞ ≤ 1/2, else +∞.
 double newton_step_bound(const Eigen::Matrix3d& e, const Vec3& g);
 
