@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& path) {
+std::string read_text(const fs::path& path) {
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
@@ -104,7 +104,7 @@ TEST(ExtremeMatrix, EveryRunExitsCleanlyWithoutNaNOrLeftoverFiles) {
               ASSERT_TRUE(WIFEXITED(raw)) << what << ": killed";
               const int status = WEXITSTATUS(raw);
               ++counts[engine + " exit " + std::to_string(status)];
-              const std::string text = slurp(err);
+              const std::string text = read_text(err);
               const auto lines = std::count(text.begin(), text.end(), '\n');
               EXPECT_TRUE(status == 0 || status == 3)
                   << what << ": exit " << status << ": " << text;
@@ -113,7 +113,7 @@ TEST(ExtremeMatrix, EveryRunExitsCleanlyWithoutNaNOrLeftoverFiles) {
                 EXPECT_FALSE(fs::exists(csv)) << what << ": a diverged run left its CSV";
               } else if (status == 0) {
                 EXPECT_LE(lines, 1) << what << ": " << text;
-                const std::string data = slurp(csv);
+                const std::string data = read_text(csv);
                 EXPECT_EQ(data.find("nan"), std::string::npos) << what << ": NaN in the CSV";
                 EXPECT_EQ(data.find("inf"), std::string::npos) << what << ": inf in the CSV";
               }

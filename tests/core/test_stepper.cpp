@@ -146,7 +146,7 @@ TEST(RunLoop, EngineFailureStopsTheRunAsNonFinite) {
 // only loses energy, so a rise is the integrator's. Its tolerance is
 // E_avail·(2·(ω·Δt/2)/(1 − ω·Δt/2) + 1e-9), the semi-implicit Euler
 // oscillation bound doubled (a rise is measured from an earlier minimum).
-Scene bouncing_t(Integrator integrator) {
+Scene bouncing_t_scene(Integrator integrator) {
   Scene scene = default_scene(Shape::TShape);
   scene.contact.c = 0.0;
   scene.contact.mu = 0.0;
@@ -158,7 +158,7 @@ Scene bouncing_t(Integrator integrator) {
 }
 
 TEST(EnergyBalance, ToleranceIsTheSemiImplicitOscillationBound) {
-  const Scene scene = bouncing_t(Integrator::SemiImplicitEuler);
+  const Scene scene = bouncing_t_scene(Integrator::SemiImplicitEuler);
   const Trajectory t = simulate(scene);
   const Model model = make_model(scene);
   const double wdt = contact_stiffness(model).omega * scene.sim.dt;
@@ -171,13 +171,13 @@ TEST(EnergyBalance, ToleranceIsTheSemiImplicitOscillationBound) {
 // pass silently): semi-implicit Euler's energy oscillates within the bound,
 // explicit Euler's grows past it without reaching the divergence rule.
 TEST(EnergyBalance, SemiImplicitStaysWithinExplicitEulerIsFlagged) {
-  const Trajectory semi = simulate(bouncing_t(Integrator::SemiImplicitEuler));
+  const Trajectory semi = simulate(bouncing_t_scene(Integrator::SemiImplicitEuler));
   ASSERT_FALSE(semi.divergence);
   EXPECT_GT(semi.energy.max_rise, 0.0) << "the bounce must exercise the oscillation";
   EXPECT_FALSE(semi.energy.exceeded())
       << semi.energy.max_rise << " J against " << semi.energy.tolerance << " J";
 
-  const Trajectory expl = simulate(bouncing_t(Integrator::ExplicitEuler));
+  const Trajectory expl = simulate(bouncing_t_scene(Integrator::ExplicitEuler));
   ASSERT_FALSE(expl.divergence) << "below the divergence rule: the rise is the warning's to catch";
   EXPECT_TRUE(expl.energy.exceeded())
       << expl.energy.max_rise << " J against " << expl.energy.tolerance << " J";

@@ -61,7 +61,7 @@ TEST(MjcfObstacles, ThePitchLoadsWithOneGeomAndOnePairPerObstacle) {
 }
 
 // The value printed after `label` in the header.
-double after(const std::string& text, const std::string& label) {
+double value_after(const std::string& text, const std::string& label) {
   const size_t at = text.find(label);
   EXPECT_NE(at, std::string::npos) << label;
   return at == std::string::npos ? NAN : std::stod(text.substr(at + label.size()));
@@ -80,19 +80,20 @@ TEST(MjcfObstacles, TheHeaderStatesEachObstaclesValues) {
   const std::string h = xml.substr(0, xml.find("-->"));
   const mujoco::ModelPtr model = mujoco::load_model(xml, "pitch");
   const double a_hat = model->body_invweight0[2];
-  EXPECT_EQ(after(h, "A = body_invweight0 = "), a_hat);
+  EXPECT_EQ(value_after(h, "A = body_invweight0 = "), a_hat);
   for (size_t i = 0; i < scene.obstacles.size(); ++i) {
     const Obstacle& o = scene.obstacles[i];
     const ContactParams law = o.contact.apply(scene.contact);
     const std::string line = h.substr(h.find("    obstacle" + std::to_string(i) + " ("));
-    EXPECT_EQ(after(line, "k "), law.k) << i;
-    EXPECT_EQ(after(line, "c "), law.c) << i;
+    EXPECT_EQ(value_after(line, "k "), law.k) << i;
+    EXPECT_EQ(value_after(line, "c "), law.c) << i;
     EXPECT_EQ(line.find(law.damping == DampingLaw::KelvinVoigt ? "damping kelvin_voigt"
                                                                : "damping compression"),
               line.find("damping "))
         << i;
-    const double k_printed = after(line, "solref = (");
-    const double c_printed = after(line, "solref = (" + mujoco::format_exact(k_printed) + ", ");
+    const double k_printed = value_after(line, "solref = (");
+    const double c_printed =
+        value_after(line, "solref = (" + mujoco::format_exact(k_printed) + ", ");
     EXPECT_NEAR(k_printed, -law.k * a_hat, 1e-15 * law.k * a_hat) << i;
     EXPECT_NEAR(c_printed, -law.c * a_hat, 1e-15 * law.c * a_hat) << i;
   }
@@ -103,9 +104,9 @@ TEST(MjcfObstacles, TheHeaderStatesEachObstaclesValues) {
   const double mu = scene.contact.mu, mu_roll = scene.contact.mu_roll;
   const double impratio =
       std::min(1.0 / (c_max * dt * a_t), inertia * (mu / mu_roll) * (mu / mu_roll) / (c_max * dt));
-  EXPECT_NEAR(after(h, "mu_roll)^2/(c Δt)) = "), impratio, 1e-12 * impratio);
-  EXPECT_EQ(after(h, "N = "), 3.0);
-  EXPECT_EQ(after(h, "nconmax = 2 P (1 + N) + 40 = "), 2 * 1 * (1 + 3) + 40);
+  EXPECT_NEAR(value_after(h, "mu_roll)^2/(c Δt)) = "), impratio, 1e-12 * impratio);
+  EXPECT_EQ(value_after(h, "N = "), 3.0);
+  EXPECT_EQ(value_after(h, "nconmax = 2 P (1 + N) + 40 = "), 2 * 1 * (1 + 3) + 40);
   EXPECT_EQ(model->nconmax, 2 * 1 * (1 + 3) + 40);
 }
 

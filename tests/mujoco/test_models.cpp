@@ -12,26 +12,26 @@
 namespace contact2d {
 namespace {
 
-struct Case {
+struct ModelCase {
   std::string scene;
   mujoco::Mapping mapping;
 };
 
-std::string read(const std::string& path) {
+std::string read_stored(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
 }
 
-void PrintTo(const Case& c, std::ostream* os) {
+void PrintTo(const ModelCase& c, std::ostream* os) {
   *os << c.scene << "." << mujoco::mapping_name(c.mapping);
 }
 
-class Models : public ::testing::TestWithParam<Case> {};
+class Models : public ::testing::TestWithParam<ModelCase> {};
 
 TEST_P(Models, RegenerateToTheSameBytesAndLoadWithoutWarning) {
-  const Case& c = GetParam();
+  const ModelCase& c = GetParam();
   const std::string scene_path = "validation/scenes/" + c.scene + ".toml";
   const std::string model_path =
       "models/" + c.scene + "." + std::string(mujoco::mapping_name(c.mapping)) + ".xml";
@@ -41,7 +41,7 @@ TEST_P(Models, RegenerateToTheSameBytesAndLoadWithoutWarning) {
       scene_path;  // as `contact2d generate` names it when run from the repository root
   const Scene scene = load_scene(test::source_dir() + "/" + scene_path);
   const std::string generated = mujoco::generate_mjcf(scene, options).xml;
-  const std::string stored = read(test::source_dir() + "/" + model_path);
+  const std::string stored = read_stored(test::source_dir() + "/" + model_path);
   EXPECT_EQ(generated, stored)
       << model_path
       << " is out of date: regenerate it with scripts/demo (or from the repository "
@@ -51,16 +51,16 @@ TEST_P(Models, RegenerateToTheSameBytesAndLoadWithoutWarning) {
   EXPECT_NO_THROW(mujoco::load_model(stored, model_path));
 }
 
-std::vector<Case> cases() {
-  std::vector<Case> out;
+std::vector<ModelCase> model_cases() {
+  std::vector<ModelCase> out;
   for (const char* scene : {"point_mass", "box", "tshape", "circle"}) {
     for (mujoco::Mapping mapping : mujoco::kAllMappings) out.push_back({scene, mapping});
   }
   return out;
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltInScenes, Models, ::testing::ValuesIn(cases()),
-                         [](const ::testing::TestParamInfo<Case>& info) {
+INSTANTIATE_TEST_SUITE_P(BuiltInScenes, Models, ::testing::ValuesIn(model_cases()),
+                         [](const ::testing::TestParamInfo<ModelCase>& info) {
                            return info.param.scene + "_" +
                                   std::string(mujoco::mapping_name(info.param.mapping));
                          });

@@ -31,7 +31,7 @@ namespace {
 namespace mj = contact2d::mujoco;
 
 constexpr double kMass = 2.0, kInertia = 0.01, kLever = 0.1, kG = 9.81, kDt = 0.002;
-constexpr double kEpsilon = 2.220446049250313e-16;  // double's machine epsilon
+constexpr double kMachEps = 2.220446049250313e-16;  // double's machine epsilon
 constexpr double kRho = 1e-3;                       // radius of the contact sphere
 constexpr double kDrop = 0.05;                      // the sphere's centre is kDrop below the COM
 
@@ -152,12 +152,12 @@ TEST_P(MujocoContactForce, EqualsTheClosedForm) {
   for (double v : {-0.1, 0.0, 0.01}) {
     const Measured m = measure(c, 1e-3, v);
     const double error = (m.force - m.predicted) / m.predicted;
-    const double bound = 16.0 * kEpsilon * m.kappa;
+    const double bound = 16.0 * kMachEps * m.kappa;
     std::printf(
         "force check: d = %-6g %-8s %-5s %-6s v = %-5g: f = %.15g N, closed form %.15g N, "
         "relative error %.2e, kappa %.3g, error/(eps kappa) %.2f\n",
         c.d, c.direct ? "direct" : "standard", c.lever ? "lever" : "point", solver_name(c.solver),
-        v, m.force, m.predicted, error, m.kappa, std::abs(error) / (kEpsilon * m.kappa));
+        v, m.force, m.predicted, error, m.kappa, std::abs(error) / (kMachEps * m.kappa));
     EXPECT_NEAR(m.pos, -1e-3, 1e-15);
     EXPECT_NEAR(m.vel, v, 1e-15);
     EXPECT_GT(m.predicted, 0.0);

@@ -166,22 +166,22 @@ double rest_tolerance(double penetration) {
   return 16.0 * ulp + 64.0 * 2.220446049250313e-16 * penetration;
 }
 
-struct DropCase {
+struct SolrefDropCase {
   mj::Mapping mapping;
   double mu;
   bool pair;             // paste the <pair> snippet instead of the <default> class
   double mu_roll = 0.0;  // > 0: condim 6, the sphere's radius and inertia given
 };
 
-void PrintTo(const DropCase& c, std::ostream* os) {
+void PrintTo(const SolrefDropCase& c, std::ostream* os) {
   *os << mj::mapping_name(c.mapping) << ", mu = " << c.mu << ", mu_roll = " << c.mu_roll
       << (c.pair ? ", pair" : ", default");
 }
 
-class SolrefDrop : public ::testing::TestWithParam<DropCase> {};
+class SolrefDrop : public ::testing::TestWithParam<SolrefDropCase> {};
 
 TEST_P(SolrefDrop, RestsAtThePrintedStaticPenetration) {
-  const DropCase dc = GetParam();
+  const SolrefDropCase dc = GetParam();
   const double m = 1.0, k = 1e4, c = 100.0, dt = 1e-4, g = 9.81;
   // The user's model without contact settings, read through the --model route.
   const fs::path path = temp_file("user.xml", user_model(m, dt));
@@ -227,15 +227,16 @@ TEST_P(SolrefDrop, RestsAtThePrintedStaticPenetration) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Mappings, SolrefDrop,
-                         ::testing::Values(DropCase{mj::Mapping::Calibrated, 0.0, false},
-                                           DropCase{mj::Mapping::Calibrated, 0.5, false},
-                                           DropCase{mj::Mapping::Calibrated, 0.5, true},
-                                           DropCase{mj::Mapping::Exact, 0.0, false},
-                                           DropCase{mj::Mapping::Exact, 0.5, false},
-                                           DropCase{mj::Mapping::Seed, 0.0, false},
-                                           DropCase{mj::Mapping::Seed, 0.5, true},
-                                           DropCase{mj::Mapping::Calibrated, 0.5, false, 0.01},
-                                           DropCase{mj::Mapping::Exact, 0.5, false, 0.01}));
+                         ::testing::Values(SolrefDropCase{mj::Mapping::Calibrated, 0.0, false},
+                                           SolrefDropCase{mj::Mapping::Calibrated, 0.5, false},
+                                           SolrefDropCase{mj::Mapping::Calibrated, 0.5, true},
+                                           SolrefDropCase{mj::Mapping::Exact, 0.0, false},
+                                           SolrefDropCase{mj::Mapping::Exact, 0.5, false},
+                                           SolrefDropCase{mj::Mapping::Seed, 0.0, false},
+                                           SolrefDropCase{mj::Mapping::Seed, 0.5, true},
+                                           SolrefDropCase{mj::Mapping::Calibrated, 0.5, false,
+                                                          0.01},
+                                           SolrefDropCase{mj::Mapping::Exact, 0.5, false, 0.01}));
 
 // refsafe: at Δt = 1e-3 the seed mapping's timeconst √(m/k) = 1e-3 s is
 // below 2Δt; the tool says so, and the penetration it prints with the
@@ -286,7 +287,7 @@ TEST(SolrefTool, OmegaDtVerdictMatchesWhatMujocoDoes) {
 
 // --- the command line -------------------------------------------------------
 
-struct Result {
+struct CliResult {
   int status = -1;
   std::string out, err;
 };
@@ -298,21 +299,21 @@ std::string slurp(const fs::path& path) {
   return text.str();
 }
 
-Result run_cli(const std::string& args) {
+CliResult run_cli(const std::string& args) {
   const fs::path base =
       fs::temp_directory_path() / ("contact2d_solref_cli_" + std::to_string(::getpid()));
   const std::string out = base.string() + ".out", err = base.string() + ".err";
   const std::string command =
       "'" CONTACT2D_BINARY "' solref " + args + " >'" + out + "' 2>'" + err + "'";
   const int raw = std::system(command.c_str());
-  Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  CliResult r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
   fs::remove(out);
   fs::remove(err);
   return r;
 }
 
 void expect_one_line_error(const std::string& args, const std::string& names) {
-  const Result r = run_cli(args);
+  const CliResult r = run_cli(args);
   EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
   EXPECT_TRUE(r.out.empty()) << args << "\n" << r.out;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
@@ -346,7 +347,7 @@ TEST(SolrefCli, BadInputExitsTwoWithOneLine) {
 // body_invweight0 it read.
 TEST(SolrefCli, JsonKeys) {
   const fs::path path = temp_file("json.xml", user_model(2.0, 1e-4));
-  const Result r =
+  const CliResult r =
       run_cli("--k 1e4 --c 100 --dt 1e-4 --model '" + path.string() + "' --body ball --json");
   fs::remove(path);
   ASSERT_EQ(r.status, 0) << r.err;
@@ -382,7 +383,7 @@ TEST(SolrefCli, JsonKeys) {
 
 // Text: each mapping's block, with the snippet to paste.
 TEST(SolrefCli, TextNamesEveryMappingAndItsSnippet) {
-  const Result r = run_cli("--k 1e4 --c 100 --dt 1e-4 --mass 1");
+  const CliResult r = run_cli("--k 1e4 --c 100 --dt 1e-4 --mass 1");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* text : {"\nseed\n", "\nexact\n", "\ncalibrated (the default mapping)\n",
                            "<default class=\"contact2d\">", "<pair geom1=\"BODY_GEOM\"",
