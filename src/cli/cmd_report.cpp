@@ -317,6 +317,10 @@ int report(const ReportOptions& o) {
   if (!bench.empty() && ::access(bench.c_str(), X_OK) == 0) {
     progress("bench");
     sweep.bench = rp::run_bench(bench, "0.2");
+    for (const std::string& s : kScenes) {  // whose force evaluations start with a sincos
+      const RigidBody body = make_model(load(scene_path(s))).body;
+      if (body.rotates && body.points_rotate) sweep.bench.turning.push_back(s);
+    }
   }
   rp::ExtremeData extreme;
   for (const std::string& path : extreme_files()) {

@@ -174,6 +174,10 @@ struct Bench {
   std::string command;  // "contact2d_bench --benchmark_min_time=0.2"
   std::vector<BenchRow> rows;
   double sincos_ns = -1.0, tanh_ns = -1.0, free_flight_ns = -1.0;
+  // The scenes whose contact points turn with θ (a sincos on every force
+  // evaluation's chain): the box and the T; a point mass never turns, a
+  // disc's point stays below its centre.
+  std::vector<std::string> turning;
 };
 
 struct RunInfo {  // how this run went: all of it varies
