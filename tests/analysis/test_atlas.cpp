@@ -20,6 +20,7 @@
 #include "core/input_error.hpp"
 #include "io/atlas_spec.hpp"
 #include "report/pages.hpp"
+#include "support/files.hpp"
 
 namespace contact2d::analysis {
 namespace {
@@ -28,12 +29,7 @@ namespace fs = std::filesystem;
 
 AtlasSpec parse(const std::string& text) { return parse_atlas_spec(text, "spec.toml", "."); }
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using contact2d::test::read_file;
 
 // The error message of parsing `text`, or "" when it parses.
 std::string error_of(const std::string& text) {
@@ -249,12 +245,12 @@ TEST_F(AtlasRun, SameRowsWhateverTheShardingAndThreads) {
   const std::string s1 = run(spec, "s1", "1/3", 2);
   const std::string s2 = run(spec, "s2", "2/3", 1);
   const std::string s3 = run(spec, "s3", "3/3", 2);
-  const std::string reference = slurp(fs::path(whole) / "points.csv");
-  EXPECT_EQ(slurp(fs::path(whole2) / "points.csv"), reference);
+  const std::string reference = read_file(fs::path(whole) / "points.csv");
+  EXPECT_EQ(read_file(fs::path(whole2) / "points.csv"), reference);
   // Shards given in any order.
   const AtlasData merged = read_atlas_shards({s3, s1, s2});
   write_atlas_data(merged, (dir_ / "merged").string());
-  EXPECT_EQ(slurp(dir_ / "merged" / "points.csv"), reference);
+  EXPECT_EQ(read_file(dir_ / "merged" / "points.csv"), reference);
   // 16 rows and a header; every status is one of the three, and the
   // diverging points are rows, not a crash.
   ASSERT_EQ(merged.rows.size(), 16u);
@@ -360,13 +356,13 @@ TEST_F(AtlasRun, CommandLineExitStatusAndFiles) {
       (exe + " atlas " + bad.string() + " --out " + out_dir.string() + " 2>" + err).c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
-  const std::string message = slurp(err);
+  const std::string message = read_file(err);
   EXPECT_EQ(message, "contact2d: " + bad.string() +
                          ": axes.zeta = -1 is out of range: must be in [0, 1e3]\n");
   EXPECT_FALSE(fs::exists(out_dir));
   status = std::system((exe + " atlas " + bad.string() + " --shard 3/2 2>" + err).c_str());
   EXPECT_EQ(WEXITSTATUS(status), 2);
-  EXPECT_NE(slurp(err).find("--shard 3/2"), std::string::npos);
+  EXPECT_NE(read_file(err).find("--shard 3/2"), std::string::npos);
 
   const fs::path good = dir_ / "good.toml";
   {
@@ -378,11 +374,11 @@ TEST_F(AtlasRun, CommandLineExitStatusAndFiles) {
   status = std::system((exe + " atlas " + good.string() + " --out " + out_dir.string() +
                         " --quiet >" + log + " 2>" + err)
                            .c_str());
-  EXPECT_EQ(WEXITSTATUS(status), 0) << slurp(err);
-  EXPECT_EQ(slurp(err), "");
-  EXPECT_NE(slurp(log).find("2 of 2 points (2 ok, 0 diverged, 0 failed)"), std::string::npos)
-      << slurp(log);
-  EXPECT_NE(slurp(log).find("points/s per core"), std::string::npos);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << read_file(err);
+  EXPECT_EQ(read_file(err), "");
+  EXPECT_NE(read_file(log).find("2 of 2 points (2 ok, 0 diverged, 0 failed)"), std::string::npos)
+      << read_file(log);
+  EXPECT_NE(read_file(log).find("points/s per core"), std::string::npos);
   for (const char* file : {"points.csv", "times.csv", "shard.txt"})
     EXPECT_TRUE(fs::exists(out_dir / file)) << file;
   // Nothing temporary is left beside them.

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "support/files.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -29,12 +31,7 @@ struct Output {
   std::string out, err;
 };
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using contact2d::test::read_file;
 
 // Runs contact2d with `env` before it (e.g. "VAR=1"), capturing both streams.
 Output capture(const std::string& args, const std::string& env = "") {
@@ -44,7 +41,7 @@ Output capture(const std::string& args, const std::string& env = "") {
   const int raw = std::system((env + (env.empty() ? "" : " ") + "'" + CONTACT2D_EXE + "' " + args +
                                " >'" + out.string() + "' 2>'" + err.string() + "'")
                                   .c_str());
-  Output o{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  Output o{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_file(out), read_file(err)};
   fs::remove(out);
   fs::remove(err);
   return o;
@@ -59,7 +56,7 @@ fs::path temp_png(const std::string& name) {
 void expect_png(const fs::path& png) {
   ASSERT_TRUE(fs::exists(png)) << png;
   EXPECT_GT(fs::file_size(png), 10000u) << png;
-  EXPECT_EQ(slurp(png).substr(1, 3), "PNG") << png;
+  EXPECT_EQ(read_file(png).substr(1, 3), "PNG") << png;
 }
 
 TEST(Cli, SimulateWritesTheTrajectoryCsv) {

@@ -22,16 +22,13 @@
 #include <string>
 #include <vector>
 
+#include "support/files.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using contact2d::test::read_file;
 
 std::string number(double x) {
   char buffer[32];
@@ -104,7 +101,7 @@ TEST(ExtremeMatrix, EveryRunExitsCleanlyWithoutNaNOrLeftoverFiles) {
               ASSERT_TRUE(WIFEXITED(raw)) << what << ": killed";
               const int status = WEXITSTATUS(raw);
               ++counts[engine + " exit " + std::to_string(status)];
-              const std::string text = read_text(err);
+              const std::string text = read_file(err);
               const auto lines = std::count(text.begin(), text.end(), '\n');
               EXPECT_TRUE(status == 0 || status == 3)
                   << what << ": exit " << status << ": " << text;
@@ -113,7 +110,7 @@ TEST(ExtremeMatrix, EveryRunExitsCleanlyWithoutNaNOrLeftoverFiles) {
                 EXPECT_FALSE(fs::exists(csv)) << what << ": a diverged run left its CSV";
               } else if (status == 0) {
                 EXPECT_LE(lines, 1) << what << ": " << text;
-                const std::string data = read_text(csv);
+                const std::string data = read_file(csv);
                 EXPECT_EQ(data.find("nan"), std::string::npos) << what << ": NaN in the CSV";
                 EXPECT_EQ(data.find("inf"), std::string::npos) << what << ": inf in the CSV";
               }

@@ -16,6 +16,8 @@
 #include <thread>
 #include <vector>
 
+#include "support/files.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -28,12 +30,7 @@ struct Case {
 
 void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using contact2d::test::read_file;
 
 bool has_temporary(const fs::path& dir) {
   for (const auto& entry : fs::directory_iterator(dir)) {
@@ -78,13 +75,13 @@ TEST_P(Interrupt, RemovesTheTemporaryFileAndExitsWith128PlusTheSignal) {
     if (::waitpid(pid, &status, WNOHANG) == pid) break;  // ended before opening: a failure
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  ASSERT_TRUE(opened) << "no temporary file appeared; stderr: " << read_all(err);
+  ASSERT_TRUE(opened) << "no temporary file appeared; stderr: " << read_file(err);
   ::kill(pid, c.signal);
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
   ASSERT_TRUE(WIFEXITED(status)) << "killed instead of exiting";
   EXPECT_EQ(WEXITSTATUS(status), 128 + c.signal);
   EXPECT_TRUE(fs::is_empty(dir)) << "left behind: " << fs::directory_iterator(dir)->path();
-  const std::string text = read_all(err);
+  const std::string text = read_file(err);
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
   EXPECT_NE(text.find("contact2d: interrupted ("), std::string::npos) << text;
   fs::remove_all(dir);

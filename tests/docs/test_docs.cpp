@@ -15,18 +15,15 @@
 #include <string>
 #include <vector>
 
+#include "support/files.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
 const fs::path kRoot = fs::weakly_canonical(CONTACT2D_SOURCE_DIR);
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using contact2d::test::read_file;
 
 std::vector<fs::path> pages() {
   std::vector<fs::path> out{kRoot / "README.md"};
@@ -63,7 +60,7 @@ std::vector<std::string> links(const std::string& text) {
 TEST(Docs, EveryLinkIsARelativePathToAFileInTheRepository) {
   int checked = 0;
   for (const fs::path& page : pages()) {
-    for (const std::string& target : links(slurp(page))) {
+    for (const std::string& target : links(read_file(page))) {
       SCOPED_TRACE(page.string() + ": " + target);
       EXPECT_EQ(target.find("://"), std::string::npos)
           << "a web address: the docs must stand alone";
@@ -127,7 +124,7 @@ std::vector<std::string> subcommands(const std::string& help) {
 }
 
 TEST(Docs, CliPageNamesEveryOptionOfEveryCommand) {
-  const std::string cli = slurp(kRoot / "docs" / "cli.md");
+  const std::string cli = read_file(kRoot / "docs" / "cli.md");
   const std::string top = run("--help");
   const std::vector<std::string> commands = subcommands(top);
   ASSERT_GE(commands.size(), 5u) << top;
@@ -158,7 +155,7 @@ namespace {
 // wall-clock figure of `simulate`'s summary ("in 1.96 ms") matched as any
 // number.
 TEST(Docs, ReadmeTourOutputIsWhatTheProgramPrints) {
-  const std::string readme = slurp(kRoot / "README.md");
+  const std::string readme = read_file(kRoot / "README.md");
   std::istringstream lines(readme);
   bool console = false;
   std::string command;

@@ -24,6 +24,7 @@
 #include "game/comparison_video.hpp"
 #include "game/video.hpp"
 #include "reference/dense_reference.hpp"
+#include "support/files.hpp"
 
 namespace fs = std::filesystem;
 using namespace contact2d;
@@ -34,12 +35,7 @@ fs::path temp(const std::string& name) {
   return fs::temp_directory_path() / ("contact2d_video_" + std::to_string(::getpid()) + "_" + name);
 }
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using contact2d::test::read_file;
 
 int sh(const std::string& command) {
   const int raw = std::system(command.c_str());
@@ -49,7 +45,7 @@ int sh(const std::string& command) {
 std::string capture(const std::string& command) {
   const fs::path out = temp("capture");
   sh(command + " >'" + out.string() + "' 2>/dev/null");
-  std::string text = slurp(out);
+  std::string text = read_file(out);
   fs::remove(out);
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   return text;
@@ -67,7 +63,7 @@ std::vector<unsigned char> decode_frame(const fs::path& video, int n) {
   const fs::path raw = temp("frame.rgb");
   sh("ffmpeg -loglevel error -y -i '" + video.string() + "' -vf 'select=eq(n\\," +
      std::to_string(n) + ")' -frames:v 1 -f rawvideo -pix_fmt rgb24 '" + raw.string() + "'");
-  const std::string bytes = slurp(raw);
+  const std::string bytes = read_file(raw);
   fs::remove(raw);
   return {bytes.begin(), bytes.end()};
 }

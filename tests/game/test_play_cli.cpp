@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "support/files.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -25,12 +27,7 @@ fs::path temp(const std::string& name) {
   return fs::temp_directory_path() / ("contact2d_play_" + std::to_string(::getpid()) + "_" + name);
 }
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using contact2d::test::read_file;
 
 Result run(const std::string& args) {
   const fs::path out = temp("stdout"), err = temp("stderr");
@@ -39,8 +36,8 @@ Result run(const std::string& args) {
   const int raw = std::system(command.c_str());
   Result r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
+  r.out = read_file(out);
+  r.err = read_file(err);
   fs::remove(out);
   fs::remove(err);
   return r;
@@ -111,7 +108,7 @@ TEST(PlayCli, AMujocoReplayGivesTheSameJsonTwice) {
 TEST(PlayCli, ADivergingPitchExitsThreeWithTheDiagnosis) {
   // A contact 1000 times stiffer at a 500 times larger step: ω·Δt ≈ 24,
   // far past semi-implicit Euler's limit of ~1.7 at this damping.
-  std::string text = slurp(kPitch);
+  std::string text = read_file(kPitch);
   const auto set = [&](const std::string& key, const std::string& value) {
     const size_t at = text.find("\n" + key + " = ");
     ASSERT_NE(at, std::string::npos) << key;
@@ -145,7 +142,7 @@ TEST_P(PlayBadInput, ExitsTwoWithOneLineNamingTheProblem) {
   const fs::path pitch = temp(std::string(c.name) + ".toml"),
                  replay = temp(std::string(c.name) + ".replay");
   if (*c.pitch_extra) {
-    std::string text = slurp(kPitch);
+    std::string text = read_file(kPitch);
     // Replace a [game] key by appending a second [game]-free override: TOML
     // forbids duplicate keys, so edit the value in place.
     const std::string extra = c.pitch_extra;

@@ -26,6 +26,8 @@
 #include <thread>
 #include <vector>
 
+#include "support/files.hpp"
+
 extern char** environ;
 
 namespace fs = std::filesystem;
@@ -37,12 +39,7 @@ fs::path temp(const std::string& name) {
          ("contact2d_window_" + std::to_string(::getpid()) + "_" + name);
 }
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using contact2d::test::read_file;
 
 int sh(const std::string& command) {
   const int raw = std::system(command.c_str());
@@ -52,7 +49,7 @@ int sh(const std::string& command) {
 std::string capture(const std::string& command) {
   const fs::path out = temp("capture");
   sh(command + " >'" + out.string() + "' 2>/dev/null");
-  std::string text = slurp(out);
+  std::string text = read_file(out);
   fs::remove(out);
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   return text;
@@ -112,7 +109,7 @@ void keys_move_the_ball(const std::string& engine) {
   // The shipped pitch with a round that cannot end before the keys arrive
   // (the ball at rest or the clock would end it after ~4 s; a slow machine
   // must not turn the kick into a key press between rounds).
-  std::string pitch_text = slurp(CONTACT2D_SOURCE_DIR "/validation/scenes/game/pitch.toml");
+  std::string pitch_text = read_file(CONTACT2D_SOURCE_DIR "/validation/scenes/game/pitch.toml");
   for (const auto& [from, to] :
        {std::pair<std::string, std::string>{"\nrest_time = 0.5", "\nrest_time = 60.0"},
         {"\nround_time = 20.0", "\nround_time = 60.0"}}) {
@@ -133,7 +130,7 @@ void keys_move_the_ball(const std::string& engine) {
   ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
 
   ASSERT_EQ(sh("timeout 30 xdotool search --sync --name 'contact2d play' >/dev/null"), 0)
-      << "the window did not appear: " << slurp(err);
+      << "the window did not appear: " << read_file(err);
   pause(0.5);
   const Image before = screenshot("before", screen_size);
   sh("xdotool keydown Right; sleep 0.5; xdotool keyup Right");
@@ -153,16 +150,16 @@ void keys_move_the_ball(const std::string& engine) {
     waitpid(pid, &status, 0);
     FAIL() << "play did not quit on Esc";
   }
-  EXPECT_EQ(WEXITSTATUS(status), 0) << slurp(err);
-  const std::string json = slurp(out);
-  std::printf("window: %s", slurp(err).c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 0) << read_file(err);
+  const std::string json = read_file(out);
+  std::printf("window: %s", read_file(err).c_str());
 
   // The keys reached the game: one kick, at the raised angle, counted (the
   // pass stops 3.5-7 m from the goal), and the held arrow was recorded as a
   // press and a later release.
   EXPECT_NE(json.find("\"kicks\":[{"), std::string::npos) << json;
   EXPECT_EQ(json_number(json, "angle", json.find("\"kicks\"")), 20.0) << json;
-  const std::string recorded = slurp(replay);
+  const std::string recorded = read_file(replay);
   const size_t down = recorded.find(" right down"), up = recorded.find(" right up");
   ASSERT_NE(down, std::string::npos) << recorded;
   ASSERT_NE(up, std::string::npos) << recorded;
@@ -254,7 +251,7 @@ void keys_move_the_ball(const std::string& engine) {
       sh(std::string("'") + CONTACT2D_EXE + "' play '" + pitch.string() + "' --headless --engine " +
          engine + " --replay '" + replay.string() + "' >'" + replay_out.string() + "'"),
       0);
-  const std::string replayed = slurp(replay_out);
+  const std::string replayed = read_file(replay_out);
   const auto kicks = [](const std::string& j) {
     return j.substr(j.find("\"kicks\""), j.find("\"rounds\"") - j.find("\"kicks\""));
   };
@@ -283,11 +280,11 @@ TEST(Window, TheHelpOverlayPausesTheGame) {
                            "' play --replay '" CONTACT2D_SOURCE_DIR
                            "/validation/replays/goal.replay' --frames 60 --no-vsync";
   ASSERT_EQ(sh(base + " --help-overlay >'" + out.string() + "' 2>'" + err.string() + "'"), 0)
-      << slurp(err);
-  EXPECT_NE(slurp(err).find(", 0 physics steps"), std::string::npos) << slurp(err);
-  EXPECT_NE(slurp(out).find("\"steps\":0,"), std::string::npos) << slurp(out);
-  ASSERT_EQ(sh(base + " >'" + out.string() + "' 2>'" + err.string() + "'"), 0) << slurp(err);
-  EXPECT_EQ(slurp(out).find("\"steps\":0,"), std::string::npos) << slurp(out);
+      << read_file(err);
+  EXPECT_NE(read_file(err).find(", 0 physics steps"), std::string::npos) << read_file(err);
+  EXPECT_NE(read_file(out).find("\"steps\":0,"), std::string::npos) << read_file(out);
+  ASSERT_EQ(sh(base + " >'" + out.string() + "' 2>'" + err.string() + "'"), 0) << read_file(err);
+  EXPECT_EQ(read_file(out).find("\"steps\":0,"), std::string::npos) << read_file(out);
   fs::remove(out);
   fs::remove(err);
 }
@@ -305,8 +302,8 @@ TEST(Window, RecordingTheGoalReplayWritesAVideoOfEveryFrame) {
          "' play --replay '" CONTACT2D_SOURCE_DIR "/validation/replays/goal.replay' --record '" +
          video.string() + "' >'" + out.string() + "' 2>'" + err.string() + "'"),
       0)
-      << slurp(err);
-  const std::string json = slurp(out), log = slurp(err);
+      << read_file(err);
+  const std::string json = read_file(out), log = read_file(err);
   EXPECT_NE(json.find("\"goal\":true"), std::string::npos) << json;
   EXPECT_FALSE(fs::exists(video.string() + ".tmp"));
   ASSERT_TRUE(fs::exists(video));
@@ -354,7 +351,7 @@ TEST(Window, InterruptedRecordingLeavesNoFile) {
     started = fs::exists(partial) && fs::file_size(partial) > 0;
     if (!started) pause(0.01);
   }
-  ASSERT_TRUE(started) << slurp(err);
+  ASSERT_TRUE(started) << read_file(err);
   ::kill(pid, SIGINT);
   int status = 0;
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
@@ -363,7 +360,7 @@ TEST(Window, InterruptedRecordingLeavesNoFile) {
   pause(0.5);  // a surviving ffmpeg would write (or rename) by now
   EXPECT_FALSE(fs::exists(partial));
   EXPECT_FALSE(fs::exists(video));
-  const std::string log = slurp(err);
+  const std::string log = read_file(err);
   EXPECT_NE(log.find("contact2d: interrupted (SIGINT)"), std::string::npos) << log;
   fs::remove(err);
 }

@@ -16,6 +16,7 @@
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
 #include "mujoco/solref_tool.hpp"
+#include "support/files.hpp"
 
 namespace contact2d {
 namespace {
@@ -292,12 +293,7 @@ struct CliResult {
   std::string out, err;
 };
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using contact2d::test::read_file;
 
 CliResult run_cli(const std::string& args) {
   const fs::path base =
@@ -306,7 +302,7 @@ CliResult run_cli(const std::string& args) {
   const std::string command =
       "'" CONTACT2D_BINARY "' solref " + args + " >'" + out + "' 2>'" + err + "'";
   const int raw = std::system(command.c_str());
-  CliResult r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  CliResult r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, read_file(out), read_file(err)};
   fs::remove(out);
   fs::remove(err);
   return r;
