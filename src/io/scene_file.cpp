@@ -80,7 +80,11 @@ void read_contact(const toml::table* table, Scene& scene, const std::string& ori
   contact.number("mu_torsion", p.mu_torsion);
   std::string damping = p.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt";
   contact.string("damping", damping);
-  contact.reject_unknown("k, c, mu, alpha, mu_roll, mu_torsion, damping");
+  std::string friction(friction_law_name(p.friction));
+  contact.string("friction_law", friction);
+  contact.number("cone_ratio", p.cone_ratio);
+  contact.reject_unknown(
+      "k, c, mu, alpha, mu_roll, mu_torsion, damping, friction_law, cone_ratio");
   if (damping == "compression") {
     p.damping = DampingLaw::Compression;
   } else if (damping == "kelvin_voigt") {
@@ -88,6 +92,13 @@ void read_contact(const toml::table* table, Scene& scene, const std::string& ori
   } else {
     contact.fail("damping", "= \"" + damping +
                                 "\" is not a damping law: use \"compression\" or \"kelvin_voigt\"");
+  }
+  if (const auto law = parse_friction_law(friction)) {
+    p.friction = *law;
+  } else {
+    contact.fail("friction_law", "= \"" + friction +
+                                     "\" is not a friction law: use \"tanh\", \"viscous_cone\" "
+                                     "or \"soft_cone\"");
   }
 }
 
