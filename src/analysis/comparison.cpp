@@ -343,9 +343,9 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
     } else if (r.cause == "friction_law" || r.cause == "friction_shape") {
       const bool soft = r.cause == "friction_law";
       f.fix = std::string("--set contact.friction_law=") + (soft ? "soft_cone" : "viscous_cone") +
-              " --set contact.cone_ratio=" + format_shortest(r.scene.contact.cone_ratio);
+              " --set contact.cone_ratio=" + format_shortest(r.scene.contact.cone_ratio, 6);
       if (r.scene.contact.mu_roll != scene.contact.mu_roll)
-        f.fix += " --set contact.mu_roll=" + format_shortest(r.scene.contact.mu_roll);
+        f.fix += " --set contact.mu_roll=" + format_shortest(r.scene.contact.mu_roll, 6);
       f.explanation =
           soft ? "MuJoCo's friction is its soft cone, not −μ·Fn·tanh(α·v_t): viscous (slope "
                  "impratio·c) inside the cone and, while sliding, a normal force raised by the "
