@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 
 #include <tinyxml2.h>
 
@@ -219,15 +221,40 @@ std::string friction_knob_xml(const Scene& scene, FrictionKnob knob) {
   return printer.CStr();
 }
 
-Scene conformance_scene(const Scene& scene, FrictionLaw law) {
+Scene conformance_scene(const Scene& scene, FrictionLaw law, const std::string& mapping) {
   mujoco::MjcfOptions options;
-  options.mapping = mujoco::Mapping::Compensated;
+  const std::optional<mujoco::Mapping> m = mujoco::parse_mapping(mapping);
+  if (!m) throw std::invalid_argument("conformance_scene: no mapping " + mapping);
+  options.mapping = *m;
   const mujoco::GeneratedModel g = mujoco::generate_mjcf(scene, options);
   Scene out = scene;
   out.contact.friction = law;
   out.contact.cone_ratio = g.settings.impratio;
   out.contact.mu_roll = mujoco::cone_mu_roll(scene, g.settings);
   return out;
+}
+
+FrictionParts friction_parts(const Scene& scene, const std::string& mapping) {
+  FrictionParts p;
+  const std::optional<mujoco::Mapping> m = mujoco::parse_mapping(mapping);
+  if (!m) throw std::invalid_argument("friction_parts: no mapping " + mapping);
+  mujoco::MjcfOptions options;
+  options.mapping = *m;
+  mujoco::MujocoStepper stepper(scene, mujoco::generate_mjcf(scene, options).xml, "friction parts");
+  const Trajectory mj = simulate(stepper, scene.sim);
+  const Trajectory reference = simulate(scene);
+  const Trajectory shape = simulate(conformance_scene(scene, FrictionLaw::ViscousCone, mapping));
+  const Trajectory soft = simulate(conformance_scene(scene, FrictionLaw::SoftCone, mapping));
+  p.ok = !mj.divergence && !reference.divergence && !shape.divergence && !soft.divergence;
+  if (!p.ok) {
+    p.total = p.shape = p.push = p.rest = std::numeric_limits<double>::quiet_NaN();
+    return p;
+  }
+  p.total = error_between(reference, mj).max_pos;
+  p.shape = error_between(reference, shape).max_pos;
+  p.push = error_between(shape, soft).max_pos;
+  p.rest = error_between(soft, mj).max_pos;
+  return p;
 }
 
 FrictionRow friction_row(const FrictionScene& s) {

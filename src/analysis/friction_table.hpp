@@ -105,9 +105,22 @@ struct FrictionRow {
 };
 
 // The scene as the reference runs it to conform to MuJoCo's model under
-// compensated: friction_law = law at compensated's impratio and rolling
-// coefficient.
-Scene conformance_scene(const Scene& scene, FrictionLaw law);
+// `mapping` (compensated by default): friction_law = law at the model's
+// impratio and rolling coefficient.
+Scene conformance_scene(const Scene& scene, FrictionLaw law,
+                        const std::string& mapping = "compensated");
+
+// One scene's difference with friction taken apart (m, largest position
+// distance): the reference (tanh) against MuJoCo under `mapping`, and the
+// three parts of the top of this file under the same mapping.
+struct FrictionParts {
+  double total = 0.0;  // reference ↔ MuJoCo
+  double shape = 0.0;  // reference ↔ reference under viscous_cone
+  double push = 0.0;   // viscous_cone ↔ soft_cone
+  double rest = 0.0;   // soft_cone ↔ MuJoCo
+  bool ok = false;     // false: an engine diverged (the numbers are NaN)
+};
+FrictionParts friction_parts(const Scene& scene, const std::string& mapping);
 
 // The split's shares: the frictional geom carries w of the spring and a
 // damper of ρ·c, with μ/w so that its friction limit is the scene's.

@@ -141,8 +141,13 @@ rp::ReadmeData readme_runs(const ReportOptions& o) {
     }
     for (const std::string& s : kScenes) {
       const double pos_goal = s == "point_mass" || s == "circle" ? 1e-3 : 3e-3;
-      d.goals.push_back(
-          {s + ", c = " + c + ", friction", pos_goal, std::nullopt, compare(s, goal(c))});
+      rp::GoalCase g{s + ", c = " + c + ", friction", pos_goal, std::nullopt, compare(s, goal(c))};
+      const analysis::FrictionParts parts =
+          analysis::friction_parts(load(scene_path(s), goal(c)), "calibrated");
+      g.friction_shape = parts.shape;
+      g.friction_push = parts.push;
+      g.friction_rest = parts.rest;
+      d.goals.push_back(g);
     }
     d.goals.push_back({"circle, c = " + c + ", friction, no rolling resistance", 1e-3, std::nullopt,
                        compare("circle", with(goal(c), {{"contact.mu_roll", "0"}}))});
@@ -190,6 +195,7 @@ rp::ReadmeData readme_runs(const ReportOptions& o) {
     const std::string source = "random scene " + r.name;
     const rp::Comparison without = rp::compare_engines(frictionless, source, mapping, "corners");
     const rp::Comparison friction = rp::compare_engines(r.scene, source, mapping, "corners");
+    const analysis::FrictionParts parts = analysis::friction_parts(r.scene, mapping);
     (compensated ? d.random_compensated : d.random)[i] = {r.name,
                                                           without.shape,
                                                           r.mass,
@@ -198,7 +204,10 @@ rp::ReadmeData readme_runs(const ReportOptions& o) {
                                                           r.scene.contact.mu,
                                                           without.max_pos,
                                                           without.max_angle,
-                                                          friction.max_pos};
+                                                          friction.max_pos,
+                                                          parts.shape,
+                                                          parts.push,
+                                                          parts.rest};
   });
   return d;
 }

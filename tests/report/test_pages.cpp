@@ -91,6 +91,18 @@ TEST(ReportPages, ReadmeMatchesGolden) {
   expect_golden("README.md", readme_page(fixtures::readme()));
 }
 
+// The first screen's friction lines from the fixture's hand-set parts
+// (fixtures.hpp): the random scenes' medians and the built-in box's parts.
+TEST(ReportPages, ReadmeTakesTheFrictionDifferenceApart) {
+  const std::string page = readme_page(fixtures::readme());
+  EXPECT_NE(page.find("| calibrated | 0.006 | 1 of 4 | 2.1e-05 | 0.006 | 2e-09 (largest 2e-06) | "
+                      "4 of 4 |"),
+            std::string::npos);
+  EXPECT_NE(page.find("they are at most 9e-10 m apart"), std::string::npos);
+  EXPECT_NE(page.find("moves a body by up to 3e-05 m and its push"), std::string::npos);
+  EXPECT_NE(page.find("lifting a sliding body) by up to 0.0041 m"), std::string::npos);
+}
+
 TEST(ReportPages, SweepMatchesGolden) { expect_golden("sweep.md", sweep_page(fixtures::sweep())); }
 
 TEST(ReportPages, StabilityMatchesGolden) {
