@@ -301,7 +301,9 @@ std::string summary(const ReadmeData& d) {
          "built-in scenes, the cone's\nshape (viscous inside it, sliding and rolling under one "
          "budget) moves a body by up to " +
          g(builtin_shape) + " m and its push (the damper\nlifting a sliding body) by up to " +
-         g(builtin_push) + " m, while everything else (MuJoCo's soft contact, its step) is " +
+         g(builtin_push) +
+         " m, while everything else (under calibrated its O(d) term, section 6; MuJoCo's step) "
+         "is at most " +
          g(builtin_rest) +
          " m; no setting of\nMuJoCo 2.2.2 removes the push (`friction.md`). Without friction: "
          "bounces of an underdamped body (a\nsmall difference of restitution carried from bounce "
