@@ -85,7 +85,7 @@ struct ClosedFormCase {
   std::string id;    // "static.point_mass"
   std::string name;  // "static penetration, point mass"
   Scene scene;
-  bool converged_available = true;  // false: not solvable by the dense reference
+  bool converged_available = true;        // false: not solvable by the dense reference
   std::optional<SlopeFrame> slope_frame;  // the converged solution in the slope's frame
   std::vector<ClosedFormQuantity> quantities;
 };

@@ -178,8 +178,8 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
   const bool cone_ratio_known = std::isfinite(mujoco_run.impratio) && mujoco_run.impratio > 0.0;
   if (scene.contact.mu > 0.0 && scene.contact.friction == FrictionLaw::Tanh) {
     for (const FrictionLaw law : {FrictionLaw::SoftCone, FrictionLaw::ViscousCone}) {
-      Rerun r = rerun(law == FrictionLaw::SoftCone ? "friction_law" : "friction_shape", scene, true,
-                      mj);
+      Rerun r =
+          rerun(law == FrictionLaw::SoftCone ? "friction_law" : "friction_shape", scene, true, mj);
       r.scene.contact.friction = law;
       r.scene.contact.cone_ratio = cone_ratio_known ? mujoco_run.impratio : 1.0;
       // MuJoCo's own rolling coefficient (compensated writes μ_roll').

@@ -65,8 +65,8 @@ std::vector<FrictionScene> friction_scenes() {
     std::string toml;
   } cases[] = {
       {"point_slide", "point mass sliding to rest, c = 20",
-       "scene = \"point_mass\"\n[body]\nmass = 1.0\nhalf_height = 0.05\n" +
-           law(20, 0.6, 0, 500) + "[initial]\ny = 0.049019\nvx = 1.0\n" + sim(1.0)},
+       "scene = \"point_mass\"\n[body]\nmass = 1.0\nhalf_height = 0.05\n" + law(20, 0.6, 0, 500) +
+           "[initial]\ny = 0.049019\nvx = 1.0\n" + sim(1.0)},
       {"box_slide", "box sliding to rest, c = 50",
        box + law(50, 0.5, 0) + "[initial]\ny = 0.0995\nvx = 2.0\n" + sim(1.5)},
       {"box_slide_c200", "box sliding to rest, c = 200",

@@ -68,10 +68,10 @@ enum class FrictionKnob {
   MarginGap,      // margin = gap = 1 mm on every geom (contacts found early, not active)
   Pair,           // every contact an explicit <pair> with the ground (geom collisions off)
 };
-constexpr FrictionKnob kFrictionKnobs[] = {
-    FrictionKnob::ImpratioTenth, FrictionKnob::ImpratioTen, FrictionKnob::Pyramidal,
-    FrictionKnob::Noslip,        FrictionKnob::Condim,      FrictionKnob::MarginGap,
-    FrictionKnob::Pair};
+constexpr FrictionKnob kFrictionKnobs[] = {FrictionKnob::ImpratioTenth, FrictionKnob::ImpratioTen,
+                                           FrictionKnob::Pyramidal,     FrictionKnob::Noslip,
+                                           FrictionKnob::Condim,        FrictionKnob::MarginGap,
+                                           FrictionKnob::Pair};
 // "impratio x0.1", … (header-only: the report's pages name the knobs
 // without linking MuJoCo).
 inline std::string knob_name(FrictionKnob knob) {

@@ -218,7 +218,8 @@ void print_table(const Comparison& c) {
                        format_shortest(c.scene.contact.cone_ratio, 6);
     if (std::isfinite(impratio) && impratio != c.scene.contact.cone_ratio)
       note += "; MuJoCo's model has impratio " + format_shortest(impratio, 6) +
-              ": --set contact.cone_ratio=" + format_shortest(impratio, 6) + " to compare like with like";
+              ": --set contact.cone_ratio=" + format_shortest(impratio, 6) +
+              " to compare like with like";
     std::cout << wrapped(note, "") << "\n";
   }
   if (conv.available) {

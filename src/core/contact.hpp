@@ -116,7 +116,7 @@ inline ConeForce viscous_cone_force(const ContactParams& p, double fn, double v_
   const double roll2 = p.mu_roll * p.mu_roll;
   const double slip = std::sqrt(mu2 * v_t * v_t + roll2 * spin * spin);  // s
   const double b = p.cone_ratio * p.c;                                   // ρ·c
-  if (b * slip <= mu2 * fn) {                                             // inside the cone
+  if (b * slip <= mu2 * fn) {                                            // inside the cone
     f.ft = -b * v_t;
     f.roll = -b * (roll2 / mu2) * spin;
   } else {
@@ -138,7 +138,7 @@ inline ConeForce soft_cone_force(const ContactParams& p, double aim, double v_t,
   const double roll2 = p.mu_roll * p.mu_roll;
   const double slip = std::sqrt(mu2 * v_t * v_t + roll2 * spin * spin);  // s
   const double b = p.cone_ratio * p.c;                                   // ρ·c
-  if (aim > 0.0 && b * slip <= mu2 * aim) {                               // inside the cone
+  if (aim > 0.0 && b * slip <= mu2 * aim) {                              // inside the cone
     f.fn = aim;
     f.ft = -b * v_t;
     f.roll = -b * (roll2 / mu2) * spin;

@@ -31,8 +31,8 @@ constexpr size_t kBatch = 16;
 // penetration, where MuJoCo puts the contact point: lever r + (0, d/2), so
 // v_t = v_x − ω·(r_y + d/2) (v_n is the same as at the point). viscous_cone,
 // and either law on an obstacle, keep the contact's own point.
-void add_cone(const Contact& c, const ContactParams& law, bool on_ground, double fn,
-              const Vec3& v, double omega, bool rolls, Vec2& force, double& torque) {
+void add_cone(const Contact& c, const ContactParams& law, bool on_ground, double fn, const Vec3& v,
+              double omega, bool rolls, Vec2& force, double& torque) {
   const bool soft = law.friction == FrictionLaw::SoftCone;
   const double rx = c.rx;
   const double ry = soft && on_ground ? c.ry + 0.5 * c.depth : c.ry;
@@ -194,8 +194,8 @@ Vec3 to_acceleration(const RigidBody& body, const Vec2& force, double torque) {
 // Newton solve needs a consistent Jacobian, not a cheap one). Steps
 // h = 1e-7·max(1, |x|): about √ε of the state, the usual forward-difference
 // balance of truncation against rounding.
-Vec3 cone_jacobian(const Model& model, const ContactSet& contacts, const Vec3& q,
-                   const Vec3& v, AccelerationJacobian& jacobian, ContactSet& probe) {
+Vec3 cone_jacobian(const Model& model, const ContactSet& contacts, const Vec3& q, const Vec3& v,
+                   AccelerationJacobian& jacobian, ContactSet& probe) {
   const Vec3 a = acceleration(model, contacts, v);
   for (int j = 0; j < 3; ++j) {
     const double h = 1e-7 * std::max(1.0, std::abs(q[j]));

@@ -83,8 +83,7 @@ void read_contact(const toml::table* table, Scene& scene, const std::string& ori
   std::string friction(friction_law_name(p.friction));
   contact.string("friction_law", friction);
   contact.number("cone_ratio", p.cone_ratio);
-  contact.reject_unknown(
-      "k, c, mu, alpha, mu_roll, mu_torsion, damping, friction_law, cone_ratio");
+  contact.reject_unknown("k, c, mu, alpha, mu_roll, mu_torsion, damping, friction_law, cone_ratio");
   if (damping == "compression") {
     p.damping = DampingLaw::Compression;
   } else if (damping == "kelvin_voigt") {

@@ -642,8 +642,6 @@ double read_inv_mass(const Scene& scene, const MjcfOptions& options, int split) 
 
 }  // namespace
 
-
-
 int contact_condim(const ContactParams& contact) {
   if (contact.mu_roll > 0.0 || contact.mu_torsion > 0.0) return 6;
   return contact.mu > 0.0 ? 3 : 1;

@@ -95,9 +95,8 @@ class System {
         // point_functions).
         const double ry_mid = ry + 0.5 * depth;
         const bool rolls = body.roll_radius > 0.0 && law.mu_roll > 0.0;
-        const ConeForce f =
-            soft_cone_force(law, normal_aim(law, depth, y[4] + y[5] * rx), y[3] - y[5] * ry_mid,
-                            rolls ? y[5] : 0.0);
+        const ConeForce f = soft_cone_force(law, normal_aim(law, depth, y[4] + y[5] * rx),
+                                            y[3] - y[5] * ry_mid, rolls ? y[5] : 0.0);
         fx += f.ft;
         fy += f.fn;
         torque += rx * f.fn - ry_mid * f.ft + f.roll;
@@ -161,10 +160,9 @@ class System {
     const double cy_rate = yd[1] + spin * rx;
     const double vcy_rate = yd[4] + yd[5] * rx - y[5] * spin * ry;
     rate_contact = -cy_rate;
-    rate_active = law.friction == FrictionLaw::SoftCone ? 0.0
-                  : law.damping == DampingLaw::Compression
-                      ? -vcy_rate
-                      : -law.k * cy_rate - law.c * vcy_rate;
+    rate_active = law.friction == FrictionLaw::SoftCone    ? 0.0
+                  : law.damping == DampingLaw::Compression ? -vcy_rate
+                                                           : -law.k * cy_rate - law.c * vcy_rate;
   }
 
   // Signed switching function of j: ≥ 0 while consistent with its mode bit.

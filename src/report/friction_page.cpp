@@ -47,9 +47,9 @@ three (triangle inequality).
     conforms += r.conformance <= goal;
     worst_rest = std::max(worst_rest, r.conformance);
     push_larger += r.push > r.shape;
-    add_row(t, {r.what + " (`" + r.name + "`)", g(r.calibrated.max_pos, 3),
-                g(r.compensated.max_pos, 3), g(r.compensated.hop, 3), g(r.shape, 3),
-                g(r.push, 3), g(r.conformance, 3)});
+    add_row(
+        t, {r.what + " (`" + r.name + "`)", g(r.calibrated.max_pos, 3), g(r.compensated.max_pos, 3),
+            g(r.compensated.hop, 3), g(r.shape, 3), g(r.push, 3), g(r.conformance, 3)});
   }
   out += to_markdown(t);
   out += "\n" + std::to_string(reached) + " of " + std::to_string(rows.size()) +
@@ -82,12 +82,14 @@ that has it). "split" is the measurement of the push
 
 )md";
   std::vector<std::string> columns{"scene", "calibrated"};
-  for (analysis::FrictionKnob k : analysis::kFrictionKnobs) columns.push_back(analysis::knob_name(k));
+  for (analysis::FrictionKnob k : analysis::kFrictionKnobs)
+    columns.push_back(analysis::knob_name(k));
   columns.emplace_back("split");
   Table knobs{columns, {}};
   for (const analysis::FrictionRow& r : rows) {
     std::vector<std::string> cells{"`" + r.name + "`", g(r.calibrated.max_pos, 3)};
-    for (double d : r.knobs) cells.push_back(std::isnan(d) ? "—" : std::isinf(d) ? "diverged" : g(d, 3));
+    for (double d : r.knobs)
+      cells.push_back(std::isnan(d) ? "—" : std::isinf(d) ? "diverged" : g(d, 3));
     cells.push_back(g(r.split.max_pos, 3));
     add_row(knobs, cells);
   }

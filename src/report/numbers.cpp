@@ -153,9 +153,9 @@ int random_reached(const std::vector<RandomCase>& cases, const RandomConfig& con
 }
 
 double median_of(std::vector<double> values) {
-  values.erase(std::remove_if(values.begin(), values.end(),
-                              [](double v) { return !std::isfinite(v); }),
-               values.end());
+  values.erase(
+      std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
+      values.end());
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
   if (n == 0) return std::numeric_limits<double>::quiet_NaN();

@@ -254,18 +254,18 @@ std::string summary(const ReadmeData& d) {
         "2.2.2 setting removes.\n";
   // With friction: the measured parts (analysis::friction_parts), per mapping.
   constexpr double kFrictionGoal = 1e-3;
-  out += "\n**With friction** the difference is MuJoCo's friction law. Taken apart on the same "
-         "random scenes (medians; `friction.md` has the method and every 2.2.2 setting tried):\n\n";
+  out +=
+      "\n**With friction** the difference is MuJoCo's friction law. Taken apart on the same "
+      "random scenes (medians; `friction.md` has the method and every 2.2.2 setting tried):\n\n";
   Table parts{{"mapping", "with friction", "within " + sci(kFrictionGoal) + " m",
                "the cone's shape", "its push", "the rest: the reference under MuJoCo's law",
                "the rest within " + sci(kFrictionGoal) + " m"},
               {}};
   for (const auto& run : runs) {
     const FrictionSummary f = friction_summary(*run.second, kFrictionGoal);
-    add_row(parts, {run.first, g(f.median_total), std::to_string(f.within) + " of " +
-                                                      std::to_string(f.count),
-                    g(f.median_shape), g(f.median_push),
-                    g(f.median_rest) + " (largest " + g(f.max_rest) + ")",
+    add_row(parts, {run.first, g(f.median_total),
+                    std::to_string(f.within) + " of " + std::to_string(f.count), g(f.median_shape),
+                    g(f.median_push), g(f.median_rest) + " (largest " + g(f.max_rest) + ")",
                     std::to_string(f.rest_within) + " of " + std::to_string(f.count)});
   }
   out += to_markdown(parts);
@@ -296,7 +296,8 @@ std::string summary(const ReadmeData& d) {
          "(add `--set contact.mu=0 --set contact.mu_roll=0` for the frictionless line); with the "
          "reference running\nMuJoCo's own friction law (`--set contact.friction_law=soft_cone`, "
          "at the model's impratio) they are at most " +
-         g(builtin_rest) + " m apart.\n\n"
+         g(builtin_rest) +
+         " m apart.\n\n"
          "**Why they still differ**: with friction, MuJoCo's friction law — measured on the "
          "built-in scenes, the cone's\nshape (viscous inside it, sliding and rolling under one "
          "budget) moves a body by up to " +

@@ -93,8 +93,7 @@ TEST(ViscousCone, SharesOneBudgetBetweenSlidingAndRolling) {
   // Inside the cone: viscous, slope b for sliding and b·(μ_roll/μ)² for rolling.
   const ConeForce in = viscous_cone_force(p, fn, 1e-5, 1e-3);
   EXPECT_DOUBLE_EQ(in.ft, -p.cone_ratio * p.c * 1e-5);
-  EXPECT_NEAR(in.roll, -p.cone_ratio * p.c * (p.mu_roll / p.mu) * (p.mu_roll / p.mu) * 1e-3,
-              1e-18);
+  EXPECT_NEAR(in.roll, -p.cone_ratio * p.c * (p.mu_roll / p.mu) * (p.mu_roll / p.mu) * 1e-3, 1e-18);
 }
 
 // The pipeline: a point mass held at a constant slip v by an applied force
@@ -111,8 +110,9 @@ TEST(SoftCone, ASlidingPointMassSinksLessAsThePushGrows) {
     scene.half_height = 0.05;
     const double p0 = scene.mass * scene.sim.gravity / scene.contact.k;
     const double mu2 = scene.contact.mu * scene.contact.mu;
-    const double expected = 1.0 + mu2 / scene.contact.cone_ratio -
-                            scene.contact.mu * scene.contact.c * v / (scene.mass * scene.sim.gravity);
+    const double expected =
+        1.0 + mu2 / scene.contact.cone_ratio -
+        scene.contact.mu * scene.contact.c * v / (scene.mass * scene.sim.gravity);
     EXPECT_NEAR(expected, fraction, 5e-4);  // the numbers of the comment above
     Model model = make_model(scene);
     // Friction at the steady state is μ·Fn = μ·m·g: balance it.
@@ -163,8 +163,9 @@ TEST(SoftCone, ActsHalfwayIntoThePenetration) {
   double fx = 0.0, fy = -scene.mass * scene.sim.gravity, torque = 0.0;
   for (const Contact& c : contacts) {
     const double ry = c.ry + 0.5 * d;
-    const ConeForce f = soft_cone_force(model.contact, model.contact.k * d - model.contact.c * (v.y() + v.z() * c.rx),
-                                        v.x() - v.z() * ry, 0.0);
+    const ConeForce f = soft_cone_force(
+        model.contact, model.contact.k * d - model.contact.c * (v.y() + v.z() * c.rx),
+        v.x() - v.z() * ry, 0.0);
     fx += f.ft;
     fy += f.fn;
     torque += c.rx * f.fn - ry * f.ft;

@@ -51,8 +51,8 @@ TEST_P(SoftConeScene, FollowsMuJoCo) {
   const analysis::FrictionScene& fs = GetParam();
   const analysis::TrajectoryError soft = soft_cone_vs_mujoco(fs.scene);
   const test::BothRuns tanh = test::run_both(fs.scene, mujoco::Mapping::Compensated);
-  std::printf("%s: soft cone vs MuJoCo %.3g m (tanh law: %.3g m)\n", fs.name.c_str(),
-              soft.max_pos, tanh.errors.max_pos);
+  std::printf("%s: soft cone vs MuJoCo %.3g m (tanh law: %.3g m)\n", fs.name.c_str(), soft.max_pos,
+              tanh.errors.max_pos);
   EXPECT_LT(soft.max_pos, kConformance);
   EXPECT_GT(tanh.errors.max_pos, 1e3 * kConformance);  // the scene does test friction
 }
@@ -89,7 +89,8 @@ TEST(SoftCone, TheDiagnosisNamesTheFrictionLaw) {
     spec.mapping = mapping;
     const engines::EngineRun ref = engines::run_engine("ref", scene);
     const engines::EngineRun mj = engines::run_engine(spec, scene);
-    const analysis::ThreeWay three = analysis::three_way(scene, ref.trajectory, mj.trajectory, 1e-10);
+    const analysis::ThreeWay three =
+        analysis::three_way(scene, ref.trajectory, mj.trajectory, 1e-10);
     const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, mj, three);
     const analysis::Finding* law = nullptr;
     for (const analysis::Finding& f : d.findings)

@@ -171,13 +171,36 @@ TEST(ReportPages, FrictionMatchesGolden) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   const std::vector<double> knobs{0.0049, 0.0051, inf, 0.005, 0.005, 0.005, 0.005};
-  const std::vector<analysis::FrictionRow> rows = {
-      {"box_slide", "box sliding to rest, c = 50", {0.005, 0, 0.004}, {0.005, 0, 0.0045},
-       {0.001, 0, 1e-5}, 2.8e-5, 0.0049, 3e-11, 1e-10, knobs},
-      {"tshape", "T landing", {0.003, 0.01, 0.001}, {0.0031, 0.01, 0.001}, {0.39, 1, 0.2},
-       0.0069, 0.0092, 2e-8, 1e-7, knobs},
-      {"slide_roll", "disc sliding into rolling", {0.002, 0, 0.001}, {0.0008, 0, 0.0005},
-       {0.0002, 0, 1e-6}, 9e-4, 0.0008, 1e-13, 0, std::vector<double>(7, nan)}};
+  const std::vector<analysis::FrictionRow> rows = {{"box_slide",
+                                                    "box sliding to rest, c = 50",
+                                                    {0.005, 0, 0.004},
+                                                    {0.005, 0, 0.0045},
+                                                    {0.001, 0, 1e-5},
+                                                    2.8e-5,
+                                                    0.0049,
+                                                    3e-11,
+                                                    1e-10,
+                                                    knobs},
+                                                   {"tshape",
+                                                    "T landing",
+                                                    {0.003, 0.01, 0.001},
+                                                    {0.0031, 0.01, 0.001},
+                                                    {0.39, 1, 0.2},
+                                                    0.0069,
+                                                    0.0092,
+                                                    2e-8,
+                                                    1e-7,
+                                                    knobs},
+                                                   {"slide_roll",
+                                                    "disc sliding into rolling",
+                                                    {0.002, 0, 0.001},
+                                                    {0.0008, 0, 0.0005},
+                                                    {0.0002, 0, 1e-6},
+                                                    9e-4,
+                                                    0.0008,
+                                                    1e-13,
+                                                    0,
+                                                    std::vector<double>(7, nan)}};
   const std::string page = friction_page(rows, 1e-3);
   // 1 of 3 within 1e-3 m (0.0008 under compensated); 3 of 3 conform, the
   // largest rest 2e-8 m.
