@@ -473,8 +473,9 @@ struct JointedDrop {
 // body taken for contact2d's planar one) and a factor 4 (four contacts
 // taken for one); the measured residual is printed (at most 1.6e-11, the
 // box's seed mapping: its four contacts are solved by MuJoCo's Newton
-// solver to its tolerance, not in closed form, so the margin is kept wide). No --mu: the models keep MuJoCo's default
-// friction (μ = 1, condim 3, pyramidal: φ = 1 for seed and exact).
+// solver to its tolerance, not in closed form, so the margin is kept
+// wide). No --mu: the models keep MuJoCo's default friction (μ = 1,
+// condim 3, pyramidal: φ = 1 for seed and exact).
 TEST(SolrefTool, PastedSnippetRestsAtThePrintedDepthForEachJointSet) {
   const double m = 1.5, k = 2e4, c = 50.0, dt = 1e-4;
   const double box_inertia = m * (0.2 * 0.2 + 0.1 * 0.1) / 12.0;  // ~ a 0.2 × 0.1 m box
