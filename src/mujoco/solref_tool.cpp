@@ -454,7 +454,7 @@ std::string format_report_text(const SolrefReport& r) {
     << " N·s/m per MuJoCo contact, Δt = " << g(in.dt) << " s; body: " << in.body_source << "\n";
   const bool hinge = in.joint == Joint::Hinge;
   o << "m = " << g(in.mass) << " kg; A = "
-    << (hinge            ? "r²/(I + m·pivot²)"
+    << (hinge            ? "lever²/(I + m·pivot²)"
         : in.lever > 0.0 ? "1/m + r²/I"
                          : "1/m")
     << " = " << g(r.inv_mass)
