@@ -599,6 +599,7 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
       }
     }
     std::vector<double> heights;
+    heights.reserve(lines.size());
     for (const Line& line : lines) heights.push_back(line.height);
     heights = spread_labels(heights, 0.035, 0.98);
     for (size_t n = 0; n < lines.size(); ++n) {
