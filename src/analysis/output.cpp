@@ -68,10 +68,10 @@ EngineStyle engine_style(size_t engine_index) {
 // so that one engine's integrators whose points coincide (MuJoCo's Euler
 // and RK4 at small Δt) show as different nested shapes rather than one
 // marker hiding another. Triangles are left to the stability map's bounds.
-int point_type(size_t engine_index, Integrator integrator) {
+int point_type(const std::string& engine, Integrator integrator) {
   static const int filled[] = {5, 7, 15, 13}, open[] = {4, 6, 14, 12};
   const int i = static_cast<int>(integrator);
-  return engine_index == 0 ? filled[i] : open[i];
+  return engine == "ref" ? filled[i] : open[i];
 }
 
 // The position of `engine` in the order the engines first appear.
@@ -247,7 +247,7 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
     std::fprintf(f, "\n\n");
     const size_t engine = engine_index(engines, key.first);
     series.push_back({series_title(key.first, key.second), key.second, engine_style(engine),
-                      point_type(engine, key.second)});
+                      point_type(key.first, key.second)});
   }
   // The adaptive method: tolerance in column 1 (no dt), its time and error.
   int dense_points = 0;
@@ -490,7 +490,7 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
     c.integrator = key.second;
     const size_t engine = engine_index(engines, key.first);
     c.style = engine_style(engine);
-    c.point_type = point_type(engine, key.second);
+    c.point_type = point_type(key.first, key.second);
     c.mujoco_implicit = is_mujoco_engine(key.first) && key.second == Integrator::ImplicitEuler;
     for (const StabilityRow& row : r.rows) {
       if (row.engine != key.first || row.integrator != key.second) continue;
@@ -619,7 +619,10 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
       const Series& c = series[i];
       const std::string colour = " lc " + integrator_colour(c.integrator);
       const std::string marker =
-          " pt " + std::to_string(c.point_type) + " ps " + number(c.style.point_size, 2);
+          " pt " + std::to_string(c.point_type) + " ps " +
+          // Grows with the integrator too (as in the sweep): MuJoCo's Euler
+          // and implicit coincide on contacts, and nest instead of hiding.
+          number(c.style.point_size + 0.35 * static_cast<int>(c.integrator), 3);
       // Bounds often coincide (every series stable at the largest Δt): their
       // markers grow with the engine and the integrator, so they nest.
       const std::string bound_size =

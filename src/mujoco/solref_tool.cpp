@@ -328,18 +328,25 @@ SolrefReport solref_report(const SolrefInput& input, const std::vector<Mapping>&
   for (Mapping mapping : mappings) report.mappings.push_back(outcome(report, mapping));
   for (MappingOutcome& o : report.mappings)
     if (o.unavailable.empty()) o.unfit = unfit_reason(report, o);
-  // The recommendation: the first offered mapping that is fit, printed first.
+  // The recommendation: the first offered mapping that is fit (computed
+  // whether or not --mapping asked for it), printed first.
   for (Mapping candidate : offered_mappings()) {
     const auto it = std::find_if(report.mappings.begin(), report.mappings.end(),
                                  [&](const MappingOutcome& o) { return o.mapping == candidate; });
-    if (it == report.mappings.end() || !it->unavailable.empty() || !it->unfit.empty()) continue;
+    MappingOutcome o = it != report.mappings.end() ? *it : outcome(report, candidate);
+    if (!o.unavailable.empty()) continue;
+    o.unfit = unfit_reason(report, o);
+    if (!o.unfit.empty()) continue;
     const double omega = std::sqrt(input.k * report.inv_mass);
     report.recommendation =
-        std::string(mapping_name(candidate)) + ": MuJoCo's contact then has ω = " + g(it->omega) +
+        std::string(mapping_name(candidate)) + ": MuJoCo's contact then has ω = " + g(o.omega) +
         " rad/s against the physical " + g(omega) + " and rests at " +
-        g(it->static_penetration / it->nominal_penetration) +
-        " × f/k; it sets only solref, solimp and MuJoCo's options, so it is a model to build on";
-    std::rotate(report.mappings.begin(), it, it + 1);
+        g(o.static_penetration / o.nominal_penetration) +
+        " × f/k; it sets only solref, solimp and MuJoCo's options, so it is a model to build on" +
+        (it == report.mappings.end()
+             ? " (not printed below: --mapping " + std::string(mapping_name(candidate)) + ")"
+             : std::string());
+    if (it != report.mappings.end()) std::rotate(report.mappings.begin(), it, it + 1);
     break;
   }
   return report;
@@ -449,7 +456,8 @@ std::string format_report_text(const SolrefReport& r) {
   if (!r.recommendation.empty())
     o << "Use " << r.recommendation << ".\n";
   else
-    o << "No mapping is fit for a model to build on here (each says why below).\n";
+    o << "No mapping is fit for a model to build on here (calibrated, exact and seed; each "
+         "printed below says why).\n";
   o << "\nk = " << g(in.k) << " N/m, c = " << g(in.c)
     << " N·s/m per MuJoCo contact, Δt = " << g(in.dt) << " s; body: " << in.body_source << "\n";
   const bool hinge = in.joint == Joint::Hinge;
