@@ -531,30 +531,41 @@ TEST(SolrefTool, PastedSnippetRestsAtThePrintedDepthForEachJointSet) {
         // velocities), so there is no rest depth to compare; the tool marks
         // seed "do not use" in any case.
         if (dc.joint == mj::Joint::Hinge && o.mapping == mj::Mapping::Seed) continue;
-        EXPECT_EQ(o.default_snippet.find("condim"), std::string::npos) << o.default_snippet;
-        EXPECT_EQ(o.default_snippet.find("friction"), std::string::npos) << o.default_snippet;
-        const auto [option, rest] = split_option(o.default_snippet);
-        const std::string xml = with(rest, option, " class=\"contact2d\"");
-        const mj::ModelPtr model = mj::load_model(xml, "test model");
-        const mj::DataPtr data = mj::make_data(model.get());
-        for (long i = 0; i < std::lround(3.0 / dt); ++i) mj_step(model.get(), data.get());
-        mj_forward(model.get(), data.get());
-        ASSERT_EQ(data->ncon, dc.contacts) << dc.name << "\n" << xml;
-        // At rest (what the printed depth is for): every joint speed below
-        // 1e-6 (m/s or rad/s; the transient has decayed by e^(-ζω·3 s)).
-        for (int i = 0; i < model->nv; ++i)
-          ASSERT_LT(std::abs(data->qvel[i]), 1e-6)
-              << dc.name << ", " << mj::mapping_name(o.mapping);
-        double worst = 0.0;
-        for (int i = 0; i < data->ncon; ++i) {
-          const double p = -data->contact[i].dist;
-          worst = std::max(worst, std::abs(p / o.static_penetration - 1.0));
+        for (const std::string* snippet : {&o.default_snippet, &o.pair_snippet}) {
+          EXPECT_EQ(snippet->find("condim"), std::string::npos) << *snippet;
+          EXPECT_EQ(snippet->find("friction"), std::string::npos) << *snippet;
+          const bool pair = snippet == &o.pair_snippet;
+          auto [option, rest] = split_option(*snippet);
+          std::string xml;
+          if (pair) {  // a <contact><pair> after the worldbody, the geoms' own friction
+            rest.replace(rest.find("BODY_GEOM"), 9, "b_geom");
+            xml = with("", option, "");
+            xml.insert(xml.rfind("</mujoco>"), rest);
+          } else {
+            xml = with(rest, option, " class=\"contact2d\"");
+          }
+          const mj::ModelPtr model = mj::load_model(xml, "test model");
+          const mj::DataPtr data = mj::make_data(model.get());
+          for (long i = 0; i < std::lround(3.0 / dt); ++i) mj_step(model.get(), data.get());
+          mj_forward(model.get(), data.get());
+          ASSERT_EQ(data->ncon, dc.contacts) << dc.name << "\n" << xml;
+          // At rest (what the printed depth is for): every joint speed below
+          // 1e-6 (m/s or rad/s; the transient has decayed by e^(-ζω·3 s)).
+          for (int i = 0; i < model->nv; ++i)
+            ASSERT_LT(std::abs(data->qvel[i]), 1e-6)
+                << dc.name << ", " << mj::mapping_name(o.mapping);
+          double worst = 0.0;
+          for (int i = 0; i < data->ncon; ++i) {
+            const double p = -data->contact[i].dist;
+            worst = std::max(worst, std::abs(p / o.static_penetration - 1.0));
+          }
+          std::printf(
+              "%s (%s, %s), %s: printed %.9g m per contact, MuJoCo's %d contacts within %.3g\n",
+              dc.name, from_model ? "--model" : "--mass --joint", pair ? "pair" : "default class",
+              std::string(mj::mapping_name(o.mapping)).c_str(), o.static_penetration, data->ncon,
+              worst);
+          EXPECT_LT(worst, 0.01) << dc.name << ", " << mj::mapping_name(o.mapping) << "\n" << xml;
         }
-        std::printf("%s (%s), %s: printed %.9g m per contact, MuJoCo's %d contacts within %.3g\n",
-                    dc.name, from_model ? "--model" : "--mass --joint",
-                    std::string(mj::mapping_name(o.mapping)).c_str(), o.static_penetration,
-                    data->ncon, worst);
-        EXPECT_LT(worst, 0.01) << dc.name << ", " << mj::mapping_name(o.mapping) << "\n" << xml;
       }
     }
   }
