@@ -147,13 +147,16 @@ Command add_solref(CLI::App& app) {
   cmd->add_option("--pivot", options->pivot,
                   "--joint hinge: distance of the COM from the hinge axis, m (> 0)");
   CLI::Option* model = cmd->add_option(
-      "--model", options->model, "A MuJoCo MJCF file: read the body's mass and body_invweight0");
+      "--model", options->model,
+      "A MuJoCo MJCF file: read the body's mass, joints, body_invweight0 and friction, and count "
+      "its contacts at rest (3 s of mj_step)");
   cmd->add_option("--body", options->body, "The body's name in --model");
   mass->excludes(model);
   cmd->add_option("--mu", options->mu,
                   "Sliding friction coefficient (>= 0; absent: the snippets keep your friction)");
-  cmd->add_option("--mu-roll", options->mu_roll,
-                  "Rolling friction, m (>= 0; needs --inertia and --lever, the rolling radius)");
+  cmd->add_option(
+      "--mu-roll", options->mu_roll,
+      "Rolling friction, m (>= 0; needs --mu, --inertia and --lever, the rolling radius)");
   cmd->add_option("--mapping", options->mapping, "calibrated | exact | seed | all (default all)");
   cmd->add_option("--contacts", options->contacts,
                   "MuJoCo contacts sharing the weight at rest, k and c are per contact (>= 1; "
