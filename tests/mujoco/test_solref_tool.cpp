@@ -592,6 +592,8 @@ TEST(SolrefCli, ModelCountsContactsAndSaysSo) {
       "--joint planar");
   fs::remove(path);
   expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --mass 1 --joint ball", "--joint ball");
+  expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --mass 1 --inertia 1 --lever 0.1 --mu-roll 0.01",
+                        "--mu-roll");
   expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --mass 1 --mapping compensated",
                         "--mapping compensated");
   expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --mass 1 --joint hinge --lever 0.1", "--pivot");
