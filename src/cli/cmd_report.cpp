@@ -1,4 +1,4 @@
-// contact2d report [--out DIR] [--models DIR] [--bench PATH] [--seed N]
+// contact2d report [--out DIR] [--models DIR | --snapshot] [--bench PATH] [--seed N]
 //
 // Writes every page of validation/report/ — README.md (the reference against
 // MuJoCo), sweep.md, stability.md, extreme.md, closed_forms.md — and their PNG plots, and the
@@ -39,9 +39,13 @@ namespace {
 namespace rp = contact2d::report;
 namespace fs = std::filesystem;
 
+// By default the report goes to build/ (outside the tracked tree: its pages
+// hold wall-clock times); --snapshot writes the committed snapshot,
+// validation/report/ and models/.
 struct ReportOptions {
-  std::string out = "validation/report";
-  std::string models = "models";
+  std::string out = "build/report";
+  std::string models = "build/report/models";
+  bool snapshot = false;
   std::string bench;  // default: bench/contact2d_bench beside this program
   std::uint64_t seed = 20260101;
 };
@@ -382,10 +386,18 @@ Command add_report(CLI::App& app) {
       "report",
       "Run every case of the validation report and write its pages and plots (from the "
       "repository root)");
-  cmd->add_option("--out", o->out, "Directory of the pages and plots (default validation/report)")
-      ->type_name("DIR");
-  cmd->add_option("--models", o->models, "Directory of the generated MJCF models (default models)")
-      ->type_name("DIR");
+  CLI::Option* out =
+      cmd->add_option("--out", o->out, "Directory of the pages and plots (default build/report)")
+          ->type_name("DIR");
+  CLI::Option* models =
+      cmd->add_option("--models", o->models,
+                      "Directory of the generated MJCF models (default build/report/models)")
+          ->type_name("DIR");
+  cmd->add_flag("--snapshot", o->snapshot,
+                "Write the committed snapshot: validation/report and models (excludes --out, "
+                "--models)")
+      ->excludes(out)
+      ->excludes(models);
   cmd->add_option("--bench", o->bench,
                   "The contact2d_bench program (default: bench/contact2d_bench beside contact2d; "
                   "the cost section is left out when there is none)")
@@ -393,6 +405,10 @@ Command add_report(CLI::App& app) {
   cmd->add_option("--seed", o->seed, "Seed of the random scenes (default 20260101)")
       ->type_name("N");
   return {cmd, [o] {
+            if (o->snapshot) {
+              o->out = "validation/report";
+              o->models = "models";
+            }
             try {
               return report(*o);
             } catch (const InputError&) {

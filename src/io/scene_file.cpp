@@ -369,7 +369,17 @@ Scene load_scene(const std::string& path, const std::vector<Override>& overrides
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError(path + ": cannot read scene file (read error)");
-  return parse_scene(text.str(), path, overrides);
+  // A MuJoCo model given where a scene belongs: say what it is, not that
+  // the TOML is malformed. XML starts with '<' (after blanks); TOML cannot.
+  const std::string& content = text.str();
+  const size_t first = content.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
+  if (first != std::string::npos && content[first] == '<') {
+    throw InputError(path +
+                     ": this is an MJCF (XML) file: contact2d reads scenes (TOML, docs/scenes.md); "
+                     "for your own MuJoCo model use `contact2d solref --model " +
+                     path + " --body NAME`");
+  }
+  return parse_scene(content, path, overrides);
 }
 
 }  // namespace contact2d
