@@ -130,7 +130,9 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
     last = now;
     // The help overlay pauses the game too: nobody plays while reading it.
     if (!overlay.paused && !overlay.help && overlay.get_ready > 0.0) {
-      overlay.get_ready = std::max(0.0, overlay.get_ready - std::min(frame_time, 0.25));
+      // Wall clock, not the physics' capped frame time: a slow first frame
+      // (a loaded machine) must not stretch the wait.
+      overlay.get_ready = std::max(0.0, overlay.get_ready - frame_time);
       steps_before = game.steps();
     } else if (!overlay.paused && !overlay.help) {
       accumulator += std::min(frame_time, 0.25);

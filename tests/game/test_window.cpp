@@ -132,9 +132,11 @@ void keys_move_the_ball(const std::string& engine) {
 
   ASSERT_EQ(sh("timeout 30 xdotool search --sync --name 'contact2d play' >/dev/null"), 0)
       << "the window did not appear: " << read_file(err);
-  // Live play shows the first pass frozen for kFirstPassDelay (game keys
-  // ignored meanwhile); the keys below come after it, 0.5 s into the pass.
-  pause(contact2d::game::kFirstPassDelay + 0.5);
+  // Live play shows the first pass frozen for kFirstPassDelay of wall clock
+  // from its first frame (game keys ignored meanwhile); the keys below come
+  // 1.5 s after it, room for the window's first frame on a loaded machine
+  // (0.5 s was not: a run with two builds beside it sent Right too early).
+  pause(contact2d::game::kFirstPassDelay + 1.5);
   const Image before = screenshot("before", screen_size);
   sh("xdotool keydown Right; sleep 0.5; xdotool keyup Right");
   sh("xdotool key w");  // kick angle 15 → 20 degrees
