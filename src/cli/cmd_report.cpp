@@ -61,7 +61,7 @@ Scene load(const std::string& path, const std::vector<Override>& overrides = {})
 
 // --set contact.damping=kelvin_voigt
 const std::vector<Override> kKelvinVoigt{{"contact.damping", "kelvin_voigt"}};
-// The goal of issue 3: --dt 1e-4 --set contact.damping=kelvin_voigt --set contact.c=C
+// The agreement goal's runs: --dt 1e-4 --set contact.damping=kelvin_voigt --set contact.c=C
 std::vector<Override> goal(const std::string& c) {
   return {{"contact.damping", "kelvin_voigt"}, {"contact.c", c}, {"sim.dt", "1e-4"}};
 }

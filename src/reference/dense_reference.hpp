@@ -42,9 +42,9 @@
 // contact function is then "wrong" at both ends of the step, in the contact
 // mode it is "wrong" (by an ulp) at the start and the exit is found again
 // within an ulp. After kMaxZeroLengthFlips such zero-length flips the
-// function is no longer flipped at the start, and — unlike the old code,
-// which then accepted the step and integrated the point, e.g., 2.4 mm inside
-// the ground with no force — it is resolved:
+// function is no longer flipped at the start, and — rather than accepting
+// the step and integrating the point, e.g., 2.4 mm inside the ground with no
+// force — it is resolved:
 //   * rate into the current mode's side: the mode is right (the start value
 //     is rounding at the surface); the function comes back within the step,
 //     after an interior maximum: that crossing is located like any other;
@@ -60,8 +60,8 @@
 // the wrong side of both modes on every step, the run is reported, never
 // silently integrated in an inconsistent mode.
 //
-// Runs that never reach the flip limit are unaffected: the resolution only
-// replaces what the old code did at that limit (skip the function).
+// Runs that never reach the flip limit are unaffected: the resolution acts
+// only at that limit.
 //
 // The right-hand side reproduces dynamics.cpp's acceleration() branch by
 // branch (ground contact, sliding friction, rolling resistance, the model's

@@ -67,7 +67,7 @@ struct OverallWinner {
 };
 OverallWinner overall_winner(const std::vector<MappingMean>& means);
 
-// Goal of issue 3: the position goal, and the angle goal when there is one.
+// The agreement goal: the position goal, and the angle goal when there is one.
 bool goal_reached(double max_pos, double max_angle, double pos_goal,
                   std::optional<double> angle_goal);
 
