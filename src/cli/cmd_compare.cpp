@@ -20,6 +20,7 @@
 #include "core/input_error.hpp"
 #include "core/integrator_label.hpp"
 #include "io/csv.hpp"
+#include "io/json.hpp"
 #include "io/plot.hpp"
 #include "io/table.hpp"
 #include "mujoco/mjcf.hpp"
@@ -63,25 +64,10 @@ Energies energies(const Scene& scene, const Trajectory& t) {
   return {energy(model, t.samples.front().state), energy(model, t.samples.back().state)};
 }
 
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (char ch : text) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    if (static_cast<unsigned char>(ch) < 0x20) {
-      out += ' ';
-      continue;
-    }
-    out += ch;
-  }
-  return out + "\"";
-}
-
-std::string json_number(double v) { return std::isfinite(v) ? format_number(v, 10) : "null"; }
-
 // `prefix`_max_pos_err, …: one pair's distances (null when not measured).
 void json_errors(std::ostringstream& o, const std::string& prefix,
                  const analysis::TrajectoryError& e, bool measured) {
-  auto n = [measured](double v) { return measured ? json_number(v) : std::string("null"); };
+  auto n = [measured](double v) { return measured ? json::number(v, 10) : std::string("null"); };
   o << ", \"" << prefix << "_max_pos_err\": " << n(e.max_pos) << ", \"" << prefix
     << "_rms_pos_err\": " << n(e.rms_pos) << ", \"" << prefix << "_end_pos_err\": " << n(e.end_pos)
     << ", \"" << prefix << "_max_angle_err\": " << n(e.max_angle) << ", \"" << prefix
@@ -93,22 +79,23 @@ void json_errors(std::ostringstream& o, const std::string& prefix,
 void json_diagnosis(std::ostringstream& o, const analysis::Diagnosis& d) {
   o << ", \"diagnosis_ran\": " << (d.ran ? "true" : "false")
     << ", \"agrees\": " << (d.agrees ? "true" : "false")
-    << ", \"diagnosis_summary\": " << json_string(d.summary) << ", \"diagnosis\": [";
+    << ", \"diagnosis_summary\": " << json::string(d.summary) << ", \"diagnosis\": [";
   bool first = true;
   for (const analysis::Finding& f : d.findings) {
     if (!f.named) continue;
     o << (first ? "" : ", ");
     first = false;
-    o << "{\"cause\": " << json_string(f.cause) << ", \"share\": " << json_number(f.share)
-      << ", \"before\": " << json_number(f.before) << ", \"after\": " << json_number(f.after)
-      << ", \"fix\": " << json_string(f.fix) << ", \"explanation\": " << json_string(f.explanation);
+    o << "{\"cause\": " << json::string(f.cause) << ", \"share\": " << json::number(f.share, 10)
+      << ", \"before\": " << json::number(f.before, 10)
+      << ", \"after\": " << json::number(f.after, 10) << ", \"fix\": " << json::string(f.fix)
+      << ", \"explanation\": " << json::string(f.explanation);
     if (f.cause == "friction") {
       o << ", \"sliding_phases\": [";
       for (size_t i = 0; i < f.phases.size(); ++i)
-        o << (i ? ", " : "") << "{\"t0\": " << json_number(f.phases[i].t0)
-          << ", \"t1\": " << json_number(f.phases[i].t1)
-          << ", \"distance0\": " << json_number(f.phases[i].distance0)
-          << ", \"distance1\": " << json_number(f.phases[i].distance1) << "}";
+        o << (i ? ", " : "") << "{\"t0\": " << json::number(f.phases[i].t0, 10)
+          << ", \"t1\": " << json::number(f.phases[i].t1, 10)
+          << ", \"distance0\": " << json::number(f.phases[i].distance0, 10)
+          << ", \"distance1\": " << json::number(f.phases[i].distance1, 10) << "}";
       o << "]";
     }
     o << "}";
@@ -117,8 +104,9 @@ void json_diagnosis(std::ostringstream& o, const analysis::Diagnosis& d) {
   first = true;
   for (const analysis::Finding& f : d.findings) {
     if (f.named) continue;
-    o << (first ? "" : ", ") << "{\"cause\": " << json_string(f.cause)
-      << ", \"share\": " << json_number(f.share) << ", \"after\": " << json_number(f.after) << "}";
+    o << (first ? "" : ", ") << "{\"cause\": " << json::string(f.cause)
+      << ", \"share\": " << json::number(f.share, 10)
+      << ", \"after\": " << json::number(f.after, 10) << "}";
     first = false;
   }
   o << "]";
@@ -130,38 +118,40 @@ void print_json(const Comparison& c, const std::string& path) {
   const analysis::TrajectoryError& e = c.errors;
   const analysis::ConvergedSolution& conv = c.three.converged;
   std::ostringstream o;
-  o << "{\"scene\": " << json_string(path) << ", \"shape\": \"" << shape_name(c.scene.shape) << "\""
+  o << "{\"scene\": " << json::string(path) << ", \"shape\": \"" << shape_name(c.scene.shape)
+    << "\""
     << ", \"mapping\": \"" << mj::mapping_name(c.mjcf.mapping) << "\", \"geometry\": \""
     << mj::geometry_name(c.mjcf.geometry) << "\", \"damping\": \""
     << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") << "\""
     << ", \"friction_law\": \"" << friction_law_name(c.scene.contact.friction) << "\""
     << ", \"integrators\": {\"ref\": \"" << integrator_name(c.scene.sim.integrator)
     << "\", \"mujoco\": \"" << mj::mujoco_integrator(c.scene.sim.integrator) << "\"}"
-    << ", \"dt\": " << json_number(c.scene.sim.dt)
-    << ", \"duration\": " << json_number(c.scene.sim.duration) << ", \"samples\": " << e.samples
-    << ", \"max_pos_err\": " << json_number(e.max_pos)
-    << ", \"rms_pos_err\": " << json_number(e.rms_pos)
-    << ", \"max_angle_err\": " << json_number(e.max_angle)
-    << ", \"max_vel_err\": " << json_number(e.max_vel)
-    << ", \"max_omega_err\": " << json_number(e.max_omega)
-    << ", \"end_pos_err\": " << json_number(e.end_pos)
-    << ", \"end_angle_err\": " << json_number(e.end_angle)
-    << ", \"time_of_max_pos_err\": " << json_number(e.time_of_max_pos) << ", \"ref_energy\": ["
-    << json_number(er.initial) << ", " << json_number(er.final) << "]"
-    << ", \"mujoco_energy\": [" << json_number(em.initial) << ", " << json_number(em.final) << "]"
-    << ", \"ref_seconds\": " << json_number(c.ref.seconds)
-    << ", \"mujoco_seconds\": " << json_number(c.mujoco.seconds) << ", \"solref\": ["
-    << json_number(c.mujoco.solref[0]) << ", " << json_number(c.mujoco.solref[1]) << "]"
-    << ", \"impratio\": " << json_number(c.mujoco.impratio) << ", \"mujoco_warnings\": [";
+    << ", \"dt\": " << json::number(c.scene.sim.dt, 10)
+    << ", \"duration\": " << json::number(c.scene.sim.duration, 10)
+    << ", \"samples\": " << e.samples << ", \"max_pos_err\": " << json::number(e.max_pos, 10)
+    << ", \"rms_pos_err\": " << json::number(e.rms_pos, 10)
+    << ", \"max_angle_err\": " << json::number(e.max_angle, 10)
+    << ", \"max_vel_err\": " << json::number(e.max_vel, 10)
+    << ", \"max_omega_err\": " << json::number(e.max_omega, 10)
+    << ", \"end_pos_err\": " << json::number(e.end_pos, 10)
+    << ", \"end_angle_err\": " << json::number(e.end_angle, 10)
+    << ", \"time_of_max_pos_err\": " << json::number(e.time_of_max_pos, 10) << ", \"ref_energy\": ["
+    << json::number(er.initial, 10) << ", " << json::number(er.final, 10) << "]"
+    << ", \"mujoco_energy\": [" << json::number(em.initial, 10) << ", "
+    << json::number(em.final, 10) << "]"
+    << ", \"ref_seconds\": " << json::number(c.ref.seconds, 10)
+    << ", \"mujoco_seconds\": " << json::number(c.mujoco.seconds, 10) << ", \"solref\": ["
+    << json::number(c.mujoco.solref[0], 10) << ", " << json::number(c.mujoco.solref[1], 10) << "]"
+    << ", \"impratio\": " << json::number(c.mujoco.impratio, 10) << ", \"mujoco_warnings\": [";
   for (size_t i = 0; i < c.mujoco.warnings.size(); ++i)
-    o << (i ? ", " : "") << json_string(c.mujoco.warnings[i]);
-  o << "], \"converged_tol\": " << json_number(conv.tol)
+    o << (i ? ", " : "") << json::string(c.mujoco.warnings[i]);
+  o << "], \"converged_tol\": " << json::number(conv.tol, 10)
     << ", \"converged_available\": " << (conv.available ? "true" : "false")
-    << ", \"converged_why_not\": " << (conv.available ? "null" : json_string(conv.why_not))
+    << ", \"converged_why_not\": " << (conv.available ? "null" : json::string(conv.why_not))
     << ", \"converged_own_error\": "
-    << (conv.available ? json_number(conv.own_error) : std::string("null"))
-    << ", \"converged_seconds\": " << json_number(conv.seconds) << ", \"amplification\": "
-    << (conv.available ? json_number(conv.amplification) : std::string("null"));
+    << (conv.available ? json::number(conv.own_error, 10) : std::string("null"))
+    << ", \"converged_seconds\": " << json::number(conv.seconds, 10) << ", \"amplification\": "
+    << (conv.available ? json::number(conv.amplification, 10) : std::string("null"));
   json_errors(o, "ref_vs_converged", c.three.ref_vs_converged, conv.available);
   json_errors(o, "mujoco_vs_converged", c.three.mujoco_vs_converged, conv.available);
   json_errors(o, "ref_vs_mujoco", c.three.ref_vs_mujoco, true);

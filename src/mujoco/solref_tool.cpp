@@ -10,6 +10,7 @@
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/integrators.hpp"
+#include "io/json.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
 
@@ -166,24 +167,6 @@ std::string unfit_reason(const SolrefReport& r, const MappingOutcome& o) {
            " exceeds MuJoCo Euler's limit " + g(o.euler_limit);
   return why;
 }
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (char ch : text) {
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (ch == '\n') {
-      out += "\\n";
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
-// The shortest text that reads back as the same double; null when not finite.
-std::string json_number(double v) { return std::isfinite(v) ? format_exact(v) : "null"; }
 
 }  // namespace
 
@@ -552,53 +535,53 @@ std::string format_report_text(const SolrefReport& r) {
 std::string format_report_json(const SolrefReport& r) {
   const SolrefInput& in = r.input;
   std::ostringstream o;
-  o << "{\n  \"k\": " << json_number(in.k) << ",\n  \"c\": " << json_number(in.c)
-    << ",\n  \"dt\": " << json_number(in.dt) << ",\n  \"mass\": " << json_number(in.mass)
-    << ",\n  \"inertia\": " << json_number(in.inertia)
-    << ",\n  \"lever\": " << json_number(in.lever) << ",\n  \"mu\": " << json_number(in.mu)
-    << ",\n  \"mu_roll\": " << json_number(in.mu_roll) << ",\n  \"joint\": \""
-    << joint_name(in.joint) << "\",\n  \"pivot\": " << json_number(in.pivot)
+  o << "{\n  \"k\": " << json::number(in.k) << ",\n  \"c\": " << json::number(in.c)
+    << ",\n  \"dt\": " << json::number(in.dt) << ",\n  \"mass\": " << json::number(in.mass)
+    << ",\n  \"inertia\": " << json::number(in.inertia)
+    << ",\n  \"lever\": " << json::number(in.lever) << ",\n  \"mu\": " << json::number(in.mu)
+    << ",\n  \"mu_roll\": " << json::number(in.mu_roll) << ",\n  \"joint\": \""
+    << joint_name(in.joint) << "\",\n  \"pivot\": " << json::number(in.pivot)
     << ",\n  \"friction_kept\": " << (in.keep_friction ? "true" : "false")
     << ",\n  \"contacts\": " << in.contacts
-    << ",\n  \"contacts_source\": " << json_string(in.contacts_source)
-    << ",\n  \"body\": " << json_string(in.body_source)
-    << ",\n  \"inv_mass\": " << json_number(r.inv_mass)
-    << ",\n  \"body_invweight0\": " << json_number(r.inv_weight)
-    << ",\n  \"load_per_contact\": " << json_number(r.load)
-    << ",\n  \"nominal_penetration\": " << json_number(r.load / in.k)
-    << ",\n  \"recommendation\": " << json_string(r.recommendation) << ",\n  \"mappings\": [";
+    << ",\n  \"contacts_source\": " << json::string(in.contacts_source)
+    << ",\n  \"body\": " << json::string(in.body_source)
+    << ",\n  \"inv_mass\": " << json::number(r.inv_mass)
+    << ",\n  \"body_invweight0\": " << json::number(r.inv_weight)
+    << ",\n  \"load_per_contact\": " << json::number(r.load)
+    << ",\n  \"nominal_penetration\": " << json::number(r.load / in.k)
+    << ",\n  \"recommendation\": " << json::string(r.recommendation) << ",\n  \"mappings\": [";
   bool first = true;
   for (const MappingOutcome& m : r.mappings) {
     o << (first ? "\n" : ",\n") << "    {\n      \"mapping\": \"" << mapping_name(m.mapping)
       << "\"";
     first = false;
     if (!m.unavailable.empty()) {
-      o << ",\n      \"unavailable\": " << json_string(m.unavailable) << "\n    }";
+      o << ",\n      \"unavailable\": " << json::string(m.unavailable) << "\n    }";
       continue;
     }
     const SolverSettings& s = m.settings;
-    o << ",\n      \"unfit\": " << json_string(m.unfit);
-    o << ",\n      \"solref\": [" << json_number(s.solref[0]) << ", " << json_number(s.solref[1])
+    o << ",\n      \"unfit\": " << json::string(m.unfit);
+    o << ",\n      \"solref\": [" << json::number(s.solref[0]) << ", " << json::number(s.solref[1])
       << "],\n      \"solimp\": [";
-    for (size_t i = 0; i < s.solimp.size(); ++i) o << (i ? ", " : "") << json_number(s.solimp[i]);
+    for (size_t i = 0; i < s.solimp.size(); ++i) o << (i ? ", " : "") << json::number(s.solimp[i]);
     o << "],\n      \"cone\": \"" << (s.elliptic ? "elliptic" : "pyramidal")
-      << "\",\n      \"impratio\": " << json_number(s.impratio)
+      << "\",\n      \"impratio\": " << json::number(s.impratio)
       << ",\n      \"condim\": " << m.condim
       << ",\n      \"refsafe_bites\": " << (s.refsafe_clamped ? "true" : "false")
       << ",\n      \"timeconst_used\": "
-      << (s.solref[0] > 0.0 ? json_number(m.timeconst_used) : "null")
-      << ",\n      \"K\": " << json_number(m.K) << ",\n      \"B\": " << json_number(m.B)
-      << ",\n      \"normal_weight\": " << json_number(m.normal_weight)
-      << ",\n      \"impedance\": " << json_number(m.impedance)
-      << ",\n      \"impedance_at_rest\": " << json_number(m.impedance_at_rest)
-      << ",\n      \"omega\": " << json_number(m.omega)
-      << ",\n      \"zeta\": " << json_number(m.zeta)
-      << ",\n      \"omega_dt\": " << json_number(m.omega_dt)
-      << ",\n      \"euler_limit\": " << json_number(m.euler_limit)
-      << ",\n      \"rk4_limit\": " << json_number(m.rk4_limit)
-      << ",\n      \"static_penetration\": " << json_number(m.static_penetration)
-      << ",\n      \"default_snippet\": " << json_string(m.default_snippet)
-      << ",\n      \"pair_snippet\": " << json_string(m.pair_snippet) << "\n    }";
+      << (s.solref[0] > 0.0 ? json::number(m.timeconst_used) : "null")
+      << ",\n      \"K\": " << json::number(m.K) << ",\n      \"B\": " << json::number(m.B)
+      << ",\n      \"normal_weight\": " << json::number(m.normal_weight)
+      << ",\n      \"impedance\": " << json::number(m.impedance)
+      << ",\n      \"impedance_at_rest\": " << json::number(m.impedance_at_rest)
+      << ",\n      \"omega\": " << json::number(m.omega)
+      << ",\n      \"zeta\": " << json::number(m.zeta)
+      << ",\n      \"omega_dt\": " << json::number(m.omega_dt)
+      << ",\n      \"euler_limit\": " << json::number(m.euler_limit)
+      << ",\n      \"rk4_limit\": " << json::number(m.rk4_limit)
+      << ",\n      \"static_penetration\": " << json::number(m.static_penetration)
+      << ",\n      \"default_snippet\": " << json::string(m.default_snippet)
+      << ",\n      \"pair_snippet\": " << json::string(m.pair_snippet) << "\n    }";
   }
   o << "\n  ]\n}\n";
   return o.str();
