@@ -196,7 +196,7 @@ Vec3 to_acceleration(const RigidBody& body, const Vec2& force, double torque) {
 // balance of truncation against rounding.
 Vec3 cone_jacobian(const Model& model, const ContactSet& contacts, const Vec3& q, const Vec3& v,
                    AccelerationJacobian& jacobian, ContactSet& probe) {
-  const Vec3 a = acceleration(model, contacts, v);
+  Vec3 a = acceleration(model, contacts, v);
   for (int j = 0; j < 3; ++j) {
     const double h = 1e-7 * std::max(1.0, std::abs(q[j]));
     Vec3 qp = q;
