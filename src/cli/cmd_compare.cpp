@@ -41,6 +41,7 @@ struct CompareOptions {
   bool json = false;
   double converged_tol = 1e-12;
   bool no_diagnosis = false;
+  OutputOptions outputs;  // --csv, --plot, --video
 };
 
 struct Comparison {
@@ -296,7 +297,6 @@ void write_csv(AtomicFile& out, const Comparison& c) {
     }
     std::fputc('\n', out.get());
   }
-  out.commit();
 }
 
 // Reports a divergence of either engine; true when one diverged.
@@ -311,6 +311,7 @@ bool report_divergence(const Comparison& c, const std::string& path) {
 }
 
 int compare(const CompareOptions& options) {
+  options.outputs.check();
   Comparison c;
   c.scene = options.scene.load();
   const engines::EngineSpec spec = options.mujoco.spec(options.scene.path);
@@ -345,7 +346,7 @@ int compare(const CompareOptions& options) {
   c.errors = c.three.ref_vs_mujoco;
   if (!options.no_diagnosis)
     c.diagnosis = analysis::diagnose(c.scene, spec, c.ref, c.mujoco, c.three);
-  if (csv) write_csv(*csv, c);
+  if (csv) write_csv(*csv, c);  // committed last: a plot or video that fails leaves no CSV
   if (!options.plot.empty()) {
     const std::string title =
         std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo, " +
@@ -369,6 +370,7 @@ int compare(const CompareOptions& options) {
     game::write_comparison_video(options.video, in);
   }
 #endif
+  if (csv) csv->commit();
   if (options.json) {
     print_json(c, options.scene.path);
   } else {
@@ -385,16 +387,17 @@ Command add_compare(CLI::App& app) {
       "compare", "Run the reference solver and MuJoCo on a scene and compare them");
   options->scene.add_to(*cmd);
   options->mujoco.add_to(*cmd);
-  cmd->add_option("--csv", options->csv, "Write both trajectories side by side to this file")
-      ->type_name("FILE.csv");
+  options->outputs.file(*cmd, "--csv", options->csv,
+                        "Write both trajectories side by side to this file", "FILE.csv");
   cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
-  cmd->add_option("--plot", options->plot,
-                  "Draw x, y, theta of both engines and their distance into this PNG (gnuplot)")
-      ->type_name("FILE.png");
-  cmd->add_option("--video", options->video,
-                  "Draw both engines overlaid in real time into this .mp4 or .gif (reference "
-                  "filled, MuJoCo outlined, the converged solution as a thin line)")
-      ->type_name("FILE.mp4|.gif");
+  options->outputs.file(
+      *cmd, "--plot", options->plot,
+      "Draw x, y, theta of both engines and their distance into this PNG (gnuplot)", "FILE.png");
+  options->outputs.file(*cmd, "--video", options->video,
+                        "Draw both engines overlaid in real time into this .mp4 or .gif "
+                        "(reference filled, MuJoCo outlined, the converged solution as a thin "
+                        "line)",
+                        "FILE.mp4|.gif");
   cmd->add_option("--converged-tol", options->converged_tol,
                   "Tolerance of the converged solution (rtol = atol; default 1e-12)")
       ->type_name("TOL")

@@ -44,6 +44,7 @@ struct ReportOptions {
   std::string models = "models";
   std::string bench;  // default: bench/contact2d_bench beside this program
   std::uint64_t seed = 20260101;
+  OutputOptions outputs;  // --out, --models
 };
 
 const std::vector<std::string> kScenes{"point_mass", "box", "tshape", "circle"};
@@ -242,6 +243,7 @@ int report(const ReportOptions& o) {
   if (!fs::is_directory("validation/scenes")) {
     throw InputError("validation/scenes: not found; run contact2d report from the repository root");
   }
+  o.outputs.check();
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (!fs::is_directory(o.out)) throw InputError("--out " + o.out + ": cannot create directory");
@@ -373,10 +375,10 @@ Command add_report(CLI::App& app) {
       "report",
       "Run every case of the validation report and write its pages and plots (from the "
       "repository root)");
-  cmd->add_option("--out", o->out, "Directory of the pages and plots (default validation/report)")
-      ->type_name("DIR");
-  cmd->add_option("--models", o->models, "Directory of the generated MJCF models (default models)")
-      ->type_name("DIR");
+  o->outputs.directory(*cmd, "--out", o->out,
+                       "Directory of the pages and plots (default validation/report)");
+  o->outputs.directory(*cmd, "--models", o->models,
+                       "Directory of the generated MJCF models (default models)");
   cmd->add_option("--bench", o->bench,
                   "The contact2d_bench program (default: bench/contact2d_bench beside contact2d; "
                   "the cost section is left out when there is none)")

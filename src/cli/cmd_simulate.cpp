@@ -14,7 +14,8 @@ struct SimulateOptions {
   SceneOptions scene;
   std::string engine = "ref";
   std::string csv;
-  MujocoOptions mujoco;  // --mapping, --geometry (when built with MuJoCo)
+  MujocoOptions mujoco;   // --mapping, --geometry (when built with MuJoCo)
+  OutputOptions outputs;  // --csv
 };
 
 engines::EngineRun run_chosen_engine(const SimulateOptions& options, const Scene& scene) {
@@ -24,6 +25,7 @@ engines::EngineRun run_chosen_engine(const SimulateOptions& options, const Scene
 }
 
 int simulate(const SimulateOptions& options) {
+  options.outputs.check();
   const Scene scene = options.scene.load();
   // Open the output first: a bad path fails before any work, and the file
   // only appears (renamed from a temporary) once the run has succeeded.
@@ -61,9 +63,8 @@ Command add_simulate(CLI::App& app) {
   cmd->add_option("--engine", options->engine, "ref | mujoco")
       ->type_name("ENGINE")
       ->check(CLI::IsMember({"ref", "mujoco"}));
-  cmd->add_option("--csv", options->csv,
-                  "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file")
-      ->type_name("FILE.csv");
+  options->outputs.file(*cmd, "--csv", options->csv,
+                        "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file", "FILE.csv");
   if (engines::mujoco_available()) options->mujoco.add_to(*cmd);
   return {cmd, [options] { return simulate(*options); }};
 }

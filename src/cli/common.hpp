@@ -16,6 +16,29 @@ constexpr int kExitOk = 0;
 constexpr int kExitBadInput = 2;
 constexpr int kExitDiverged = 3;
 
+// The output options of a subcommand (--csv FILE, --plot FILE.png, --out
+// DIR, …), all checked by check() before the run starts: a path that cannot
+// be written is one line naming its option, exit status 2, and nothing is
+// written. An option given with an empty value is such a path.
+class OutputOptions {
+ public:
+  // `names` as for CLI11 ("-o,--output"); messages use the last name.
+  CLI::Option* file(CLI::App& cmd, const std::string& names, std::string& path,
+                    const std::string& help, const std::string& type_name);
+  CLI::Option* directory(CLI::App& cmd, const std::string& names, std::string& path,
+                         const std::string& help);
+  void check() const;  // throws InputError
+
+ private:
+  struct Entry {
+    CLI::Option* option;
+    const std::string* path;
+    std::string name;
+    bool directory;
+  };
+  std::vector<Entry> entries_;
+};
+
 // The scene argument and the overrides every scene-running command accepts.
 struct SceneOptions {
   std::string path;
@@ -41,6 +64,7 @@ struct AnalysisOptions {
   std::string csv, plot;
   unsigned threads = 0;
   bool quiet = false;
+  OutputOptions outputs;  // --csv and --plot, and any the subcommand adds
 
   void add_to(CLI::App& cmd, const std::string& csv_help, const std::string& plot_help);
   Scene load() const;  // throws InputError

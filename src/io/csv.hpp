@@ -32,6 +32,16 @@ class AtomicFile {
   int slot_ = -1;  // io/interrupt.hpp: removed if a signal ends the program first
 };
 
+// Checks, before any work, that `path` can become an output file: not empty,
+// not a directory, inside a directory that exists and is writable. Throws
+// InputError naming `option` ("--plot out/no/p.png: directory out/no does
+// not exist"), so that a run with one bad output path writes nothing at all.
+void check_output_file(const std::string& option, const std::string& path);
+
+// The same for an output directory, which is created when missing: it, or
+// else its nearest existing ancestor, must be a writable directory.
+void check_output_directory(const std::string& option, const std::string& path);
+
 constexpr const char* kTrajectoryHeader = "t,x,y,theta,vx,vy,omega";
 
 void write_trajectory_row(std::FILE* out, const Sample& sample);
