@@ -42,6 +42,7 @@ struct CompareOptions {
   double converged_tol = 1e-12;
   bool no_diagnosis = false;
   OutputOptions outputs;  // --csv, --plot, --video
+  bool allow_nonphysical = false;
 };
 
 struct Comparison {
@@ -334,13 +335,12 @@ int compare(const CompareOptions& options) {
   for (const std::string& w : c.mujoco.warnings)
     std::cerr << "contact2d: MuJoCo warning: " << w << "\n";
   if (report_divergence(c, options.scene.path)) return kExitDiverged;
+  bool nonphysical_run = false;
   for (const auto& [name, run] : {std::pair{"ref", &c.ref}, std::pair{"MuJoCo", &c.mujoco}}) {
-    if (!run->trajectory.energy.exceeded()) continue;
-    std::cerr << "contact2d: " << options.scene.path << ": " << name << " warning: "
-              << describe_energy_rise(run->trajectory.energy, run->trajectory.available_energy,
-                                      c.scene)
-              << "\n";
+    nonphysical_run |= reject_nonphysical(nonphysical(run->trajectory, c.scene),
+                                          options.allow_nonphysical, options.scene.path, name);
   }
+  if (nonphysical_run) return kExitDiverged;
   c.three =
       analysis::three_way(c.scene, c.ref.trajectory, c.mujoco.trajectory, options.converged_tol);
   c.errors = c.three.ref_vs_mujoco;
@@ -402,6 +402,7 @@ Command add_compare(CLI::App& app) {
                   "Tolerance of the converged solution (rtol = atol; default 1e-12)")
       ->type_name("TOL")
       ->check(number_in(1e-14, 1e-6, false, "[1e-14, 1e-6]"));
+  add_allow_nonphysical(*cmd, options->allow_nonphysical);
   cmd->add_flag("--no-diagnosis", options->no_diagnosis,
                 "Skip the diagnosis (the re-runs that remove each cause of the difference)");
   return {cmd, [options] { return compare(*options); }};

@@ -16,6 +16,7 @@ struct SimulateOptions {
   std::string csv;
   MujocoOptions mujoco;   // --mapping, --geometry (when built with MuJoCo)
   OutputOptions outputs;  // --csv
+  bool allow_nonphysical = false;
 };
 
 engines::EngineRun run_chosen_engine(const SimulateOptions& options, const Scene& scene) {
@@ -35,15 +36,13 @@ int simulate(const SimulateOptions& options) {
   for (const std::string& warning : run.warnings) {
     std::cerr << "contact2d: " << options.engine << " warning: " << warning << "\n";
   }
-  if (!run.trajectory.divergence && run.trajectory.energy.exceeded()) {
-    std::cerr << "contact2d: " << options.scene.path << ": warning: "
-              << describe_energy_rise(run.trajectory.energy, run.trajectory.available_energy, scene)
-              << "\n";
-  }
   if (run.trajectory.divergence) {
     std::cerr << "contact2d: " << options.scene.path << ": " << run.divergence_message << "\n";
     return kExitDiverged;
   }
+  if (reject_nonphysical(nonphysical(run.trajectory, scene), options.allow_nonphysical,
+                         options.scene.path, ""))
+    return kExitDiverged;
   if (out) {
     std::fprintf(out->get(), "%s\n", kTrajectoryHeader);
     for (const Sample& s : run.trajectory.samples) write_trajectory_row(out->get(), s);
@@ -65,6 +64,7 @@ Command add_simulate(CLI::App& app) {
       ->check(CLI::IsMember({"ref", "mujoco"}));
   options->outputs.file(*cmd, "--csv", options->csv,
                         "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file", "FILE.csv");
+  add_allow_nonphysical(*cmd, options->allow_nonphysical);
   if (engines::mujoco_available()) options->mujoco.add_to(*cmd);
   return {cmd, [options] { return simulate(*options); }};
 }

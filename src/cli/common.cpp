@@ -89,6 +89,27 @@ Scene SceneOptions::load() const {
   return load_scene(path, overrides);
 }
 
+void add_allow_nonphysical(CLI::App& cmd, bool& allow) {
+  cmd.add_flag("--allow-nonphysical", allow,
+               "Keep a run that is not physics (a contact deeper than the body, the body below "
+               "the ground, or an energy rise beyond the integrator's allowance) with a warning, "
+               "instead of failing it with exit status 3");
+}
+
+bool reject_nonphysical(const std::string& reason, bool allow, const std::string& source,
+                        const std::string& engine) {
+  if (reason.empty()) return false;
+  const std::string who = "contact2d: " + source + ": " + (engine.empty() ? "" : engine + " ");
+  if (allow) {
+    std::fprintf(stderr, "%swarning: not physics, kept (--allow-nonphysical): %s\n", who.c_str(),
+                 reason.c_str());
+    return false;
+  }
+  std::fprintf(stderr, "%snot physics: %s. Pass --allow-nonphysical to keep the run.\n",
+               who.c_str(), reason.c_str());
+  return true;
+}
+
 CLI::Validator number_in(double lo, double hi, bool lo_open, const std::string& range) {
   return CLI::Validator(
       [lo, hi, lo_open, range](std::string& text) {

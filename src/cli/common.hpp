@@ -53,6 +53,15 @@ struct SceneOptions {
   Scene load() const;  // throws InputError
 };
 
+// A finished run that is not physics (core/run.hpp: nonphysical()) fails with
+// exit status 3, as a diverged one does, unless --allow-nonphysical keeps it;
+// the reason is then a warning. One line on stderr either way, naming
+// `source` (the scene file) and `engine` (empty: none).
+void add_allow_nonphysical(CLI::App& cmd, bool& allow);
+// True when the run must fail (the line is printed).
+bool reject_nonphysical(const std::string& reason, bool allow, const std::string& source,
+                        const std::string& engine);
+
 // The options sweep and stability share: the scene with --set and
 // --duration, --integrators, --engines, --csv, --plot, --threads, --quiet.
 struct AnalysisOptions {
