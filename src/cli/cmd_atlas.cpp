@@ -2,6 +2,7 @@
 // contact2d atlas merge DIR... [--out DIR] [--no-plots]
 // The fidelity atlas (analysis/atlas.hpp, docs/atlas.md): the three-way
 // comparison over a parameter space, in shards that merge into the whole.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <thread>
@@ -51,6 +52,11 @@ int run(const AtlasOptions& o) {
 int merge(const AtlasOptions& o) {
   o.merge_outputs.check();
   const analysis::AtlasData data = analysis::read_atlas_shards(o.dirs);
+  std::error_code ec;
+  std::filesystem::create_directories(o.merged, ec);
+  if (!std::filesystem::is_directory(o.merged))
+    throw InputError("--out " + o.merged + ": cannot create directory");
+  const DirectoryLock lock("--out", o.merged);  // as for a shard (docs/atlas.md)
   analysis::AtlasSummary summary = analysis::summarize_atlas(data);
   analysis::write_atlas_data(data, o.merged);
   if (!o.no_plots) analysis::draw_atlas_heatmaps(data, summary, o.merged);

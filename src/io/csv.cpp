@@ -1,5 +1,7 @@
 #include "io/csv.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cerrno>
@@ -99,6 +101,59 @@ void check_output_directory(const std::string& option, const std::string& path) 
   for (dir = dir.parent_path(); !dir.empty() && !fs::exists(dir, ec); dir = dir.parent_path()) {
   }
   require_writable_directory(what, dir.empty() ? fs::path(".") : dir);
+}
+
+DirectoryLock::DirectoryLock(const std::string& option, const std::string& dir)
+    : path_((fs::path(dir) / ".contact2d.lock").string()) {
+  // The holder removes the file when it is done, so a lock taken on a file
+  // that is no longer at the path (removed and maybe created anew since it
+  // was opened) is no lock: open and lock again.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const InterruptsHeld held;  // no signal between locking and registering for removal
+    const int fd = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) {
+      throw InputError(option + " " + dir + ": cannot create its lock file (" +
+                       std::strerror(errno) + ")");
+    }
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      char owner[32] = {};
+      const ssize_t n = ::pread(fd, owner, sizeof owner - 1, 0);
+      ::close(fd);
+      if (error != EWOULDBLOCK) {
+        throw InputError(option + " " + dir + ": cannot lock it (" + std::strerror(error) + ")");
+      }
+      const std::string pid = n > 0 ? std::string(owner, static_cast<size_t>(n)) : "";
+      throw InputError(option + " " + dir + ": another contact2d" +
+                       (pid.empty() ? "" : " (pid " + pid + ")") +
+                       " is writing into this directory; wait for it to finish or choose "
+                       "another " +
+                       option);
+    }
+    struct stat held_file {};
+    struct stat at_path {};
+    if (::fstat(fd, &held_file) == 0 && ::stat(path_.c_str(), &at_path) == 0 &&
+        held_file.st_dev == at_path.st_dev && held_file.st_ino == at_path.st_ino) {
+      const std::string pid = std::to_string(::getpid());
+      if (::ftruncate(fd, 0) != 0 ||
+          ::pwrite(fd, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
+        // The lock holds without the PID; a second run's message only lacks it.
+      }
+      fd_ = fd;
+      slot_ = register_temporary(path_);
+      return;
+    }
+    ::close(fd);
+  }
+  throw InputError(option + " " + dir + ": cannot lock it (its lock file keeps changing)");
+}
+
+DirectoryLock::~DirectoryLock() {
+  // Removed while still locked: a process waiting on this file then finds
+  // it gone from the path and locks a new one.
+  ::unlink(path_.c_str());
+  unregister_temporary(slot_);
+  ::close(fd_);
 }
 
 void write_trajectory_row(std::FILE* out, const Sample& s) {

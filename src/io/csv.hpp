@@ -42,6 +42,26 @@ void check_output_file(const std::string& option, const std::string& path);
 // else its nearest existing ancestor, must be a writable directory.
 void check_output_directory(const std::string& option, const std::string& path);
 
+// An exclusive lock on an output directory, held while alive: flock() on
+// DIR/.contact2d.lock, which holds the owner's PID and is removed when the
+// lock is released (and by the interrupt handler, io/interrupt.hpp). A second
+// process locking the same directory meanwhile gets an InputError naming
+// `option`, the directory and the owner's PID. The kernel releases a flock()
+// when its owner dies, SIGKILL included, so a lock file a killed run left
+// behind does not block the next one. The directory must exist.
+class DirectoryLock {
+ public:
+  DirectoryLock(const std::string& option, const std::string& dir);
+  ~DirectoryLock();
+  DirectoryLock(const DirectoryLock&) = delete;
+  DirectoryLock& operator=(const DirectoryLock&) = delete;
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  int slot_ = -1;
+};
+
 constexpr const char* kTrajectoryHeader = "t,x,y,theta,vx,vy,omega";
 
 void write_trajectory_row(std::FILE* out, const Sample& sample);
