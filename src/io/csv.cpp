@@ -5,17 +5,93 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cerrno>
+#include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 
 #include "io/interrupt.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d {
 
+namespace {
+
+namespace fs = std::filesystem;
+
+// "out/no" for "out/no/p.png", "." for "p.png".
+fs::path directory_of(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  return parent.empty() ? fs::path(".") : parent;
+}
+
+// When the process `pid` started, in seconds since the epoch; NaN when
+// unknown (then no file is judged by it).
+double process_start_time(long pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+  const size_t paren = text.rfind(')');  // the command name may hold spaces
+  if (paren == std::string::npos) return std::nan("");
+  std::istringstream fields(text.substr(paren + 1));
+  std::string field;
+  for (int i = 3; i <= 22 && fields >> field; ++i) {  // field 22: starttime, clock ticks
+    if (i < 22) continue;
+    std::ifstream boot("/proc/stat");
+    std::string key;
+    double btime = std::nan("");
+    while (boot >> key) {
+      if (key == "btime") {
+        boot >> btime;
+        break;
+      }
+    }
+    return btime +
+           std::strtod(field.c_str(), nullptr) / static_cast<double>(::sysconf(_SC_CLK_TCK));
+  }
+  return std::nan("");
+}
+
+// Whether "PATH.tmp.PID.XXXXXX" was left by a process that is gone.
+bool left_by_dead_process(const fs::path& file, long pid) {
+  if (pid <= 0 || pid == static_cast<long>(::getpid())) return false;
+  if (::kill(static_cast<pid_t>(pid), 0) != 0) return errno == ESRCH;
+  // Alive (or another user's): the same process only if it started before
+  // the file was last written; 1 s covers the rounding of the boot time.
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0) return false;
+  const double written =
+      static_cast<double>(st.st_mtim.tv_sec) + 1e-9 * static_cast<double>(st.st_mtim.tv_nsec);
+  return written + 1.0 < process_start_time(pid);
+}
+
+// Removes the temporaries of `path` left by dead processes.
+void remove_stale_temporaries(const std::string& path) {
+  const fs::path target(path);
+  const std::string prefix = target.filename().string() + ".tmp.";
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(directory_of(path), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    // PID, a dot and mkstemp's six characters.
+    const std::string rest = name.substr(prefix.size());
+    const size_t dot = rest.find('.');
+    if (dot == 0 || dot == std::string::npos || rest.size() != dot + 7 ||
+        rest.find_first_not_of("0123456789") != dot)
+      continue;
+    if (left_by_dead_process(entry.path(), std::strtol(rest.c_str(), nullptr, 10)))
+      fs::remove(entry.path(), ec);
+  }
+}
+
+}  // namespace
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-  std::string pattern = path_ + ".tmp.XXXXXX";
+  remove_stale_temporaries(path_);
+  std::string pattern = path_ + ".tmp." + std::to_string(::getpid()) + ".XXXXXX";
   const InterruptsHeld held;  // no signal between creating the file and registering it
   const int fd = mkstemp(pattern.data());
   if (fd < 0) {
@@ -56,14 +132,6 @@ void AtomicFile::commit() {
 }
 
 namespace {
-
-namespace fs = std::filesystem;
-
-// "out/no" for "out/no/p.png", "." for "p.png".
-fs::path directory_of(const std::string& path) {
-  const fs::path parent = fs::path(path).parent_path();
-  return parent.empty() ? fs::path(".") : parent;
-}
 
 // Throws unless `dir` is a directory this process may create files in.
 void require_writable_directory(const std::string& what, const fs::path& dir) {

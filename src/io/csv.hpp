@@ -12,8 +12,12 @@ namespace contact2d {
 
 class AtomicFile {
  public:
-  // Opens a temporary file in the target's directory; throws InputError
-  // (from io/scene_file.hpp) when the directory does not exist or is not writable.
+  // Opens a temporary file "PATH.tmp.PID.XXXXXX" in the target's directory;
+  // throws InputError (from io/scene_file.hpp) when the directory does not
+  // exist or is not writable. First it removes the temporaries of the same
+  // PATH that a killed run left (SIGKILL cannot be caught): those whose PID
+  // is no longer running, or is running a process started after the file
+  // was last written (the PID was reused).
   explicit AtomicFile(std::string path);
   ~AtomicFile();  // removes the temporary file unless committed
   AtomicFile(const AtomicFile&) = delete;
