@@ -89,6 +89,26 @@ int main(int argc, char** argv) {
       mappings.push_back(*m);
       start = end + 1;
     }
+    // The report's table (analysis::friction_table): the attribution and
+    // every knob, one line per scene.
+    std::printf("%-16s %10s %10s %10s %10s %10s %10s\n", "scene", "calibrated", "compensated",
+                "hop", "shape", "push", "rest");
+    const std::vector<analysis::FrictionRow> rows = analysis::friction_table();
+    for (const analysis::FrictionRow& r : rows)
+      std::printf("%-16s %10.3g %10.3g %10.3g %10.3g %10.3g %10.3g\n", r.name.c_str(),
+                  r.calibrated.max_pos, r.compensated.max_pos, r.compensated.hop, r.shape, r.push,
+                  r.conformance);
+    std::printf("\n%-16s", "knob (m)");
+    for (analysis::FrictionKnob k : analysis::kFrictionKnobs)
+      std::printf(" %22s", analysis::knob_name(k).c_str());
+    std::printf(" %22s\n", "split");
+    for (const analysis::FrictionRow& r : rows) {
+      std::printf("%-16s", r.name.c_str());
+      for (double d : r.knobs) std::printf(" %22.3g", d);
+      std::printf(" %22.3g\n", r.split.max_pos);
+    }
+    std::printf("\n");
+    if (!variants) return 0;
     std::printf("%-15s %-12s %10s %10s %10s %10s %10s\n", "scene", "mapping", "max pos m",
                 "max ang rad", "hop m", "slip m/s", "impratio");
     for (const analysis::FrictionScene& fs : analysis::friction_scenes()) {

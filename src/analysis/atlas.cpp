@@ -731,6 +731,19 @@ std::string tics(const char* axis, const Cells& c) {
 
 }  // namespace
 
+AtlasColourRange atlas_colour_range(const AtlasData& data, const std::string& body) {
+  Extent range;
+  for (const AtlasRow& r : data.rows) {
+    if (r.body != body || r.status != "ok") continue;
+    for (double v : {r.mujoco_conv_pos, r.ref_mujoco_pos})
+      if (v > 0.0) range.add(std::log10(v));
+  }
+  AtlasColourRange c;
+  c.lo = std::isfinite(range.lo) ? std::floor(range.lo) : -16.0;
+  c.hi = std::isfinite(range.hi) ? std::max(std::ceil(range.hi), c.lo + 1.0) : c.lo + 1.0;
+  return c;
+}
+
 void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std::string& out_dir,
                          const std::string& prefix) {
   for (AtlasGroup& g : summary.groups) {
@@ -744,57 +757,76 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
       zetas.push_back(r->zeta);
     }
     const Cells kc = cells_of(ks), zc = cells_of(zetas);
-    // Two panels: MuJoCo ↔ converged and ref ↔ MuJoCo. Per cell: the
+    // Panels: MuJoCo ↔ converged and ref ↔ MuJoCo (columns), without and
+    // with friction (rows, where the group has such points). Per cell: the
     // largest distance of its ok points, and whether any point failed.
     const size_t n = kc.size() * zc.size();
-    std::vector<double> worst[2] = {std::vector<double>(n, -1.0), std::vector<double>(n, -1.0)};
-    std::vector<bool> failed(n, false);
-    Extent range;
+    enum { kFrictionless, kFriction };
+    std::vector<double> worst[2][2];
+    std::vector<bool> failed[2] = {std::vector<bool>(n, false), std::vector<bool>(n, false)};
+    bool present[2] = {false, false};
+    for (auto& by_friction : worst)
+      for (auto& w : by_friction) w.assign(n, -1.0);
     for (const AtlasRow* r : rows) {
+      const int f = r->mu == 0.0 && r->mu_roll == 0.0 ? kFrictionless : kFriction;
+      present[f] = true;
       const size_t i = kc.cell(r->k) * zc.size() + zc.cell(r->zeta);
       if (r->status != "ok") {
-        failed[i] = true;
+        failed[f][i] = true;
         continue;
       }
       const double values[2] = {r->mujoco_conv_pos, r->ref_mujoco_pos};
       for (int panel = 0; panel < 2; ++panel)
-        if (!std::isnan(values[panel])) worst[panel][i] = std::max(worst[panel][i], values[panel]);
+        if (!std::isnan(values[panel]))
+          worst[f][panel][i] = std::max(worst[f][panel][i], values[panel]);
     }
-    for (const std::vector<double>& w : worst)
-      for (double v : w)
-        if (v > 0.0) range.add(std::log10(v));
-    const double lo = std::isfinite(range.lo) ? std::floor(range.lo) : -16.0;
-    const double hi = std::isfinite(range.hi) ? std::max(std::ceil(range.hi), lo + 1.0) : lo + 1.0;
+    // One colour scale for every map of the body (all its mappings, laws,
+    // with and without friction): a colour means the same error on each.
+    const AtlasColourRange range = atlas_colour_range(data, g.body);
+    const double lo = range.lo, hi = range.hi;
     const std::string file = prefix + g.body + "." + g.mapping + "." + g.damping + ".png";
     const std::string png_path = (fs::path(out_dir) / file).string();
     AtomicFile png(png_path);
-    std::unique_ptr<AtomicFile> dat[2];
-    for (int panel = 0; panel < 2; ++panel) {
-      dat[panel] = std::make_unique<AtomicFile>(png_path + ".data" + std::to_string(panel));
-      for (size_t ki = 0; ki < kc.size(); ++ki) {
-        for (size_t zi = 0; zi < zc.size(); ++zi) {
-          const size_t i = ki * zc.size() + zi;
-          const double w = worst[panel][i];
-          std::string label = w < 0.0 ? (failed[i] ? "diverged" : "") : format_number("%.0e", w);
-          if (w >= 0.0 && failed[i]) label += "*";
-          // Columns: k cell, ζ cell, log10 of the distance (an exact 0 at
-          // the bottom of the colour range), the label.
-          const double shade = w > 0.0 ? std::log10(w) : lo;
-          if (w >= 0.0)
-            std::fprintf(dat[panel]->get(), "%zu %zu %.6g \"%s\"\n", ki, zi, shade, label.c_str());
-          else if (!label.empty())
-            std::fprintf(dat[panel]->get(), "%zu %zu NaN \"%s\"\n", ki, zi, label.c_str());
+    std::vector<int> shown;  // friction rows drawn
+    for (int f : {kFrictionless, kFriction})
+      if (present[f]) shown.push_back(f);
+    std::unique_ptr<AtomicFile> dat[2][2];
+    for (int f : shown) {
+      for (int panel = 0; panel < 2; ++panel) {
+        auto& file_ptr = dat[f][panel];
+        file_ptr = std::make_unique<AtomicFile>(png_path + ".data" + std::to_string(2 * f + panel));
+        for (size_t ki = 0; ki < kc.size(); ++ki) {
+          for (size_t zi = 0; zi < zc.size(); ++zi) {
+            const size_t i = ki * zc.size() + zi;
+            const double w = worst[f][panel][i];
+            std::string label =
+                w < 0.0 ? (failed[f][i] ? "diverged" : "") : format_number("%.0e", w);
+            if (w >= 0.0 && failed[f][i]) label += "*";
+            // Columns: k cell, ζ cell, log10 of the distance (an exact 0 at
+            // the bottom of the colour range), the label.
+            const double shade = w > 0.0 ? std::log10(w) : lo;
+            if (w >= 0.0)
+              std::fprintf(file_ptr->get(), "%zu %zu %.6g \"%s\"\n", ki, zi, shade, label.c_str());
+            else if (!label.empty())
+              std::fprintf(file_ptr->get(), "%zu %zu NaN \"%s\"\n", ki, zi, label.c_str());
+          }
         }
+        // gnuplot refuses a data file without a point: one outside the range.
+        std::fprintf(file_ptr->get(), "-10 -10 NaN \"\"\n");
+        if (std::fflush(file_ptr->get()) != 0)
+          throw InputError(file_ptr->temp_path() + ": cannot write");
       }
-      // gnuplot refuses a data file without a point: one outside the range.
-      std::fprintf(dat[panel]->get(), "-10 -10 NaN \"\"\n");
-      if (std::fflush(dat[panel]->get()) != 0)
-        throw InputError(dat[panel]->temp_path() + ": cannot write");
     }
+    const int panel_rows = static_cast<int>(shown.size());
+    const int height = 80 + 540 * panel_rows;
+    const double row_height = 540.0 / height, top = 1.0 - 60.0 / height;
     std::ostringstream s;
-    s << gnuplot_png(png.temp_path(), 1400, 620) << "set multiplot title '"
+    s << gnuplot_png(png.temp_path(), 1400, height) << "set multiplot title '"
       << gnuplot_text("max position error over k × ζ: " + g.body + ", " + g.mapping + " mapping, " +
-                      g.damping + " (largest over the other axes in each cell)")
+                      g.damping +
+                      " (largest over the other axes in each cell; colour scale "
+                      "shared by every map of " +
+                      g.body + ")")
       << "' font ',13'\n"
       << "set xlabel 'k (N/m)'\nset ylabel 'ζ = c/(2√(k·m))'\n"
       << "set xrange [-0.5:" << static_cast<double>(kc.size()) - 0.5
@@ -805,13 +837,21 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
       << "set palette defined (0 '#0072B2', 0.5 '#F0E442', 1 '#D55E00')\n"
       << "unset key\nset tics nomirror\n";
     const char* titles[2] = {"MuJoCo ↔ converged solution", "ref ↔ MuJoCo (same Δt)"};
-    for (int panel = 0; panel < 2; ++panel) {
-      const std::string d = gnuplot_quoted(dat[panel]->temp_path());
-      s << "set size 0.5,0.92\nset origin " << 0.5 * panel << ",0.0\n"
-        << "set title '" << gnuplot_text(titles[panel]) << "'\n"
-        << "plot " << d
-        << " using 1:2:(0.5):(0.5):3 with boxxyerror fill solid 1.0 noborder lc palette, " << d
-        << " using 1:2:4 with labels font ',10'\n";
+    for (int row = 0; row < panel_rows; ++row) {
+      const int f = shown[static_cast<size_t>(row)];
+      for (int panel = 0; panel < 2; ++panel) {
+        const std::string d = gnuplot_quoted(dat[f][panel]->temp_path());
+        s << "set size 0.5," << row_height << "\nset origin " << 0.5 * panel << ","
+          << top - row_height * (row + 1) << "\n"
+          << "set title '"
+          << gnuplot_text(std::string(titles[panel]) +
+                          (f == kFrictionless ? ", without friction (μ = μ_roll = 0)"
+                                              : ", with friction (largest over μ > 0)"))
+          << "'\n"
+          << "plot " << d
+          << " using 1:2:(0.5):(0.5):3 with boxxyerror fill solid 1.0 noborder lc palette, " << d
+          << " using 1:2:4 with labels font ',10'\n";
+      }
     }
     s << "unset multiplot\n";
     run_gnuplot(s.str(), png_path);
@@ -892,9 +932,11 @@ std::string atlas_summary_markdown(const AtlasSummary& s, const std::string& ima
   if (any) {
     md << "\n## Heat maps over k × ζ\n\n"
        << "Left, MuJoCo against the converged solution (its step error included); right, the "
-          "two engines against each other at the same Δt. Each cell shows the largest maximum "
-          "position error of its points (over the other axes); \"diverged\" marks a cell whose "
-          "points all failed, \"*\" one where some did.\n\n";
+          "two engines against each other at the same Δt; the points without friction "
+          "(μ = μ_roll = 0) in the top row, those with friction below. Each cell shows the largest "
+          "maximum position error of its points (over the other axes); \"diverged\" marks a cell "
+          "whose points all failed, \"*\" one where some did. The maps of one body share one "
+          "colour scale.\n\n";
     for (const AtlasGroup& g : s.groups)
       if (!g.heatmap.empty())
         md << "![" << g.body << ", " << g.mapping << ", " << g.damping << "](" << image_dir

@@ -11,8 +11,8 @@
 //               Euler integrator at the same Δt;
 //   converged   the dense Dormand–Prince reference (reference/
 //               dense_reference.hpp) at rtol = atol = kConvergedTol, sampled
-//               at the same times; not available for scenes with obstacles
-//               (the slope), which the row says.
+//               at the same times; for the slope, in the slope's own frame
+//               (SlopeFrame).
 // The cases (Kelvin–Voigt law unless the case says otherwise):
 //   static      point mass and flat box at rest: depth = m·g/(N·k); and
 //               MuJoCo's own direct-form answer m·g·Â·(1 − d)/(N·s) from the
@@ -23,8 +23,12 @@
 //   slide       flat box launched at v0 with friction: distance to rest
 //   roll        disc rolling with rolling resistance: deceleration, distance
 //   bowling     disc launched sliding without spin: final speed, time to roll
+//   backspin    disc thrown at the ground with backspin, no gravity, one
+//               impact: v_x′ and R·ω′ from the impulse balance under Coulomb
+//               friction, sliding through the impact or rolling out of it
 //   slope       box on an inclined capsule obstacle: acceleration when
-//               tanθ > μ, creep speed when tanθ < μ
+//               tanθ > μ, creep speed when tanθ < μ (the converged solution
+//               in the slope's own frame, SlopeFrame)
 // Nothing here decides pass or fail: the test does, with the tolerances
 // derived in docs/closed-forms.md. The rows carry the same tolerances for the
 // report.
@@ -32,6 +36,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,11 +71,22 @@ struct ClosedFormQuantity {
   bool reference_applies = true;  // false: a MuJoCo-only closed form
 };
 
+// A slope case's own frame: the capsule's surface line through `origin`
+// along u = (cos θ, sin θ), normal n = (−sin θ, cos θ). The dense reference
+// (ground contact only) solves the slope there: the same body on flat ground
+// with gravity g·cos θ and the applied force −m·g·sin θ along the slope;
+// its trajectory is mapped back (p = origin + x'·u + y'·n, θ + θ').
+struct SlopeFrame {
+  double theta = 0.0;
+  Vec2 origin = Vec2::Zero();
+};
+
 struct ClosedFormCase {
   std::string id;    // "static.point_mass"
   std::string name;  // "static penetration, point mass"
   Scene scene;
-  bool converged_available = true;  // false: obstacles (the slope)
+  bool converged_available = true;        // false: not solvable by the dense reference
+  std::optional<SlopeFrame> slope_frame;  // the converged solution in the slope's frame
   std::vector<ClosedFormQuantity> quantities;
 };
 

@@ -48,6 +48,9 @@ struct Rerun {
   // A MuJoCo engine the runner's names cannot express (a held model_dt):
   // run through the registry directly.
   std::optional<engines::EngineSpec> mujoco_spec;
+  // Only the reference changes (its friction law): the base MuJoCo run is
+  // reused.
+  bool mujoco_unchanged = false;
   // Results.
   std::optional<EngineRun> ref_run;
   EngineRun mujoco_run;
@@ -168,6 +171,23 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
     r.scene.contact.mu_roll = 0.0;
     reruns.push_back(r);
   }
+  // The friction law: the reference re-run under MuJoCo's own effective law
+  // (soft_cone, at MuJoCo's impratio), and under the cone's shape without
+  // its push (viscous_cone); MuJoCo as it was. Their shares say how much of
+  // the difference is the law (core/contact.hpp).
+  const bool cone_ratio_known = std::isfinite(mujoco_run.impratio) && mujoco_run.impratio > 0.0;
+  if (scene.contact.mu > 0.0 && scene.contact.friction == FrictionLaw::Tanh) {
+    for (const FrictionLaw law : {FrictionLaw::SoftCone, FrictionLaw::ViscousCone}) {
+      Rerun r =
+          rerun(law == FrictionLaw::SoftCone ? "friction_law" : "friction_shape", scene, true, mj);
+      r.scene.contact.friction = law;
+      r.scene.contact.cone_ratio = cone_ratio_known ? mujoco_run.impratio : 1.0;
+      // MuJoCo's own rolling coefficient (compensated writes μ_roll').
+      if (std::isfinite(mujoco_run.mu_roll)) r.scene.contact.mu_roll = mujoco_run.mu_roll;
+      r.mujoco_unchanged = true;
+      reruns.push_back(r);
+    }
+  }
   if (scene.contact.mu > 0.0 && scene.contact.mu_roll > 0.0) {
     // Rolling resistance alone, sliding friction kept.
     Rerun r = rerun("rolling_resistance", scene, true, mj);
@@ -218,8 +238,9 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
     Rerun& r = reruns[i];
     try {
       if (r.ref) r.ref_run = runner("ref", r.scene);
-      r.mujoco_run =
-          r.mujoco_spec ? engines::run_engine(*r.mujoco_spec, r.scene) : runner(r.mujoco, r.scene);
+      r.mujoco_run = r.mujoco_unchanged ? mujoco_run
+                     : r.mujoco_spec    ? engines::run_engine(*r.mujoco_spec, r.scene)
+                                        : runner(r.mujoco, r.scene);
     } catch (const std::exception& e) {
       r.failure = e.what();
       return;
@@ -319,6 +340,28 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
       }
       f.explanation +=
           " No MuJoCo setting reproduces the tanh law; the fix removes friction from the scene.";
+    } else if (r.cause == "friction_law" || r.cause == "friction_shape") {
+      const bool soft = r.cause == "friction_law";
+      f.fix = std::string("--set contact.friction_law=") + (soft ? "soft_cone" : "viscous_cone") +
+              " --set contact.cone_ratio=" + format_shortest(r.scene.contact.cone_ratio, 6);
+      if (r.scene.contact.mu_roll != scene.contact.mu_roll)
+        f.fix += " --set contact.mu_roll=" + format_shortest(r.scene.contact.mu_roll, 6);
+      f.explanation =
+          soft ? "MuJoCo's friction is its soft cone, not −μ·Fn·tanh(α·v_t): viscous (slope "
+                 "impratio·c) inside the cone and, while sliding, a normal force raised by the "
+                 "push c·√((μ·v_t)² + (μ_roll·ω)²) and divided by 1 + μ²/impratio, applied "
+                 "halfway into the penetration (docs/physics.md). With the reference running "
+                 "that law (friction_law = soft_cone, at MuJoCo's impratio " +
+                     g3(r.scene.contact.cone_ratio) + ") and MuJoCo as it was, " + falls +
+                     ": that share of the difference is the friction law; the rest is MuJoCo's "
+                     "soft contact and step."
+               : "The shape of MuJoCo's friction law without its push: viscous inside the cone, "
+                 "μ·Fn on it, sliding and rolling under one budget, the reference's normal law "
+                 "unchanged (friction_law = viscous_cone). With it, " +
+                     falls + ".";
+      f.explanation += soft ? " The soft cone is a conformance law, not physics: it tells what "
+                              "the difference is made of; the push has no physical counterpart."
+                            : " What the full soft cone removes beyond this is the push.";
     } else if (r.cause == "rolling_resistance") {
       f.fix = "--set contact.mu_roll=0";
       f.explanation =

@@ -33,6 +33,11 @@
 //                 values (--model-dt Δt); its share is how far that moves
 //                 the Δt/10 difference, (held − following)/before, named
 //                 when |share| ≥ kNamedShare
+//   friction_law  the reference re-run under MuJoCo's effective law
+//                 (--set contact.friction_law=soft_cone at MuJoCo's
+//                 impratio), MuJoCo unchanged: the share that is the law
+//   friction_shape  the same with the cone's shape alone, without its push
+//                 (viscous_cone): the share that is the shape
 //   rolling_resistance  with sliding friction kept, μ_roll = 0 (MuJoCo's
 //                 cone shares one budget between sliding and rolling)
 //   mapping       a mapping other than calibrated (seed is exact only at
@@ -98,7 +103,9 @@ struct SlidingPhase {
 };
 
 struct Finding {
-  std::string cause;  // damping_law | time_step | friction | rolling_resistance | mapping | refsafe
+  // damping_law | time_step | friction | friction_law | friction_shape |
+  // rolling_resistance | mapping | refsafe | dt_dependent_model
+  std::string cause;
   std::string explanation;           // for a newcomer, numbers included
   std::string fix;                   // the exact option that removes the cause
   double before = 0.0;               // m: ref ↔ MuJoCo max position distance as given

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <optional>
+#include <stdexcept>
 
 #include <tinyxml2.h>
 
@@ -18,9 +21,10 @@ namespace contact2d::analysis {
 
 namespace {
 
-std::string law(double c, double mu, double mu_roll) {
+std::string law(double c, double mu, double mu_roll, double alpha = 100) {
   return "[contact]\nk = 1e4\nc = " + std::to_string(c) + "\nmu = " + std::to_string(mu) +
-         "\nmu_roll = " + std::to_string(mu_roll) + "\nalpha = 100\ndamping = \"kelvin_voigt\"\n";
+         "\nmu_roll = " + std::to_string(mu_roll) + "\nalpha = " + std::to_string(alpha) +
+         "\ndamping = \"kelvin_voigt\"\n";
 }
 
 std::string sim(double duration) {
@@ -28,9 +32,7 @@ std::string sim(double duration) {
          "\nintegrator = \"semi_implicit_euler\"\n";
 }
 
-FrictionOutcome measure(const Scene& scene, const Trajectory& reference, const std::string& xml) {
-  mujoco::MujocoStepper stepper(scene, xml, "friction scene");
-  const Trajectory mj = simulate(stepper, scene.sim);
+FrictionOutcome outcome(const Trajectory& reference, const Trajectory& mj) {
   FrictionOutcome out;
   const TrajectoryError e = error_between(reference, mj);
   out.max_pos = e.max_pos;
@@ -39,6 +41,11 @@ FrictionOutcome measure(const Scene& scene, const Trajectory& reference, const s
   for (size_t i = 0; i < n; ++i)
     out.hop = std::max(out.hop, mj.samples[i].state.q.y() - reference.samples[i].state.q.y());
   return out;
+}
+
+FrictionOutcome measure(const Scene& scene, const Trajectory& reference, const std::string& xml) {
+  mujoco::MujocoStepper stepper(scene, xml, "friction scene");
+  return outcome(reference, simulate(stepper, scene.sim));
 }
 
 std::string pair_text(double a, double b) {
@@ -57,6 +64,9 @@ std::vector<FrictionScene> friction_scenes() {
     const char* what;
     std::string toml;
   } cases[] = {
+      {"point_slide", "point mass sliding to rest, c = 20",
+       "scene = \"point_mass\"\n[body]\nmass = 1.0\nhalf_height = 0.05\n" + law(20, 0.6, 0, 500) +
+           "[initial]\ny = 0.049019\nvx = 1.0\n" + sim(1.0)},
       {"box_slide", "box sliding to rest, c = 50",
        box + law(50, 0.5, 0) + "[initial]\ny = 0.0995\nvx = 2.0\n" + sim(1.5)},
       {"box_slide_c200", "box sliding to rest, c = 200",
@@ -70,6 +80,8 @@ std::vector<FrictionScene> friction_scenes() {
        disc + law(200, 0.2, 0) + "[initial]\ny = 0.099019\nvx = 2.0\n" + sim(2.0)},
       {"backspin", "disc dropped with backspin",
        disc + law(200, 0.5, 0) + "[initial]\ny = 0.3\nvx = 1.0\nomega = 30\n" + sim(2.0)},
+      {"backspin_bounce", "disc bouncing with backspin and rolling resistance",
+       disc + law(200, 0.4, 0.004) + "[initial]\ny = 0.3\nvx = 1.5\nomega = 20\n" + sim(2.0)},
   };
   std::vector<FrictionScene> out;
   for (const auto& c : cases) out.push_back({c.name, c.what, parse_scene(c.toml, c.name)});
@@ -121,13 +133,7 @@ std::string friction_split_xml(const Scene& scene, double w, double rho) {
     e->SetAttribute("priority", 1);
     e->SetAttribute("condim", scene.contact.mu_roll > 0.0 ? 6 : 3);
     // compensated's cone coefficient for rolling (mjcf.cpp), for the share w
-    double mu_roll = scene.contact.mu_roll;
-    if (scene.shape == Shape::Circle && mu_roll > 0.0 && scene.contact.mu > 0.0) {
-      const double kappa = body.mass * scene.radius * scene.radius /
-                           (body.inertia + body.mass * scene.radius * scene.radius);
-      const double q = kappa * mu_roll / (scene.contact.mu * scene.radius);
-      if (q < 1.0) mu_roll /= std::sqrt(1.0 - q * q);
-    }
+    const double mu_roll = mujoco::cone_mu_roll(scene, g.settings);
     char friction[128];
     std::snprintf(friction, sizeof friction, "%.17g %.17g %.17g", scene.contact.mu / w,
                   std::max(scene.contact.mu_torsion / w, 1e-5), std::max(mu_roll / w, 1e-5));
@@ -139,18 +145,152 @@ std::string friction_split_xml(const Scene& scene, double w, double rho) {
   return printer.CStr();
 }
 
+std::string friction_knob_xml(const Scene& scene, FrictionKnob knob) {
+  mujoco::MjcfOptions options;
+  options.mapping = mujoco::Mapping::Calibrated;
+  const mujoco::GeneratedModel g = mujoco::generate_mjcf(scene, options);
+  if (knob == FrictionKnob::ImpratioTenth || knob == FrictionKnob::ImpratioTen) {
+    mujoco::SolverSettings s = g.settings;
+    s.impratio *= knob == FrictionKnob::ImpratioTen ? 10.0 : 0.1;
+    return mujoco::write_mjcf(scene, options, s);
+  }
+  tinyxml2::XMLDocument doc;
+  doc.Parse(g.xml.c_str());
+  tinyxml2::XMLElement* root = doc.FirstChildElement("mujoco");
+  tinyxml2::XMLElement* option = root->FirstChildElement("option");
+  tinyxml2::XMLElement* defaults = root->FirstChildElement("default")->FirstChildElement("geom");
+  const int condim = defaults->IntAttribute("condim", 3);
+  switch (knob) {
+    case FrictionKnob::Pyramidal: option->SetAttribute("cone", "pyramidal"); break;
+    case FrictionKnob::Noslip: option->SetAttribute("noslip_iterations", 10); break;
+    case FrictionKnob::Condim:
+      if (condim >= 6) return "";
+      defaults->SetAttribute("condim", 6);
+      break;
+    case FrictionKnob::MarginGap:
+      defaults->SetAttribute("margin", 1e-3);
+      defaults->SetAttribute("gap", 1e-3);
+      break;
+    case FrictionKnob::Pair: {
+      // Every colliding geom of the body (no contype attribute: the visual
+      // ones have contype = 0) leaves the dynamic collisions and gets an
+      // explicit pair with the ground carrying the default's values, with
+      // friction's five coefficients written out.
+      std::vector<std::string> names;
+      std::vector<tinyxml2::XMLElement*> stack{root->FirstChildElement("worldbody")};
+      while (!stack.empty()) {
+        tinyxml2::XMLElement* e = stack.back();
+        stack.pop_back();
+        for (auto* b = e->FirstChildElement("body"); b; b = b->NextSiblingElement("body"))
+          stack.push_back(b);
+        if (std::string(e->Name()) != "body") continue;
+        for (auto* geom = e->FirstChildElement("geom"); geom;
+             geom = geom->NextSiblingElement("geom")) {
+          if (geom->Attribute("contype")) continue;
+          geom->SetAttribute("contype", 0);
+          geom->SetAttribute("conaffinity", 0);
+          names.emplace_back(geom->Attribute("name"));
+        }
+      }
+      double mu[3] = {0.0, 0.0, 0.0};
+      std::sscanf(defaults->Attribute("friction"), "%lf %lf %lf", &mu[0], &mu[1], &mu[2]);
+      char friction[160];
+      std::snprintf(friction, sizeof friction, "%.17g %.17g %.17g %.17g %.17g", mu[0], mu[0],
+                    std::max(mu[1], 1e-5), std::max(mu[2], 1e-5), std::max(mu[2], 1e-5));
+      tinyxml2::XMLElement* contact = root->FirstChildElement("contact");
+      if (!contact) {
+        contact = doc.NewElement("contact");
+        root->InsertAfterChild(root->FirstChildElement("worldbody"), contact);
+      }
+      for (const std::string& name : names) {
+        tinyxml2::XMLElement* pair = doc.NewElement("pair");
+        pair->SetAttribute("geom1", "ground");
+        pair->SetAttribute("geom2", name.c_str());
+        pair->SetAttribute("condim", condim);
+        pair->SetAttribute("friction", friction);
+        pair->SetAttribute("solref", defaults->Attribute("solref"));
+        pair->SetAttribute("solimp", defaults->Attribute("solimp"));
+        contact->InsertEndChild(pair);
+      }
+      break;
+    }
+    default: break;
+  }
+  tinyxml2::XMLPrinter printer;
+  doc.Print(&printer);
+  return printer.CStr();
+}
+
+Scene conformance_scene(const Scene& scene, FrictionLaw law, const std::string& mapping) {
+  mujoco::MjcfOptions options;
+  const std::optional<mujoco::Mapping> m = mujoco::parse_mapping(mapping);
+  if (!m) throw std::invalid_argument("conformance_scene: no mapping " + mapping);
+  options.mapping = *m;
+  const mujoco::GeneratedModel g = mujoco::generate_mjcf(scene, options);
+  Scene out = scene;
+  out.contact.friction = law;
+  out.contact.cone_ratio = g.settings.impratio;
+  out.contact.mu_roll = mujoco::cone_mu_roll(scene, g.settings);
+  return out;
+}
+
+FrictionParts friction_parts(const Scene& scene, const std::string& mapping) {
+  FrictionParts p;
+  const std::optional<mujoco::Mapping> m = mujoco::parse_mapping(mapping);
+  if (!m) throw std::invalid_argument("friction_parts: no mapping " + mapping);
+  mujoco::MjcfOptions options;
+  options.mapping = *m;
+  mujoco::MujocoStepper stepper(scene, mujoco::generate_mjcf(scene, options).xml, "friction parts");
+  const Trajectory mj = simulate(stepper, scene.sim);
+  const Trajectory reference = simulate(scene);
+  const Trajectory shape = simulate(conformance_scene(scene, FrictionLaw::ViscousCone, mapping));
+  const Trajectory soft = simulate(conformance_scene(scene, FrictionLaw::SoftCone, mapping));
+  p.ok = !mj.divergence && !reference.divergence && !shape.divergence && !soft.divergence;
+  if (!p.ok) {
+    p.total = p.shape = p.push = p.rest = std::numeric_limits<double>::quiet_NaN();
+    return p;
+  }
+  p.total = error_between(reference, mj).max_pos;
+  p.shape = error_between(reference, shape).max_pos;
+  p.push = error_between(shape, soft).max_pos;
+  p.rest = error_between(soft, mj).max_pos;
+  return p;
+}
+
 FrictionRow friction_row(const FrictionScene& s) {
   const Trajectory reference = simulate(s.scene);
-  FrictionRow row{s.name, s.what, {}, {}, {}};
+  FrictionRow row{s.name, s.what, {}, {}, {}, 0.0, 0.0, 0.0, 0.0, {}};
+  Trajectory compensated;
   for (mujoco::Mapping m : {mujoco::Mapping::Calibrated, mujoco::Mapping::Compensated}) {
     mujoco::MjcfOptions options;
     options.mapping = m;
-    const FrictionOutcome o =
-        measure(s.scene, reference, mujoco::generate_mjcf(s.scene, options).xml);
+    mujoco::MujocoStepper stepper(s.scene, mujoco::generate_mjcf(s.scene, options).xml,
+                                  "friction scene");
+    Trajectory mj = simulate(stepper, s.scene.sim);
+    const FrictionOutcome o = outcome(reference, mj);
     (m == mujoco::Mapping::Calibrated ? row.calibrated : row.compensated) = o;
+    if (m == mujoco::Mapping::Compensated) compensated = std::move(mj);
   }
   row.split = measure(s.scene, reference,
                       friction_split_xml(s.scene, kSplitShare, kSplitDamper * s.scene.contact.c));
+  const Trajectory shape = simulate(conformance_scene(s.scene, FrictionLaw::ViscousCone));
+  const Trajectory soft = simulate(conformance_scene(s.scene, FrictionLaw::SoftCone));
+  row.shape = error_between(reference, shape).max_pos;
+  row.push = error_between(shape, soft).max_pos;
+  const TrajectoryError conformance = error_between(soft, compensated);
+  row.conformance = conformance.max_pos;
+  row.conformance_angle = conformance.max_angle;
+  for (FrictionKnob knob : kFrictionKnobs) {
+    const std::string xml = friction_knob_xml(s.scene, knob);
+    double d = std::numeric_limits<double>::quiet_NaN();
+    if (!xml.empty()) {
+      mujoco::MujocoStepper stepper(s.scene, xml, "friction scene, " + knob_name(knob));
+      const Trajectory mj = simulate(stepper, s.scene.sim);
+      d = mj.divergence ? std::numeric_limits<double>::infinity()
+                        : error_between(reference, mj).max_pos;
+    }
+    row.knobs.push_back(d);
+  }
   return row;
 }
 

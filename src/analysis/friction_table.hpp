@@ -1,9 +1,11 @@
-// MuJoCo with friction, against the reference (issue 13, item 3): the
-// friction table of validation/report/closed_forms.md's last section, of
-// docs/mujoco.md and of bench/friction_table.cpp (contact2d_friction).
+// MuJoCo with friction, against the reference: the friction table of
+// validation/report/friction.md, of docs/mujoco.md and of
+// bench/friction_table.cpp (contact2d_friction).
 //
-// Six scenes, all 1 kg, Kelvin–Voigt, k = 1e4 N/m, α = 100, Δt = 1e-4 s,
-// semi-implicit Euler in both engines (MuJoCo's Euler), samples every 1 ms:
+// Eight scenes, all 1 kg, Kelvin–Voigt, k = 1e4 N/m, Δt = 1e-4 s,
+// semi-implicit Euler in both engines (MuJoCo's Euler), samples every 1 ms
+// (α = 100 s/m unless stated):
+//   point_slide     point mass resting, vx = 1 m/s, μ = 0.6, α = 500, c = 20, 1 s
 //   box_slide       box 0.4 × 0.2 m lying flat, vx = 2 m/s, μ = 0.5, c = 50, 1.5 s
 //   box_slide_c200  the same with c = 200 N·s/m
 //   tshape          the T dropped from 0.8 m at θ = 0.2, vx = 0.3, μ = 0.5, c = 200, 2 s
@@ -11,15 +13,28 @@
 //   slide_roll      disc at 2 m/s without spin, μ = 0.2, c = 200, 2 s: slides,
 //                   then rolls at 2/3 of v0
 //   backspin        disc dropped from 0.3 m, vx = 1 m/s, ω = +30 rad/s, μ = 0.5, c = 200, 2 s
+//   backspin_bounce disc dropped from 0.3 m, vx = 1.5 m/s, ω = +20 rad/s, μ = 0.4,
+//                   μ_roll = 0.004 m, c = 200, 2 s: bounces with backspin
 //
 // Each row: the largest position difference between the engines under
-// calibrated and under compensated, and MuJoCo's largest height above the
-// reference (the hop). The attribution is a measurement: the same scene in
-// MuJoCo with the damper's push taken out of the cone (friction_split_xml:
-// every contact geom split into a frictionless one carrying the spring and
-// the damper, and a frictional one with a small share of both), which no
-// mapping can use (it weakens the friction limit during impacts) but which
-// shows how much of the difference the push makes.
+// calibrated and under compensated, MuJoCo's largest height above the
+// reference (the hop), and the attribution, every part a measured distance
+// between two runs:
+//   shape        the reference (tanh) against the reference under the cone's
+//                shape without its push (friction_law = viscous_cone)
+//   push         viscous_cone against soft_cone: the push c·s, the divisor
+//                1 + μ²/impratio, the contact point halfway into the
+//                penetration
+//   conformance  the reference under soft_cone against MuJoCo (compensated):
+//                what is not the friction law (MuJoCo's soft contact, its
+//                step; rounding)
+// (all at compensated's impratio and rolling coefficient). By the triangle
+// inequality the compensated difference is at most shape + push +
+// conformance. And every setting of MuJoCo 2.2.2 that touches friction, each
+// on its own (FrictionKnob), and the friction split (friction_split_xml):
+// the same scene in MuJoCo with the damper's push taken out of the cone,
+// which no mapping can use (it weakens the friction limit during impacts)
+// but which shows how much of the difference the push makes.
 #pragma once
 
 #include <string>
@@ -42,11 +57,70 @@ struct FrictionOutcome {
   double hop = 0.0;        // MuJoCo's COM height above the reference's, largest, m
 };
 
+// A setting of MuJoCo 2.2.2 that touches friction, applied alone to the
+// calibrated model (the one to build on).
+enum class FrictionKnob {
+  ImpratioTenth,  // impratio × 0.1
+  ImpratioTen,    // impratio × 10
+  Pyramidal,      // cone = "pyramidal"
+  Noslip,         // noslip_iterations = 10
+  Condim,         // condim 6 where the scene needs 3 (torsion and rolling rows added)
+  MarginGap,      // margin = gap = 1 mm on every geom (contacts found early, not active)
+  Pair,           // every contact an explicit <pair> with the ground (geom collisions off)
+};
+constexpr FrictionKnob kFrictionKnobs[] = {FrictionKnob::ImpratioTenth, FrictionKnob::ImpratioTen,
+                                           FrictionKnob::Pyramidal,     FrictionKnob::Noslip,
+                                           FrictionKnob::Condim,        FrictionKnob::MarginGap,
+                                           FrictionKnob::Pair};
+// "impratio x0.1", … (header-only: the report's pages name the knobs
+// without linking MuJoCo).
+inline std::string knob_name(FrictionKnob knob) {
+  switch (knob) {
+    case FrictionKnob::ImpratioTenth: return "impratio x0.1";
+    case FrictionKnob::ImpratioTen: return "impratio x10";
+    case FrictionKnob::Pyramidal: return "pyramidal cone";
+    case FrictionKnob::Noslip: return "noslip_iterations 10";
+    case FrictionKnob::Condim: return "condim 6";
+    case FrictionKnob::MarginGap: return "margin = gap = 1 mm";
+    case FrictionKnob::Pair: return "explicit <pair>";
+  }
+  return "";
+}
+// The calibrated model of `scene` with the knob applied; empty when it does
+// not apply (condim 6 on a scene that already has it).
+std::string friction_knob_xml(const Scene& scene, FrictionKnob knob);
+
 struct FrictionRow {
   std::string name, what;
   FrictionOutcome calibrated, compensated;
   FrictionOutcome split;  // compensated with the push removed (measurement only)
+  // The attribution (m, largest position distance), see the top of the file.
+  double shape = 0.0;
+  double push = 0.0;
+  double conformance = 0.0;
+  double conformance_angle = 0.0;  // rad
+  // Each knob's difference to the reference (m), in kFrictionKnobs' order;
+  // NaN where it does not apply, +∞ where MuJoCo diverged.
+  std::vector<double> knobs;
 };
+
+// The scene as the reference runs it to conform to MuJoCo's model under
+// `mapping` (compensated by default): friction_law = law at the model's
+// impratio and rolling coefficient.
+Scene conformance_scene(const Scene& scene, FrictionLaw law,
+                        const std::string& mapping = "compensated");
+
+// One scene's difference with friction taken apart (m, largest position
+// distance): the reference (tanh) against MuJoCo under `mapping`, and the
+// three parts of the top of this file under the same mapping.
+struct FrictionParts {
+  double total = 0.0;  // reference ↔ MuJoCo
+  double shape = 0.0;  // reference ↔ reference under viscous_cone
+  double push = 0.0;   // viscous_cone ↔ soft_cone
+  double rest = 0.0;   // soft_cone ↔ MuJoCo
+  bool ok = false;     // false: an engine diverged (the numbers are NaN)
+};
+FrictionParts friction_parts(const Scene& scene, const std::string& mapping);
 
 // The split's shares: the frictional geom carries w of the spring and a
 // damper of ρ·c, with μ/w so that its friction limit is the scene's.

@@ -51,17 +51,27 @@ std::string series_title(const std::string& engine, Integrator integrator) {
 }
 
 // How a series of an engine is drawn: the reference solid with small
-// filled circles; each MuJoCo engine dashed with open markers of its own
-// shape, each larger than the last, so curves that coincide (MuJoCo's
-// mappings often do) show as nested markers. Colour = integrator.
+// filled markers; each MuJoCo engine dashed with open markers, each larger
+// than the last, so curves that coincide (MuJoCo's mappings often do) show
+// as nested markers. Colour = integrator, shape = integrator (point_type).
 struct EngineStyle {
   double point_size;
-  int point_type;
   int dash_type;
 };
 EngineStyle engine_style(size_t engine_index) {
-  static const EngineStyle styles[] = {{1.0, 7, 1}, {1.6, 4, 2}, {2.1, 6, 4}, {2.6, 12, 5}};
+  static const EngineStyle styles[] = {{1.0, 1}, {1.6, 2}, {2.1, 4}, {2.6, 5}};
   return styles[std::min<size_t>(engine_index, 3)];
+}
+
+// The marker of one engine's integrator: a shape per integrator (square,
+// circle, pentagon, diamond), filled for the reference and open for MuJoCo,
+// so that one engine's integrators whose points coincide (MuJoCo's Euler
+// and RK4 at small Δt) show as different nested shapes rather than one
+// marker hiding another. Triangles are left to the stability map's bounds.
+int point_type(const std::string& engine, Integrator integrator) {
+  static const int filled[] = {5, 7, 15, 13}, open[] = {4, 6, 14, 12};
+  const int i = static_cast<int>(integrator);
+  return engine == "ref" ? filled[i] : open[i];
 }
 
 // The position of `engine` in the order the engines first appear.
@@ -215,6 +225,7 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
     std::string title;
     Integrator integrator;
     EngineStyle style;
+    int point_type;
   };
   std::vector<Series> series;
   std::vector<std::string> engines;
@@ -234,8 +245,9 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
     }
     if (points == 0) continue;
     std::fprintf(f, "\n\n");
-    series.push_back({series_title(key.first, key.second), key.second,
-                      engine_style(engine_index(engines, key.first))});
+    const size_t engine = engine_index(engines, key.first);
+    series.push_back({series_title(key.first, key.second), key.second, engine_style(engine),
+                      point_type(key.first, key.second)});
   }
   // The adaptive method: tolerance in column 1 (no dt), its time and error.
   int dense_points = 0;
@@ -276,7 +288,7 @@ void plot_sweep(const std::string& png_path, const SweepResult& r) {
       const Series& c = series[static_cast<size_t>(i)];
       s << (i ? ", " : "") << gnuplot_quoted(data) << " index " << i << " using " << using_cols
         << " with linespoints lw 2 lc " << integrator_colour(c.integrator) << " dt "
-        << c.style.dash_type << " pt " << c.style.point_type
+        << c.style.dash_type << " pt " << c.point_type
         << " ps "
         // Grows with the integrator too: one engine's flat curves nest.
         << number(c.style.point_size + 0.35 * static_cast<int>(c.integrator), 3)
@@ -462,6 +474,8 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
     std::string title;
     Integrator integrator = Integrator::RK4;
     EngineStyle style{};
+    int point_type = 7;
+    bool mujoco_implicit = false;                  // contacts explicit: Euler's limit
     std::array<bool, 3> has{false, false, false};  // bracketed, lower, upper
     std::vector<double> theory;                    // ω·Δt per k (NaN: none)
     double last_k = 0, last_theory_dt = 0, last_theory = 0;
@@ -474,7 +488,10 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
     Series c;
     c.title = series_title(key.first, key.second);
     c.integrator = key.second;
-    c.style = engine_style(engine_index(engines, key.first));
+    const size_t engine = engine_index(engines, key.first);
+    c.style = engine_style(engine);
+    c.point_type = point_type(key.first, key.second);
+    c.mujoco_implicit = is_mujoco_engine(key.first) && key.second == Integrator::ImplicitEuler;
     for (const StabilityRow& row : r.rows) {
       if (row.engine != key.first || row.integrator != key.second) continue;
       const bool bracketed = row.verdict == StabilityVerdict::Bracketed;
@@ -509,21 +526,29 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
   }
   if (std::fflush(f) != 0) throw std::runtime_error(data + ": cannot write plot data");
   if (!(dts.hi > 0)) throw std::runtime_error(png_path + ": nothing to plot");
-  // One theory line per integrator (engines that share it share the line),
-  // labelled with the integrator at its right end.
+  // One theory line per distinct limit (engines that share it share the
+  // line; MuJoCo's implicit has semi-implicit Euler's for contacts), labelled
+  // at its right end with the integrators it is the limit of.
   std::vector<size_t> theory_of;
+  std::vector<std::string> theory_label;
   for (size_t i = 0; i < series.size(); ++i) {
     if (series[i].last_k <= 0) continue;
+    const std::string name = series[i].mujoco_implicit
+                                 ? std::string("MuJoCo implicit")
+                                 : std::string(integrator_name(series[i].integrator));
     bool same = false;
-    for (size_t j : theory_of) {
-      same = same || (series[j].integrator == series[i].integrator &&
-                      series[j].theory.size() == series[i].theory.size() &&
-                      std::equal(series[j].theory.begin(), series[j].theory.end(),
-                                 series[i].theory.begin(), [](double a, double b) {
-                                   return a == b || (std::isnan(a) && std::isnan(b));
-                                 }));
+    for (size_t n = 0; n < theory_of.size() && !same; ++n) {
+      const Series& other = series[theory_of[n]];
+      same =
+          other.theory.size() == series[i].theory.size() &&
+          std::equal(other.theory.begin(), other.theory.end(), series[i].theory.begin(),
+                     [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); });
+      if (same && theory_label[n].find(name) == std::string::npos) theory_label[n] += " = " + name;
     }
-    if (!same) theory_of.push_back(i);
+    if (!same) {
+      theory_of.push_back(i);
+      theory_label.push_back(name);
+    }
   }
 
   const size_t entries = series.size() + 3;
@@ -543,14 +568,43 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
     << "\n"
     << "set key at screen 0.5," << legend << " center top vertical maxrows " << legend_rows
     << " reverse Left samplen 3 font ',10'\n";
-  auto panel = [&](int offset, bool with_key) {
-    // offset 0: columns in Δt, 4: in ω·Δt.
+  auto panel = [&](int offset, bool with_key, const Extent& range) {
+    // offset 0: columns in Δt, 4: in ω·Δt. The theory labels sit in the
+    // right margin (outside the plot: no marker covers them), each at its
+    // line's height as a fraction of the log axis gnuplot_range sets
+    // (lo/pad to hi·pad), pushed apart to at least one text line (0.035 of
+    // the panel: a 9-point line of a ~500-pixel panel) where lines nearly
+    // coincide.
+    // A limit shared by several integrators gets a line per other name
+    // under its own, "(= MuJoCo implicit)": the margin is 19 characters.
+    struct Line {
+      std::string text;
+      double height;
+      std::string colour;
+    };
+    std::vector<Line> lines;
     for (size_t n = 0; n < theory_of.size(); ++n) {
       const Series& c = series[theory_of[n]];
-      s << "set label " << n + 1 << " '" << gnuplot_text(std::string(integrator_name(c.integrator)))
-        << " theory' at " << number(c.last_k * 1.15, 6) << ","
-        << number(offset ? c.last_theory : c.last_theory_dt, 6) << " left tc "
-        << integrator_colour(c.integrator) << " font ',9'\n";
+      const double h =
+          log_axis_fraction(offset ? c.last_theory : c.last_theory_dt, range.lo, range.hi);
+      std::string names = theory_label[n];
+      const size_t cut = names.find(" = ");
+      lines.push_back({names.substr(0, cut) + " theory", h, integrator_colour(c.integrator)});
+      for (size_t at = cut; at != std::string::npos;) {  // below it, in order
+        const size_t next = names.find(" = ", at + 3);
+        lines.push_back(
+            {"(= " + names.substr(at + 3, next == std::string::npos ? next : next - at - 3) + ")",
+             h - 1e-9 * static_cast<double>(lines.size()), integrator_colour(c.integrator)});
+        at = next;
+      }
+    }
+    std::vector<double> heights;
+    heights.reserve(lines.size());
+    for (const Line& line : lines) heights.push_back(line.height);
+    heights = spread_labels(heights, 0.035, 0.98);
+    for (size_t n = 0; n < lines.size(); ++n) {
+      s << "set label " << n + 1 << " '" << gnuplot_text(lines[n].text) << "' at graph 1.02, graph "
+        << number(heights[n], 6) << " left tc " << lines[n].colour << " font ',9'\n";
     }
     s << "plot ";
     bool first = true;
@@ -565,7 +619,10 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
       const Series& c = series[i];
       const std::string colour = " lc " + integrator_colour(c.integrator);
       const std::string marker =
-          " pt " + std::to_string(c.style.point_type) + " ps " + number(c.style.point_size, 2);
+          " pt " + std::to_string(c.point_type) + " ps " +
+          // Grows with the integrator too (as in the sweep): MuJoCo's Euler
+          // and implicit coincide on contacts, and nest instead of hiding.
+          number(c.style.point_size + 0.35 * static_cast<int>(c.integrator), 3);
       // Bounds often coincide (every series stable at the largest Δt): their
       // markers grow with the engine and the integrator, so they nest.
       const std::string bound_size =
@@ -601,10 +658,11 @@ void plot_stability(const std::string& png_path, const StabilityResult& r) {
   };
   s << "set origin 0," << legend << "\nset ylabel 'largest stable Δt (s)'\n"
     << gnuplot_range("y", dts.lo, dts.hi, true) << "set title 'in seconds'\n";
-  panel(0, true);
-  s << "unset key\nset origin 0.5," << legend << "\nset ylabel 'largest stable ω·Δt (rad)'\n"
+  panel(0, true, dts);
+  // ω·Δt is a number (the phase advanced per step), not an angle: no unit.
+  s << "unset key\nset origin 0.5," << legend << "\nset ylabel 'largest stable ω·Δt'\n"
     << gnuplot_range("y", wdts.lo, wdts.hi, true) << "set title 'in ω·Δt'\n";
-  panel(4, false);
+  panel(4, false, wdts);
   s << "unset multiplot\n";
   run_gnuplot(s.str(), png_path);
   png.commit();

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "analysis/reference.hpp"
+#include "core/integrator_label.hpp"
 #include "reference/dense_reference.hpp"
 
 namespace contact2d::analysis {
@@ -133,7 +134,14 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
         row.m_eff = cs.m_eff;
         row.omega = cs.omega;
         row.zeta = cs.zeta;
-        row.theory = stability_limit(integrator, cs.zeta);
+        // MuJoCo's implicit integrates joint damping and actuators
+        // implicitly but contact forces explicitly: for a contact it is
+        // semi-implicit Euler, with that limit (not the reference's
+        // unconditionally stable implicit Euler).
+        const bool mujoco_implicit =
+            is_mujoco_engine(engine) && integrator == Integrator::ImplicitEuler;
+        row.theory =
+            stability_limit(mujoco_implicit ? Integrator::SemiImplicitEuler : integrator, cs.zeta);
         const long long max_steps = engine == "ref" ? config.max_steps : config.max_steps_other;
         row.dt_min = std::min(result.dt_max, scene.sim.duration / static_cast<double>(max_steps));
         rows.push_back(row);

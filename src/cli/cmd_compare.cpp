@@ -136,6 +136,7 @@ void print_json(const Comparison& c, const std::string& path) {
     << ", \"mapping\": \"" << mj::mapping_name(c.mjcf.mapping) << "\", \"geometry\": \""
     << mj::geometry_name(c.mjcf.geometry) << "\", \"damping\": \""
     << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") << "\""
+    << ", \"friction_law\": \"" << friction_law_name(c.scene.contact.friction) << "\""
     << ", \"integrators\": {\"ref\": \"" << integrator_name(c.scene.sim.integrator)
     << "\", \"mujoco\": \"" << mj::mujoco_integrator(c.scene.sim.integrator) << "\"}"
     << ", \"dt\": " << json_number(c.scene.sim.dt)
@@ -210,6 +211,19 @@ void print_table(const Comparison& c) {
             << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt")
             << " damping, dt = " << f(c.scene.sim.dt) << " s, " << c.errors.samples
             << " samples over " << f(c.scene.sim.duration) << " s\n";
+  if (c.scene.contact.friction != FrictionLaw::Tanh) {
+    // A cone law is a conformance law, not physics; it matches MuJoCo only
+    // at MuJoCo's own impratio.
+    const double impratio = c.mujoco.impratio;
+    std::string note = "friction law: " + std::string(friction_law_name(c.scene.contact.friction)) +
+                       " (MuJoCo's cone, not physics), cone ratio " +
+                       format_shortest(c.scene.contact.cone_ratio, 6);
+    if (std::isfinite(impratio) && impratio != c.scene.contact.cone_ratio)
+      note += "; MuJoCo's model has impratio " + format_shortest(impratio, 6) +
+              ": --set contact.cone_ratio=" + format_shortest(impratio, 6) +
+              " to compare like with like";
+    std::cout << wrapped(note, "") << "\n";
+  }
   if (conv.available) {
     std::cout << "converged solution: Dormand-Prince 5(4) with every contact switch located, tol "
               << format_shortest(conv.tol)

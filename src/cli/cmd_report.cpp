@@ -1,4 +1,4 @@
-// contact2d report [--out DIR] [--models DIR] [--bench PATH] [--seed N]
+// contact2d report [--out DIR] [--models DIR | --snapshot] [--bench PATH] [--seed N]
 //
 // Writes every page of validation/report/ — README.md (the reference against
 // MuJoCo), sweep.md, stability.md, extreme.md, closed_forms.md — and their PNG plots, and the
@@ -39,9 +39,13 @@ namespace {
 namespace rp = contact2d::report;
 namespace fs = std::filesystem;
 
+// By default the report goes to build/ (outside the tracked tree: its pages
+// hold wall-clock times); --snapshot writes the committed snapshot,
+// validation/report/ and models/.
 struct ReportOptions {
-  std::string out = "validation/report";
-  std::string models = "models";
+  std::string out = "build/report";
+  std::string models = "build/report/models";
+  bool snapshot = false;
   std::string bench;  // default: bench/contact2d_bench beside this program
   std::uint64_t seed = 20260101;
   OutputOptions outputs;  // --out, --models
@@ -142,8 +146,13 @@ rp::ReadmeData readme_runs(const ReportOptions& o) {
     }
     for (const std::string& s : kScenes) {
       const double pos_goal = s == "point_mass" || s == "circle" ? 1e-3 : 3e-3;
-      d.goals.push_back(
-          {s + ", c = " + c + ", friction", pos_goal, std::nullopt, compare(s, goal(c))});
+      rp::GoalCase g{s + ", c = " + c + ", friction", pos_goal, std::nullopt, compare(s, goal(c))};
+      const analysis::FrictionParts parts =
+          analysis::friction_parts(load(scene_path(s), goal(c)), "calibrated");
+      g.friction_shape = parts.shape;
+      g.friction_push = parts.push;
+      g.friction_rest = parts.rest;
+      d.goals.push_back(g);
     }
     d.goals.push_back({"circle, c = " + c + ", friction, no rolling resistance", 1e-3, std::nullopt,
                        compare("circle", with(goal(c), {{"contact.mu_roll", "0"}}))});
@@ -191,6 +200,7 @@ rp::ReadmeData readme_runs(const ReportOptions& o) {
     const std::string source = "random scene " + r.name;
     const rp::Comparison without = rp::compare_engines(frictionless, source, mapping, "corners");
     const rp::Comparison friction = rp::compare_engines(r.scene, source, mapping, "corners");
+    const analysis::FrictionParts parts = analysis::friction_parts(r.scene, mapping);
     (compensated ? d.random_compensated : d.random)[i] = {r.name,
                                                           without.shape,
                                                           r.mass,
@@ -199,7 +209,10 @@ rp::ReadmeData readme_runs(const ReportOptions& o) {
                                                           r.scene.contact.mu,
                                                           without.max_pos,
                                                           without.max_angle,
-                                                          friction.max_pos};
+                                                          friction.max_pos,
+                                                          parts.shape,
+                                                          parts.push,
+                                                          parts.rest};
   });
   return d;
 }
@@ -375,10 +388,16 @@ Command add_report(CLI::App& app) {
       "report",
       "Run every case of the validation report and write its pages and plots (from the "
       "repository root)");
-  o->outputs.directory(*cmd, "--out", o->out,
-                       "Directory of the pages and plots (default validation/report)");
-  o->outputs.directory(*cmd, "--models", o->models,
-                       "Directory of the generated MJCF models (default models)");
+  CLI::Option* out = o->outputs.directory(
+      *cmd, "--out", o->out, "Directory of the pages and plots (default build/report)");
+  CLI::Option* models =
+      o->outputs.directory(*cmd, "--models", o->models,
+                           "Directory of the generated MJCF models (default build/report/models)");
+  cmd->add_flag("--snapshot", o->snapshot,
+                "Write the committed snapshot: validation/report and models (excludes --out, "
+                "--models)")
+      ->excludes(out)
+      ->excludes(models);
   cmd->add_option("--bench", o->bench,
                   "The contact2d_bench program (default: bench/contact2d_bench beside contact2d; "
                   "the cost section is left out when there is none)")
@@ -386,6 +405,10 @@ Command add_report(CLI::App& app) {
   cmd->add_option("--seed", o->seed, "Seed of the random scenes (default 20260101)")
       ->type_name("N");
   return {cmd, [o] {
+            if (o->snapshot) {
+              o->out = "validation/report";
+              o->models = "models";
+            }
             try {
               return report(*o);
             } catch (const InputError&) {

@@ -26,6 +26,22 @@ int main(int argc, char** argv) {
   commands.push_back(add_sweep(app));
   commands.push_back(add_stability(app));
 
+  // An unknown subcommand is named (CLI11 would say "A subcommand is
+  // required", as if none had been given).
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string first = argv[1];
+    std::string names;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      known = known || sub->get_name() == first;
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      std::cerr << "contact2d: " << first << ": unknown subcommand (one of " << names
+                << "; see contact2d --help)\n";
+      return kExitBadInput;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -201,6 +201,12 @@ std::string describe(const Divergence& d, const Scene& scene) {
     message += "Implicit Euler is stable on the linear contact at any step; at ω·Δt = " +
                format("%.3g", omega_dt) + omega_text +
                " the piecewise contact force defeats its Newton iteration. Try a smaller --dt.";
+    if (scene.contact.friction == FrictionLaw::SoftCone)
+      message +=
+          " Under friction_law = \"soft_cone\" a smaller step may not help: its push c·μ·|v_t| "
+          "keeps a sliding contact loaded up to the surface, so the force jumps there while the "
+          "point separates and the implicit equation has no solution; run it with "
+          "semi_implicit_euler, as MuJoCo does.";
   } else if (limit < 1e-3) {
     // Explicit Euler on an undamped rebound: no step is stable; each contact
     // step multiplies the energy by 1 + (ω·Δt)².

@@ -26,6 +26,28 @@ constexpr size_t kBatch = 16;
 // derivatives of (F_x, F_y, τ) with respect to (q, v) = (x, y, θ, vx, vy, ω)
 // to the rows of `jac` (3 × 6, row-major), for contacts
 // whose normal does not turn with q (the ground); see acceleration_jacobian.
+// One contact under a cone law (core/contact.hpp); `fn` is the normal law's
+// force. Under soft_cone on the ground the force acts halfway into the
+// penetration, where MuJoCo puts the contact point: lever r + (0, d/2), so
+// v_t = v_x − ω·(r_y + d/2) (v_n is the same as at the point). viscous_cone,
+// and either law on an obstacle, keep the contact's own point.
+void add_cone(const Contact& c, const ContactParams& law, bool on_ground, double fn, const Vec3& v,
+              double omega, bool rolls, Vec2& force, double& torque) {
+  const bool soft = law.friction == FrictionLaw::SoftCone;
+  const double rx = c.rx;
+  const double ry = soft && on_ground ? c.ry + 0.5 * c.depth : c.ry;
+  const Vec2 vc(v.x() - omega * ry, v.y() + omega * rx);  // v + ω × r
+  const Vec2 n = c.normal();
+  const Vec2 t(n.y(), -n.x());
+  const double spin = rolls ? v.z() : 0.0;
+  const ConeForce f =
+      soft ? soft_cone_force(law, normal_aim(law, c.depth, vc.dot(n)), vc.dot(t), spin)
+           : viscous_cone_force(law, fn, vc.dot(t), spin);
+  const Vec2 total = f.fn * n + f.ft * t;
+  force += total;
+  torque += rx * total.y() - ry * total.x() + f.roll;
+}
+
 template <bool kJacobian>
 void add_contacts(const Model& model, const ContactSet& contacts, size_t first, size_t last,
                   const Vec3& v, Vec2& force, double& torque, double (*jac)[6]) {
@@ -70,6 +92,12 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
     for (size_t i = from; i < to; ++i) {
       const Contact& c = list[i];
       const ContactParams& law = i < ground ? model.contact : model.law(c);
+      if (law.friction != FrictionLaw::Tanh) {
+        const bool rolls = radius > 0.0 && law.mu_roll > 0.0;
+        if (rolls) ++rolling;  // its tanh argument was computed and is not used
+        add_cone(c, law, i < ground, fn[i - from], v, omega, rolls, force, torque);
+        continue;
+      }
       const double f_n = fn[i - from];
       const double s = arg[i - from];
       const double ft = -law.mu * f_n * s;
@@ -160,6 +188,31 @@ Vec3 to_acceleration(const RigidBody& body, const Vec2& force, double torque) {
   return {force.x() / body.mass, force.y() / body.mass, alpha};
 }
 
+// ∂a/∂q and ∂a/∂v under a cone law by forward differences of the whole
+// force stage (the laws' branches, stick, slide and off, meet with
+// continuous forces but not derivatives; its use is comparison, where the
+// Newton solve needs a consistent Jacobian, not a cheap one). Steps
+// h = 1e-7·max(1, |x|): about √ε of the state, the usual forward-difference
+// balance of truncation against rounding.
+Vec3 cone_jacobian(const Model& model, const ContactSet& contacts, const Vec3& q, const Vec3& v,
+                   AccelerationJacobian& jacobian, ContactSet& probe) {
+  const Vec3 a = acceleration(model, contacts, v);
+  for (int j = 0; j < 3; ++j) {
+    const double h = 1e-7 * std::max(1.0, std::abs(q[j]));
+    Vec3 qp = q;
+    qp[j] += h;
+    find_contacts(model, qp, probe);
+    jacobian.dq.col(j) = (acceleration(model, probe, v) - a) / h;
+  }
+  for (int j = 0; j < 3; ++j) {
+    const double h = 1e-7 * std::max(1.0, std::abs(v[j]));
+    Vec3 vp = v;
+    vp[j] += h;
+    jacobian.dv.col(j) = (acceleration(model, contacts, vp) - a) / h;
+  }
+  return a;
+}
+
 }  // namespace
 
 Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v) {
@@ -173,6 +226,7 @@ Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v)
 Vec3 acceleration_jacobian(const Model& model, const ContactSet& contacts, const Vec3& q,
                            const Vec3& v, AccelerationJacobian& jacobian, ContactSet& probe) {
   const RigidBody& body = model.body;
+  if (model.uses_cone_law()) return cone_jacobian(model, contacts, q, v, jacobian, probe);
   Vec2 force(model.applied.x(), model.applied.y() - body.mass * model.gravity);
   double torque = model.applied.z();
   double d[3][6] = {};
@@ -224,6 +278,13 @@ double energy(const Model& model, const ContactSet& contacts, const State& s) {
              0.5 * body.inertia * s.v.z() * s.v.z() + body.mass * model.gravity * s.q.y();
   for (const Contact& c : contacts) e += 0.5 * model.law(c).k * c.depth * c.depth;
   return e;
+}
+
+bool Model::uses_cone_law() const {
+  if (contact.friction != FrictionLaw::Tanh) return true;
+  for (const ContactParams& p : obstacle_laws)
+    if (p.friction != FrictionLaw::Tanh) return true;
+  return false;
 }
 
 double Model::min_k() const {

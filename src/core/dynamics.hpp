@@ -45,6 +45,8 @@ struct Model {
   // Smallest and largest k of the ground's and the obstacles' laws.
   double min_k() const;
   double max_k() const;
+  // Whether any contact law uses a cone friction law (core/contact.hpp).
+  bool uses_cone_law() const;
 };
 
 // a = M⁻¹·F(q, v) with `contacts` found at q (q enters only through them).

@@ -61,6 +61,8 @@ std::optional<ValidationError> validate_contact(const ContactParams& p, const st
               "must be in [0, 10] m"),
       require(non_negative(p.mu_torsion) && p.mu_torsion <= 10, p.mu_torsion, prefix + "mu_torsion",
               "must be in [0, 10] m"),
+      require(positive(p.cone_ratio) && p.cone_ratio <= 1e12, p.cone_ratio, prefix + "cone_ratio",
+              "must be in (0, 1e12]"),
   };
   for (const auto& check : checks) {
     if (check) return check;

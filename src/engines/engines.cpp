@@ -95,6 +95,7 @@ EngineRun run_engine(const EngineSpec& spec, const Scene& scene) {
     run.warnings = mj->warnings();
     run.solref = mj->settings().solref;
     run.impratio = mj->settings().impratio;
+    run.mu_roll = mujoco::cone_mu_roll(scene, mj->settings());
     if (mj->settings().refsafe_clamped) run.notes.emplace_back("refsafe");
   }
 #endif

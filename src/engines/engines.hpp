@@ -61,6 +61,9 @@ struct EngineRun {
   std::array<double, 2> solref{std::numeric_limits<double>::quiet_NaN(),
                                std::numeric_limits<double>::quiet_NaN()};
   double impratio = std::numeric_limits<double>::quiet_NaN();
+  // MuJoCo: the rolling coefficient the model writes (compensated's
+  // μ_roll' for a disc); NaN for the reference.
+  double mu_roll = std::numeric_limits<double>::quiet_NaN();
 };
 
 // A stepper at the scene's initial state. Throws InputError when the engine

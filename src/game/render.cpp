@@ -225,32 +225,45 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
     }
   }
 
-  // A kick key that did nothing, for a second: why.
-  if (game.ignored_kick() != IgnoredKick::None &&
-      static_cast<double>(game.steps_since_ignored_kick()) * game.dt() < 1.0) {
-    const std::string what = game.ignored_kick() == IgnoredKick::RoundOver
-                                 ? fmt("KICK IGNORED: THE ROUND IS OVER, NEXT PASS IN %.1f s",
-                                       static_cast<double>(game.steps_to_next_pass()) * game.dt())
-                                 : std::string("KICK IGNORED: THE LAST KICK IS STILL ACTING");
-    const double w = text_width(what, 2.0);
-    rect(0.5 * (width - w) - 10, 0.38 * height + 70, 0.5 * (width + w) + 10, 0.38 * height + 98,
-         kPanel);
-    text(0.5 * (width - w), 0.38 * height + 76, what, 2.0, kNoGoal);
-  }
+  // The help overlay is modal: the messages and banners below would show
+  // through it (the HUD's text is drawn after its panel is cleared).
+  if (!overlay.help) {
+    // A kick key that did nothing, for a second: why.
+    if (game.ignored_kick() != IgnoredKick::None &&
+        static_cast<double>(game.steps_since_ignored_kick()) * game.dt() < 1.0) {
+      const std::string what = game.ignored_kick() == IgnoredKick::RoundOver
+                                   ? fmt("KICK IGNORED: THE ROUND IS OVER, NEXT PASS IN %.1f s",
+                                         static_cast<double>(game.steps_to_next_pass()) * game.dt())
+                                   : std::string("KICK IGNORED: THE LAST KICK IS STILL ACTING");
+      const double w = text_width(what, 2.0);
+      rect(0.5 * (width - w) - 10, 0.38 * height + 70, 0.5 * (width + w) + 10, 0.38 * height + 98,
+           kPanel);
+      text(0.5 * (width - w), 0.38 * height + 76, what, 2.0, kNoGoal);
+    }
 
-  // Result of the round.
-  if (game.phase() == Phase::Over) {
-    const Outcome outcome = game.current_round().outcome;
-    const std::string what = outcome_text(outcome, r.min_kick_distance);
-    const double scale = outcome == Outcome::Goal ? 6.0 : 2.5;
-    const double w = text_width(what, scale);
-    rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20,
-         0.38 * height + 9 * scale, kPanel);
-    text(0.5 * (width - w), 0.38 * height, what, scale, outcome == Outcome::Goal ? kGoal : kNoGoal);
-  }
-  if (overlay.paused) {
-    const double w = text_width("PAUSED", 4.0);
-    text(0.5 * (width - w), 0.25 * height, "PAUSED", 4.0, kText);
+    // Result of the round.
+    if (game.phase() == Phase::Over) {
+      const Outcome outcome = game.current_round().outcome;
+      const std::string what = outcome_text(outcome, r.min_kick_distance);
+      const double scale = outcome == Outcome::Goal ? 6.0 : 2.5;
+      const double w = text_width(what, scale);
+      rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20,
+           0.38 * height + 9 * scale, kPanel);
+      text(0.5 * (width - w), 0.38 * height, what, scale,
+           outcome == Outcome::Goal ? kGoal : kNoGoal);
+    }
+    if (overlay.paused) {
+      const double w = text_width("PAUSED", 4.0);
+      text(0.5 * (width - w), 0.25 * height, "PAUSED", 4.0, kText);
+    }
+    // Before the first pass: the countdown.
+    if (overlay.get_ready > 0.0) {
+      const std::string what = fmt("GET READY: THE PASS COMES IN %.1f s", overlay.get_ready);
+      const double w = text_width(what, 2.5);
+      rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20,
+           0.38 * height + 9 * 2.5, kPanel);
+      text(0.5 * (width - w), 0.38 * height, what, 2.5, kText);
+    }
   }
 
   if (overlay.help) {

@@ -13,8 +13,9 @@ struct Overlay {
   bool help = false;
   bool replaying = false;
   bool recording = false;
-  double fps = 0.0;    // measured, 0 = unknown
-  double speed = 1.0;  // simulated seconds per wall-clock second (< 1: slow motion)
+  double fps = 0.0;        // measured, 0 = unknown
+  double speed = 1.0;      // simulated seconds per wall-clock second (< 1: slow motion)
+  double get_ready = 0.0;  // s before the first pass starts (> 0: the game waits)
 };
 
 void draw_frame(const Game& game, const Overlay& overlay, int width, int height);

@@ -94,6 +94,7 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
   overlay.replaying = feed.replaying();
   overlay.recording = video != nullptr;
   overlay.help = o.start_with_help;
+  overlay.get_ready = feed.replaying() ? 0.0 : o.first_pass_delay;
   const double dt = game.dt();
   double accumulator = 0.0;
   double last = glfwGetTime();
@@ -116,7 +117,7 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
         if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) overlay.help = !overlay.help;
       }
       const auto k = game_key(key);
-      if (!k) continue;
+      if (!k || overlay.get_ready > 0.0) continue;  // before the first pass: no game keys
       const bool angle = *k == Key::AngleUp || *k == Key::AngleDown;
       if (action == GLFW_PRESS || (action == GLFW_REPEAT && angle)) feed.live(*k, true);
       if (action == GLFW_RELEASE) feed.live(*k, false);
@@ -128,7 +129,10 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
     const double frame_time = video ? 1.0 / o.record_fps : now - last;
     last = now;
     // The help overlay pauses the game too: nobody plays while reading it.
-    if (!overlay.paused && !overlay.help) {
+    if (!overlay.paused && !overlay.help && overlay.get_ready > 0.0) {
+      overlay.get_ready = std::max(0.0, overlay.get_ready - std::min(frame_time, 0.25));
+      steps_before = game.steps();
+    } else if (!overlay.paused && !overlay.help) {
       accumulator += std::min(frame_time, 0.25);
       // Live play spends at most o.physics_budget of wall clock a frame on
       // physics, so the frame rate holds when an engine cannot step in real

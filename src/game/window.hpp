@@ -19,6 +19,8 @@
 
 namespace contact2d::game {
 
+inline constexpr double kFirstPassDelay = 1.5;  // s
+
 struct WindowOptions {
   int width = 800;
   int height = 600;
@@ -31,6 +33,11 @@ struct WindowOptions {
   // limit). 3 ms leaves a 120 fps frame (8.3 ms) room for the 2.4-4 ms that
   // llvmpipe takes to draw one under load (scripts/measure-fps).
   double physics_budget = 0.003;
+  // Live play: wall clock (simulated time when recording) the window shows
+  // the first pass frozen, with a countdown, before it starts rolling, so the
+  // player can find the keys; game keys are ignored meanwhile. A replay has
+  // no player and starts at once (its steps are the same either way).
+  double first_pass_delay = kFirstPassDelay;
 };
 
 struct WindowStats {

@@ -22,10 +22,6 @@
 namespace contact2d {
 namespace {
 
-// The distance between the runs as drawn on a log axis: exact zeros (the
-// first sample) become this, below every range the plot sets.
-constexpr double kZero = 1e-300;
-
 // Columns: t, x, y, θ (ref), x, y, θ (MuJoCo), position distance, angle
 // difference.
 void write_data(std::FILE* out, const Trajectory& ref, const Trajectory& mj) {
@@ -33,10 +29,11 @@ void write_data(std::FILE* out, const Trajectory& ref, const Trajectory& mj) {
   for (size_t i = 0; i < n; ++i) {
     const State& a = ref.samples[i].state;
     const State& b = mj.samples[i].state;
-    const double pos = std::max((a.q.head<2>() - b.q.head<2>()).norm(), kZero);
-    const double angle = std::max(std::abs(a.q.z() - b.q.z()), kZero);
-    std::fprintf(out, "%.9g %.12g %.12g %.12g %.12g %.12g %.12g %.6g %.6g\n", ref.samples[i].t,
-                 a.q.x(), a.q.y(), a.q.z(), b.q.x(), b.q.y(), b.q.z(), pos, angle);
+    const double pos = (a.q.head<2>() - b.q.head<2>()).norm();
+    const double angle = std::abs(a.q.z() - b.q.z());
+    std::fprintf(out, "%.9g %.12g %.12g %.12g %.12g %.12g %.12g %s %s\n", ref.samples[i].t, a.q.x(),
+                 a.q.y(), a.q.z(), b.q.x(), b.q.y(), b.q.z(), log_axis_value(pos).c_str(),
+                 log_axis_value(angle).c_str());
   }
 }
 
@@ -93,7 +90,7 @@ std::string script(const std::string& data, const std::string& png, const std::s
   // The distance between the engines, one panel per unit.
   const int bottom = turns ? 2 : 1;
   const double wb = 1.0 / bottom;
-  s << "unset key\nset logscale y\nset format y '10^{%L}'\n";
+  s << "unset key\nset logscale y\nset format y '10^{%L}'\nset datafile missing '?'\n";
   auto distance = [&](int i, const char* label, int col, double largest) {
     s << "set size " << wb << ",0.46\nset origin " << i * wb << ",0.0\n"
       << "set ylabel '" << label << "'\n"
@@ -202,6 +199,33 @@ std::string gnuplot_png(const std::string& png_tmp, int width, int height) {
          "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size " +
          size + " font ',11' } else { set terminal png size " + size + " }\nset output " +
          gnuplot_quoted(png_tmp) + "\n";
+}
+
+std::string log_axis_value(double value) {
+  if (!(value > 0.0)) return "?";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+double log_axis_fraction(double value, double lo, double hi) {
+  const double pad = hi > lo * (1 + 1e-12) ? 2.0 : 3.0;  // as gnuplot_range
+  const double a = std::log10(lo / pad), b = std::log10(hi * pad);
+  return (std::log10(value) - a) / (b - a);
+}
+
+std::vector<double> spread_labels(const std::vector<double>& fractions, double gap, double top) {
+  std::vector<size_t> order(fractions.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return fractions[a] < fractions[b]; });
+  std::vector<double> at(fractions.size());
+  for (size_t n = 0; n < order.size(); ++n)  // upwards: each at least `gap` above the last
+    at[order[n]] =
+        n == 0 ? fractions[order[n]] : std::max(fractions[order[n]], at[order[n - 1]] + gap);
+  for (size_t n = order.size(); n-- > 0;)  // downwards: below `top` and `gap` below the next
+    at[order[n]] = std::min(at[order[n]], n + 1 < order.size() ? at[order[n + 1]] - gap : top);
+  return at;
 }
 
 std::string gnuplot_range(const char* axis, double lo, double hi, bool log) {

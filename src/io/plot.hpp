@@ -15,6 +15,7 @@
 #include <algorithm>
 
 #include <string>
+#include <vector>
 
 #include "core/integrators.hpp"
 #include "core/run.hpp"
@@ -54,6 +55,21 @@ std::string gnuplot_png(const std::string& png_tmp, int width, int height);
 // range around its value. On a log axis also its tic format: powers of ten
 // over two decades or more, plain numbers below.
 std::string gnuplot_range(const char* axis, double lo, double hi, bool log);
+
+// Where a value falls on the log axis gnuplot_range sets for data in
+// [lo, hi], as a fraction of the axis (0 bottom, 1 top).
+double log_axis_fraction(double value, double lo, double hi);
+
+// Label heights (axis fractions) pushed apart to at least `gap` from each
+// other, in the order given, moved as little as possible and kept at or
+// below `top`: labels of lines that nearly coincide do not overlap.
+std::vector<double> spread_labels(const std::vector<double>& fractions, double gap, double top);
+
+// A value for a log axis in a plot data file: "?" (gnuplot's missing value
+// where the script sets `set datafile missing '?'`) when it is not > 0,
+// which has no logarithm, so the line skips it rather than falling to the
+// bottom of the panel.
+std::string log_axis_value(double value);
 
 // Okabe–Ito colours as gnuplot specs ("rgb '#0072B2'"), one per integrator:
 // explicit Euler vermillion, semi-implicit Euler blue, implicit Euler bluish

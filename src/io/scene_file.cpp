@@ -80,7 +80,10 @@ void read_contact(const toml::table* table, Scene& scene, const std::string& ori
   contact.number("mu_torsion", p.mu_torsion);
   std::string damping = p.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt";
   contact.string("damping", damping);
-  contact.reject_unknown("k, c, mu, alpha, mu_roll, mu_torsion, damping");
+  std::string friction(friction_law_name(p.friction));
+  contact.string("friction_law", friction);
+  contact.number("cone_ratio", p.cone_ratio);
+  contact.reject_unknown("k, c, mu, alpha, mu_roll, mu_torsion, damping, friction_law, cone_ratio");
   if (damping == "compression") {
     p.damping = DampingLaw::Compression;
   } else if (damping == "kelvin_voigt") {
@@ -88,6 +91,13 @@ void read_contact(const toml::table* table, Scene& scene, const std::string& ori
   } else {
     contact.fail("damping", "= \"" + damping +
                                 "\" is not a damping law: use \"compression\" or \"kelvin_voigt\"");
+  }
+  if (const auto law = parse_friction_law(friction)) {
+    p.friction = *law;
+  } else {
+    contact.fail("friction_law", "= \"" + friction +
+                                     "\" is not a friction law: use \"tanh\", \"viscous_cone\" "
+                                     "or \"soft_cone\"");
   }
 }
 
@@ -367,7 +377,17 @@ Scene load_scene(const std::string& path, const std::vector<Override>& overrides
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError(path + ": cannot read scene file (read error)");
-  return parse_scene(text.str(), path, overrides);
+  // A MuJoCo model given where a scene belongs: say what it is, not that
+  // the TOML is malformed. XML starts with '<' (after blanks); TOML cannot.
+  const std::string& content = text.str();
+  const size_t first = content.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
+  if (first != std::string::npos && content[first] == '<') {
+    throw InputError(path +
+                     ": this is an MJCF (XML) file: contact2d reads scenes (TOML, docs/scenes.md); "
+                     "for your own MuJoCo model use `contact2d solref --model " +
+                     path + " --body NAME`");
+  }
+  return parse_scene(content, path, overrides);
 }
 
 }  // namespace contact2d

@@ -43,6 +43,9 @@ std::string scene_to_toml(const Scene& s, const std::string& comment) {
     << "\nalpha = " << n(c.alpha) << "\nmu_roll = " << n(c.mu_roll)
     << "\nmu_torsion = " << n(c.mu_torsion) << "\ndamping = \""
     << (c.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") << "\"\n";
+  if (c.friction != FrictionLaw::Tanh)
+    o << "friction_law = \"" << friction_law_name(c.friction)
+      << "\"\ncone_ratio = " << n(c.cone_ratio) << "\n";
   const State& x = s.initial;
   o << "\n[initial]\nx = " << n(x.q.x()) << "\ny = " << n(x.q.y());
   if (s.shape != Shape::PointMass) o << "\ntheta = " << n(x.q.z());

@@ -204,6 +204,8 @@ int condim_of(const Scene& scene, const MjcfOptions& options) {
   return options.condim != 0 ? options.condim : contact_condim(scene.contact);
 }
 
+}  // namespace
+
 // compensated's rolling coefficient for MuJoCo's elliptic cone, which
 // shares one budget (f_t/μ)² + (τ/μ_roll)² ≤ f_n² between sliding and
 // rolling where the reference bounds each alone: a disc rolling steadily
@@ -222,6 +224,8 @@ double cone_mu_roll(const Scene& scene, const SolverSettings& s) {
   const double q = kappa * p.mu_roll / (p.mu * r);
   return q < 1.0 ? p.mu_roll / std::sqrt(1.0 - q * q) : p.mu_roll;
 }
+
+namespace {
 
 // The 2D inertia formula of the scene's shape (the value is Layout::inertia[1]).
 std::string inertia_formula(Shape shape) {

@@ -116,6 +116,12 @@ struct GeneratedModel {
 // once to check).
 GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options);
 
+// The rolling coefficient the model writes for the scene under `s`:
+// compensated's μ_roll' = μ_roll/√(1 − q²) for a rolling disc (MuJoCo's
+// elliptic cone shares one budget between sliding and rolling,
+// docs/mujoco.md), otherwise the scene's μ_roll.
+double cone_mu_roll(const Scene& scene, const SolverSettings& s);
+
 // The MJCF with given solver settings (no MuJoCo involved).
 std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
                        const SolverSettings& settings);

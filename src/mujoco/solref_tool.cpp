@@ -33,6 +33,7 @@ std::string join(const std::vector<double>& values) {
 }
 
 int condim_for(const SolrefInput& in) {
+  if (in.keep_friction) return 0;  // not written: the user's
   if (in.mu_roll > 0.0) return 6;
   return in.mu > 0.0 ? 3 : 1;
 }
@@ -47,7 +48,7 @@ std::string option_line(const MappingOutcome& o) {
 }
 
 std::string friction_attribute(const SolrefInput& in, int condim, bool pair) {
-  if (condim == 1) return "";
+  if (condim <= 1) return "";
   const std::vector<double> values =
       pair ? std::vector<double>{in.mu, in.mu, 0.0, in.mu_roll, in.mu_roll}
            : std::vector<double>{in.mu, 0.0, in.mu_roll};
@@ -56,21 +57,26 @@ std::string friction_attribute(const SolrefInput& in, int condim, bool pair) {
 
 std::string contact_attributes(const SolrefInput& in, const MappingOutcome& o, bool pair) {
   const SolverSettings& s = o.settings;
-  return " condim=\"" + std::to_string(o.condim) + "\"" + friction_attribute(in, o.condim, pair) +
-         " solref=\"" + join({s.solref[0], s.solref[1]}) + "\" solimp=\"" +
-         join({s.solimp[0], s.solimp[1], s.solimp[2], s.solimp[3], s.solimp[4]}) + "\"";
+  return (o.condim > 0 ? " condim=\"" + std::to_string(o.condim) + "\"" : std::string()) +
+         friction_attribute(in, o.condim, pair) + " solref=\"" + join({s.solref[0], s.solref[1]}) +
+         "\" solimp=\"" + join({s.solimp[0], s.solimp[1], s.solimp[2], s.solimp[3], s.solimp[4]}) +
+         "\"";
 }
 
 MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
   const SolrefInput& in = report.input;
   MappingOutcome o;
   o.mapping = mapping;
+  if (mapping == Mapping::Compensated) {
+    o.unavailable = compensated_not_offered();
+    return o;
+  }
   o.condim = condim_for(in);
   ContactParams contact;
   contact.k = in.k;
   contact.c = in.c;
-  contact.mu = in.mu;
-  contact.mu_roll = in.mu_roll;
+  contact.mu = in.keep_friction ? 0.0 : in.mu;
+  contact.mu_roll = in.keep_friction ? 0.0 : in.mu_roll;
   RigidBody body;
   body.mass = in.mass;
   body.inertia = in.inertia;
@@ -91,6 +97,7 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
     return o;
   }
   if (o.condim == 1) o.settings.impratio = 1.0;  // no friction rows: not written, MuJoCo's 1
+  if (o.condim == 0) o.settings.impratio = in.user_friction.impratio;  // not written: the user's
   SolverSettings& s = o.settings;
   std::array<double, 2> solref = s.solref;
   if (solref[0] > 0.0) {  // refsafe (MuJoCo's getsolparam)
@@ -107,10 +114,14 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
   // R_0 = (1 − d)/d·(1 + μ²)·Â (diagApprox of an edge row, μ ≥ 1e-5), and the
   // normal force is their sum: the normal sees Â·φ in place of Â, with
   // φ = μ²(1 + μ²)/((condim − 1)·impratio).
+  // Without --mu the friction is the user's (in.user_friction), and so is
+  // the cone unless the mapping writes cone="elliptic".
   o.normal_weight = report.inv_weight;
-  if (!s.elliptic && o.condim > 1) {
-    const double mu = std::max(in.mu, 1e-5);  // MuJoCo's mjMINMU
-    o.normal_weight *= mu * mu * (1.0 + mu * mu) / ((o.condim - 1) * s.impratio);
+  const bool elliptic = s.elliptic || (o.condim == 0 && in.user_friction.elliptic);
+  const int condim = o.condim == 0 ? in.user_friction.condim : o.condim;
+  if (!elliptic && condim > 1) {
+    const double mu = std::max(o.condim == 0 ? in.user_friction.mu : in.mu, 1e-5);  // mjMINMU
+    o.normal_weight *= mu * mu * (1.0 + mu * mu) / ((condim - 1) * s.impratio);
   }
   const double A = report.inv_mass, Ahat = o.normal_weight, d = dmax;
   const double denominator = d * A + (1.0 - d) * Ahat;
@@ -129,6 +140,31 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
   o.pair_snippet = options + "<contact>\n  <pair geom1=\"BODY_GEOM\" geom2=\"ground\"" +
                    contact_attributes(in, o, true) + "/>\n</contact>\n";
   return o;
+}
+
+// A mapping unfit for a model to build on: MuJoCo's contact is not k and c.
+// Threshold 10 %: calibrated is off by its O(d·A/Â) term, d = 1e-4
+// (≤ 1e-3 relative for any lever the tool accepts with A/Â ≤ 10), while
+// seed and exact are off by factors (at rest 0.02–0.07 × f/k, ω up to 7×:
+// docs/mujoco.md's table), so 10 % separates them by over an order of
+// magnitude on both sides; an ω·Δt beyond MuJoCo Euler's limit is unfit at
+// any error.
+std::string unfit_reason(const SolrefReport& r, const MappingOutcome& o) {
+  const SolrefInput& in = r.input;
+  const double omega = std::sqrt(in.k * r.inv_mass);
+  const double zeta = in.c * r.inv_mass / (2.0 * omega);
+  const double rest = o.static_penetration / o.nominal_penetration;
+  auto off = [](double value, double want) { return !(std::abs(value / want - 1.0) <= 0.1); };
+  std::string why;
+  if (off(o.omega, omega) || (zeta > 0.0 && off(o.zeta, zeta)))
+    why = "ω = " + g(o.omega) + " rad/s, ζ = " + g(o.zeta) +
+          " against the physical ω = " + g(omega) + " rad/s, ζ = " + g(zeta);
+  if (off(rest, 1.0))
+    why += (why.empty() ? "" : "; ") + std::string("it rests at ") + g(rest) + " × f/k";
+  if (!(o.omega_dt < o.euler_limit))
+    why += (why.empty() ? "" : "; ") + std::string("ω·Δt = ") + g(o.omega_dt) +
+           " exceeds MuJoCo Euler's limit " + g(o.euler_limit);
+  return why;
 }
 
 std::string json_string(const std::string& text) {
@@ -151,6 +187,43 @@ std::string json_number(double v) { return std::isfinite(v) ? format_exact(v) : 
 
 }  // namespace
 
+std::string_view joint_name(Joint joint) {
+  switch (joint) {
+    case Joint::Free: return "free";
+    case Joint::Planar: return "planar";
+    case Joint::Slide: return "slide";
+    case Joint::Hinge: return "hinge";
+  }
+  return "?";
+}
+
+std::optional<Joint> parse_joint(std::string_view name) {
+  for (Joint j : {Joint::Free, Joint::Planar, Joint::Slide, Joint::Hinge})
+    if (joint_name(j) == name) return j;
+  return std::nullopt;
+}
+
+double joint_inv_weight(Joint joint, double mass, double inertia, double pivot) {
+  switch (joint) {
+    case Joint::Free: return 1.0 / mass;
+    case Joint::Planar: return 2.0 / (3.0 * mass);
+    case Joint::Slide: return 1.0 / (3.0 * mass);
+    case Joint::Hinge: return pivot * pivot / (3.0 * (inertia + mass * pivot * pivot));
+  }
+  return 0.0;
+}
+
+std::vector<Mapping> offered_mappings() {
+  return {Mapping::Calibrated, Mapping::Exact, Mapping::Seed};
+}
+
+std::string compensated_not_offered() {
+  return "not offered for your own model: its solref assumes the contact geoms sit on a massless "
+         "body at a lever computed from the body's contact points, which only `contact2d generate "
+         "--mapping compensated` builds (for contact2d's scenes); calibrated differs from it by "
+         "MuJoCo's O(d·A/Â) term, d = 1e-4";
+}
+
 void validate(const SolrefInput& in) {
   auto finite = [](double v) { return std::isfinite(v); };
   require(finite(in.k) && in.k > 0.0, "--k", in.k, "a finite number > 0 (N/m)");
@@ -160,11 +233,31 @@ void validate(const SolrefInput& in) {
   require(finite(in.inertia) && in.inertia >= 0.0, "--inertia", in.inertia,
           "a finite number >= 0 (kg·m²)");
   require(finite(in.lever) && in.lever >= 0.0, "--lever", in.lever, "a finite number >= 0 (m)");
-  if (in.lever > 0.0 && !(in.inertia > 0.0))
-    throw InputError("--lever " + g(in.lever) + ": needs --inertia > 0 (the body must rotate)");
+  require(finite(in.pivot) && in.pivot >= 0.0, "--pivot", in.pivot, "a finite number >= 0 (m)");
+  const std::string joint = "--joint " + std::string(joint_name(in.joint));
+  if (in.joint == Joint::Hinge) {
+    if (!(in.pivot > 0.0))
+      throw InputError("--pivot " + g(in.pivot) + ": " + joint +
+                       " needs the COM's distance from the hinge axis > 0 (m; at 0 MuJoCo's "
+                       "body_invweight0 is 0)");
+    if (!(in.lever > 0.0))
+      throw InputError("--lever " + g(in.lever) + ": " + joint +
+                       " needs the contact normal's moment arm about the hinge axis > 0 (m)");
+  } else {
+    if (in.pivot > 0.0)
+      throw InputError("--pivot " + g(in.pivot) + ": only for --joint hinge (here " + joint + ")");
+    if (in.joint == Joint::Slide && in.lever > 0.0)
+      throw InputError("--lever " + g(in.lever) +
+                       ": a body on one slide joint does not rotate (--joint slide)");
+    if (in.lever > 0.0 && !(in.inertia > 0.0))
+      throw InputError("--lever " + g(in.lever) + ": needs --inertia > 0 (the body must rotate)");
+  }
   require(finite(in.mu) && in.mu >= 0.0, "--mu", in.mu, "a finite number >= 0");
   require(finite(in.mu_roll) && in.mu_roll >= 0.0, "--mu-roll", in.mu_roll,
           "a finite number >= 0 (m)");
+  if (in.mu_roll > 0.0 && (in.joint == Joint::Slide || in.joint == Joint::Hinge))
+    throw InputError("--mu-roll " + g(in.mu_roll) + ": needs --joint free or planar (here " +
+                     joint + ")");
   if (in.mu_roll > 0.0 && !(in.lever > 0.0))
     throw InputError("--mu-roll " + g(in.mu_roll) +
                      ": needs --inertia and --lever > 0 (the rolling radius)");
@@ -217,11 +310,45 @@ SolrefReport solref_report(const SolrefInput& input, const std::vector<Mapping>&
   validate(input);
   SolrefReport report;
   report.input = input;
-  report.inv_mass =
-      1.0 / input.mass + (input.inertia > 0.0 ? input.lever * input.lever / input.inertia : 0.0);
-  report.inv_weight = input.inv_weight > 0.0 ? input.inv_weight : 2.0 / (3.0 * input.mass);
-  report.load = input.mass * input.gravity / input.contacts;
+  if (input.joint == Joint::Hinge) {
+    const double hinge_inertia = input.inertia + input.mass * input.pivot * input.pivot;
+    report.inv_mass = input.lever * input.lever / hinge_inertia;
+    // The hinge axis horizontal, the COM level with it at the pivot distance
+    // and the contact normal vertical at the lever: the torque balance
+    // m·g·pivot = N·f·lever.
+    report.load = input.mass * input.gravity * input.pivot / (input.lever * input.contacts);
+  } else {
+    report.inv_mass =
+        1.0 / input.mass + (input.inertia > 0.0 ? input.lever * input.lever / input.inertia : 0.0);
+    report.load = input.mass * input.gravity / input.contacts;
+  }
+  report.inv_weight = input.inv_weight > 0.0
+                          ? input.inv_weight
+                          : joint_inv_weight(input.joint, input.mass, input.inertia, input.pivot);
   for (Mapping mapping : mappings) report.mappings.push_back(outcome(report, mapping));
+  for (MappingOutcome& o : report.mappings)
+    if (o.unavailable.empty()) o.unfit = unfit_reason(report, o);
+  // The recommendation: the first offered mapping that is fit (computed
+  // whether or not --mapping asked for it), printed first.
+  for (Mapping candidate : offered_mappings()) {
+    const auto it = std::find_if(report.mappings.begin(), report.mappings.end(),
+                                 [&](const MappingOutcome& o) { return o.mapping == candidate; });
+    MappingOutcome o = it != report.mappings.end() ? *it : outcome(report, candidate);
+    if (!o.unavailable.empty()) continue;
+    o.unfit = unfit_reason(report, o);
+    if (!o.unfit.empty()) continue;
+    const double omega = std::sqrt(input.k * report.inv_mass);
+    report.recommendation =
+        std::string(mapping_name(candidate)) + ": MuJoCo's contact then has ω = " + g(o.omega) +
+        " rad/s against the physical " + g(omega) + " and rests at " +
+        g(o.static_penetration / o.nominal_penetration) +
+        " × f/k; it sets only solref, solimp and MuJoCo's options, so it is a model to build on" +
+        (it == report.mappings.end()
+             ? " (not printed below: --mapping " + std::string(mapping_name(candidate)) + ")"
+             : std::string());
+    if (it != report.mappings.end()) std::rotate(report.mappings.begin(), it, it + 1);
+    break;
+  }
   return report;
 }
 
@@ -261,37 +388,129 @@ ModelBody read_model_body(const std::string& path, const std::string& body) {
   if (!(out.inv_weight > 0.0))
     throw InputError("--body " + body + ": body_invweight0 is " + g(out.inv_weight) + " in " +
                      path + " (the body has no translational joint)");
+  // The joint set, from the body's own joints (a body inside another moving
+  // body is none of the four).
+  int slides = 0, hinges = 0, frees = 0, others = 0;
+  for (int j = 0; j < model->njnt; ++j) {
+    if (model->jnt_bodyid[j] != id) continue;
+    const int type = model->jnt_type[j];
+    out.joints += std::string(out.joints.empty() ? "" : ", ") + (type == mjJNT_FREE    ? "free"
+                                                                 : type == mjJNT_SLIDE ? "slide"
+                                                                 : type == mjJNT_HINGE ? "hinge"
+                                                                                       : "ball");
+    (type == mjJNT_FREE    ? frees
+     : type == mjJNT_SLIDE ? slides
+     : type == mjJNT_HINGE ? hinges
+                           : others)++;
+  }
+  if (model->body_parentid[id] == 0 && others == 0) {
+    if (frees == 1 && slides + hinges == 0) out.joint = Joint::Free;
+    if (frees == 0 && slides == 2 && hinges <= 1) out.joint = Joint::Planar;
+    if (frees == 0 && slides == 1 && hinges == 0) out.joint = Joint::Slide;
+    if (frees == 0 && slides == 0 && hinges == 1) out.joint = Joint::Hinge;
+  }
+  // The friction the snippet keeps when --mu is absent: the body's first
+  // colliding geom's, and the model's cone and impratio.
+  for (int i = 0; i < model->ngeom; ++i) {
+    if (model->geom_bodyid[i] != id || (model->geom_contype[i] | model->geom_conaffinity[i]) == 0)
+      continue;
+    out.friction.mu = model->geom_friction[3 * static_cast<std::ptrdiff_t>(i)];
+    out.friction.condim = model->geom_condim[i];
+    const char* name = mj_id2name(model.get(), mjOBJ_GEOM, i);
+    out.friction.source =
+        "geom " + (name ? "'" + std::string(name) + "'" : "#" + std::to_string(i)) + " of " + path +
+        ": μ = " + g(out.friction.mu) + ", condim " + std::to_string(out.friction.condim);
+    break;
+  }
+  out.friction.elliptic = model->opt.cone == mjCONE_ELLIPTIC;
+  out.friction.impratio = model->opt.impratio;
+  out.friction.source += std::string(out.friction.elliptic ? ", elliptic" : ", pyramidal") +
+                         " cone, impratio " + g(out.friction.impratio);
+  // The contacts MuJoCo makes for the body at rest: settle from qpos0 with
+  // the model's own contact settings (the count is the geometry's, not the
+  // stiffness's), then count the contacts one of whose geoms is the body's.
+  const DataPtr data = make_data(model.get());
+  const long steps = std::min(1000000L, std::lround(kSettleSeconds / model->opt.timestep));
+  for (long i = 0; i < steps; ++i) mj_step(model.get(), data.get());
+  mj_forward(model.get(), data.get());
+  out.settle_seconds = data->time;
+  for (int i = 0; i < data->ncon; ++i) {
+    const mjContact& contact = data->contact[i];
+    if (model->geom_bodyid[contact.geom1] == id || model->geom_bodyid[contact.geom2] == id)
+      ++out.rest_contacts;
+  }
+  for (int j = 0; j < model->njnt; ++j) {
+    if (model->jnt_bodyid[j] != id) continue;
+    const int dofs = model->jnt_type[j] == mjJNT_FREE   ? 6
+                     : model->jnt_type[j] == mjJNT_BALL ? 3
+                                                        : 1;
+    for (int k = 0; k < dofs; ++k)
+      out.rest_speed = std::max(out.rest_speed, std::abs(data->qvel[model->jnt_dofadr[j] + k]));
+  }
   return out;
 }
 
 std::string format_report_text(const SolrefReport& r) {
   const SolrefInput& in = r.input;
   std::ostringstream o;
-  o << "k = " << g(in.k) << " N/m, c = " << g(in.c) << " N·s/m, Δt = " << g(in.dt)
-    << " s; body: " << in.body_source << "\n";
-  o << "m = " << g(in.mass) << " kg; A = 1/m" << (in.lever > 0.0 ? " + r²/I" : "") << " = "
-    << g(r.inv_mass)
+  if (!r.recommendation.empty())
+    o << "Use " << r.recommendation << ".\n";
+  else
+    o << "No mapping is fit for a model to build on here (calibrated, exact and seed; each "
+         "printed below says why).\n";
+  o << "\nk = " << g(in.k) << " N/m, c = " << g(in.c)
+    << " N·s/m per MuJoCo contact, Δt = " << g(in.dt) << " s; body: " << in.body_source << "\n";
+  const bool hinge = in.joint == Joint::Hinge;
+  o << "m = " << g(in.mass) << " kg; A = "
+    << (hinge            ? "lever²/(I + m·pivot²)"
+        : in.lever > 0.0 ? "1/m + r²/I"
+                         : "1/m")
+    << " = " << g(r.inv_mass)
     << " 1/kg (the contact's true inverse mass); Â = body_invweight0 = " << g(r.inv_weight)
-    << " 1/kg"
-    << (in.inv_weight > 0.0 ? " (read from the compiled model)"
-                            : " (2/(3m): slide joints along x and z, as contact2d generates)")
-    << "\n";
-  o << "at rest each of " << in.contacts << " contact" << (in.contacts > 1 ? "s" : "")
-    << " carries f = m·g/" << in.contacts << " = " << g(r.load) << " N; f/k = " << g(r.load / in.k)
-    << " m\n";
+    << " 1/kg";
+  if (in.inv_weight > 0.0) {
+    o << " (read from the compiled model)";
+  } else {
+    static const char* const kWhy[] = {"1/m: a free joint", "2/(3m): slide x, slide z and a hinge",
+                                       "1/(3m): one slide joint",
+                                       "pivot²/(3·(I + m·pivot²)): one hinge"};
+    o << " (" << kWhy[static_cast<int>(in.joint)] << ", --joint " << joint_name(in.joint)
+      << ", as MuJoCo's mj_setConst computes it)";
+  }
+  o << "\n";
+  o << "at rest each of " << in.contacts << " MuJoCo contact" << (in.contacts > 1 ? "s" : "")
+    << " (" << in.contacts_source << ") carries f = "
+    << (hinge ? "m·g·pivot/(lever·" + std::to_string(in.contacts) + ")"
+              : "m·g/" + std::to_string(in.contacts))
+    << " = " << g(r.load) << " N; f/k = " << g(r.load / in.k) << " m\n";
+  if (in.keep_friction)
+    o << "friction: no --mu, so the snippets write no condim and no friction: your geoms keep "
+         "theirs (the pyramidal cone's effect on the rest depth is computed with "
+      << in.user_friction.source << "); --mu writes them\n";
   for (const MappingOutcome& m : r.mappings) {
     o << "\n"
-      << mapping_name(m.mapping) << (m.mapping == kDefaultMapping ? " (the default mapping)" : "")
+      << mapping_name(m.mapping)
+      << (r.recommendation.rfind(std::string(mapping_name(m.mapping)) + ":", 0) == 0
+              ? " (recommended)"
+              : "")
       << "\n";
     if (!m.unavailable.empty()) {
-      o << "  not available: " << m.unavailable << "\n";
+      o << "  " << (m.mapping == Mapping::Compensated ? "" : "not available: ") << m.unavailable
+        << "\n";
       continue;
     }
+    if (!m.unfit.empty()) o << "  DO NOT USE for a model to build on: " << m.unfit << "\n";
     const SolverSettings& s = m.settings;
     o << "  solref = \"" << join({s.solref[0], s.solref[1]}) << "\"  solimp = \""
-      << join({s.solimp[0], s.solimp[1], s.solimp[2], s.solimp[3], s.solimp[4]})
-      << "\"  cone = " << (s.elliptic ? "elliptic" : "pyramidal") << "  impratio = "
-      << (m.condim == 1 ? std::string("1 (condim 1: no friction rows)") : g(s.impratio)) << "\n";
+      << join({s.solimp[0], s.solimp[1], s.solimp[2], s.solimp[3], s.solimp[4]}) << "\"  cone = "
+      << (s.elliptic      ? "elliptic"
+          : m.condim == 0 ? "yours (not written)"
+                          : "pyramidal")
+      << "  impratio = "
+      << (m.condim == 1   ? std::string("1 (condim 1: no friction rows)")
+          : m.condim == 0 ? "yours (not written)"
+                          : g(s.impratio))
+      << "\n";
     if (s.solref[0] > 0.0) {
       o << "  refsafe: "
         << (s.refsafe_clamped ? "BITES: timeconst " + g(s.solref[0]) + " s < 2Δt; MuJoCo uses " +
@@ -303,7 +522,8 @@ std::string format_report_text(const SolrefReport& r) {
       o << "  refsafe: does not apply (direct form)\n";
     }
     if (m.normal_weight != r.inv_weight)
-      o << "  pyramidal cone with friction: the normal sees Â·μ²(1 + μ²)/((condim − 1)·impratio) "
+      o << "  pyramidal cone with friction" << (m.condim == 0 ? " (yours)" : "")
+        << ": the normal sees Â·μ²(1 + μ²)/((condim − 1)·impratio) "
            "= "
         << g(m.normal_weight) << " 1/kg in place of Â (a stiffer contact)\n";
     o << "  MuJoCo: K = " << g(m.K) << " 1/s², B = " << g(m.B)
@@ -317,7 +537,7 @@ std::string format_report_text(const SolrefReport& r) {
       << "), " << g(m.rk4_limit) << " for RK4 (" << (m.omega_dt < m.rk4_limit ? "ok" : "EXCEEDED")
       << ")\n";
     o << "  static penetration = " << g(m.static_penetration)
-      << " m = " << g(m.static_penetration / m.nominal_penetration) << " × f/k\n";
+      << " m = " << g(m.static_penetration / m.nominal_penetration) << " × f/k (per contact)\n";
     o << "  MJCF, a default class (put class=\"contact2d\" on the body's contact geoms; "
          "priority 1 makes its values win over the ground's):\n";
     std::istringstream a(m.default_snippet);
@@ -336,12 +556,17 @@ std::string format_report_json(const SolrefReport& r) {
     << ",\n  \"dt\": " << json_number(in.dt) << ",\n  \"mass\": " << json_number(in.mass)
     << ",\n  \"inertia\": " << json_number(in.inertia)
     << ",\n  \"lever\": " << json_number(in.lever) << ",\n  \"mu\": " << json_number(in.mu)
-    << ",\n  \"mu_roll\": " << json_number(in.mu_roll) << ",\n  \"contacts\": " << in.contacts
+    << ",\n  \"mu_roll\": " << json_number(in.mu_roll) << ",\n  \"joint\": \""
+    << joint_name(in.joint) << "\",\n  \"pivot\": " << json_number(in.pivot)
+    << ",\n  \"friction_kept\": " << (in.keep_friction ? "true" : "false")
+    << ",\n  \"contacts\": " << in.contacts
+    << ",\n  \"contacts_source\": " << json_string(in.contacts_source)
     << ",\n  \"body\": " << json_string(in.body_source)
     << ",\n  \"inv_mass\": " << json_number(r.inv_mass)
     << ",\n  \"body_invweight0\": " << json_number(r.inv_weight)
     << ",\n  \"load_per_contact\": " << json_number(r.load)
-    << ",\n  \"nominal_penetration\": " << json_number(r.load / in.k) << ",\n  \"mappings\": [";
+    << ",\n  \"nominal_penetration\": " << json_number(r.load / in.k)
+    << ",\n  \"recommendation\": " << json_string(r.recommendation) << ",\n  \"mappings\": [";
   bool first = true;
   for (const MappingOutcome& m : r.mappings) {
     o << (first ? "\n" : ",\n") << "    {\n      \"mapping\": \"" << mapping_name(m.mapping)
@@ -352,6 +577,7 @@ std::string format_report_json(const SolrefReport& r) {
       continue;
     }
     const SolverSettings& s = m.settings;
+    o << ",\n      \"unfit\": " << json_string(m.unfit);
     o << ",\n      \"solref\": [" << json_number(s.solref[0]) << ", " << json_number(s.solref[1])
       << "],\n      \"solimp\": [";
     for (size_t i = 0; i < s.solimp.size(); ++i) o << (i ? ", " : "") << json_number(s.solimp[i]);

@@ -1,10 +1,17 @@
 // `contact2d solref`: the MuJoCo numbers for a user's own model.
 //
-// Given a contact's k, c, the timestep Δt and the body (a mass, optionally an
-// inertia and a lever; or body_invweight0 read from the user's compiled
-// model), it runs the generator's own mapping code (mapping.hpp,
+// Given a contact's k, c, the timestep Δt and the body (a mass and how it is
+// jointed, optionally an inertia and a lever; or body_invweight0 read from
+// the user's compiled model), it runs the generator's own mapping code (mapping.hpp,
 // solver_settings) and says what MuJoCo 2.2 will then do with each mapping's
 // solref/solimp (engine_core_constraint.c; docs/mujoco.md):
+//
+//   Â = body_invweight0: MuJoCo's set0 (engine_setconst.c) takes the mean of
+//   the translational diagonal of J·M⁻¹·Jᵀ at the body's COM, so a free
+//   joint gives (1/m + 1/m + 1/m)/3 = 1/m; slide x, slide z and a hinge
+//   (planar) (1/m + 0 + 1/m)/3 = 2/(3m); one slide joint along the normal
+//   1/(3m); one hinge with the COM at distance r from its axis
+//   r²/(3·(I + m·r²)) (the COM moves on a circle: J·Jᵀ has trace r²).
 //
 //   K = S/d_max², B = D/d_max with (S, D) = acceleration_gains(solref) after
 //   refsafe (standard form: timeconst raised to 2Δt); R = (1 − d)/d·Â.
@@ -29,33 +36,59 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mujoco/mapping.hpp"
 
 namespace contact2d::mujoco {
 
+// How the user's body is jointed to the world (the joints of its MuJoCo body).
+enum class Joint { Free, Planar, Slide, Hinge };
+std::string_view joint_name(Joint joint);  // "free", "planar", "slide", "hinge"
+std::optional<Joint> parse_joint(std::string_view name);
+// body_invweight0 as MuJoCo 2.2's set0 computes it for that joint set (the
+// header comment); pivot: the COM's distance from the hinge axis (hinge only).
+double joint_inv_weight(Joint joint, double mass, double inertia, double pivot);
+
+// The user's friction when the snippet does not write it (no --mu): what the
+// pyramidal cone's effect on the normal force is computed with.
+struct UserFriction {
+  double mu = 1.0;  // MuJoCo's default geom friction
+  int condim = 3;   // MuJoCo's default
+  double impratio = 1.0;
+  bool elliptic = false;
+  std::string source = "MuJoCo's defaults: μ = 1, condim 3, pyramidal cone, impratio 1";
+};
+
 struct SolrefInput {
-  double k = 0.0;         // N/m, per MuJoCo contact
-  double c = 0.0;         // N·s/m, per MuJoCo contact
-  double dt = 0.0;        // s, MuJoCo's timestep
-  double mass = 0.0;      // kg
-  double inertia = 0.0;   // kg·m² about the axis the lever turns the body (0: no rotation)
-  double lever = 0.0;     // m, distance of the contact point from the COM across the normal
-  double inv_weight = 0;  // Â = body_invweight0, 1/kg; 0: 2/(3m), contact2d's planar body
-  double mu = 0.0;        // sliding friction
-  double mu_roll = 0.0;   // rolling friction, m (needs inertia and lever, the rolling radius)
-  int contacts = 1;       // MuJoCo contacts that share the body's weight at rest
-  double gravity = 9.81;  // m/s²
+  double k = 0.0;     // N/m, per MuJoCo contact
+  double c = 0.0;     // N·s/m, per MuJoCo contact
+  double dt = 0.0;    // s, MuJoCo's timestep
+  double mass = 0.0;  // kg
+  Joint joint = Joint::Free;
+  double inertia = 0.0;  // kg·m² about the COM, the axis the lever turns the body (0: no rotation)
+  double lever = 0.0;    // m, distance of the contact point from the COM across the normal
+                         // (hinge: the contact normal's moment arm about the hinge axis)
+  double pivot = 0.0;    // m, hinge only: distance of the COM from the hinge axis
+  double inv_weight = 0;       // Â = body_invweight0, 1/kg; 0: joint_inv_weight(joint, ...)
+  bool keep_friction = false;  // no --mu: write no condim/friction, keep the user's
+  UserFriction user_friction;  // used when keep_friction
+  double mu = 0.0;             // sliding friction
+  double mu_roll = 0.0;        // rolling friction, m (needs inertia and lever, the rolling radius)
+  int contacts = 1;            // MuJoCo contacts that share the body's weight at rest
+  std::string contacts_source = "--contacts";  // where that number comes from, for the text
+  double gravity = 9.81;                       // m/s²
   // Where the numbers come from, for the text ("--mass 1" or "model.xml, body 'box'").
   std::string body_source;
 };
 
 struct MappingOutcome {
   Mapping mapping = kDefaultMapping;
-  std::string unavailable;  // non-empty: why this mapping cannot express k, c
+  std::string unavailable;  // non-empty: why this mapping cannot express k, c (or is not offered)
+  std::string unfit;        // non-empty: why this mapping is not one to build a model on
   SolverSettings settings;
-  int condim = 1;
+  int condim = 1;               // 0: not written (the user's friction is kept)
   double timeconst_used = 0.0;  // standard form: after refsafe; 0 for the direct form
   double K = 0.0, B = 0.0;      // MuJoCo's KBIP[0], KBIP[1]
   double normal_weight = 0.0;   // Â, or Â·φ for a pyramidal cone with friction (.cpp)
@@ -73,11 +106,19 @@ struct MappingOutcome {
 
 struct SolrefReport {
   SolrefInput input;
-  double inv_mass = 0.0;    // A = 1/m + lever²/I
+  double inv_mass = 0.0;    // A = 1/m + lever²/I (hinge: lever²/(I + m·pivot²))
   double inv_weight = 0.0;  // Â
-  double load = 0.0;        // f = m·g/contacts, N per contact
-  std::vector<MappingOutcome> mappings;
+  double load = 0.0;  // f = m·g/contacts, N per contact (hinge: m·g·pivot/(lever·contacts))
+  std::vector<MappingOutcome> mappings;  // the recommended one first
+  std::string recommendation;            // the mapping to use and why ("" when none is fit)
 };
+
+// The mappings `contact2d solref` offers for a user's own model, in the
+// order it prints them: the recommended one first. Compensated is not
+// offered (solref_report says why under --mapping all).
+std::vector<Mapping> offered_mappings();
+// Why compensated is not offered for a user's own model (one line).
+std::string compensated_not_offered();
 
 // Throws InputError naming the option for a value outside its range.
 void validate(const SolrefInput& input);
@@ -93,12 +134,22 @@ double mujoco_impedance(const std::array<double, 5>& solimp, double pos);
 double static_penetration(const std::array<double, 5>& solimp, double K, double inv_weight,
                           double force);
 
-// A body of a MuJoCo model file: mass and body_invweight0 (translational).
+// A body of a MuJoCo model file: mass, body_invweight0 (translational), its
+// joints, its friction, and the contacts MuJoCo makes for it at rest.
 struct ModelBody {
   double mass = 0.0;
   double inv_weight = 0.0;
+  std::optional<Joint> joint;  // none: a joint set other than the four
+  std::string joints;          // the body's joints as MuJoCo types, e.g. "slide, slide, hinge"
+  UserFriction friction;       // of the body's first colliding geom, and the model's cone
+  int rest_contacts = 0;       // MuJoCo contacts of the body after settling
+  double settle_seconds = 0.0;
+  double rest_speed = 0.0;   // largest |qvel| of the body's dofs at the end of the settling
   std::string load_warning;  // MuJoCo's warning while loading, if any
 };
+// How long read_model_body lets the model settle (mj_step from qpos0)
+// before it counts the contacts: 3 s, or 1e6 steps if fewer.
+constexpr double kSettleSeconds = 3.0;
 // Throws InputError "--model FILE: ..." when MuJoCo cannot load it and
 // "--body NAME: ..." when the model has no such body (or it is the world).
 ModelBody read_model_body(const std::string& path, const std::string& body);

@@ -88,6 +88,20 @@ class System {
       const double rx = cos_t * local.x() - sin_t * local.y();
       const double ry = sin_t * local.x() + cos_t * local.y();
       const double depth = -(y[1] + ry);
+      if (law.friction == FrictionLaw::SoftCone) {
+        // The core's soft-cone law (core/contact.hpp) at MuJoCo's contact
+        // point, halfway into the penetration; no mode: the law clamps
+        // itself, continuously (its kinks are not located, see
+        // point_functions).
+        const double ry_mid = ry + 0.5 * depth;
+        const bool rolls = body.roll_radius > 0.0 && law.mu_roll > 0.0;
+        const ConeForce f = soft_cone_force(law, normal_aim(law, depth, y[4] + y[5] * rx),
+                                            y[3] - y[5] * ry_mid, rolls ? y[5] : 0.0);
+        fx += f.ft;
+        fy += f.fn;
+        torque += rx * f.fn - ry_mid * f.ft + f.roll;
+        continue;
+      }
       const double vcx = y[3] - y[5] * ry;
       const double vcy = y[4] + y[5] * rx;
       double fn = law.k * depth;
@@ -95,6 +109,14 @@ class System {
         if (active_[i]) fn -= law.c * vcy;
       } else {
         fn = active_[i] ? fn - law.c * vcy : 0.0;
+      }
+      if (law.friction == FrictionLaw::ViscousCone) {
+        const bool rolls = body.roll_radius > 0.0 && law.mu_roll > 0.0;
+        const ConeForce f = viscous_cone_force(law, fn, vcx, rolls ? y[5] : 0.0);
+        fx += f.ft;
+        fy += fn;
+        torque += rx * fn - ry * f.ft + f.roll;
+        continue;
       }
       const double ft = friction_force(law, fn, vcx);
       fx += ft;
@@ -128,14 +150,19 @@ class System {
     g_contact = -cy;
     g_active = law.damping == DampingLaw::Compression ? -vcy : -law.k * cy - law.c * vcy;
     rate_contact = rate_active = 0.0;
+    // The soft cone has no damper mode: its force is continuous where the
+    // damper, the push or stick ↔ slide switch (a kink, not a jump), so only
+    // entry and exit are events; the step control takes the kinks.
+    if (law.friction == FrictionLaw::SoftCone) g_active = 1.0;
     if (!ydot) return;
     const Vec6& yd = *ydot;
     const double spin = body.points_rotate ? yd[2] : 0.0;  // dθ/dt moving the point
     const double cy_rate = yd[1] + spin * rx;
     const double vcy_rate = yd[4] + yd[5] * rx - y[5] * spin * ry;
     rate_contact = -cy_rate;
-    rate_active =
-        law.damping == DampingLaw::Compression ? -vcy_rate : -law.k * cy_rate - law.c * vcy_rate;
+    rate_active = law.friction == FrictionLaw::SoftCone    ? 0.0
+                  : law.damping == DampingLaw::Compression ? -vcy_rate
+                                                           : -law.k * cy_rate - law.c * vcy_rate;
   }
 
   // Signed switching function of j: ≥ 0 while consistent with its mode bit.

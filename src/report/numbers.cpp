@@ -152,6 +152,36 @@ int random_reached(const std::vector<RandomCase>& cases, const RandomConfig& con
   }));
 }
 
+double median_of(std::vector<double> values) {
+  values.erase(
+      std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
+      values.end());
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  if (n == 0) return std::numeric_limits<double>::quiet_NaN();
+  return n % 2 == 1 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
+}
+
+FrictionSummary friction_summary(const std::vector<RandomCase>& cases, double goal) {
+  FrictionSummary s;
+  std::vector<double> total, shape, push, rest;
+  for (const RandomCase& c : cases) {
+    ++s.count;
+    s.within += c.max_pos_friction <= goal;
+    s.rest_within += c.friction_rest <= goal;
+    total.push_back(c.max_pos_friction);
+    shape.push_back(c.friction_shape);
+    push.push_back(c.friction_push);
+    rest.push_back(c.friction_rest);
+    if (std::isfinite(c.friction_rest)) s.max_rest = std::max(s.max_rest, c.friction_rest);
+  }
+  s.median_total = median_of(total);
+  s.median_shape = median_of(shape);
+  s.median_push = median_of(push);
+  s.median_rest = median_of(rest);
+  return s;
+}
+
 double random_zeta(const RandomCase& c) { return c.c / (2 * std::sqrt(c.k * c.mass)); }
 
 std::vector<ZetaBand> random_bands(const std::vector<RandomCase>& cases,
@@ -182,15 +212,7 @@ std::vector<ZetaBand> random_bands(const std::vector<RandomCase>& cases,
     band.max_pos = finite_max(pos);
     band.max_angle = finite_max(angle);
     band.max_pos_friction = finite_max(friction);
-    std::vector<double> sorted;
-    for (double p : pos) {
-      if (std::isfinite(p)) sorted.push_back(p);
-    }
-    std::sort(sorted.begin(), sorted.end());
-    const size_t n = sorted.size();
-    band.median_pos = n == 0       ? nan
-                      : n % 2 == 1 ? sorted[n / 2]
-                                   : (sorted[n / 2 - 1] + sorted[n / 2]) / 2;
+    band.median_pos = median_of(pos);
     out.push_back(band);
   }
   return out;

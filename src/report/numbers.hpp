@@ -87,6 +87,19 @@ struct ZetaBand {
   int count = 0, reached = 0;
   double median_pos = 0.0, max_pos = 0.0, max_angle = 0.0, max_pos_friction = 0.0;
 };
+// The median of the finite values (NaN when there is none).
+double median_of(std::vector<double> values);
+
+// All random scenes with friction: the medians of the difference and of its
+// three parts (RandomCase), the largest rest, and how many scenes are within
+// `goal` as they are and with the reference under MuJoCo's law.
+struct FrictionSummary {
+  int count = 0, within = 0, rest_within = 0;
+  double median_total = 0.0, median_shape = 0.0, median_push = 0.0, median_rest = 0.0;
+  double max_rest = 0.0;
+};
+FrictionSummary friction_summary(const std::vector<RandomCase>& cases, double goal);
+
 // The bands ζ < 0.3, 0.3 ≤ ζ < 1 and ζ ≥ 1, in that order.
 std::vector<ZetaBand> random_bands(const std::vector<RandomCase>& cases,
                                    const RandomConfig& config);

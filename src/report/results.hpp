@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,6 +70,11 @@ struct GoalCase {
   double pos_goal = 0.0;
   std::optional<double> angle_goal;  // none: only the position is a goal
   Comparison result;
+  // With friction: its difference taken apart (RandomCase's three parts);
+  // NaN for a frictionless case.
+  double friction_shape = std::numeric_limits<double>::quiet_NaN();
+  double friction_push = std::numeric_limits<double>::quiet_NaN();
+  double friction_rest = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct GeometryCase {
@@ -91,6 +97,10 @@ struct RandomCase {
   double mass = 0.0, k = 0.0, c = 0.0, mu = 0.0;
   double max_pos_frictionless = 0.0, max_angle_frictionless = 0.0;
   double max_pos_friction = 0.0;
+  // With friction, the difference taken apart (analysis::friction_parts,
+  // the same mapping): the cone's shape, its push, and the rest (the
+  // reference under MuJoCo's own law against MuJoCo).
+  double friction_shape = 0.0, friction_push = 0.0, friction_rest = 0.0;
 };
 
 struct RandomConfig {

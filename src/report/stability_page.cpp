@@ -224,9 +224,10 @@ the one to trust.
   out += R"md(
 `mujoco` is the default (calibrated) mapping, MuJoCo's direct form
 `solref="-k·Â -c·Â"`; `mujoco:exact` is the standard form timeconst = 2m/c,
-dampratio = c/(2√(mk)). The "linear bound" column is the reference method's
-(MuJoCo's Euler is semi-implicit; its "implicit" integrator is implicit in
-the joint damping and actuator terms, not in the contact force, and it fails
+dampratio = c/(2√(mk)). The "linear bound" column is the limit of the method
+MuJoCo runs for a contact: its Euler is semi-implicit, and its "implicit"
+integrator is implicit in the joint damping and actuator terms, not in the
+contact force, so its contact limit is semi-implicit Euler's too (it fails
 near ω·Δt ≈ 1 like an explicit method). The penetration column gives the
 deepest penetration over every step of the run at the largest stable Δt, of
 a run at ω·Δt = 0.2 (only where refsafe was active), and of the converged

@@ -132,6 +132,45 @@ TEST(Stability, ReportsBoundsOutsideTheSearchRange) {
   EXPECT_EQ(table.str().find("nan"), std::string::npos) << table.str();
 }
 
+// MuJoCo's implicit integrator integrates contact forces explicitly (only
+// joint damping and actuators implicitly): its contact limit is
+// semi-implicit Euler's, not the reference implicit Euler's ∞. A fake engine
+// named "mujoco" (running the reference, so no MuJoCo is needed) carries the
+// label; the theory column must be Euler's min(1/ζ, 2(√(1+ζ²) − ζ)) at the
+// row's ζ, and the table must not say "inf" for it, while the reference's
+// implicit Euler keeps ∞.
+TEST(Stability, MujocoImplicitHasEulersContactLimit) {
+  const Scene scene = point_mass(DampingLaw::KelvinVoigt);
+  const EngineRunner runner = [&](const std::string&, const Scene& s) {
+    return engines::run_engine("ref", s);
+  };
+  StabilityConfig config;
+  config.engines = {"mujoco", "ref"};
+  config.integrators = {Integrator::ImplicitEuler};
+  config.ks = {1e4};
+  config.zeta = 0.5;
+  config.dt_max = 1e-3;
+  const StabilityResult r = run_stability(scene, config, runner);
+  ASSERT_EQ(r.rows.size(), 2u);
+  for (const StabilityRow& row : r.rows) {
+    if (row.engine == "mujoco") {
+      EXPECT_EQ(row.theory, stability_limit(Integrator::SemiImplicitEuler, row.zeta));
+      EXPECT_NEAR(row.theory, 2.0 * (std::sqrt(1.25) - 0.5),
+                  1e-12);  // min(1/ζ, 2(√(1+ζ²) − ζ)) at 0.5
+    } else {
+      EXPECT_TRUE(std::isinf(row.theory));
+    }
+  }
+  std::ostringstream table;
+  print_stability(table, r);
+  std::istringstream lines(table.str());
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("mujoco", 0) == 0) {
+      EXPECT_EQ(line.find("inf"), std::string::npos) << line;
+    }
+  }
+}
+
 TEST(Stability, DampingRatioSetsC) {
   Scene scene = point_mass(DampingLaw::Compression);
   const Scene s = scene_with_stiffness(scene, 1e6, 0.5);

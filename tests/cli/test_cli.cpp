@@ -150,6 +150,29 @@ TEST(Cli, SetErrorsNameTheOptionNotTheSceneFile) {
   }
 }
 
+// An unknown subcommand is named (not "A subcommand is required"), and a
+// MuJoCo model given as a scene is called one (not "malformed TOML"): one
+// line each, exit 2, nothing on stdout.
+TEST(Cli, UnknownSubcommandAndAnMjcfSceneAreNamed) {
+  const Output unknown = capture("frob");
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_EQ(unknown.err.rfind("contact2d: frob: unknown subcommand (one of simulate", 0), 0u)
+      << unknown.err;
+  EXPECT_EQ(std::count(unknown.err.begin(), unknown.err.end(), '\n'), 1) << unknown.err;
+  EXPECT_TRUE(unknown.out.empty()) << unknown.out;
+  const fs::path xml =
+      fs::temp_directory_path() / ("contact2d_cli_model_" + std::to_string(::getpid()) + ".xml");
+  std::ofstream(xml) << "\n  <mujoco model=\"m\"><worldbody/></mujoco>\n";
+  const Output mjcf = capture("simulate '" + xml.string() + "'");
+  fs::remove(xml);
+  EXPECT_EQ(mjcf.status, 2);
+  EXPECT_NE(mjcf.err.find(": this is an MJCF (XML) file: contact2d reads scenes (TOML"),
+            std::string::npos)
+      << mjcf.err;
+  EXPECT_EQ(mjcf.err.find("malformed TOML"), std::string::npos) << mjcf.err;
+  EXPECT_EQ(std::count(mjcf.err.begin(), mjcf.err.end(), '\n'), 1) << mjcf.err;
+}
+
 TEST(Cli, SimulateNamesMujocoIntegratorsByTheSceneNameAndMujocosOwn) {
 #ifdef CONTACT2D_WITH_MUJOCO
   const Output o =

@@ -26,6 +26,7 @@
 #include <thread>
 #include <vector>
 
+#include "game/window.hpp"
 #include "support/files.hpp"
 
 extern char** environ;
@@ -131,7 +132,9 @@ void keys_move_the_ball(const std::string& engine) {
 
   ASSERT_EQ(sh("timeout 30 xdotool search --sync --name 'contact2d play' >/dev/null"), 0)
       << "the window did not appear: " << read_file(err);
-  pause(0.5);
+  // Live play shows the first pass frozen for kFirstPassDelay (game keys
+  // ignored meanwhile); the keys below come after it, 0.5 s into the pass.
+  pause(contact2d::game::kFirstPassDelay + 0.5);
   const Image before = screenshot("before", screen_size);
   sh("xdotool keydown Right; sleep 0.5; xdotool keyup Right");
   sh("xdotool key w");  // kick angle 15 → 20 degrees
@@ -285,6 +288,30 @@ TEST(Window, TheHelpOverlayPausesTheGame) {
   EXPECT_NE(read_file(out).find("\"steps\":0,"), std::string::npos) << read_file(out);
   ASSERT_EQ(sh(base + " >'" + out.string() + "' 2>'" + err.string() + "'"), 0) << read_file(err);
   EXPECT_EQ(read_file(out).find("\"steps\":0,"), std::string::npos) << read_file(out);
+  fs::remove(out);
+  fs::remove(err);
+}
+
+// Live play shows the first pass frozen for kFirstPassDelay = 1.5 s before
+// it rolls. Recording makes the frames' time exact (1/60 s each): 60 frames
+// (1 s) take no physics step, 120 frames (2 s) do. A replay does not wait
+// (TheHelpOverlayPausesTheGame: 60 unrecorded frames of it step).
+TEST(Window, LivePlayWaitsBeforeTheFirstPass) {
+  ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
+  ASSERT_EQ(sh("command -v ffmpeg >/dev/null"), 0) << "needs ffmpeg";
+  ASSERT_LT(contact2d::game::kFirstPassDelay * 60.0, 120.0);
+  ASSERT_GT(contact2d::game::kFirstPassDelay * 60.0, 60.0);
+  const fs::path video = temp("ready.mp4"), out = temp("ready.json"), err = temp("ready.err");
+  for (const int frames : {60, 120}) {
+    ASSERT_EQ(
+        sh(std::string("'") + CONTACT2D_EXE + "' play --seed 5 --frames " + std::to_string(frames) +
+           " --record '" + video.string() + "' >'" + out.string() + "' 2>'" + err.string() + "'"),
+        0)
+        << read_file(err);
+    const bool stepped = read_file(out).find("\"steps\":0,") == std::string::npos;
+    EXPECT_EQ(stepped, frames == 120) << frames << " frames: " << read_file(out);
+  }
+  fs::remove(video);
   fs::remove(out);
   fs::remove(err);
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -73,6 +74,32 @@ TEST(GnuplotRange, NeverEmptyAndPadded) {
   EXPECT_EQ(
       gnuplot_range("y", 1e-6, 1e-2, true),
       "set yrange [4.9999999999999998e-07:0.02]\nset ytics autofreq\nset format y '10^{%L}'\n");
+}
+
+// Labels of lines that nearly coincide are pushed apart to the gap and
+// keep their order; one alone stays where its line is; none rises above
+// the top. (The stability map's theory labels: RK4's 2.79 and explicit
+// Euler's 2.0 at ζ = 1 are 0.03 apart on its ω·Δt axis.)
+TEST(PlotLabels, SpreadKeepsOrderAndGap) {
+  const std::vector<double> at = spread_labels({0.50, 0.49, 0.10, 0.97, 0.985}, 0.035, 0.98);
+  ASSERT_EQ(at.size(), 5u);
+  EXPECT_EQ(at[2], 0.10);   // alone: unmoved
+  EXPECT_LT(at[1], at[0]);  // order kept
+  EXPECT_GE(at[0] - at[1], 0.035 - 1e-12);
+  EXPECT_LE(at[4], 0.98);
+  EXPECT_GE(at[4] - at[3], 0.035 - 1e-12);
+  EXPECT_GE(at[3] - at[0], 0.035 - 1e-12);
+}
+
+// A log axis: the fraction of gnuplot_range's padded range (lo/2, 2·hi),
+// and values that have no logarithm become gnuplot's missing value.
+TEST(PlotLabels, LogAxisFractionAndMissingValues) {
+  EXPECT_NEAR(log_axis_fraction(1.0, 1.0, 100.0), std::log10(2.0) / std::log10(400.0), 1e-15);
+  EXPECT_NEAR(log_axis_fraction(10.0, 1.0, 100.0), 0.5, 1e-15);
+  EXPECT_EQ(log_axis_value(0.0), "?");
+  EXPECT_EQ(log_axis_value(-1e-3), "?");
+  EXPECT_EQ(log_axis_value(std::nan("")), "?");
+  EXPECT_EQ(log_axis_value(2.5e-7), "2.5e-07");
 }
 
 }  // namespace

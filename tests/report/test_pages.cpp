@@ -91,6 +91,18 @@ TEST(ReportPages, ReadmeMatchesGolden) {
   expect_golden("README.md", readme_page(fixtures::readme()));
 }
 
+// The first screen's friction lines from the fixture's hand-set parts
+// (fixtures.hpp): the random scenes' medians and the built-in box's parts.
+TEST(ReportPages, ReadmeTakesTheFrictionDifferenceApart) {
+  const std::string page = readme_page(fixtures::readme());
+  EXPECT_NE(page.find("| calibrated | 0.006 | 1 of 4 | 2.1e-05 | 0.006 | 2e-09 (largest 2e-06) | "
+                      "4 of 4 |"),
+            std::string::npos);
+  EXPECT_NE(page.find("they are at most 9e-10 m apart"), std::string::npos);
+  EXPECT_NE(page.find("moves a body by up to 3e-05 m and its push"), std::string::npos);
+  EXPECT_NE(page.find("lifting a sliding body) by up to 0.0041 m"), std::string::npos);
+}
+
 TEST(ReportPages, SweepMatchesGolden) { expect_golden("sweep.md", sweep_page(fixtures::sweep())); }
 
 TEST(ReportPages, StabilityMatchesGolden) {
@@ -152,27 +164,52 @@ analysis::ClosedFormTable closed_forms_fixture() {
   return t;
 }
 
-// friction.md from three hand-written rows: the push removes most of one,
-// the split is worse on another, the third is within the goal.
+// friction.md from three hand-written rows: one within the goal under
+// compensated, one whose pyramidal run diverged, all three within it once
+// the reference runs MuJoCo's law (the rest column).
 TEST(ReportPages, FrictionMatchesGolden) {
-  using analysis::FrictionOutcome;
-  const std::vector<analysis::FrictionRow> rows = {
-      {"box_slide",
-       "box sliding to rest, c = 50",
-       {0.005, 0, 0.004},
-       {0.005, 0, 0.0045},
-       {0.001, 0, 1e-5}},
-      {"tshape", "T landing", {0.003, 0.01, 0.001}, {0.0031, 0.01, 0.001}, {0.39, 1, 0.2}},
-      {"slide_roll",
-       "disc sliding into rolling",
-       {0.002, 0, 0.001},
-       {0.0008, 0, 0.0005},
-       {0.0002, 0, 1e-6}}};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> knobs{0.0049, 0.0051, inf, 0.005, 0.005, 0.005, 0.005};
+  const std::vector<analysis::FrictionRow> rows = {{"box_slide",
+                                                    "box sliding to rest, c = 50",
+                                                    {0.005, 0, 0.004},
+                                                    {0.005, 0, 0.0045},
+                                                    {0.001, 0, 1e-5},
+                                                    2.8e-5,
+                                                    0.0049,
+                                                    3e-11,
+                                                    1e-10,
+                                                    knobs},
+                                                   {"tshape",
+                                                    "T landing",
+                                                    {0.003, 0.01, 0.001},
+                                                    {0.0031, 0.01, 0.001},
+                                                    {0.39, 1, 0.2},
+                                                    0.0069,
+                                                    0.0092,
+                                                    2e-8,
+                                                    1e-7,
+                                                    knobs},
+                                                   {"slide_roll",
+                                                    "disc sliding into rolling",
+                                                    {0.002, 0, 0.001},
+                                                    {0.0008, 0, 0.0005},
+                                                    {0.0002, 0, 1e-6},
+                                                    9e-4,
+                                                    0.0008,
+                                                    1e-13,
+                                                    0,
+                                                    std::vector<double>(7, nan)}};
   const std::string page = friction_page(rows, 1e-3);
-  // (0.005 − 0.001)/0.005 = 80 %; 1 of 3 within 1e-3 m (0.0008 under compensated).
-  EXPECT_NE(page.find("| 80 % |"), std::string::npos);
-  EXPECT_NE(page.find("none: the split is worse (0.39 m)"), std::string::npos);
+  // 1 of 3 within 1e-3 m (0.0008 under compensated); 3 of 3 conform, the
+  // largest rest 2e-8 m.
   EXPECT_NE(page.find("1 of 3 scenes are within 0.001 m"), std::string::npos);
+  EXPECT_NE(page.find("3 of 3 are, the largest 2e-08 m"), std::string::npos);
+  // push > shape in box_slide and tshape, not in slide_roll's hand-written row.
+  EXPECT_NE(page.find("push is the larger part in 2 of 3 scenes"), std::string::npos);
+  EXPECT_NE(page.find("| diverged |"), std::string::npos);
+  EXPECT_NE(page.find("| — |"), std::string::npos);
   expect_golden("friction.md", page);
 }
 
@@ -226,18 +263,38 @@ TEST(ReportPages, ReadmeVerdictsAndCounts) {
             std::string::npos);
 }
 
-// The first screen names the model to build on when the winning mapping is
-// compensated (a model for comparing), and says nothing of it otherwise.
-TEST(ReportPages, ReadmeNamesTheModelToBuildOn) {
-  const std::string build_on = "For a model to build on, keep `calibrated`";
-  EXPECT_EQ(readme_page(fixtures::readme()).find(build_on), std::string::npos);
+// The first screen makes one recommendation, calibrated (the model to
+// build on), whichever mapping measures closest; when compensated does, it
+// is named as the tool for comparing, with why it is not a model to build
+// on, and never as "Use the `compensated` mapping".
+TEST(ReportPages, ReadmeRecommendsOneMappingToBuildOn) {
+  const std::string use = "**Use the `calibrated` mapping**";
+  const std::string comparing =
+      "For comparing the two engines, `--mapping compensated` comes closer";
+  const std::string plain = readme_page(fixtures::readme());
+  EXPECT_NE(plain.find(use), std::string::npos);
+  EXPECT_EQ(plain.find(comparing), std::string::npos);
   ReadmeData d = fixtures::readme();
   d.mappings.push_back("compensated");
   for (const std::string& scene : d.scenes)  // ten times below every other mapping
     d.kelvin_voigt.push_back({scene, "compensated", fixtures::comparison(1e-4, 1e-4)});
   const std::string page = readme_page(d);
-  EXPECT_NE(page.find("**Use the `compensated` mapping**"), std::string::npos);
-  EXPECT_NE(page.find(build_on), std::string::npos);
+  EXPECT_NE(page.find(use), std::string::npos);
+  EXPECT_EQ(page.find("**Use the `compensated` mapping**"), std::string::npos);
+  EXPECT_NE(page.find(comparing), std::string::npos);
+  EXPECT_NE(page.find("not for a model to build on"), std::string::npos);
+}
+
+// The front page is an index of every page the report writes (cmd_report's
+// write_page calls): each linked by its file name.
+TEST(ReportPages, ReadmeLinksEveryPage) {
+  const std::string page = readme_page(fixtures::readme());
+  const size_t index = page.find("## The pages of this report");
+  ASSERT_NE(index, std::string::npos);
+  EXPECT_LT(index, page.find("## In short"));
+  for (const char* name :
+       {"sweep.md", "stability.md", "extreme.md", "closed_forms.md", "atlas.md", "friction.md"})
+    EXPECT_NE(page.find(std::string("[") + name + "](" + name + ")"), std::string::npos) << name;
 }
 
 // Section 6 sets each 100× (semi-implicit) and 30× (implicit) budget of the
