@@ -108,19 +108,19 @@ double energy_rise_tolerance(const Model& model, Integrator integrator, double a
 // acceleration: 0 for them.
 double free_flight_gain(const Model& model, Integrator integrator, double dt, long long steps);
 
-// The body's own size L, m: twice the largest distance of a contact point from
+// The body's own size D, m: twice the largest distance of a contact point from
 // the COM (a box's diagonal, a circle's diameter, a point mass's 2·half_height).
 double body_size(const RigidBody& body);
 
 // Below the divergence rule, where a run ended: a contact point deeper than
-// the body's size L puts every contact point below the surface (no two are
-// more than L apart), and the COM more than L below the ground (y < −L) is
+// the body's size D puts every contact point below the surface (no two are
+// more than D apart), and the COM more than D below the ground (y < −D) is
 // further still: a body that ends inside the surface rather than on it is not
 // physics, whatever its energy (a point mass of no size has no such bound).
 // Only the end counts: an impact on a soft contact may pass through such a
-// depth on the way back up, conserving energy as the penalty law does.
+// depth on the way back up, losing energy as the penalty law says.
 struct DepthRecord {
-  double size = 0.0;   // L, m
+  double size = 0.0;   // D, m
   double time = 0.0;   // of the last step, s
   double depth = 0.0;  // deepest penetration of any contact point then, m
   double y = 0.0;      // height of the COM then, m
