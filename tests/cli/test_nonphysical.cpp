@@ -76,8 +76,8 @@ TEST(Nonphysical, WithoutTheFlagTheSameRunFailsAndWritesNothing) {
 // 1000 kg falling for 2 s from 100 m, never touching, explicit Euler at
 // Δt = 0.01 s: it gains exactly ½·m·g²·Δt² = 4.81 J per step, 962 J over the
 // 200 steps. The contact's own allowance (ω·Δt = 3.2e-4 on k = 1 N/m) is
-// only 310 J of it, so without the free-flight term the run was flagged, and
-// blamed on "every step in contact".
+// only 310 J of it: without the free-flight term the run would be flagged,
+// and nothing touched.
 TEST(Nonphysical, ExplicitEulerInFreeFlightIsWithinItsAllowance) {
   const fs::path dir = fresh_dir("flight");
   std::ofstream(dir / "flight.toml")
