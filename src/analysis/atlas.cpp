@@ -387,6 +387,13 @@ AtlasRunStats run_atlas(const AtlasSpec& spec, const std::string& out_dir,
   // Every point is checked before anything is written or run.
   for (long long i : indices) atlas_point(spec, i);
 
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (!fs::is_directory(out_dir))
+    throw InputError("--out " + out_dir + ": cannot create directory");
+  // Two shards run into one --out would overwrite each other's files: the
+  // second one stops here, before it touches any (docs/atlas.md).
+  const DirectoryLock lock("--out", out_dir);
   prepare_out_dir(out_dir);
   AtomicFile points_csv((fs::path(out_dir) / "points.csv").string());
   AtomicFile times_csv((fs::path(out_dir) / "times.csv").string());

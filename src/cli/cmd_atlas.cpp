@@ -2,6 +2,7 @@
 // contact2d atlas merge DIR... [--out DIR] [--no-plots]
 // The fidelity atlas (analysis/atlas.hpp, docs/atlas.md): the three-way
 // comparison over a parameter space, in shards that merge into the whole.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <thread>
@@ -25,10 +26,13 @@ struct AtlasOptions {
   std::vector<std::string> dirs;
   std::string merged = "atlas-merged";
   bool no_plots = false;
+  OutputOptions outputs;        // --out
+  OutputOptions merge_outputs;  // merge --out
 };
 
 int run(const AtlasOptions& o) {
   if (o.spec.empty()) throw InputError("atlas: a spec (SPEC.toml) or 'merge DIR...' is required");
+  o.outputs.check();
   analysis::AtlasRunOptions options;
   options.shard = analysis::parse_shard(o.shard);  // before the spec: options first
   const AtlasSpec spec = load_atlas_spec(o.spec);
@@ -46,7 +50,13 @@ int run(const AtlasOptions& o) {
 }
 
 int merge(const AtlasOptions& o) {
+  o.merge_outputs.check();
   const analysis::AtlasData data = analysis::read_atlas_shards(o.dirs);
+  std::error_code ec;
+  std::filesystem::create_directories(o.merged, ec);
+  if (!std::filesystem::is_directory(o.merged))
+    throw InputError("--out " + o.merged + ": cannot create directory");
+  const DirectoryLock lock("--out", o.merged);  // as for a shard (docs/atlas.md)
   analysis::AtlasSummary summary = analysis::summarize_atlas(data);
   analysis::write_atlas_data(data, o.merged);
   if (!o.no_plots) analysis::draw_atlas_heatmaps(data, summary, o.merged);
@@ -77,9 +87,8 @@ Command add_atlas(CLI::App& app) {
   cmd->add_option("--shard", o->shard,
                   "Run the points with index % N == I-1 only (default 1/1: all)")
       ->type_name("I/N");
-  cmd->add_option("--out", o->out,
-                  "Directory of points.csv, times.csv and shard.txt (default atlas-out)")
-      ->type_name("DIR");
+  o->outputs.directory(*cmd, "--out", o->out,
+                       "Directory of points.csv, times.csv and shard.txt (default atlas-out)");
   cmd->add_option("--threads", o->threads, "Worker threads (default: one per core)")
       ->type_name("N")
       ->check(CLI::Range(1u, 256u));
@@ -93,8 +102,8 @@ Command add_atlas(CLI::App& app) {
   merge_cmd->add_option("dirs", o->dirs, "Shard directories (the --out of each atlas run)")
       ->required()
       ->type_name("DIR");
-  merge_cmd->add_option("--out", o->merged, "Directory of the merged output (default atlas-merged)")
-      ->type_name("DIR");
+  o->merge_outputs.directory(*merge_cmd, "--out", o->merged,
+                             "Directory of the merged output (default atlas-merged)");
   merge_cmd->add_flag("--no-plots", o->no_plots, "Skip the heat maps (no gnuplot needed)");
   return {cmd, [o, merge_cmd] { return *merge_cmd ? merge(*o) : run(*o); }};
 }

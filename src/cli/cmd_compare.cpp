@@ -42,6 +42,8 @@ struct CompareOptions {
   bool json = false;
   double converged_tol = 1e-12;
   bool no_diagnosis = false;
+  OutputOptions outputs;  // --csv, --plot, --video
+  bool allow_nonphysical = false;
 };
 
 struct Comparison {
@@ -300,7 +302,6 @@ void write_csv(AtomicFile& out, const Comparison& c) {
     }
     std::fputc('\n', out.get());
   }
-  out.commit();
 }
 
 // Reports a divergence of either engine; true when one diverged.
@@ -315,6 +316,7 @@ bool report_divergence(const Comparison& c, const std::string& path) {
 }
 
 int compare(const CompareOptions& options) {
+  options.outputs.check();
   Comparison c;
   c.scene = options.scene.load();
   const engines::EngineSpec spec = options.mujoco.spec(options.scene.path);
@@ -337,19 +339,18 @@ int compare(const CompareOptions& options) {
   for (const std::string& w : c.mujoco.warnings)
     std::cerr << "contact2d: MuJoCo warning: " << w << "\n";
   if (report_divergence(c, options.scene.path)) return kExitDiverged;
+  bool nonphysical_run = false;
   for (const auto& [name, run] : {std::pair{"ref", &c.ref}, std::pair{"MuJoCo", &c.mujoco}}) {
-    if (!run->trajectory.energy.exceeded()) continue;
-    std::cerr << "contact2d: " << options.scene.path << ": " << name << " warning: "
-              << describe_energy_rise(run->trajectory.energy, run->trajectory.available_energy,
-                                      c.scene)
-              << "\n";
+    nonphysical_run |= reject_nonphysical(nonphysical(run->trajectory, c.scene),
+                                          options.allow_nonphysical, options.scene.path, name);
   }
+  if (nonphysical_run) return kExitDiverged;
   c.three =
       analysis::three_way(c.scene, c.ref.trajectory, c.mujoco.trajectory, options.converged_tol);
   c.errors = c.three.ref_vs_mujoco;
   if (!options.no_diagnosis)
     c.diagnosis = analysis::diagnose(c.scene, spec, c.ref, c.mujoco, c.three);
-  if (csv) write_csv(*csv, c);
+  if (csv) write_csv(*csv, c);  // committed last: a plot or video that fails leaves no CSV
   if (!options.plot.empty()) {
     const std::string title =
         std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo, " +
@@ -373,6 +374,7 @@ int compare(const CompareOptions& options) {
     game::write_comparison_video(options.video, in);
   }
 #endif
+  if (csv) csv->commit();
   if (options.json) {
     print_json(c, options.scene.path);
   } else {
@@ -389,20 +391,22 @@ Command add_compare(CLI::App& app) {
       "compare", "Run the reference solver and MuJoCo on a scene and compare them");
   options->scene.add_to(*cmd);
   options->mujoco.add_to(*cmd);
-  cmd->add_option("--csv", options->csv, "Write both trajectories side by side to this file")
-      ->type_name("FILE.csv");
+  options->outputs.file(*cmd, "--csv", options->csv,
+                        "Write both trajectories side by side to this file", "FILE.csv");
   cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
-  cmd->add_option("--plot", options->plot,
-                  "Draw x, y, theta of both engines and their distance into this PNG (gnuplot)")
-      ->type_name("FILE.png");
-  cmd->add_option("--video", options->video,
-                  "Draw both engines overlaid in real time into this .mp4 or .gif (reference "
-                  "filled, MuJoCo outlined, the converged solution as a thin line)")
-      ->type_name("FILE.mp4|.gif");
+  options->outputs.file(
+      *cmd, "--plot", options->plot,
+      "Draw x, y, theta of both engines and their distance into this PNG (gnuplot)", "FILE.png");
+  options->outputs.file(*cmd, "--video", options->video,
+                        "Draw both engines overlaid in real time into this .mp4 or .gif "
+                        "(reference filled, MuJoCo outlined, the converged solution as a thin "
+                        "line)",
+                        "FILE.mp4|.gif");
   cmd->add_option("--converged-tol", options->converged_tol,
                   "Tolerance of the converged solution (rtol = atol; default 1e-12)")
       ->type_name("TOL")
       ->check(number_in(1e-14, 1e-6, false, "[1e-14, 1e-6]"));
+  add_allow_nonphysical(*cmd, options->allow_nonphysical);
   cmd->add_flag("--no-diagnosis", options->no_diagnosis,
                 "Skip the diagnosis (the re-runs that remove each cause of the difference)");
   return {cmd, [options] { return compare(*options); }};

@@ -14,9 +14,11 @@ struct GenerateOptions {
   SceneOptions scene;
   MujocoOptions mujoco;
   std::string output;
+  OutputOptions outputs;  // -o
 };
 
 int generate(const GenerateOptions& options) {
+  options.outputs.check();
   const Scene scene = options.scene.load();
   std::unique_ptr<AtomicFile> out;
   if (!options.output.empty()) out = std::make_unique<AtomicFile>(options.output);
@@ -44,9 +46,8 @@ Command add_generate(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("generate", "Write the MuJoCo MJCF model of a scene");
   options->scene.add_to(*cmd);
   options->mujoco.add_to(*cmd);
-  cmd->add_option("-o,--output", options->output,
-                  "Write the MJCF to this file (default: standard output)")
-      ->type_name("FILE.xml");
+  options->outputs.file(*cmd, "-o,--output", options->output,
+                        "Write the MJCF to this file (default: standard output)", "FILE.xml");
   return {cmd, [options] { return generate(*options); }};
 }
 

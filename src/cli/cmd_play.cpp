@@ -50,6 +50,7 @@ struct PlayOptions {
   long long frames = 0;
   bool no_vsync = false;
   bool help_on_start = false;
+  OutputOptions outputs;  // --record-input, --record
 };
 
 int play(const PlayOptions& o) {
@@ -59,6 +60,7 @@ int play(const PlayOptions& o) {
   if (o.headless && o.frames > 0)
     throw InputError("--frames counts window frames: it cannot be used with --headless");
   const std::optional<std::uint64_t> seed_option = parse_seed(o.seed);
+  o.outputs.check();
   const Pitch pitch = o.pitch.empty() ? default_pitch() : load_pitch(o.pitch);
 
   std::optional<Replay> replay;
@@ -148,17 +150,15 @@ Command add_play(CLI::App& app) {
   cmd->add_option("--seed", o->seed,
                   "Seed of the passes (default: random; the JSON and the replay say which)")
       ->type_name("N");
-  cmd->add_option("--record-input", o->record_input,
-                  "Save the key events (stamped with physics steps) to this replay file")
-      ->type_name("FILE");
+  o->outputs.file(*cmd, "--record-input", o->record_input,
+                  "Save the key events (stamped with physics steps) to this replay file", "FILE");
   cmd->add_option("--replay", o->replay,
                   "Play back a replay file (its seed, its inputs; live keys are ignored)")
       ->type_name("FILE");
   cmd->add_flag("--headless", o->headless,
                 "No window: run as fast as possible and print the JSON line");
-  cmd->add_option("--record", o->record,
-                  "Write a video of the window to this .mp4 file (through ffmpeg)")
-      ->type_name("FILE.mp4");
+  o->outputs.file(*cmd, "--record", o->record,
+                  "Write a video of the window to this .mp4 file (through ffmpeg)", "FILE.mp4");
   cmd->add_option("--frames", o->frames,
                   "Close the window after this many frames (to measure the frame rate)")
       ->type_name("N")

@@ -48,6 +48,7 @@ struct ReportOptions {
   bool snapshot = false;
   std::string bench;  // default: bench/contact2d_bench beside this program
   std::uint64_t seed = 20260101;
+  OutputOptions outputs;  // --out, --models
 };
 
 const std::vector<std::string> kScenes{"point_mass", "box", "tshape", "circle"};
@@ -255,6 +256,7 @@ int report(const ReportOptions& o) {
   if (!fs::is_directory("validation/scenes")) {
     throw InputError("validation/scenes: not found; run contact2d report from the repository root");
   }
+  o.outputs.check();
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (!fs::is_directory(o.out)) throw InputError("--out " + o.out + ": cannot create directory");
@@ -386,13 +388,11 @@ Command add_report(CLI::App& app) {
       "report",
       "Run every case of the validation report and write its pages and plots (from the "
       "repository root)");
-  CLI::Option* out =
-      cmd->add_option("--out", o->out, "Directory of the pages and plots (default build/report)")
-          ->type_name("DIR");
+  CLI::Option* out = o->outputs.directory(
+      *cmd, "--out", o->out, "Directory of the pages and plots (default build/report)");
   CLI::Option* models =
-      cmd->add_option("--models", o->models,
-                      "Directory of the generated MJCF models (default build/report/models)")
-          ->type_name("DIR");
+      o->outputs.directory(*cmd, "--models", o->models,
+                           "Directory of the generated MJCF models (default build/report/models)");
   cmd->add_flag("--snapshot", o->snapshot,
                 "Write the committed snapshot: validation/report and models (excludes --out, "
                 "--models)")

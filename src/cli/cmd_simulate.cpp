@@ -14,7 +14,9 @@ struct SimulateOptions {
   SceneOptions scene;
   std::string engine = "ref";
   std::string csv;
-  MujocoOptions mujoco;  // --mapping, --geometry (when built with MuJoCo)
+  MujocoOptions mujoco;   // --mapping, --geometry (when built with MuJoCo)
+  OutputOptions outputs;  // --csv
+  bool allow_nonphysical = false;
 };
 
 engines::EngineRun run_chosen_engine(const SimulateOptions& options, const Scene& scene) {
@@ -24,6 +26,7 @@ engines::EngineRun run_chosen_engine(const SimulateOptions& options, const Scene
 }
 
 int simulate(const SimulateOptions& options) {
+  options.outputs.check();
   const Scene scene = options.scene.load();
   // Open the output first: a bad path fails before any work, and the file
   // only appears (renamed from a temporary) once the run has succeeded.
@@ -33,15 +36,13 @@ int simulate(const SimulateOptions& options) {
   for (const std::string& warning : run.warnings) {
     std::cerr << "contact2d: " << options.engine << " warning: " << warning << "\n";
   }
-  if (!run.trajectory.divergence && run.trajectory.energy.exceeded()) {
-    std::cerr << "contact2d: " << options.scene.path << ": warning: "
-              << describe_energy_rise(run.trajectory.energy, run.trajectory.available_energy, scene)
-              << "\n";
-  }
   if (run.trajectory.divergence) {
     std::cerr << "contact2d: " << options.scene.path << ": " << run.divergence_message << "\n";
     return kExitDiverged;
   }
+  if (reject_nonphysical(nonphysical(run.trajectory, scene), options.allow_nonphysical,
+                         options.scene.path, ""))
+    return kExitDiverged;
   if (out) {
     std::fprintf(out->get(), "%s\n", kTrajectoryHeader);
     for (const Sample& s : run.trajectory.samples) write_trajectory_row(out->get(), s);
@@ -61,9 +62,9 @@ Command add_simulate(CLI::App& app) {
   cmd->add_option("--engine", options->engine, "ref | mujoco")
       ->type_name("ENGINE")
       ->check(CLI::IsMember({"ref", "mujoco"}));
-  cmd->add_option("--csv", options->csv,
-                  "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file")
-      ->type_name("FILE.csv");
+  options->outputs.file(*cmd, "--csv", options->csv,
+                        "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file", "FILE.csv");
+  add_allow_nonphysical(*cmd, options->allow_nonphysical);
   if (engines::mujoco_available()) options->mujoco.add_to(*cmd);
   return {cmd, [options] { return simulate(*options); }};
 }

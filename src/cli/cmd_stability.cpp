@@ -23,6 +23,7 @@ struct StabilityOptions : AnalysisOptions {
 };
 
 int stability(const StabilityOptions& o) {
+  o.outputs.check();
   const Scene scene = o.load();
   std::unique_ptr<AtomicFile> csv;
   if (!o.csv.empty()) csv = std::make_unique<AtomicFile>(o.csv);
@@ -44,13 +45,9 @@ int stability(const StabilityOptions& o) {
     throw InputError(e.what());
   }
   analysis::print_stability(std::cout, result);
-  if (csv) {
-    analysis::write_stability_csv(csv->get(), result);
-    csv->commit();
-  }
-  if (!o.plot.empty()) {
-    analysis::plot_stability(o.plot, result);
-  }
+  if (csv) analysis::write_stability_csv(csv->get(), result);
+  if (!o.plot.empty()) analysis::plot_stability(o.plot, result);
+  if (csv) csv->commit();  // last: a plot that fails leaves no CSV
   return kExitOk;
 }
 

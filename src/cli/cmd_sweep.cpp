@@ -31,13 +31,15 @@ struct SweepOptions : AnalysisOptions {
 };
 
 int sweep(const SweepOptions& o) {
+  o.outputs.check();
   const Scene scene = o.load();
   if (!scene.obstacles.empty()) {
     throw InputError(o.path +
                      ": sweep measures errors against the converged reference, which handles "
                      "ground contact only; this scene has static obstacles");
   }
-  // Outputs are opened first: a bad path fails before any work.
+  // Outputs are opened first and committed together at the end: a run that
+  // fails halfway leaves none of them.
   std::unique_ptr<AtomicFile> csv, orders_csv, study_csv;
   if (!o.csv.empty()) csv = std::make_unique<AtomicFile>(o.csv);
   if (!o.orders_csv.empty()) orders_csv = std::make_unique<AtomicFile>(o.orders_csv);
@@ -70,7 +72,6 @@ int sweep(const SweepOptions& o) {
     if (study_csv) {
       analysis::write_reference_study_csv(study_csv->get(), std::string(shape_name(scene.shape)),
                                           study);
-      study_csv->commit();
     }
   }
 
@@ -90,17 +91,11 @@ int sweep(const SweepOptions& o) {
                 << format_number(row.dt) << " warning: " << w << "\n";
     }
   }
-  if (csv) {
-    analysis::write_sweep_csv(csv->get(), result);
-    csv->commit();
-  }
-  if (orders_csv) {
-    analysis::write_orders_csv(orders_csv->get(), result);
-    orders_csv->commit();
-  }
-  if (!o.plot.empty()) {
-    analysis::plot_sweep(o.plot, result);
-  }
+  if (csv) analysis::write_sweep_csv(csv->get(), result);
+  if (orders_csv) analysis::write_orders_csv(orders_csv->get(), result);
+  if (!o.plot.empty()) analysis::plot_sweep(o.plot, result);
+  for (AtomicFile* file : {study_csv.get(), csv.get(), orders_csv.get()})
+    if (file) file->commit();
   return kExitOk;
 }
 
@@ -127,8 +122,8 @@ Command add_sweep(CLI::App& app) {
                   "explicit_euler)")
       ->type_name("NAME")
       ->delimiter(',');
-  cmd->add_option("--orders-csv", o->orders_csv, "Write the observed orders to this CSV file")
-      ->type_name("FILE.csv");
+  o->outputs.file(*cmd, "--orders-csv", o->orders_csv, "Write the observed orders to this CSV file",
+                  "FILE.csv");
   cmd->add_option(
          "--repeats", o->repeats,
          "Time each run as the best of N repeats (default 3; 1 when a run takes over 0.25 s)")
@@ -140,9 +135,9 @@ Command add_sweep(CLI::App& app) {
   cmd->add_flag(
       "--reference-study", o->reference_study,
       "First show the reference's self-consistency error at tolerances 1e-3..1e-13 against 1e-14");
-  cmd->add_option("--study-csv", o->study_csv,
-                  "Write the reference study to this CSV file (implies --reference-study)")
-      ->type_name("FILE.csv");
+  o->outputs.file(*cmd, "--study-csv", o->study_csv,
+                  "Write the reference study to this CSV file (implies --reference-study)",
+                  "FILE.csv");
   return {cmd, [o] { return sweep(*o); }};
 }
 

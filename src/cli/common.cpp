@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "io/csv.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d::cli {
@@ -25,6 +26,41 @@ std::string number_option(const char* name, const std::string& text, const char*
 }
 
 }  // namespace
+
+namespace {
+
+std::string last_name(const std::string& names) {
+  const size_t comma = names.rfind(',');
+  return comma == std::string::npos ? names : names.substr(comma + 1);
+}
+
+}  // namespace
+
+CLI::Option* OutputOptions::file(CLI::App& cmd, const std::string& names, std::string& path,
+                                 const std::string& help, const std::string& type_name) {
+  CLI::Option* option = cmd.add_option(names, path, help)->type_name(type_name);
+  entries_.push_back({option, &path, last_name(names), false});
+  return option;
+}
+
+CLI::Option* OutputOptions::directory(CLI::App& cmd, const std::string& names, std::string& path,
+                                      const std::string& help) {
+  CLI::Option* option = cmd.add_option(names, path, help)->type_name("DIR");
+  entries_.push_back({option, &path, last_name(names), true});
+  return option;
+}
+
+void OutputOptions::check() const {
+  for (const Entry& e : entries_) {
+    // Not given and no default: that output is not wanted.
+    if (e.option->count() == 0 && e.path->empty()) continue;
+    if (e.directory) {
+      check_output_directory(e.name, *e.path);
+    } else {
+      check_output_file(e.name, *e.path);
+    }
+  }
+}
 
 void SceneOptions::add_to(CLI::App& cmd) {
   cmd.add_option("scene", path, "Scene file (TOML)")->required()->type_name("SCENE.toml");
@@ -51,6 +87,27 @@ Scene SceneOptions::load() const {
         {"sim.duration", number_option("--duration", *duration, "a time in s"), "--duration"});
   }
   return load_scene(path, overrides);
+}
+
+void add_allow_nonphysical(CLI::App& cmd, bool& allow) {
+  cmd.add_flag("--allow-nonphysical", allow,
+               "Keep a run that is not physics (a contact deeper than the body, the body below "
+               "the ground, or an energy rise beyond the integrator's allowance) with a warning, "
+               "instead of failing it with exit status 3");
+}
+
+bool reject_nonphysical(const std::string& reason, bool allow, const std::string& source,
+                        const std::string& engine) {
+  if (reason.empty()) return false;
+  const std::string who = "contact2d: " + source + ": " + (engine.empty() ? "" : engine + " ");
+  if (allow) {
+    std::fprintf(stderr, "%swarning: not physics, kept (--allow-nonphysical): %s\n", who.c_str(),
+                 reason.c_str());
+    return false;
+  }
+  std::fprintf(stderr, "%snot physics: %s. Pass --allow-nonphysical to keep the run.\n",
+               who.c_str(), reason.c_str());
+  return true;
 }
 
 CLI::Validator number_in(double lo, double hi, bool lo_open, const std::string& range) {
@@ -160,8 +217,8 @@ void AnalysisOptions::add_to(CLI::App& cmd, const std::string& csv_help,
       ->type_name("ENGINE")
       ->delimiter(',')
       ->check(CLI::IsMember(engines::engine_names()));
-  cmd.add_option("--csv", csv, csv_help)->type_name("FILE.csv");
-  cmd.add_option("--plot", plot, plot_help)->type_name("FILE.png");
+  outputs.file(cmd, "--csv", csv, csv_help, "FILE.csv");
+  outputs.file(cmd, "--plot", plot, plot_help, "FILE.png");
   cmd.add_option("--threads", threads, "Worker threads (default: one per core)")
       ->type_name("N")
       ->check(CLI::Range(1u, 256u));

@@ -16,6 +16,29 @@ constexpr int kExitOk = 0;
 constexpr int kExitBadInput = 2;
 constexpr int kExitDiverged = 3;
 
+// The output options of a subcommand (--csv FILE, --plot FILE.png, --out
+// DIR, …), all checked by check() before the run starts: a path that cannot
+// be written is one line naming its option, exit status 2, and nothing is
+// written. An option given with an empty value is such a path.
+class OutputOptions {
+ public:
+  // `names` as for CLI11 ("-o,--output"); messages use the last name.
+  CLI::Option* file(CLI::App& cmd, const std::string& names, std::string& path,
+                    const std::string& help, const std::string& type_name);
+  CLI::Option* directory(CLI::App& cmd, const std::string& names, std::string& path,
+                         const std::string& help);
+  void check() const;  // throws InputError
+
+ private:
+  struct Entry {
+    CLI::Option* option;
+    const std::string* path;
+    std::string name;
+    bool directory;
+  };
+  std::vector<Entry> entries_;
+};
+
 // The scene argument and the overrides every scene-running command accepts.
 struct SceneOptions {
   std::string path;
@@ -30,6 +53,15 @@ struct SceneOptions {
   Scene load() const;  // throws InputError
 };
 
+// A finished run that is not physics (core/run.hpp: nonphysical()) fails with
+// exit status 3, as a diverged one does, unless --allow-nonphysical keeps it;
+// the reason is then a warning. One line on stderr either way, naming
+// `source` (the scene file) and `engine` (empty: none).
+void add_allow_nonphysical(CLI::App& cmd, bool& allow);
+// True when the run must fail (the line is printed).
+bool reject_nonphysical(const std::string& reason, bool allow, const std::string& source,
+                        const std::string& engine);
+
 // The options sweep and stability share: the scene with --set and
 // --duration, --integrators, --engines, --csv, --plot, --threads, --quiet.
 struct AnalysisOptions {
@@ -41,6 +73,7 @@ struct AnalysisOptions {
   std::string csv, plot;
   unsigned threads = 0;
   bool quiet = false;
+  OutputOptions outputs;  // --csv and --plot, and any the subcommand adds
 
   void add_to(CLI::App& cmd, const std::string& csv_help, const std::string& plot_help);
   Scene load() const;  // throws InputError

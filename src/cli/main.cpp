@@ -2,6 +2,7 @@
 // subcommand parses its arguments, loads a scene, calls the library and prints
 // or writes the result.  Exit status: 0 success, 2 bad input, 3 diverged.
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "cli/common.hpp"
@@ -45,6 +46,20 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // "contact2d frob": CLI11 would only say that a subcommand is required.
+    if (argc > 1 && argv[1][0] != '-') {
+      std::string names;
+      bool known = false;
+      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+        known = known || sub->get_name() == argv[1];
+      }
+      if (!known) {
+        std::cerr << "contact2d: " << argv[1] << ": unknown subcommand (one of " << names
+                  << "; see contact2d --help)\n";
+        return kExitBadInput;
+      }
+    }
     std::cerr << "contact2d: " << e.what() << " (see contact2d --help)\n";
     return kExitBadInput;
   }

@@ -77,20 +77,45 @@ std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
 
 }  // namespace
 
-double energy_rise_tolerance(const Model& model, double available_energy, double dt) {
+double energy_rise_tolerance(const Model& model, Integrator integrator, double available_energy,
+                             double dt) {
   const double wdt = contact_stiffness(model).omega * dt;
   const double oscillation = wdt < 1.0 ? 2.0 * (0.5 * wdt) / (1.0 - 0.5 * wdt) : 1.0;
-  return available_energy * (std::min(1.0, oscillation) + 1e-9);
+  // Explicit Euler's growth over one undamped contact: π/(ω·Δt) steps of 1 + (ω·Δt)².
+  const double growth =
+      integrator == Integrator::ExplicitEuler
+          ? std::expm1(std::log1p(wdt * wdt) * std::acos(-1.0) / std::max(wdt, 1e-300))
+          : 0.0;
+  return available_energy * (std::min(1.0, oscillation + growth) + 1e-9);
 }
+
+double free_flight_gain(const Model& model, Integrator integrator, double dt, long long steps) {
+  if (integrator != Integrator::ExplicitEuler) return 0.0;
+  const double g = model.gravity;
+  return static_cast<double>(steps) * 0.5 * model.body.mass * g * g * dt * dt;
+}
+
+double body_size(const RigidBody& body) { return 2.0 * body_extent(body); }
 
 std::string describe_energy_rise(const EnergyBalance& b, double available_energy,
                                  const Scene& scene) {
   const Model model = make_model(scene);
   const double wdt = contact_stiffness(model).omega * scene.sim.dt;
+  const double g = model.gravity;
+  const double flight_step = 0.5 * model.body.mass * g * g * scene.sim.dt * scene.sim.dt;
   std::string cause;
-  if (scene.sim.integrator == Integrator::ExplicitEuler) {
+  if (scene.sim.integrator == Integrator::ExplicitEuler && !b.rise_in_contact) {
+    cause = "explicit Euler gains ½·m·g²·Δt² = " + format("%.3g", flight_step) +
+            " J on every step in free flight, and nothing touched during this rise; a smaller "
+            "--dt shrinks it";
+  } else if (scene.sim.integrator == Integrator::ExplicitEuler) {
     cause = "explicit Euler multiplies the energy by 1 + (ω·Δt)² = 1 + " +
-            format("%.3g", wdt * wdt) + " on every step in contact";
+            format("%.3g", wdt * wdt) +
+            " on every step in contact (and gains ½·m·g²·Δt² = " + format("%.3g", flight_step) +
+            " J on every step in free flight)";
+  } else if (!b.rise_in_contact) {
+    cause = std::string(integrator_title(scene.sim.integrator)) +
+            " does not gain energy in free flight, and nothing touched during this rise";
   } else {
     cause = "the contact is resolved with ω·Δt = " + format("%.3g", wdt) +
             "; a smaller --dt shrinks the rise";
@@ -99,9 +124,35 @@ std::string describe_energy_rise(const EnergyBalance& b, double available_energy
          format("%.3g", 100.0 * b.max_rise / available_energy) +
          " % of the energy available) at t = " + format("%.6g", b.time_of_max_rise) +
          " s, more than the " + format("%.3g", b.tolerance) +
-         " J the integrator's oscillation explains: not physics (a passive system only loses "
-         "energy); likely cause: " +
-         cause;
+         " J the integrator explains (a passive system only loses energy); likely cause: " + cause;
+}
+
+std::string describe_nonphysical(const EnergyBalance& balance, const DepthRecord& depth,
+                                 double available_energy, const Scene& scene) {
+  std::string text;
+  const Model model = make_model(scene);
+  const double k = model.min_k();
+  const std::string static_depth =
+      k > 0.0 ? format(" (its weight alone presses the softest contact m·g/k = %.3g m deep)",
+                       model.body.mass * model.gravity / k)
+              : std::string();
+  if (depth.too_deep()) {
+    text = format("the run ended (t = %.6g s) with a contact point %.3g m deep, deeper than ",
+                  depth.time, depth.depth) +
+           format("the body's own size %.3g m: the body is inside the surface, not on it",
+                  depth.size) +
+           static_depth;
+  }
+  if (depth.below_ground()) {
+    text += (text.empty() ? "" : "; ") +
+            format(
+                "its centre of mass ended at y = %.3g m, more than the body's own size %.3g m "
+                "below the ground",
+                depth.y, depth.size);
+  }
+  if (balance.exceeded())
+    text += (text.empty() ? "" : "; ") + describe_energy_rise(balance, available_energy, scene);
+  return text;
 }
 
 std::string divergence_event(const Divergence& d) {

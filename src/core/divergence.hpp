@@ -70,22 +70,68 @@ class DivergenceMonitor {
 // frequency ω keeps |ΔE| ≤ (ω·Δt/2)/(1 − ω·Δt/2) of the energy in play
 // (tests/core/test_energy.cpp checks that bound), so its largest rise above
 // an earlier minimum is twice that; a contact entered or left inside a step
-// costs O((ω·Δt)²) of it. The tolerance on the rise is therefore
-//   rise_tolerance = E_avail·min(1, 2·(ω·Δt/2)/(1 − ω·Δt/2)) + 1e-9·E_avail
-// (E_avail: the monitor's available energy; the 1e-9 covers rounding). A
-// rise beyond it is reported as a warning with its size and time; beyond
-// E_avail itself the divergence rule stops the run (exit 3).
+// costs O((ω·Δt)²) of it. Explicit Euler multiplies the oscillator's energy
+// by exactly 1 + (ω·Δt)² on every step, which over one undamped contact
+// (π/ω long, π/(ω·Δt) steps) compounds to
+//   growth = (1 + (ω·Δt)²)^(π/(ω·Δt)) − 1 ≈ π·ω·Δt
+// (0 for the other integrators): what one bounce gains; a rise that keeps
+// growing over several bounces or a long rest exceeds it. The tolerance on
+// the rise is therefore
+//   rise_tolerance = E_avail·min(1, 2·(ω·Δt/2)/(1 − ω·Δt/2) + growth) + 1e-9·E_avail
+// (E_avail: the monitor's available energy; the 1e-9 covers rounding), plus,
+// for explicit Euler, its own gain in free flight (free_flight_gain()). A rise
+// beyond it is not physics: the command line fails the run (exit 3) unless
+// --allow-nonphysical keeps it with a warning; beyond E_avail itself the
+// divergence rule stops the run.
 struct EnergyBalance {
   double initial = 0.0;           // E(0), J
   double final = 0.0;             // E at the last step, J
   double max_rise = 0.0;          // largest E(t) − min_{s≤t} E(s), J
   double time_of_max_rise = 0.0;  // s
   double tolerance = 0.0;         // rise_tolerance above, J
+  double free_flight_gain = 0.0;  // the part of it that is explicit Euler's free flight, J
+  bool rise_in_contact = false;   // a contact was active during the largest rise
   bool exceeded() const { return max_rise > tolerance; }
 };
 
-// The tolerance of the rise for the model at time step dt.
-double energy_rise_tolerance(const Model& model, double available_energy, double dt);
+// The tolerance of the rise for the model at time step dt (the oscillation
+// in contact; without the free-flight term).
+double energy_rise_tolerance(const Model& model, Integrator integrator, double available_energy,
+                             double dt);
+
+// An integrator's own energy gain in free flight under gravity, over `steps`
+// steps of dt (all of them in flight, at most). Explicit Euler moves the body
+// by v·Δt while gravity changes v by −g·Δt, so its local error −½·g·Δt² in
+// height raises E = ½·m·v² + m·g·y by exactly ½·m·g²·Δt² on every step
+// (rotation and horizontal motion are exact in flight). Semi-implicit and
+// implicit Euler lose that much instead, and RK4 is exact for a constant
+// acceleration: 0 for them.
+double free_flight_gain(const Model& model, Integrator integrator, double dt, long long steps);
+
+// The body's own size D, m: twice the largest distance of a contact point from
+// the COM (a box's diagonal, a circle's diameter, a point mass's 2·half_height).
+double body_size(const RigidBody& body);
+
+// Below the divergence rule, where a run ended: a contact point deeper than
+// the body's size D puts every contact point below the surface (no two are
+// more than D apart), and the COM more than D below the ground (y < −D) is
+// further still: a body that ends inside the surface rather than on it is not
+// physics, whatever its energy (a point mass of no size has no such bound).
+// Only the end counts: an impact on a soft contact may pass through such a
+// depth on the way back up, losing energy as the penalty law says.
+struct DepthRecord {
+  double size = 0.0;   // D, m
+  double time = 0.0;   // of the last step, s
+  double depth = 0.0;  // deepest penetration of any contact point then, m
+  double y = 0.0;      // height of the COM then, m
+  bool too_deep() const { return size > 0.0 && depth > size; }
+  bool below_ground() const { return size > 0.0 && y < -size; }
+};
+
+// Why a finished run is not physics, as one line (the depth rules, then the
+// energy rise, joined by "; "); empty when it is physics.
+std::string describe_nonphysical(const EnergyBalance& balance, const DepthRecord& depth,
+                                 double available_energy, const Scene& scene);
 
 // One line for a rise beyond the tolerance: size in J and % of E_avail, time,
 // and the likely cause (the integrator and ω·Δt).

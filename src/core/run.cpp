@@ -27,23 +27,45 @@ RunResult run(Stepper& stepper, const SimParams& sim,
   EnergyBalance& balance = result.energy;
   result.available_energy = monitor.available_energy();
   balance.initial = balance.final = energy(stepper.model(), stepper.contacts(), stepper.state());
-  balance.tolerance = energy_rise_tolerance(stepper.model(), monitor.available_energy(), sim.dt);
-  double lowest = balance.initial;  // min over the steps so far
+  balance.free_flight_gain = free_flight_gain(stepper.model(), sim.integrator, sim.dt, steps);
+  balance.tolerance =
+      energy_rise_tolerance(stepper.model(), sim.integrator, monitor.available_energy(), sim.dt) +
+      balance.free_flight_gain;
+  // Where the run ended (DepthRecord), also when it stops early.
+  auto record_end = [&](double t) {
+    result.depth.size = body_size(stepper.model().body);
+    result.depth.time = t;
+    result.depth.depth = max_penetration(stepper.contacts());
+    result.depth.y = stepper.state().q.y();
+  };
+  double lowest = balance.initial;    // min over the steps so far
+  bool contact_since_lowest = false;  // a contact was active since that minimum
   on_sample({0.0, stepper.state()});
   for (long long i = 1; i <= steps; ++i) {
     const double t = static_cast<double>(i) * sim.dt;
     double e = balance.final;
     result.divergence = check_step(stepper.step(), stepper, monitor, t, 0.0, &e);
     result.steps = i;
-    if (result.divergence) return result;
+    if (result.divergence) {
+      record_end(t);
+      return result;
+    }
     balance.final = e;
-    if (e < lowest) lowest = e;
+    const bool touching = !stepper.contacts().empty();
+    if (e < lowest) {
+      lowest = e;
+      contact_since_lowest = touching;
+    } else {
+      contact_since_lowest = contact_since_lowest || touching;
+    }
     if (e - lowest > balance.max_rise) {
       balance.max_rise = e - lowest;
       balance.time_of_max_rise = t;
+      balance.rise_in_contact = contact_since_lowest;
     }
     if (i % stride == 0 || i == steps) on_sample({t, stepper.state()});
   }
+  record_end(static_cast<double>(steps) * sim.dt);
   return result;
 }
 
@@ -54,8 +76,14 @@ Trajectory simulate(Stepper& stepper, const SimParams& sim) {
       run(stepper, sim, [&](const Sample& s) { trajectory.samples.push_back(s); });
   trajectory.divergence = result.divergence;
   trajectory.energy = result.energy;
+  trajectory.depth = result.depth;
   trajectory.available_energy = result.available_energy;
   return trajectory;
+}
+
+std::string nonphysical(const Trajectory& trajectory, const Scene& scene) {
+  return describe_nonphysical(trajectory.energy, trajectory.depth, trajectory.available_energy,
+                              scene);
 }
 
 Trajectory simulate(const Scene& scene) {

@@ -28,8 +28,12 @@ struct Trajectory {
   std::vector<Sample> samples;
   std::optional<Divergence> divergence;  // set when the run stopped early
   EnergyBalance energy;                  // over every step (core/divergence.hpp)
+  DepthRecord depth;                     // over every step (core/divergence.hpp)
   double available_energy = 0.0;         // the monitor's E_avail, J
 };
+
+// Why a finished run is not physics (describe_nonphysical); empty when it is.
+std::string nonphysical(const Trajectory& trajectory, const Scene& scene);
 
 // The check after a step that ended at time t with `status`: the engine's
 // own failure, else the divergence rule on the stepper's state and contacts.
@@ -42,6 +46,7 @@ struct RunResult {
   std::optional<Divergence> divergence;  // set when the run stopped early
   long long steps = 0;                   // steps taken
   EnergyBalance energy;                  // over every step taken
+  DepthRecord depth;                     // over every step taken
   double available_energy = 0.0;         // the monitor's E_avail, J
 };
 

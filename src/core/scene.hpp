@@ -47,6 +47,9 @@ std::vector<BoxPart> default_tshape_parts();
 Scene default_scene(Shape shape);
 
 // A value outside its allowed range: names the key and the range.
+// The most parts a tshape's body may have (scene.cpp says why).
+inline constexpr size_t kMaxParts = 64;
+
 struct ValidationError {
   std::string key;     // e.g. "body.mass" or "body.parts[1].width"
   std::string range;   // e.g. "must be in (0, 1e9] kg"

@@ -301,9 +301,17 @@ Scene parse_scene(const std::string& toml_text, const std::string& origin,
     const std::string prefix = origin + ": ";
     if (message.rfind(prefix, 0) != 0) throw;
     const std::string rest = message.substr(prefix.size());
+    // "unknown key 'nosuch'" for --set nosuch.key=1: the override made the
+    // table it names.
+    std::string unknown;
+    if (const size_t at = rest.find("unknown key '"); at != std::string::npos) {
+      const size_t begin = at + std::string("unknown key '").size();
+      unknown = rest.substr(begin, rest.find('\'', begin) - begin);
+    }
     for (auto o = overrides.rbegin(); o != overrides.rend(); ++o) {
-      const bool about_key =
-          rest.rfind(o->key + " ", 0) == 0 || rest.find("'" + o->key + "'") != std::string::npos;
+      const bool about_key = rest.rfind(o->key + " ", 0) == 0 ||
+                             rest.find("'" + o->key + "'") != std::string::npos ||
+                             (!unknown.empty() && o->key.rfind(unknown + ".", 0) == 0);
       if (about_key) throw InputError(option_text(*o) + ": " + rest);
     }
     throw;

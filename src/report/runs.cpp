@@ -301,6 +301,12 @@ EngineOutcome simulate_outcome(const std::string& path, const std::string& engin
     text += "contact2d: " + path + ": " + run.divergence_message + "\n";
     return {cli::kExitDiverged, text};
   }
+  // As `contact2d simulate` without --allow-nonphysical (cli/common.hpp).
+  if (const std::string reason = nonphysical(run.trajectory, scene); !reason.empty()) {
+    text += "contact2d: " + path + ": not physics: " + reason +
+            ". Pass --allow-nonphysical to keep the run.\n";
+    return {cli::kExitDiverged, text};
+  }
   return {cli::kExitOk, analysis::run_summary(scene, engine, run) + "\n"};
 }
 

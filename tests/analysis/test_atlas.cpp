@@ -6,7 +6,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -414,6 +416,63 @@ TEST_F(AtlasRun, InterruptedRunLeavesNoFile) {
   if (fs::exists(out_dir)) {
     EXPECT_TRUE(fs::is_empty(out_dir));
   }
+}
+
+// Two shards into one --out: while the first runs (stopped with SIGSTOP once
+// it holds the directory's lock, so that it cannot finish meanwhile), a
+// second one exits 2 with one line naming --out and the first one's PID,
+// and touches nothing; the first then finishes with all its rows and
+// removes the lock file.
+TEST_F(AtlasRun, ASecondRunIntoALockedDirectoryExits2AndTheFirstSurvives) {
+  const fs::path spec = dir_ / "long.toml";
+  {
+    std::ofstream out(spec);  // 48 points of 2 s: seconds of work
+    out << "[atlas]\nbodies = [\"point_mass\", \"box\", \"tshape\", \"circle\"]\n"
+           "mappings = [\"calibrated\"]\nduration = 2.0\n[axes]\nk = [1e4, 1e5, 1e6]\n"
+           "zeta = [0.2, 1.0]\nmu = [0.0, 0.5]\n[initial]\ny = 0.6\nvx = 0.5\n";
+  }
+  const fs::path out_dir = dir_ / "out";
+  const fs::path lock = out_dir / ".contact2d.lock";
+  const pid_t first = ::fork();
+  ASSERT_GE(first, 0);
+  if (first == 0) {
+    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
+      ::_exit(121);
+    ::execl(CONTACT2D_EXE, CONTACT2D_EXE, "atlas", spec.c_str(), "--out", out_dir.c_str(),
+            "--threads", "1", "--quiet", static_cast<char*>(nullptr));
+    ::_exit(122);
+  }
+  // The lock is held once the file names the first run's PID (written after
+  // flock succeeded). No deadline: the first run ending first is a failure.
+  const std::string pid = std::to_string(first);
+  int status = 0;
+  bool locked = false;
+  while (!locked) {
+    locked = read_file(lock) == pid;
+    if (!locked && ::waitpid(first, &status, WNOHANG) == first) break;
+    if (!locked) ::usleep(2000);
+  }
+  ASSERT_TRUE(locked) << "the first run ended before it was seen holding the lock";
+  ::kill(first, SIGSTOP);
+  const std::string err = (dir_ / "second.err").string();
+  const int second = std::system((std::string(CONTACT2D_EXE) + " atlas " + spec.string() +
+                                  " --out " + out_dir.string() + " --quiet >/dev/null 2>" + err)
+                                     .c_str());
+  const std::string text = read_file(err);
+  ::kill(first, SIGCONT);
+  ASSERT_EQ(::waitpid(first, &status, 0), first);
+  EXPECT_EQ(WEXITSTATUS(second), 2) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+  EXPECT_NE(text.find("--out " + out_dir.string() + ": another contact2d (pid " + pid +
+                      ") is writing into this directory"),
+            std::string::npos)
+      << text;
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  const std::string points = read_file(out_dir / "points.csv");
+  EXPECT_EQ(std::count(points.begin(), points.end(), '\n'), 49) << "header and 48 rows";
+  EXPECT_TRUE(fs::exists(out_dir / "shard.txt"));
+  EXPECT_FALSE(fs::exists(lock));
 }
 
 // One colour scale per body: the heat maps of one body (every mapping, law,

@@ -265,4 +265,11 @@ TEST(Cli, AllBuiltInScenesRunWithEveryIntegrator) {
   }
 }
 
+TEST(Cli, AnUnknownSubcommandIsNamed) {
+  const Output o = capture("frob");
+  EXPECT_EQ(o.status, 2);
+  EXPECT_EQ(o.err.rfind("contact2d: frob: unknown subcommand (one of simulate, ", 0), 0u) << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+}
+
 }  // namespace

@@ -88,6 +88,64 @@ TEST_P(Interrupt, RemovesTheTemporaryFileAndExitsWith128PlusTheSignal) {
   fs::remove(err);
 }
 
+// SIGKILL cannot be caught: the temporary stays. Its name carries the PID of
+// the run that made it ("out.csv.tmp.PID.XXXXXX"), and the next run writing
+// the same output removes it once that PID is gone, but leaves a live
+// process's temporary and another output's alone.
+TEST(StaleTemporary, TheNextRunRemovesWhatAKilledRunLeft) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("contact2d_sigkill_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (::chdir(dir.c_str()) != 0) ::_exit(120);
+    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
+      ::_exit(121);
+    const std::string scene = CONTACT2D_SCENES_DIR "/box.toml";
+    ::execl(CONTACT2D_EXE, CONTACT2D_EXE, "simulate", scene.c_str(), "--csv", "out.csv",
+            "--duration", "2000", static_cast<char*>(nullptr));
+    ::_exit(122);
+  }
+  // No deadline: the run lasts 2e7 steps, and it ending first is a failure.
+  int status = 0;
+  bool opened = false;
+  while (!(opened = has_temporary(dir))) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) break;
+    ::usleep(2000);
+  }
+  ASSERT_TRUE(opened) << "no temporary file appeared";
+  ::kill(pid, SIGKILL);
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  std::string left;
+  for (const auto& entry : fs::directory_iterator(dir)) left = entry.path().filename().string();
+  const std::string prefix = "out.csv.tmp." + std::to_string(pid) + ".";
+  ASSERT_EQ(left.rfind(prefix, 0), 0u) << left;
+  // A live process's temporary (this test's) and another output's.
+  const std::string live = "out.csv.tmp." + std::to_string(::getpid()) + ".abcdef";
+  const std::string other = "other.csv.tmp." + std::to_string(pid) + ".abcdef";
+  std::ofstream(dir / live) << "x";
+  std::ofstream(dir / other) << "x";
+  // A file last written long before this test's process started cannot be
+  // that process's: its PID was reused, and the file is stale too.
+  const std::string reused = "out.csv.tmp." + std::to_string(::getpid()) + ".reused";
+  std::ofstream(dir / reused) << "x";
+  fs::last_write_time(dir / reused, fs::last_write_time(dir / live) - std::chrono::hours(24 * 365));
+  const int raw = std::system(("cd '" + dir.string() + "' && '" + CONTACT2D_EXE +
+                               "' simulate '" CONTACT2D_SCENES_DIR
+                               "/box.toml' --duration 0.01 --csv out.csv >/dev/null 2>&1")
+                                  .c_str());
+  ASSERT_TRUE(WIFEXITED(raw));
+  EXPECT_EQ(WEXITSTATUS(raw), 0);
+  EXPECT_FALSE(fs::exists(dir / left)) << left << " is still there";
+  EXPECT_FALSE(fs::exists(dir / reused)) << "a file older than the process with its PID";
+  EXPECT_TRUE(fs::exists(dir / live));
+  EXPECT_TRUE(fs::exists(dir / other));
+  EXPECT_TRUE(fs::exists(dir / "out.csv"));
+  fs::remove_all(dir);
+}
+
 const std::string kScenes = CONTACT2D_SCENES_DIR;
 
 std::vector<Case> cases() {

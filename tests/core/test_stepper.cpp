@@ -184,5 +184,85 @@ TEST(EnergyBalance, SemiImplicitStaysWithinExplicitEulerIsFlagged) {
   EXPECT_GT(expl.energy.final, expl.energy.initial) << "explicit Euler gains energy";
 }
 
+// A body that never touches anything, under explicit Euler: 200 steps of
+// Δt = 0.01 s from 100 m. Each step raises E = ½·m·v² + m·g·y by exactly
+// ½·m·g²·Δt² (core/divergence.hpp), so the largest rise is 200 times that,
+// and the allowance holds it. The tolerance is rounding: E ≈ 1e6 J is
+// computed to |E|·2⁻⁵² ≈ 2e-10 J a step, and y ≈ 100 m carries ulp(y)·m·g ≈
+// 1.4e-10 J per step over 200 steps, under 1e-7 J in all.
+Scene free_flight_scene(Integrator integrator) {
+  Scene scene = default_scene(Shape::PointMass);
+  scene.mass = 1e3;
+  scene.contact.k = 1.0;
+  scene.initial.q = Vec3(0.0, 100.0, 0.0);
+  scene.initial.v = Vec3::Zero();
+  scene.sim.dt = 0.01;
+  scene.sim.duration = 2.0;
+  scene.sim.integrator = integrator;
+  return scene;
+}
+
+TEST(EnergyBalance, ExplicitEulerGainsHalfMG2Dt2EveryStepInFreeFlight) {
+  const Scene scene = free_flight_scene(Integrator::ExplicitEuler);
+  const Trajectory t = simulate(scene);
+  ASSERT_FALSE(t.divergence);
+  const double per_step = 0.5 * scene.mass * 9.81 * 9.81 * scene.sim.dt * scene.sim.dt;
+  EXPECT_NEAR(t.energy.max_rise, 200 * per_step, 1e-7);
+  // The same product in another order: a few ulps of 962 J (1.1e-13 J each).
+  EXPECT_NEAR(t.energy.free_flight_gain, 200 * per_step, 1e-12);
+  EXPECT_FALSE(t.energy.rise_in_contact);
+  EXPECT_FALSE(t.energy.exceeded())
+      << t.energy.max_rise << " J against " << t.energy.tolerance << " J";
+  for (Integrator other :
+       {Integrator::SemiImplicitEuler, Integrator::ImplicitEuler, Integrator::RK4}) {
+    const Trajectory o = simulate(free_flight_scene(other));
+    EXPECT_EQ(o.energy.free_flight_gain, 0.0) << integrator_name(other);
+    EXPECT_FALSE(o.energy.exceeded()) << integrator_name(other) << ": " << o.energy.max_rise;
+  }
+}
+
+// Should such a rise exceed the allowance, the message names free flight,
+// not contact: nothing touched.
+TEST(EnergyBalance, AFreeFlightRiseIsBlamedOnFreeFlight) {
+  const Scene scene = free_flight_scene(Integrator::ExplicitEuler);
+  const Trajectory t = simulate(scene);
+  EnergyBalance b = t.energy;
+  b.tolerance = 0.0;
+  const std::string text = describe_energy_rise(b, t.available_energy, scene);
+  EXPECT_NE(text.find("explicit Euler gains ½·m·g²·Δt² = 4.81 J on every step in free flight"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("in contact"), std::string::npos) << text;
+}
+
+// One undamped bounce of the point mass under explicit Euler (k = 1e4 N/m,
+// Δt = 1e-4 s: ω·Δt = 0.01): every step in contact multiplies the energy by
+// 1 + (ω·Δt)², and the bounce gains what the allowance's growth term,
+// (1 + (ω·Δt)²)^(π/(ω·Δt)) − 1 = 3.19 % of E_avail, says, a little less: the
+// contact is shorter than π/ω by 2·asin(d_eq/A)/ω, 1.4 % of it (gravity's
+// static depth d_eq = m·g/k = 0.98 mm against the amplitude A = v/ω = 44 mm),
+// and loses part of a step at each end (0.6 %); measured 2.5 % less. Without
+// the term the rise (0.32 J) is three times the oscillation bound (0.104 J).
+TEST(EnergyBalance, OneUndampedBounceUnderExplicitEulerGainsItsErrorTerm) {
+  Scene scene = default_scene(Shape::PointMass);
+  scene.contact.k = 1e4;
+  scene.contact.c = 0.0;
+  scene.contact.mu = 0.0;
+  scene.initial.q = Vec3(0.0, 1.05, 0.0);
+  scene.initial.v = Vec3::Zero();
+  scene.sim.dt = 1e-4;
+  scene.sim.duration = 0.5;  // lands at 0.45 s, leaves 31 ms later
+  scene.sim.integrator = Integrator::ExplicitEuler;
+  const Trajectory t = simulate(scene);
+  ASSERT_FALSE(t.divergence);
+  const double wdt = 0.01;
+  const double growth = std::pow(1.0 + wdt * wdt, test::kPi / wdt) - 1.0;
+  EXPECT_LE(t.energy.max_rise, t.available_energy * growth);
+  EXPECT_GE(t.energy.max_rise, 0.95 * t.available_energy * growth);
+  EXPECT_TRUE(t.energy.rise_in_contact);
+  EXPECT_FALSE(t.energy.exceeded())
+      << t.energy.max_rise << " J against " << t.energy.tolerance << " J";
+}
+
 }  // namespace
 }  // namespace contact2d
