@@ -1,0 +1,479 @@
+// `contact2d inspect` against MuJoCo itself, on three models written here by
+// hand (not by contact2d's generator): a box on a plane with MuJoCo's
+// defaults, a sphere whose contact comes from a default class and a <pair>
+// override, and a two-body arm on hinges touching a wall. Each printed number
+// is checked against a measurement in MuJoCo: the depth a settled body rests
+// at, the speed a body rebounds with, the speed a body creeps at under a
+// tilted gravity, the acceleration a known force gives the contact point.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "mujoco/inspect.hpp"
+#include "mujoco/model.hpp"
+
+namespace contact2d {
+namespace {
+
+namespace fs = std::filesystem;
+namespace mj = contact2d::mujoco;
+
+constexpr double kPiInspect = 3.14159265358979323846;
+
+// MuJoCo's defaults everywhere: solref 0.02 1, solimp 0.9 0.95 0.001 0.5 2,
+// friction 1, condim 3, pyramidal cone, timestep 0.002, Euler. The box
+// starts 0.1 mm into the plane so that its four bottom corners touch.
+const char* kBoxModel = R"(<mujoco model="box on a plane">
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <body name="box" pos="0 0 0.0999">
+      <freejoint/>
+      <geom name="box" type="box" size="0.1 0.1 0.1" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+
+// The ball's class sets solref, solimp, friction and priority; the <pair>
+// with the floor overrides them (direct solref, flat solimp, condim 1), so
+// the floor contact has k = 1e4 N/m and c = 20 N·s/m for m = 1 kg. The wall
+// collides by default: the class's values win there (priority 1).
+const char* kBallModel = R"(<mujoco model="ball with a class and a pair">
+  <option timestep="0.0001"/>
+  <default>
+    <default class="ball">
+      <geom solref="0.01 0.5" solimp="0.8 0.9 0.01" friction="0.7" priority="1" condim="4"/>
+    </default>
+  </default>
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <geom name="wall" type="box" pos="1 0 0.5" size="0.05 2 0.5" solref="0.05 1" friction="0.2"/>
+    <body name="ball" pos="0 0 0.0999">
+      <freejoint/>
+      <geom name="ball" class="ball" type="sphere" size="0.1" mass="1"/>
+    </body>
+  </worldbody>
+  <contact>
+    <pair geom1="ball" geom2="floor" condim="1" solref="-10000 -20" solimp="0.99 0.99 0.001"/>
+  </contact>
+  <keyframe>
+    <key name="at_wall" qpos="0.8501 0 0.0999 1 0 0 0"/>
+  </keyframe>
+</mujoco>
+)";
+
+// Two links on hinges about z, straight along x; the fingertip (a sphere at
+// x = 0.5) moves along y, toward the wall at y = 0.031 when the shoulder
+// turns positive. Frictionless, flat impedance 0.5 (so that A ≠ Â shows in
+// ω and ζ), standard solref 0.01 0.2.
+const char* kArmModel = R"(<mujoco model="two-link arm and a wall">
+  <option timestep="0.0001" gravity="0 0 0"/>
+  <worldbody>
+    <geom name="wall" type="plane" pos="0.25 0.031 0" zaxis="0 -1 0" size="1 1 0.1"
+          condim="1" solref="0.01 0.2" solimp="0.5 0.5 0.001"/>
+    <body name="upper">
+      <joint name="shoulder" type="hinge" axis="0 0 1"/>
+      <geom name="upper" type="capsule" fromto="0 0 0 0.3 0 0" size="0.02" mass="1"
+            condim="1" solref="0.01 0.2" solimp="0.5 0.5 0.001"/>
+      <body name="fore" pos="0.3 0 0">
+        <joint name="elbow" type="hinge" axis="0 0 1"/>
+        <geom name="fore" type="capsule" fromto="0 0 0 0.2 0 0" size="0.02" mass="0.5"
+              condim="1" solref="0.01 0.2" solimp="0.5 0.5 0.001"/>
+        <geom name="tip" type="sphere" pos="0.2 0 0" size="0.03" mass="0.2"
+              condim="1" solref="0.01 0.2" solimp="0.5 0.5 0.001"/>
+      </body>
+    </body>
+  </worldbody>
+  <keyframe>
+    <key name="touch" qpos="0.0022 0"/>
+  </keyframe>
+</mujoco>
+)";
+
+class Inspect : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("contact2d_inspect_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+
+  mj::InspectReport report(const std::string& xml, const std::string& key = "",
+                           std::optional<double> slope = std::nullopt, bool pairs = false) const {
+    mj::InspectOptions o;
+    o.path = write("model.xml", xml);
+    o.key = key;
+    o.slope = slope;
+    o.pairs = pairs;
+    return mj::inspect(o);
+  }
+
+  struct Run {
+    int status = -1;
+    std::string out, err;
+  };
+  Run run(const std::string& args) const {
+    const std::string out = (dir_ / "stdout").string(), err = (dir_ / "stderr").string();
+    const std::string command = "cd '" + dir_.string() + "' && '" CONTACT2D_BINARY "' " + args +
+                                " >'" + out + "' 2>'" + err + "'";
+    const int raw = std::system(command.c_str());
+    auto slurp = [](const std::string& path) {
+      std::ifstream in(path);
+      std::ostringstream s;
+      s << in.rdbuf();
+      return s.str();
+    };
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  }
+
+  fs::path dir_;
+};
+
+// The model text compiled by MuJoCo, for the measurements.
+struct Sim {
+  mj::ModelPtr model;
+  mj::DataPtr data;
+  explicit Sim(const std::string& xml) : model(mj::load_model(xml, "test model")) {
+    data = mj::make_data(model.get());
+  }
+  mjModel* m() const { return model.get(); }
+  mjData* d() const { return data.get(); }
+};
+
+double mean_contact_depth(const Sim& s) {
+  double sum = 0.0;
+  for (int i = 0; i < s.d()->ncon; ++i) sum -= s.d()->contact[i].dist;
+  return s.d()->ncon ? sum / s.d()->ncon : 0.0;
+}
+
+TEST_F(Inspect, BoxOnAPlaneWithDefaultsRestsAtThePrintedStaticPenetration) {
+  const mj::InspectReport rep = report(kBoxModel);
+  ASSERT_EQ(rep.contacts.size(), 4u);
+  EXPECT_TRUE(rep.balanced);
+  EXPECT_EQ(rep.cone, "pyramidal");
+  for (const mj::InspectRow& r : rep.contacts) {
+    EXPECT_NEAR(r.load, 9.81 / 4.0, 1e-9);  // the minimum-norm share of the weight
+    EXPECT_EQ(r.condim, 3);
+    EXPECT_DOUBLE_EQ(r.solref[0], 0.02);
+    // μ = 1, condim 3, impratio 1: φ = 1·2/2, the normal sees Â itself.
+    EXPECT_DOUBLE_EQ(r.phi, 1.0);
+    EXPECT_NEAR(r.A, 1.0, 1e-9);  // a free box on its face: 1/m at every corner along the normal
+  }
+  Sim s(kBoxModel);
+  for (int i = 0; i < 1500; ++i) mj_step(s.m(), s.d());  // 3 s: ζ = 1, ω ≈ 50 /s
+  ASSERT_EQ(s.d()->ncon, 4);
+  const double depth = mean_contact_depth(s);
+  // Measured: the settled depth matches p to 4e-10 m relative to 1.1e-4 m
+  // (the Newton solver's tolerance, 1e-8, on forces of 2.45 N moves the depth
+  // by ~1e-8 relative); bound 1e-6 relative.
+  EXPECT_NEAR(depth, rep.contacts[0].penetration, 1e-6 * rep.contacts[0].penetration);
+}
+
+TEST_F(Inspect, BoxCreepsOnATiltedGravityAtThePrintedSpeed) {
+  const double theta = 10.0;
+  const mj::InspectReport rep = report(kBoxModel, "", theta);
+  ASSERT_EQ(rep.contacts.size(), 4u);
+  double printed = 0.0;
+  for (const mj::InspectRow& r : rep.contacts) printed += r.creep / 4.0;
+  ASSERT_GT(printed, 0.0);
+  Sim s(kBoxModel);
+  const double th = theta * kPiInspect / 180.0;
+  s.m()->opt.gravity[0] = 9.81 * std::sin(th);
+  s.m()->opt.gravity[2] = -9.81 * std::cos(th);
+  for (int i = 0; i < 500; ++i) mj_step(s.m(), s.d());  // 1 s: the creep settles at ~2e3 /s
+  const double x0 = s.d()->qpos[0];
+  for (int i = 0; i < 500; ++i) mj_step(s.m(), s.d());
+  const double measured = (s.d()->qpos[0] - x0) / 1.0;
+  // The printed speed gives every corner the same load share and d; on the
+  // tilt the box's front corners carry 18 % more than its back ones, which
+  // changes d(p) by < 1e-3 relative (solimp's x² start: d = 0.9 + 0.1·x²
+  // with x = p/1 mm ≈ 0.1). Measured 0.1 % apart; bound 1 %.
+  EXPECT_NEAR(measured, printed, 0.01 * printed);
+}
+
+TEST_F(Inspect, BallPairOverridesItsClassAndRestsAtThePrintedDepth) {
+  const mj::InspectReport rep = report(kBallModel);
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  const mj::InspectRow& r = rep.contacts[0];
+  EXPECT_EQ(r.source, "explicit <pair>");
+  EXPECT_EQ(r.condim, 1);
+  EXPECT_DOUBLE_EQ(r.solref[0], -10000.0);
+  EXPECT_NEAR(r.k, 1e4, 1e-6);  // A = Â = 1/m: k = d²·K·m = −solref[0]·m
+  EXPECT_NEAR(r.c, 20.0, 1e-9);
+  Sim s(kBallModel);
+  for (int i = 0; i < 30000; ++i) mj_step(s.m(), s.d());  // 3 s at ζ = 0.1, ω = 100: e^(−30)
+  ASSERT_EQ(s.d()->ncon, 1);
+  // p = m·g·(1 − d)·Â/(K·d²) = 9.81e-6 m; measured to 1e-13 m (the settled
+  // oscillation, e^(−30) of the initial 1e-4 m, and the solver's tolerance);
+  // bound 1e-6 relative.
+  EXPECT_NEAR(-s.d()->contact[0].dist, r.penetration, 1e-6 * r.penetration);
+  EXPECT_NEAR(r.penetration, 9.81 * 0.01 / 1e4, 1e-12);
+}
+
+TEST_F(Inspect, BallReboundsWithThePrintedRestitution) {
+  const mj::InspectReport rep = report(kBallModel);
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  const double printed = rep.contacts[0].restitution;
+  EXPECT_NEAR(rep.contacts[0].zeta, 0.1, 1e-9);
+  // Without gravity (the closed form has none), from 5 mm above the floor at 1 m/s.
+  Sim s(kBallModel);
+  s.m()->opt.gravity[2] = 0.0;
+  s.d()->qpos[2] = 0.105;
+  s.d()->qvel[2] = -1.0;
+  bool touched = false;
+  int steps = 0;
+  for (; steps < 100000; ++steps) {
+    mj_step(s.m(), s.d());
+    if (s.d()->ncon > 0) touched = true;
+    if (touched && s.d()->ncon == 0) break;
+  }
+  ASSERT_TRUE(touched);
+  ASSERT_LT(steps, 100000);
+  const double measured = s.d()->qvel[2] / 1.0;
+  // Semi-implicit Euler at ω·Δt = 0.01 (the contact lasts ~300 steps) and the
+  // contact's last step: measured 2e-4 apart; bound 2e-3 (an O(ω·Δt)/5 error).
+  EXPECT_NEAR(measured, printed, 2e-3);
+}
+
+TEST_F(Inspect, PairsResolveClassPriorityAndPairsAsMujocoDoes) {
+  // At the wall both contacts exist: the printed pair values must be what
+  // MuJoCo put into d->contact.
+  const mj::InspectReport rep = report(kBallModel, "at_wall", std::nullopt, true);
+  ASSERT_EQ(rep.contacts.size(), 2u);
+  ASSERT_EQ(rep.pairs.size(), 2u);  // ball–floor (explicit), ball–wall (default)
+  for (const mj::InspectRow& p : rep.pairs) {
+    EXPECT_EQ(p.contacts_now, 1) << p.geom1_name << " " << p.geom2_name;
+    for (const mj::InspectRow& c : rep.contacts) {
+      if (c.geom1 != p.geom1 || c.geom2 != p.geom2) continue;
+      EXPECT_EQ(c.condim, p.condim);
+      for (size_t i = 0; i < 2; ++i) EXPECT_EQ(c.solref[i], p.solref[i]);
+      for (size_t i = 0; i < 5; ++i) EXPECT_EQ(c.solimp[i], p.solimp[i]);
+      for (size_t i = 0; i < 5; ++i) EXPECT_EQ(c.friction[i], p.friction[i]);
+    }
+  }
+  for (const mj::InspectRow& p : rep.pairs) {
+    if (p.source != "default collision") continue;
+    EXPECT_EQ(p.condim, 4);               // the ball's class: higher priority
+    EXPECT_DOUBLE_EQ(p.solref[0], 0.01);  // not the wall's 0.05
+    EXPECT_DOUBLE_EQ(p.friction[0], 0.7);
+  }
+}
+
+TEST_F(Inspect, ArmEffectiveMassIsWhatAForceAtTheTipMeasures) {
+  const mj::InspectReport rep = report(kArmModel, "touch");
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  const mj::InspectRow& r = rep.contacts[0];
+  EXPECT_EQ(r.geom2_name, "tip");
+  // MuJoCo's estimate differs from the true value here (the point of this model).
+  EXPECT_GT(std::abs(r.inv_weight / r.A - 1.0), 0.2);
+  // Measure: push the tip along the normal with 1 N (mj_applyFT), contacts off,
+  // from rest; after N steps of h the tip's normal speed is A·F·N·h.
+  Sim s(kArmModel);
+  mj_resetDataKeyframe(s.m(), s.d(), 0);
+  s.m()->opt.disableflags |= mjDSBL_CONTACT;
+  s.m()->opt.timestep = 1e-7;
+  const int tip = mj_name2id(s.m(), mjOBJ_GEOM, "tip");
+  const int body = s.m()->geom_bodyid[tip];
+  const int n = 10;
+  double y_before = 0.0;
+  for (int i = 0; i < n; ++i) {
+    mju_zero(s.d()->qfrc_applied, s.m()->nv);
+    mj_kinematics(s.m(), s.d());
+    double point[3] = {s.d()->geom_xpos[3 * tip], s.d()->geom_xpos[3 * tip + 1],
+                       s.d()->geom_xpos[3 * tip + 2]};
+    double force[3] = {r.normal[0], r.normal[1], r.normal[2]}, torque[3] = {0, 0, 0};
+    mj_applyFT(s.m(), s.d(), force, torque, point, body, s.d()->qfrc_applied);
+    y_before = point[0] * r.normal[0] + point[1] * r.normal[1];
+    mj_step(s.m(), s.d());
+  }
+  mj_kinematics(s.m(), s.d());
+  const double y_after =
+      s.d()->geom_xpos[3 * tip] * r.normal[0] + s.d()->geom_xpos[3 * tip + 1] * r.normal[1];
+  const double measured = (y_after - y_before) / s.m()->opt.timestep / (n * s.m()->opt.timestep);
+  // The arm turns by ~1e-13 rad over the measurement: rounding, 1e-6 relative
+  // (the difference of two positions near 0.03 m over a step of ~1e-13 m).
+  EXPECT_NEAR(measured, r.A, 1e-3 * r.A);
+}
+
+TEST_F(Inspect, ArmReboundsWithThePrintedRestitution) {
+  const mj::InspectReport rep = report(kArmModel, "touch");
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  const mj::InspectRow& r = rep.contacts[0];
+  // With A ≠ Â the damping ratio is not solref's 0.2: ζ = dr·√(A/(d·A + (1 − d)·Â)).
+  EXPECT_NEAR(r.zeta, 0.2 * std::sqrt(r.A / (0.5 * r.A + 0.5 * r.inv_weight)), 1e-12);
+  Sim s(kArmModel);
+  const int tip = mj_name2id(s.m(), mjOBJ_GEOM, "tip");
+  s.d()->qvel[0] = 0.4;  // the tip at 0.2 m/s toward the wall, 1 mm away
+  mj_forward(s.m(), s.d());
+  auto normal_speed = [&] {
+    double jacp[6];
+    mj_jac(s.m(), s.d(), jacp, nullptr, s.d()->geom_xpos + 3 * tip, s.m()->geom_bodyid[tip]);
+    return -(jacp[2] * s.d()->qvel[0] + jacp[3] * s.d()->qvel[1]);  // along the wall's −y normal
+  };
+  double v_in = 0.0;
+  bool touched = false;
+  int steps = 0;
+  for (; steps < 200000; ++steps) {
+    if (!touched) v_in = normal_speed();
+    mj_step(s.m(), s.d());
+    if (s.d()->ncon > 0) touched = true;
+    if (touched && s.d()->ncon == 0) break;
+  }
+  ASSERT_TRUE(touched);
+  ASSERT_LT(steps, 200000);
+  mj_forward(s.m(), s.d());
+  const double measured = normal_speed() / v_in;
+  // The closed form is for the point alone; the arm's other mode and the
+  // rotation of the arm over the bounce (~3e-4 rad) couple in at that order,
+  // semi-implicit Euler at ω·Δt ≈ 0.04 adds O(ω·Δt)/5: measured 1e-3 apart;
+  // bound 1e-2.
+  EXPECT_NEAR(measured, r.restitution, 1e-2);
+}
+
+TEST_F(Inspect, KelvinVoigtRestitutionClampedAtZeroMatchesItsKnownValues) {
+  // Undamped: no loss. Light damping: the clamp lets go before x = 0, so e
+  // is below the unclamped exp(−ζπ/√(1 − ζ²)).
+  EXPECT_NEAR(mj::kelvin_voigt_restitution(0.0), 1.0, 1e-12);
+  const double z = 0.1;
+  EXPECT_GT(mj::kelvin_voigt_restitution(z), std::exp(-z * kPiInspect / std::sqrt(1 - z * z)));
+  // Continuous across critical damping, decreasing.
+  EXPECT_NEAR(mj::kelvin_voigt_restitution(0.999), mj::kelvin_voigt_restitution(1.001), 1e-3);
+  EXPECT_GT(mj::kelvin_voigt_restitution(0.5), mj::kelvin_voigt_restitution(2.0));
+}
+
+TEST_F(Inspect, WarnsWhenRefsafeChangesTheTimeconst) {
+  std::string xml = kBoxModel;
+  xml.replace(xml.find("<worldbody>"), 11,
+              "<default><geom solref=\"0.001 1\"/></default>\n  <worldbody>");
+  const mj::InspectReport rep = report(xml);
+  ASSERT_FALSE(rep.contacts.empty());
+  EXPECT_TRUE(rep.contacts[0].refsafe_changes);
+  EXPECT_DOUBLE_EQ(rep.contacts[0].timeconst_used, 0.004);
+  ASSERT_FALSE(rep.warnings.empty());
+  EXPECT_NE(rep.warnings[0].find("refsafe raises the solref timeconst 0.001 s"), std::string::npos)
+      << rep.warnings[0];
+  EXPECT_TRUE(report(kBoxModel).warnings.empty());
+}
+
+TEST_F(Inspect, WarnsWhenOmegaDtExceedsTheIntegratorsLimit) {
+  std::string xml = kBoxModel;
+  xml.replace(xml.find("<worldbody>"), 11,
+              "<default><geom solref=\"-1e7 -100\"/></default>\n  <worldbody>");
+  const mj::InspectReport rep = report(xml);
+  ASSERT_FALSE(rep.contacts.empty());
+  EXPECT_GT(rep.contacts[0].omega_dt, rep.contacts[0].limit);
+  bool found = false;
+  for (const std::string& w : rep.warnings)
+    found |= w.find("exceeds Euler's limit") != std::string::npos;
+  EXPECT_TRUE(found);
+  // And MuJoCo does blow up: the box leaves the plane faster than any fall.
+  Sim s(xml);
+  bool diverged = false;
+  for (int i = 0; i < 500 && !diverged; ++i) {
+    mj_step(s.m(), s.d());
+    diverged = !(std::abs(s.d()->qvel[2]) < 10.0) || s.d()->warning[mjWARN_BADQACC].number > 0;
+  }
+  EXPECT_TRUE(diverged);
+}
+
+TEST_F(Inspect, WarnsForAPyramidalConeWithHighFrictionAndForImpratioBelowOne) {
+  std::string xml = kBoxModel;
+  xml.replace(xml.find("<worldbody>"), 11,
+              "<option impratio=\"0.5\"/><default><geom friction=\"2\"/></default>\n  <worldbody>");
+  const mj::InspectReport rep = report(xml);
+  ASSERT_FALSE(rep.contacts.empty());
+  // φ = μ²(1 + μ²)/((condim − 1)·impratio) = 4·5/(2·0.5) = 20.
+  EXPECT_DOUBLE_EQ(rep.contacts[0].phi, 20.0);
+  bool cone = false, impratio = false;
+  for (const std::string& w : rep.warnings) {
+    cone |= w.find("pyramidal cone with μ = 2") != std::string::npos;
+    impratio |= w.find("impratio = 0.5 < 1") != std::string::npos;
+  }
+  EXPECT_TRUE(cone);
+  EXPECT_TRUE(impratio);
+  // The box does sink φ-fold deeper (about: d(p) moves with the depth).
+  Sim s(xml);
+  for (int i = 0; i < 1500; ++i) mj_step(s.m(), s.d());
+  EXPECT_NEAR(mean_contact_depth(s), rep.contacts[0].penetration,
+              1e-3 * rep.contacts[0].penetration);
+}
+
+TEST_F(Inspect, WarnsWhenABodysEffectiveMassDiffersTenfoldAcrossItsContacts) {
+  // A rod hinged at x = 0 resting on two posts, at x = 0.1 and x = 0.9: A ∝ x²/I.
+  const char* xml = R"(<mujoco>
+  <worldbody>
+    <geom name="near" type="box" pos="0.1 0 -0.05" size="0.02 0.1 0.05"/>
+    <geom name="far" type="box" pos="0.9 0 -0.05" size="0.02 0.1 0.05"/>
+    <body name="rod" pos="0 0 0.0199">
+      <joint type="hinge" axis="0 1 0"/>
+      <geom name="rod" type="capsule" fromto="0 0 0 1 0 0" size="0.02" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+  const mj::InspectReport rep = report(xml);
+  ASSERT_GE(rep.contacts.size(), 2u);
+  bool found = false;
+  for (const std::string& w : rep.warnings)
+    found |= w.find("body rod: its effective mass") != std::string::npos;
+  EXPECT_TRUE(found);
+  EXPECT_FALSE(report(kBoxModel).warnings.size());
+}
+
+TEST_F(Inspect, CliPrintsMujocosMessageOnOneLineForAModelItCannotLoad) {
+  write("bad.xml", "<mujoco><worldbody><geom type=\"sphere\" size=\"-1\"/></wordbody></mujoco>\n");
+  const Run r = run("inspect bad.xml");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("bad.xml: MuJoCo cannot load the model: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("XML Error"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  const Run missing = run("inspect missing.xml");
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.err.find("missing.xml: cannot open the file"), std::string::npos);
+}
+
+TEST_F(Inspect, CliSaysSoForAModelWithNoContactsAndExitsZero) {
+  write("free.xml",
+        "<mujoco><worldbody><body pos=\"0 0 1\"><freejoint/><geom type=\"sphere\" "
+        "size=\"0.1\"/></body></worldbody></mujoco>\n");
+  const Run r = run("inspect free.xml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("no contacts at qpos0"), std::string::npos) << r.out;
+  const Run json = run("inspect free.xml --json");
+  EXPECT_EQ(json.status, 0);
+  EXPECT_NE(json.out.find("\"contacts\": []"), std::string::npos) << json.out;
+}
+
+TEST_F(Inspect, CliNamesABadKeyOrSlopeAndItsRange) {
+  write("box.xml", kBoxModel);
+  const Run key = run("inspect box.xml --key nowhere");
+  EXPECT_EQ(key.status, 2);
+  EXPECT_NE(key.err.find("--key nowhere: no keyframe of that name"), std::string::npos) << key.err;
+  const Run slope = run("inspect box.xml --slope 95");
+  EXPECT_EQ(slope.status, 2);
+  EXPECT_NE(slope.err.find("--slope 95: must be in [0, 90) degrees"), std::string::npos)
+      << slope.err;
+  const Run ok = run("inspect box.xml --slope 10 --json");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_NE(ok.out.find("\"creep\": "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace contact2d
