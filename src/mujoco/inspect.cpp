@@ -615,8 +615,11 @@ std::string format_inspect_text(const InspectReport& rep) {
     << "\n";
   if (!rep.load_warning.empty()) o << "MuJoCo warns while loading: " << rep.load_warning << "\n";
   o << "integrator " << rep.integrator << ", timestep " << g(rep.dt) << " s, cone " << rep.cone
-    << ", impratio " << g(rep.impratio) << " (friction rows: R_t = R/impratio), gravity "
-    << join(rep.gravity.data(), 3) << " m/s²\n";
+    << ", impratio " << g(rep.impratio) << " (friction rows: R_t = R/impratio"
+    << (rep.impratio > 1.0   ? ", friction " + g(rep.impratio) + "× stiffer than the normal"
+        : rep.impratio < 1.0 ? ", friction " + g(1.0 / rep.impratio) + "× softer than the normal"
+                             : std::string())
+    << "), gravity " << join(rep.gravity.data(), 3) << " m/s²\n";
   if (rep.contacts.empty()) {
     o << "no contacts at " << (rep.key.empty() ? "qpos0" : "keyframe " + rep.key) << "\n";
   } else {

@@ -190,27 +190,47 @@ TEST_F(Inspect, BoxOnAPlaneWithDefaultsRestsAtThePrintedStaticPenetration) {
   EXPECT_NEAR(depth, rep.contacts[0].penetration, 1e-9 * rep.contacts[0].penetration);
 }
 
-TEST_F(Inspect, BoxCreepsOnATiltedGravityAtThePrintedSpeed) {
-  const double theta = 10.0;
-  const mj::InspectReport rep = report(kBoxModel, "", theta);
-  ASSERT_EQ(rep.contacts.size(), 4u);
+// The box crept for 1 s on gravity tilted by θ, after 1 s to settle; returns
+// (measured, printed averaged over the four corners).
+std::pair<double, double> box_creep(const mj::InspectReport& rep, const std::string& xml,
+                                    double theta) {
   double printed = 0.0;
   for (const mj::InspectRow& r : rep.contacts) printed += r.creep / 4.0;
-  ASSERT_GT(printed, 0.0);
-  Sim s(kBoxModel);
+  Sim s(xml);
   const double th = theta * kPiInspect / 180.0;
   s.m()->opt.gravity[0] = 9.81 * std::sin(th);
   s.m()->opt.gravity[2] = -9.81 * std::cos(th);
   for (int i = 0; i < 500; ++i) mj_step(s.m(), s.d());  // 1 s: the creep settles at ~2e3 /s
   const double x0 = s.d()->qpos[0];
   for (int i = 0; i < 500; ++i) mj_step(s.m(), s.d());
-  const double measured = (s.d()->qpos[0] - x0) / 1.0;
+  return {(s.d()->qpos[0] - x0) / 1.0, printed};
+}
+
+TEST_F(Inspect, BoxCreepsOnATiltedGravityAtThePrintedSpeed) {
+  const mj::InspectReport rep = report(kBoxModel, "", 10.0);
+  ASSERT_EQ(rep.contacts.size(), 4u);
+  const auto [measured, printed] = box_creep(rep, kBoxModel, 10.0);
+  ASSERT_GT(printed, 0.0);
   // The printed speed gives every corner the same load share and d; on the
   // tilt the box's downhill corners carry more than its uphill ones (the
   // friction at the face against the weight at the centre, 0.1 m up), which
   // moves d(p) a little apart between them (solimp's x² start near d = 0.9).
   // Measured 3.6e-4 relative (0.000887500 against 0.000887819 m/s); bound
   // 2e-3. The (1 + μ²) of the pyramidal cone alone is a factor of 2.
+  EXPECT_NEAR(measured, printed, 2e-3 * printed);
+}
+
+TEST_F(Inspect, BoxCreepsAtThePrintedSpeedInAnEllipticCone) {
+  std::string xml = kBoxModel;
+  xml.replace(xml.find("<worldbody>"), 11, "<option cone=\"elliptic\"/>\n  <worldbody>");
+  const mj::InspectReport rep = report(xml, "", 10.0);
+  ASSERT_EQ(rep.contacts.size(), 4u);
+  EXPECT_EQ(rep.cone, "elliptic");
+  const auto [measured, printed] = box_creep(rep, xml, 10.0);
+  ASSERT_GT(printed, 0.0);
+  // No (1 + μ²) here: half the pyramidal cone's speed. Same bound and reason
+  // as the pyramidal case; measured 3.6e-4 relative (0.000443750 against
+  // 0.000443909 m/s).
   EXPECT_NEAR(measured, printed, 2e-3 * printed);
 }
 
