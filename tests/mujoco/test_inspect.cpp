@@ -387,6 +387,43 @@ TEST_F(Inspect, ArmReboundsWithThePrintedRestitution) {
   EXPECT_NEAR(measured, r.restitution, 3e-3);
 }
 
+// The printed K, B, d and the Â the normal sees are what MuJoCo's own
+// mj_makeImpedance put into efc_KBIP and efc_diagApprox (which it adjusts so
+// that R = (1 − d)/d·diagApprox; a pyramidal contact's normal force is the
+// sum of its 2(condim − 1) edge rows, so the normal sees diagApprox/(2(condim − 1))).
+void expect_impedance_as_mujoco(const mj::InspectReport& rep, const std::string& xml,
+                                const std::string& key) {
+  Sim s(xml);
+  if (!key.empty()) mj_resetDataKeyframe(s.m(), s.d(), mj_name2id(s.m(), mjOBJ_KEY, key.c_str()));
+  mj_forward(s.m(), s.d());
+  ASSERT_EQ(s.d()->ncon, static_cast<int>(rep.contacts.size()));
+  for (const mj::InspectRow& r : rep.contacts) {
+    const mjContact& con = s.d()->contact[r.contact];
+    const int adr = con.efc_address;
+    ASSERT_GE(adr, 0);
+    SCOPED_TRACE(xml.substr(0, 60) + " contact " + std::to_string(r.contact));
+    EXPECT_NEAR(r.K, s.d()->efc_KBIP[4 * adr], 1e-12 * r.K);
+    EXPECT_NEAR(r.B, s.d()->efc_KBIP[4 * adr + 1], 1e-12 * r.B);
+    EXPECT_NEAR(r.d_now, s.d()->efc_KBIP[4 * adr + 2], 1e-12);
+    const bool pyramidal = s.m()->opt.cone == mjCONE_PYRAMIDAL && con.dim > 1;
+    const double normal = s.d()->efc_diagApprox[adr] / (pyramidal ? 2.0 * (con.dim - 1) : 1.0);
+    EXPECT_NEAR(r.normal_weight, normal, 1e-12 * normal);
+  }
+}
+
+TEST_F(Inspect, KBImpedanceAndNormalWeightAreWhatMujocoComputes) {
+  std::string elliptic = kBoxModel, rough = kBoxModel, refsafe = kBoxModel;
+  elliptic.replace(elliptic.find("<worldbody>"), 11, "<option cone=\"elliptic\"/><worldbody>");
+  rough.replace(rough.find("<worldbody>"), 11,
+                "<option impratio=\"0.5\"/><default><geom friction=\"2\"/></default><worldbody>");
+  refsafe.replace(refsafe.find("<worldbody>"), 11,
+                  "<default><geom solref=\"0.001 1\"/></default><worldbody>");
+  for (const std::string& xml : {std::string(kBoxModel), elliptic, rough, refsafe})
+    expect_impedance_as_mujoco(report(xml), xml, "");
+  expect_impedance_as_mujoco(report(kBallModel, "at_wall"), kBallModel, "at_wall");
+  expect_impedance_as_mujoco(report(kArmModel, "touch"), kArmModel, "touch");
+}
+
 TEST_F(Inspect, KelvinVoigtRestitutionClampedAtZeroMatchesItsKnownValues) {
   // Undamped: no loss. Light damping: the clamp lets go before x = 0, so e
   // is below the unclamped exp(−ζπ/√(1 − ζ²)).
