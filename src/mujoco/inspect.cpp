@@ -416,8 +416,10 @@ InspectReport inspect(const InspectOptions& options) {
       evaluate(ctx, r, rep.warnings, label_of(r));
       rep.pairs.push_back(r);
     };
-    const bool use_pairs = m->opt.collision != mjCOL_DYNAMIC;
-    const bool use_dynamic = m->opt.collision != mjCOL_PAIR;
+    // mj_collision returns at once when contacts or constraints are disabled.
+    const bool disabled = (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT)) != 0;
+    const bool use_pairs = !disabled && m->opt.collision != mjCOL_DYNAMIC;
+    const bool use_dynamic = !disabled && m->opt.collision != mjCOL_PAIR && m->nbody >= 2;
     if (use_pairs)
       for (int p = 0; p < m->npair; ++p) add(p, m->pair_geom1[p], m->pair_geom2[p]);
     if (use_dynamic) {
@@ -506,6 +508,10 @@ InspectReport inspect(const InspectOptions& options) {
         "(relative residual " +
         g(rep.residual) +
         "): the static loads are a least-squares share, and the penetrations follow them");
+  if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT))
+    rep.warnings.push_back(std::string("the model disables ") +
+                           (m->opt.disableflags & mjDSBL_CONTACT ? "contacts" : "constraints") +
+                           " (<option><flag>): MuJoCo makes no contacts at all");
   for (const std::string& w : messages) rep.warnings.push_back("MuJoCo: " + w);
   return rep;
 }

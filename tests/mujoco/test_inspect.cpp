@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -303,6 +304,36 @@ TEST_F(Inspect, PairsResolveClassPriorityAndPairsAsMujocoDoes) {
     EXPECT_DOUBLE_EQ(p.solref[0], 0.01);  // not the wall's 0.05
     EXPECT_DOUBLE_EQ(p.friction[0], 0.7);
   }
+}
+
+TEST_F(Inspect, PairsFollowContypeConaffinityTheParentFilterAndExclude) {
+  auto names = [](const mj::InspectReport& rep) {
+    std::set<std::string> out;
+    for (const mj::InspectRow& p : rep.pairs) out.insert(p.geom1_name + "/" + p.geom2_name);
+    return out;
+  };
+  // upper and fore are parent and child (filtered); each meets the wall.
+  EXPECT_EQ(names(report(kArmModel, "", std::nullopt, true)),
+            (std::set<std::string>{"wall/upper", "wall/fore", "wall/tip"}));
+  std::string xml = kArmModel;
+  xml.replace(xml.find("<keyframe>"), 10,
+              "<contact><exclude body1=\"world\" body2=\"upper\"/></contact>\n  <keyframe>");
+  EXPECT_EQ(names(report(xml, "", std::nullopt, true)),
+            (std::set<std::string>{"wall/fore", "wall/tip"}));
+  xml = kArmModel;
+  xml.replace(xml.find("name=\"tip\""), 10, "name=\"tip\" contype=\"2\" conaffinity=\"2\"");
+  EXPECT_EQ(names(report(xml, "", std::nullopt, true)),
+            (std::set<std::string>{"wall/upper", "wall/fore"}));
+  // And MuJoCo agrees that the tip no longer touches the wall at the key.
+  EXPECT_TRUE(report(xml, "touch").contacts.empty());
+  xml = kArmModel;
+  xml.replace(xml.find("<worldbody>"), 11,
+              "<option><flag contact=\"disable\"/></option>\n  <worldbody>");
+  const mj::InspectReport off = report(xml, "touch", std::nullopt, true);
+  EXPECT_TRUE(off.contacts.empty());
+  EXPECT_TRUE(off.pairs.empty());
+  ASSERT_EQ(off.warnings.size(), 1u);
+  EXPECT_NE(off.warnings[0].find("disables contacts"), std::string::npos);
 }
 
 TEST_F(Inspect, ArmEffectiveMassIsWhatAForceAtTheTipMeasures) {
