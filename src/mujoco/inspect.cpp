@@ -48,16 +48,12 @@ std::string join(const double* v, int n) {
 std::vector<double> normal_jacobian(const mjModel* m, const mjData* d, int body1, int body2,
                                     const std::array<double, 3>& pos,
                                     const std::array<double, 3>& normal) {
-  const int nv = m->nv;
-  std::vector<double> j1(3 * static_cast<size_t>(nv)), j2(3 * static_cast<size_t>(nv)),
-      jr(3 * static_cast<size_t>(nv)), row(static_cast<size_t>(nv), 0.0);
+  const size_t nv = static_cast<size_t>(m->nv);
+  std::vector<double> j1(3 * nv), j2(3 * nv), jr(3 * nv), row(nv, 0.0);
   mj_jac(m, d, j1.data(), jr.data(), pos.data(), body1);
   mj_jac(m, d, j2.data(), jr.data(), pos.data(), body2);
-  for (int k = 0; k < 3; ++k)
-    for (int i = 0; i < nv; ++i)
-      row[static_cast<size_t>(i)] +=
-          normal[static_cast<size_t>(k)] *
-          (j2[static_cast<size_t>(k * nv + i)] - j1[static_cast<size_t>(k * nv + i)]);
+  for (size_t k = 0; k < 3; ++k)
+    for (size_t i = 0; i < nv; ++i) row[i] += normal[k] * (j2[k * nv + i] - j1[k * nv + i]);
   return row;
 }
 
@@ -70,33 +66,32 @@ double inverse_mass(const mjModel* m, mjData* d, const std::vector<double>& row)
   return a;
 }
 
+// Element `id` of a model array of `width` numbers per element.
+const double* element(const double* base, int id, int width) {
+  return base + static_cast<std::ptrdiff_t>(id) * width;
+}
+
 // The solref, solimp, friction and condim mj_collideGeoms gives a geom pair
 // (ipair ≥ 0: that explicit <pair>), then mj_assignRef / mj_assignImp.
 void resolve_pair(const mjModel* m, int ipair, int g1, int g2, InspectRow& row) {
   if (ipair >= 0) {
     row.condim = m->pair_dim[ipair];
-    for (int i = 0; i < 5; ++i)
-      row.friction[static_cast<size_t>(i)] = m->pair_friction[5 * ipair + i];
-    for (int i = 0; i < mjNREF; ++i)
-      row.solref[static_cast<size_t>(i)] = m->pair_solref[mjNREF * ipair + i];
-    for (int i = 0; i < mjNIMP; ++i)
-      row.solimp[static_cast<size_t>(i)] = m->pair_solimp[mjNIMP * ipair + i];
+    std::copy_n(element(m->pair_friction, ipair, 5), 5, row.friction.begin());
+    std::copy_n(element(m->pair_solref, ipair, mjNREF), mjNREF, row.solref.begin());
+    std::copy_n(element(m->pair_solimp, ipair, mjNIMP), mjNIMP, row.solimp.begin());
   } else {
     const int p1 = m->geom_priority[g1], p2 = m->geom_priority[g2];
     if (p1 != p2) {
       const int gp = p1 > p2 ? g1 : g2;
       row.condim = m->geom_condim[gp];
-      for (int i = 0; i < 3; ++i)
-        row.friction[static_cast<size_t>(2 * i)] = m->geom_friction[3 * gp + i];
-      for (int i = 0; i < mjNREF; ++i)
-        row.solref[static_cast<size_t>(i)] = m->geom_solref[mjNREF * gp + i];
-      for (int i = 0; i < mjNIMP; ++i)
-        row.solimp[static_cast<size_t>(i)] = m->geom_solimp[mjNIMP * gp + i];
+      for (size_t i = 0; i < 3; ++i) row.friction[2 * i] = element(m->geom_friction, gp, 3)[i];
+      std::copy_n(element(m->geom_solref, gp, mjNREF), mjNREF, row.solref.begin());
+      std::copy_n(element(m->geom_solimp, gp, mjNIMP), mjNIMP, row.solimp.begin());
     } else {
       row.condim = std::max(m->geom_condim[g1], m->geom_condim[g2]);
-      for (int i = 0; i < 3; ++i)
-        row.friction[static_cast<size_t>(2 * i)] =
-            std::max(m->geom_friction[3 * g1 + i], m->geom_friction[3 * g2 + i]);
+      for (size_t i = 0; i < 3; ++i)
+        row.friction[2 * i] =
+            std::max(element(m->geom_friction, g1, 3)[i], element(m->geom_friction, g2, 3)[i]);
       const double s1 = m->geom_solmix[g1], s2 = m->geom_solmix[g2];
       double mix = 0.5;
       if (s1 >= mjMINVAL && s2 >= mjMINVAL)
@@ -105,15 +100,16 @@ void resolve_pair(const mjModel* m, int ipair, int g1, int g2, InspectRow& row) 
         mix = 0.0;
       else if (s1 >= mjMINVAL && s2 < mjMINVAL)
         mix = 1.0;
-      const double* r1 = m->geom_solref + mjNREF * g1;
-      const double* r2 = m->geom_solref + mjNREF * g2;
+      const double* r1 = element(m->geom_solref, g1, mjNREF);
+      const double* r2 = element(m->geom_solref, g2, mjNREF);
       const bool standard = r1[0] > 0.0 && r2[0] > 0.0;
       for (int i = 0; i < mjNREF; ++i)
         row.solref[static_cast<size_t>(i)] =
             standard ? mix * r1[i] + (1.0 - mix) * r2[i] : std::min(r1[i], r2[i]);
+      const double* i1 = element(m->geom_solimp, g1, mjNIMP);
+      const double* i2 = element(m->geom_solimp, g2, mjNIMP);
       for (int i = 0; i < mjNIMP; ++i)
-        row.solimp[static_cast<size_t>(i)] =
-            mix * m->geom_solimp[mjNIMP * g1 + i] + (1.0 - mix) * m->geom_solimp[mjNIMP * g2 + i];
+        row.solimp[static_cast<size_t>(i)] = mix * i1[i] + (1.0 - mix) * i2[i];
     }
     row.friction[1] = row.friction[0];
     row.friction[3] = row.friction[4];
@@ -158,7 +154,8 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
                      : -ref[0] / std::max(mjMINVAL, r.dmax * r.dmax);
   r.B = ref[1] > 0.0 ? 2.0 / std::max(mjMINVAL, r.dmax * ref[0])
                      : -ref[1] / std::max(mjMINVAL, r.dmax);
-  r.inv_weight = m->body_invweight0[2 * r.body1] + m->body_invweight0[2 * r.body2];
+  r.inv_weight =
+      element(m->body_invweight0, r.body1, 2)[0] + element(m->body_invweight0, r.body2, 2)[0];
   const double mu = r.friction[0];
   r.phi = 1.0;
   if (ctx.pyramidal && r.condim > 1)
