@@ -38,7 +38,7 @@ std::string name_of(const mjModel* m, int type, int id, const char* what) {
   return std::string(what) + " #" + std::to_string(id);
 }
 
-std::string join(const double* v, int n) {
+std::string list_text(const double* v, int n) {
   std::string out;
   for (int i = 0; i < n; ++i) out += (i ? " " : "") + g(v[i]);
   return out;
@@ -524,8 +524,9 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
   else
     o << ", " << r.contacts_now << " contact" << (r.contacts_now == 1 ? "" : "s") << " now";
   o << "\n";
-  o << "  condim " << r.condim << ", friction " << join(r.friction.data(), 5) << "\n";
-  o << "  solref " << join(r.solref.data(), 2) << ", solimp " << join(r.solimp.data(), 5) << "\n";
+  o << "  condim " << r.condim << ", friction " << list_text(r.friction.data(), 5) << "\n";
+  o << "  solref " << list_text(r.solref.data(), 2) << ", solimp " << list_text(r.solimp.data(), 5)
+    << "\n";
   if (r.solref[0] > 0.0 && r.solref[1] > 0.0)
     o << "  refsafe: "
       << (r.refsafe_changes ? "CHANGES the timeconst " + g(r.solref[0]) + " s to " +
@@ -622,7 +623,7 @@ std::string format_inspect_text(const InspectReport& rep) {
     << (rep.impratio > 1.0   ? ", friction " + g(rep.impratio) + "× stiffer than the normal"
         : rep.impratio < 1.0 ? ", friction " + g(1.0 / rep.impratio) + "× softer than the normal"
                              : std::string())
-    << "), gravity " << join(rep.gravity.data(), 3) << " m/s²\n";
+    << "), gravity " << list_text(rep.gravity.data(), 3) << " m/s²\n";
   if (rep.contacts.empty()) {
     o << "no contacts at " << (rep.key.empty() ? "qpos0" : "keyframe " + rep.key) << "\n";
   } else {
