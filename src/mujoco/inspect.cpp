@@ -192,6 +192,12 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
       r.creep_note = "condim 1, no friction: slides";
     } else if (std::tan(th) >= mu) {
       r.creep_note = "tanθ ≥ μ = " + g(mu) + ": slides (Coulomb)";
+    } else if (ctx.pyramidal && std::tan(th) >= mu / (r.condim - 1)) {
+      // Each edge row carries f/(2(condim − 1)) ± f_t/(2μ): one unloads at
+      // f_t = μ·f/(condim − 1), and the solver leaves its quadratic zone.
+      r.creep_note = "tanθ ≥ μ/(condim − 1) = " + g(mu / (r.condim - 1)) +
+                     ": an edge of the pyramidal cone unloads; faster than the viscous creep "
+                     "(slides at tanθ ≥ μ)";
     } else if (!std::isfinite(r.load)) {
       r.creep_note = "no static load known (not in contact now)";
     } else if (!(r.load > 0.0)) {

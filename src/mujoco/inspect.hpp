@@ -37,7 +37,10 @@
 //   steady creep (qacc = 0) a contact carries impratio·B·d·v/((1 − d)·Â)
 //   (elliptic; the pyramidal cone's edge rows give the same divided by 1 + μ²);
 //   with the tangential load f·sinθ: v = f·sinθ·(1 − d)·Â·(1 + μ²)/(impratio·B·d)
-//   (no (1 + μ²) for the elliptic cone), d at the depth under f·cosθ.
+//   (no (1 + μ²) for the elliptic cone), d at the depth under f·cosθ. The
+//   solver stays in its quadratic zone (where this holds) while tanθ < μ
+//   for the elliptic cone, and while no edge row unloads for the pyramidal
+//   one, each carrying f/(2(condim − 1)) ± f·sinθ/(2μ): tanθ < μ/(condim − 1).
 #pragma once
 
 #include <array>
