@@ -637,10 +637,33 @@ std::string format_inspect_text(const InspectReport& rep) {
       << "; static loads: normal forces holding the model against gravity at rest"
       << (rep.balanced ? "" : " (least squares: they do not balance it)") << "\n";
   }
+  // A contact whose text is that of the one before (but for its index), as
+  // a box's corners on a plane: one line naming them.
+  std::string previous_body;
+  int first = -1;
+  std::vector<int> same;
+  auto flush = [&] {
+    if (same.empty()) return;
+    o << "\ncontact" << (same.size() > 1 ? "s " : " ");
+    for (size_t i = 0; i < same.size(); ++i) o << (i ? ", " : "") << same[i];
+    o << ": the same as contact " << first << " (to the digits printed)\n";
+    same.clear();
+  };
   for (const InspectRow& r : rep.contacts) {
-    o << "\n";
-    text_row(o, rep, r);
+    std::ostringstream row;
+    text_row(row, rep, r);
+    const std::string text = row.str();
+    const std::string body = text.substr(text.find(':'));
+    if (body == previous_body) {
+      same.push_back(r.contact);
+      continue;
+    }
+    flush();
+    previous_body = body;
+    first = r.contact;
+    o << "\n" << text;
   }
+  flush();
   if (rep.pairs_listed) {
     o << "\n"
       << rep.pairs.size() << " geom pair" << (rep.pairs.size() == 1 ? "" : "s")

@@ -620,6 +620,11 @@ TEST_F(Inspect, CliNamesABadKeyOrSlopeAndItsRange) {
   EXPECT_EQ(slope.status, 2);
   EXPECT_NE(slope.err.find("--slope 95: must be in [0, 90) degrees"), std::string::npos)
       << slope.err;
+  // The text names identical contacts once; the JSON lists each.
+  const Run text = run("inspect box.xml");
+  EXPECT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("\ncontacts 1, 2, 3: the same as contact 0"), std::string::npos)
+      << text.out;
   const Run ok = run("inspect box.xml --slope 10 --json");
   EXPECT_EQ(ok.status, 0) << ok.err;
   EXPECT_NE(ok.out.find("\"creep\": "), std::string::npos);
