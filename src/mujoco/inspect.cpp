@@ -265,6 +265,57 @@ void order_by_type(const mjModel* m, int& g1, int& g2) {
   if (m->geom_type[g1] > m->geom_type[g2]) std::swap(g1, g2);
 }
 
+// The closest points of a geom pair not in contact: MuJoCo's collision on a
+// copy of the model in which only this pair collides, with a margin that
+// reaches it (the centres' distance and both bounding radii), the override
+// flag off; the contacts of least distance (a capsule parallel to a plane
+// has one at each end).
+struct ClosestPoints {
+  std::array<double, 3> pos{}, normal{};
+  double dist = 0.0;
+};
+std::vector<ClosestPoints> closest_points(const mjModel* m, const mjData* d, int ipair, int g1,
+                                          int g2) {
+  const ModelPtr copy(mj_copyModel(nullptr, m));
+  if (!copy) return {};
+  mjModel* c = copy.get();
+  double between[3];
+  mju_sub3(between, d->geom_xpos + 3 * static_cast<std::ptrdiff_t>(g1),
+           d->geom_xpos + 3 * static_cast<std::ptrdiff_t>(g2));
+  const double reach = mju_norm3(between) + m->geom_rbound[g1] + m->geom_rbound[g2] + 1.0;
+  c->opt.enableflags &= ~mjENBL_OVERRIDE;
+  if (ipair >= 0) {
+    for (int gi = 0; gi < c->ngeom; ++gi) c->geom_contype[gi] = c->geom_conaffinity[gi] = 0;
+    c->pair_margin[ipair] = reach;
+  } else {
+    for (int gi = 0; gi < c->ngeom; ++gi)
+      if (gi != g1 && gi != g2) c->geom_contype[gi] = c->geom_conaffinity[gi] = 0;
+    c->npair = 0;
+    c->geom_margin[g1] = c->geom_margin[g2] = reach;
+  }
+  const DataPtr probe = make_data(c);
+  mju_copy(probe->qpos, d->qpos, m->nq);
+  mj_forward(c, probe.get());
+  std::vector<ClosestPoints> all;
+  double least = INFINITY;
+  for (int i = 0; i < probe->ncon; ++i) {
+    const mjContact& con = probe->contact[i];
+    if (!((con.geom1 == g1 && con.geom2 == g2) || (con.geom1 == g2 && con.geom2 == g1))) continue;
+    ClosestPoints p;
+    for (size_t k = 0; k < 3; ++k) {
+      p.pos[k] = con.pos[k];
+      p.normal[k] = con.frame[k];
+    }
+    p.dist = con.dist;
+    least = std::min(least, p.dist);
+    all.push_back(p);
+  }
+  std::vector<ClosestPoints> out;
+  for (const ClosestPoints& p : all)
+    if (p.dist <= least + 1e-9 * std::max(1.0, std::abs(least))) out.push_back(p);
+  return out;
+}
+
 }  // namespace
 
 double kelvin_voigt_restitution(double zeta) {
@@ -414,6 +465,23 @@ InspectReport inspect(const InspectOptions& options) {
           r.A_measured = true;
           r.load = c.load;
           r.dist = c.dist;
+          r.pos = c.pos;
+          r.normal = c.normal;
+        }
+      }
+      if (r.contacts_now == 0) {
+        std::vector<std::string> ignored;  // the probe's own warnings (nconmax) are not the model's
+        WarningCapture quiet(ignored);
+        // Of equally close points, the one the joints move most easily (the largest A).
+        for (const ClosestPoints& near : closest_points(m, d, ipair, g1, g2)) {
+          const double a =
+              inverse_mass(m, d, normal_jacobian(m, d, r.body1, r.body2, near.pos, near.normal));
+          if (r.closest && !(a > r.A)) continue;
+          r.A = a;
+          r.A_measured = r.closest = true;
+          r.dist = near.dist;
+          r.pos = near.pos;
+          r.normal = near.normal;
         }
       }
       evaluate(ctx, r, rep.warnings, label_of(r));
@@ -545,8 +613,10 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
   o << "  K = " << g(r.K) << " 1/s², B = " << g(r.B) << " 1/s; impedance d = " << g(r.d_rest)
     << " at rest, " << g(r.dmax) << " max\n";
   o << "  A = " << g(r.A) << " 1/kg (effective mass " << g(1.0 / r.A) << " kg"
-    << (r.A_measured ? "" : "; not in contact: A = Â assumed") << "), Â = " << g(r.inv_weight)
-    << " 1/kg";
+    << (r.closest      ? "; at the closest points, " + g(r.dist) + " m apart"
+        : r.A_measured ? std::string()
+                       : std::string("; no contact point: A = Â assumed"))
+    << "), Â = " << g(r.inv_weight) << " 1/kg";
   if (r.phi != 1.0)
     o << ", the normal sees Â·φ = " << g(r.normal_weight) << " (φ = " << g(r.phi) << ")";
   o << "\n";
@@ -597,10 +667,12 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
     << ", \"geom1\": " << json_string(r.geom1_name) << ", \"geom2\": " << json_string(r.geom2_name)
     << ", \"source\": " << json_string(r.source);
   if (!r.active) o << ", \"contacts_now\": " << r.contacts_now;
-  o << ",\n     \"dist\": " << (r.active ? jn(r.dist) : "null")
-    << ", \"pos\": " << (r.active ? json_array(r.pos.data(), 3) : "null")
-    << ", \"normal\": " << (r.active ? json_array(r.normal.data(), 3) : "null")
-    << ", \"condim\": " << r.condim << ", \"friction\": " << json_array(r.friction.data(), 5)
+  const bool point = r.active || r.contacts_now > 0 || r.closest;
+  o << ",\n     \"dist\": " << (point ? jn(r.dist) : "null")
+    << ", \"pos\": " << (point ? json_array(r.pos.data(), 3) : "null")
+    << ", \"normal\": " << (point ? json_array(r.normal.data(), 3) : "null")
+    << ", \"closest_points\": " << (r.closest ? "true" : "false") << ", \"condim\": " << r.condim
+    << ", \"friction\": " << json_array(r.friction.data(), 5)
     << ",\n     \"solref\": " << json_array(r.solref.data(), 2)
     << ", \"solimp\": " << json_array(r.solimp.data(), 5)
     << ", \"refsafe_changes\": " << (r.refsafe_changes ? "true" : "false")

@@ -17,6 +17,9 @@
 //   K = 1/(d_max²·tc²·dr²), B = 2/(d_max·tc) (standard) or
 //   K = −solref[0]/d_max², B = −solref[1]/d_max (direct), mj_makeImpedance;
 //   A: the contact's true inverse mass, n·J·M⁻¹·Jᵀ·n (mj_jac, mj_solveM);
+//   for a pair not in contact, at its closest points (MuJoCo's own collision
+//   function run on a copy of the model with the pair's margin raised to
+//   reach it);
 //   Â: what MuJoCo's regulariser uses (efc_diagApprox: body_invweight0 of
 //   both bodies; with a pyramidal cone and friction the normal sees
 //   Â·μ²(1 + μ²)/((condim − 1)·impratio), mujoco/solref_tool.hpp);
@@ -73,18 +76,19 @@ struct InspectRow {
   double timeconst_used = 0.0;  // standard form: after refsafe; 0 for the direct form
   bool refsafe_changes = false;
   double K = 0.0, B = 0.0;
-  double dmax = 0.0;                       // solimp[1] after MuJoCo's clamps
-  double d_now = 0.0;                      // impedance at dist
-  double d_rest = 0.0;                     // impedance at the static penetration
-  double A = 0.0;                          // true inverse mass at the contact, 1/kg
-  bool A_measured = false;                 // false (a pair not in contact): A = Â assumed
-  double inv_weight = 0.0;                 // Â: body_invweight0 of both bodies
-  double normal_weight = 0.0;              // Â the normal row sees (pyramidal: ·φ)
-  double phi = 1.0;                        // normal_weight / inv_weight
-  double load = 0.0;                       // static normal load, N (NaN: not known)
-  double penetration = 0.0;                // static penetration, m (NaN: not known)
-  double k = 0.0, c = 0.0;                 // N/m, N·s/m at d_rest
-  double omega = 0.0, zeta = 0.0;          // at d_rest
+  double dmax = 0.0;               // solimp[1] after MuJoCo's clamps
+  double d_now = 0.0;              // impedance at dist
+  double d_rest = 0.0;             // impedance at the static penetration
+  double A = 0.0;                  // true inverse mass at the contact, 1/kg
+  bool A_measured = false;         // false: no contact point found, A = Â assumed
+  bool closest = false;            // a pair not in contact: A at its closest points (dist > 0)
+  double inv_weight = 0.0;         // Â: body_invweight0 of both bodies
+  double normal_weight = 0.0;      // Â the normal row sees (pyramidal: ·φ)
+  double phi = 1.0;                // normal_weight / inv_weight
+  double load = 0.0;               // static normal load, N (NaN: not known)
+  double penetration = 0.0;        // static penetration, m (NaN: not known)
+  double k = 0.0, c = 0.0;         // N/m, N·s/m at d_rest
+  double omega = 0.0, zeta = 0.0;  // at d_rest
   double omega_max = 0.0, zeta_max = 0.0;  // at d_max
   double omega_dt = 0.0, limit = 0.0;      // ω·Δt at d_max and the integrator's limit
   double restitution = 0.0;

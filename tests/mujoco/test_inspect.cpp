@@ -422,6 +422,26 @@ TEST_F(Inspect, ArmEffectiveMassIsWhatAForceAtTheTipMeasures) {
   EXPECT_NEAR(measured, r.A, 1e-8 * r.A);
 }
 
+TEST_F(Inspect, PairNotInContactGetsItsAAtTheClosestPoints) {
+  // At qpos0 the tip is 1 mm from the wall: MuJoCo's collision with a margin
+  // finds the closest points, and A there is the contact's A at the key
+  // where it touches (the shoulder turned by 0.0022 rad: measured 7e-6
+  // relative apart; bound 1e-4). Â would be 6.7× off.
+  const mj::InspectReport apart = report(kArmModel, "", std::nullopt, true);
+  const mj::InspectReport touching = report(kArmModel, "touch");
+  ASSERT_EQ(touching.contacts.size(), 1u);
+  bool found = false;
+  for (const mj::InspectRow& p : apart.pairs) {
+    if (p.geom2_name != "tip") continue;
+    found = true;
+    EXPECT_EQ(p.contacts_now, 0);
+    EXPECT_TRUE(p.closest);
+    EXPECT_NEAR(p.dist, 0.001, 1e-9);
+    EXPECT_NEAR(p.A, touching.contacts[0].A, 1e-4 * p.A);
+  }
+  EXPECT_TRUE(found);
+}
+
 TEST_F(Inspect, ArmReboundsWithThePrintedRestitution) {
   const mj::InspectReport rep = report(kArmModel, "touch");
   ASSERT_EQ(rep.contacts.size(), 1u);
