@@ -563,30 +563,39 @@ TEST_F(Inspect, WarnsWhenOmegaDtExceedsTheIntegratorsLimit) {
 
 TEST_F(Inspect, MujocoTurnsUnstableWhereThePrintedOmegaDtLimitIs) {
   // The ball's pair (flat d, ζ = 0.1, ω = 100 /s) resting on the floor, 1e-6 m
-  // off its rest depth, at timesteps of 0.9× and 1.1× the printed limit.
-  const mj::InspectReport rep = report(kBallModel);
-  ASSERT_EQ(rep.contacts.size(), 1u);
-  const mj::InspectRow& r = rep.contacts[0];
-  const double dt_limit = r.limit / r.omega_max;
-  auto growth = [&](double dt) {
-    Sim s(kBallModel);
-    s.m()->opt.timestep = dt;
-    s.d()->qpos[2] = 0.1 - r.penetration - 1e-6;
-    mj_forward(s.m(), s.d());
-    double largest = 0.0;
-    for (int i = 0; i < 400; ++i) {
-      mj_step(s.m(), s.d());
-      if (i >= 300) largest = std::max(largest, std::abs(s.d()->qpos[2] - (0.1 - r.penetration)));
-    }
-    return largest / 1e-6;
-  };
-  // Semi-implicit Euler's update at ζ = 0.1 has |λ| = 0.82 at 0.9× the
-  // limit and 2.07 at 1.1×: over steps 300–400 the offset is ~1e-26 of its
-  // start, or the ball has long left the floor. Measured 1.4e-11 (rounding
-  // of the rest position) and 1.2e7 (it bounces); bounds ×0.5 and ×2.
-  const double stable = growth(0.9 * dt_limit), unstable = growth(1.1 * dt_limit);
-  EXPECT_LT(stable, 0.5) << "dt " << 0.9 * dt_limit;
-  EXPECT_GT(unstable, 2.0) << "dt " << 1.1 * dt_limit;
+  // off its rest depth, at timesteps of 0.9× and 1.1× the printed limit, under
+  // each of MuJoCo's integrators.
+  for (const std::string integrator : {"Euler", "RK4", "implicit"}) {
+    std::string xml = kBallModel;
+    xml.replace(xml.find("<option timestep=\"0.0001\"/>"), 28,
+                "<option timestep=\"0.0001\" integrator=\"" + integrator + "\"/>");
+    const mj::InspectReport rep = report(xml);
+    EXPECT_EQ(rep.integrator, integrator);
+    ASSERT_EQ(rep.contacts.size(), 1u);
+    const mj::InspectRow& r = rep.contacts[0];
+    const double dt_limit = r.limit / r.omega_max;
+    auto growth = [&](double dt) {
+      Sim s(xml);
+      s.m()->opt.timestep = dt;
+      s.d()->qpos[2] = 0.1 - r.penetration - 1e-6;
+      mj_forward(s.m(), s.d());
+      double largest = 0.0;
+      for (int i = 0; i < 400; ++i) {
+        mj_step(s.m(), s.d());
+        if (i >= 300) largest = std::max(largest, std::abs(s.d()->qpos[2] - (0.1 - r.penetration)));
+      }
+      return largest / 1e-6;
+    };
+    // Semi-implicit Euler's update at ζ = 0.1 has |λ| = 0.82 at 0.9× its
+    // limit (1.81) and 2.07 at 1.1×: over steps 300–400 the offset is ~1e-26
+    // of its start, or the ball has long left the floor. Measured 1.4e-11
+    // (rounding of the rest position) and 1.2e7 (it bounces) for Euler, 1.4e-11
+    // and 3.6e7 for RK4 (limit 2.95), 0 and 7.5e6 for implicit (Euler's limit:
+    // MuJoCo's implicit integrator treats contacts explicitly); bounds ×0.5, ×2.
+    const double stable = growth(0.9 * dt_limit), unstable = growth(1.1 * dt_limit);
+    EXPECT_LT(stable, 0.5) << "dt " << 0.9 * dt_limit;
+    EXPECT_GT(unstable, 2.0) << "dt " << 1.1 * dt_limit;
+  }
 }
 
 TEST_F(Inspect, WarnsForAPyramidalConeWithHighFrictionAndForImpratioBelowOne) {
