@@ -644,6 +644,31 @@ TEST_F(Inspect, WarnsWhenABodysEffectiveMassDiffersTenfoldAcrossItsContacts) {
   EXPECT_FALSE(report(kBoxModel).warnings.size());
 }
 
+TEST_F(Inspect, SaysSoWhenTheNormalForcesCannotHoldTheModel) {
+  // A ball on a plane tilted by 20° about y: without friction nothing holds it
+  // along the slope; the least-squares load is the weight's normal part.
+  const char* xml = R"(<mujoco>
+  <worldbody>
+    <geom name="slope" type="plane" size="2 2 0.1" euler="0 20 0"/>
+    <body name="ball" pos="0 0 0.0999">
+      <freejoint/>
+      <geom name="ball" type="sphere" size="0.1" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+  const mj::InspectReport rep = report(xml);
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  EXPECT_FALSE(rep.balanced);
+  EXPECT_NEAR(rep.residual, std::sin(20.0 * kPiInspect / 180.0), 1e-9);
+  EXPECT_NEAR(rep.contacts[0].load, 9.81 * std::cos(20.0 * kPiInspect / 180.0), 1e-9);
+  bool found = false;
+  for (const std::string& w : rep.warnings)
+    found |= w.find("normal forces alone do not hold the model") != std::string::npos;
+  EXPECT_TRUE(found);
+  EXPECT_TRUE(report(kBoxModel).balanced);
+}
+
 TEST_F(Inspect, CliPrintsMujocosMessageOnOneLineForAModelItCannotLoad) {
   write("bad.xml", "<mujoco><worldbody><geom type=\"sphere\" size=\"-1\"/></wordbody></mujoco>\n");
   const Run r = run("inspect bad.xml");
