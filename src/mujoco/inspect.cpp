@@ -183,6 +183,10 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
   r.omega_dt = r.omega_max * m->opt.timestep;
   r.limit = stability_limit(ctx.integrator, r.zeta_max);
   r.restitution = kelvin_voigt_restitution(r.zeta);
+  if (!(r.A > 0.0)) {  // the joints cannot move the contact along its normal
+    r.zeta = r.zeta_max = r.limit = r.restitution = kNaN;
+    r.omega = r.omega_max = r.omega_dt = 0.0;
+  }
 
   r.creep = kNaN;
   r.creep_note.clear();
@@ -521,7 +525,7 @@ InspectReport inspect(const InspectOptions& options) {
   auto warn_rows = [&](const std::vector<InspectRow>& list) {
     for (const InspectRow& r : list) {
       const std::string label = label_of(r);
-      if (!(r.omega_dt < r.limit))
+      if (r.A > 0.0 && !(r.omega_dt < r.limit))
         rep.warnings.push_back(label + ": ω·Δt = " + g(r.omega_dt) + " at d_max exceeds " +
                                rep.integrator + "'s limit " + g(r.limit) +
                                " (ζ = " + g(r.zeta_max) + "): unstable; a timestep below " +
@@ -620,11 +624,15 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
   if (r.phi != 1.0)
     o << ", the normal sees Â·φ = " << g(r.normal_weight) << " (φ = " << g(r.phi) << ")";
   o << "\n";
-  o << "  k = " << g(r.k) << " N/m, c = " << g(r.c) << " N·s/m; ω = " << g(r.omega)
-    << " rad/s, ζ = " << g(r.zeta) << "; restitution " << g(r.restitution) << "\n";
-  o << "  ω·Δt = " << g(r.omega_dt) << " at d_max (ω = " << g(r.omega_max)
-    << ", ζ = " << g(r.zeta_max) << "): " << rep.integrator << "'s limit " << g(r.limit) << " ("
-    << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
+  if (!(r.A > 0.0)) {
+    o << "  the joints cannot move this contact along its normal (A = 0): no contact dynamics\n";
+  } else {
+    o << "  k = " << g(r.k) << " N/m, c = " << g(r.c) << " N·s/m; ω = " << g(r.omega)
+      << " rad/s, ζ = " << g(r.zeta) << "; restitution " << g(r.restitution) << "\n";
+    o << "  ω·Δt = " << g(r.omega_dt) << " at d_max (ω = " << g(r.omega_max)
+      << ", ζ = " << g(r.zeta_max) << "): " << rep.integrator << "'s limit " << g(r.limit) << " ("
+      << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
+  }
   if (std::isfinite(r.load))
     o << "  static load " << g(r.load) << " N, static penetration " << g(r.penetration) << " m\n";
   else

@@ -669,6 +669,26 @@ TEST_F(Inspect, SaysSoWhenTheNormalForcesCannotHoldTheModel) {
   EXPECT_TRUE(report(kBoxModel).balanced);
 }
 
+TEST_F(Inspect, AContactItsJointsCannotMoveAlongTheNormalHasNoDynamics) {
+  // A sphere on a hinge through its centre touching the floor: n·J = 0.
+  const char* xml = R"(<mujoco>
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <body name="wheel" pos="0 0 0.0999">
+      <joint type="hinge" axis="0 1 0"/>
+      <geom name="wheel" type="sphere" size="0.1" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+  const mj::InspectReport rep = report(xml);
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  EXPECT_NEAR(rep.contacts[0].A, 0.0, 1e-15);
+  EXPECT_TRUE(std::isnan(rep.contacts[0].zeta));
+  EXPECT_TRUE(rep.warnings.empty()) << rep.warnings[0];  // no ω·Δt warning from a NaN limit
+  EXPECT_NE(mj::format_inspect_text(rep).find("no contact dynamics"), std::string::npos);
+}
+
 TEST_F(Inspect, CliPrintsMujocosMessageOnOneLineForAModelItCannotLoad) {
   write("bad.xml", "<mujoco><worldbody><geom type=\"sphere\" size=\"-1\"/></wordbody></mujoco>\n");
   const Run r = run("inspect bad.xml");
