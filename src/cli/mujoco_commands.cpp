@@ -1,7 +1,6 @@
 // The subcommands that need MuJoCo: generate, compare, report, solref, atlas,
-// inspect. CMake builds
-// this file when MuJoCo is found and no_mujoco_commands.cpp otherwise, so
-// main.cpp has no #ifdef.
+// inspect. CMake builds this file when MuJoCo is found and
+// no_mujoco_commands.cpp otherwise, so main.cpp has no #ifdef.
 #include "cli/common.hpp"
 
 namespace contact2d::cli {
