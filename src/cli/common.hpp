@@ -123,6 +123,7 @@ Command add_stability(CLI::App& app);  // stability map (src/cli/cmd_stability.c
 Command add_report(CLI::App& app);     // validation/report/ (src/cli/cmd_report.cpp; with MuJoCo)
 Command add_solref(CLI::App& app);     // MuJoCo numbers for your own model (cmd_solref.cpp; MuJoCo)
 Command add_atlas(CLI::App& app);  // fidelity atlas over a parameter space (cmd_atlas.cpp; MuJoCo)
+Command add_inspect(CLI::App& app);  // any MJCF model's contacts (cmd_inspect.cpp; MuJoCo)
 // generate, compare and report when built with MuJoCo, none otherwise
 // (src/cli/mujoco_commands.cpp or no_mujoco_commands.cpp, chosen by CMake).
 std::vector<Command> add_mujoco_commands(CLI::App& app);

@@ -1,4 +1,4 @@
-// Built without MuJoCo: no generate, compare, report, solref or atlas subcommand (see
+// Built without MuJoCo: no generate, compare, report, solref, atlas or inspect subcommand (see
 // mujoco_commands.cpp).
 #include "cli/common.hpp"
 

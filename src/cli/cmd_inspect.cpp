@@ -1,0 +1,52 @@
+// contact2d inspect MODEL.xml [--key NAME] [--pairs] [--slope DEG] [--json]
+// What the contacts of a user's own MJCF model are in physical units, as
+// MuJoCo 2.2 resolves and integrates them (mujoco/inspect.hpp).
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "cli/common.hpp"
+#include "mujoco/inspect.hpp"
+
+namespace contact2d::cli {
+namespace {
+
+struct InspectCliOptions {
+  contact2d::mujoco::InspectOptions inspect;
+  std::optional<double> slope;
+  bool json = false;
+};
+
+int inspect(const InspectCliOptions& options) {
+  namespace mj = contact2d::mujoco;
+  mj::InspectOptions in = options.inspect;
+  in.slope = options.slope;
+  const mj::InspectReport report = mj::inspect(in);  // throws InputError: exit 2
+  if (!report.load_warning.empty())
+    std::cerr << "contact2d: note: MuJoCo warns while loading " << in.path << ": "
+              << report.load_warning << "\n";
+  std::cout << (options.json ? mj::format_inspect_json(report) : mj::format_inspect_text(report));
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_inspect(CLI::App& app) {
+  auto options = std::make_shared<InspectCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "inspect",
+      "Your own MJCF model's contacts in physical units: solref/solimp as MuJoCo resolves them, "
+      "k, c, ω, ζ, stability, rest depth, restitution, creep");
+  cmd->add_option("model", options->inspect.path, "A MuJoCo MJCF file")->required();
+  cmd->add_option("--key", options->inspect.key,
+                  "Keyframe to inspect the model at (default: qpos0)");
+  cmd->add_flag("--pairs", options->inspect.pairs,
+                "Also list every geom pair that can collide (explicit <pair>s and default "
+                "collisions)");
+  cmd->add_option("--slope", options->slope,
+                  "Slope in degrees, [0, 90): the speed each contact creeps at under friction");
+  cmd->add_flag("--json", options->json, "Print JSON instead of text");
+  return {cmd, [options] { return inspect(*options); }};
+}
+
+}  // namespace contact2d::cli

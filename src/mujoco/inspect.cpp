@@ -1,0 +1,797 @@
+// `contact2d inspect` (mujoco/inspect.hpp).
+#include "mujoco/inspect.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "core/format.hpp"
+#include "core/input_error.hpp"
+#include "core/integrators.hpp"
+#include "mujoco/mjcf.hpp"
+#include "mujoco/model.hpp"
+#include "mujoco/solref_tool.hpp"
+
+namespace contact2d::mujoco {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = 3.14159265358979323846;
+
+std::string g(double v) { return format_number(v, 6); }
+
+std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
+}
+
+std::string name_of(const mjModel* m, int type, int id, const char* what) {
+  const char* name = mj_id2name(m, type, id);
+  if (name && name[0]) return name;
+  if (type == mjOBJ_BODY && id == 0) return "world";
+  return std::string(what) + " #" + std::to_string(id);
+}
+
+std::string list_text(const double* v, int n) {
+  std::string out;
+  for (int i = 0; i < n; ++i) out += (i ? " " : "") + g(v[i]);
+  return out;
+}
+
+// The contact's normal row of the Jacobian: n·(J_p(body2) − J_p(body1)) at pos.
+std::vector<double> normal_jacobian(const mjModel* m, const mjData* d, int body1, int body2,
+                                    const std::array<double, 3>& pos,
+                                    const std::array<double, 3>& normal) {
+  const size_t nv = static_cast<size_t>(m->nv);
+  std::vector<double> j1(3 * nv), j2(3 * nv), jr(3 * nv), row(nv, 0.0);
+  mj_jac(m, d, j1.data(), jr.data(), pos.data(), body1);
+  mj_jac(m, d, j2.data(), jr.data(), pos.data(), body2);
+  for (size_t k = 0; k < 3; ++k)
+    for (size_t i = 0; i < nv; ++i) row[i] += normal[k] * (j2[k * nv + i] - j1[k * nv + i]);
+  return row;
+}
+
+// A = J·M⁻¹·Jᵀ for one row (mj_solveM on the factor mj_forward left).
+double inverse_mass(const mjModel* m, mjData* d, const std::vector<double>& row) {
+  std::vector<double> x(row.size());
+  mj_solveM(m, d, x.data(), row.data(), 1);
+  double a = 0.0;
+  for (size_t i = 0; i < row.size(); ++i) a += row[i] * x[i];
+  return a;
+}
+
+// Element `id` of a model array of `width` numbers per element.
+const double* element(const double* base, int id, int width) {
+  return base + static_cast<std::ptrdiff_t>(id) * width;
+}
+
+// The solref, solimp, friction and condim mj_collideGeoms gives a geom pair
+// (ipair ≥ 0: that explicit <pair>), then mj_assignRef / mj_assignImp.
+void resolve_pair(const mjModel* m, int ipair, int g1, int g2, InspectRow& row) {
+  if (ipair >= 0) {
+    row.condim = m->pair_dim[ipair];
+    std::copy_n(element(m->pair_friction, ipair, 5), 5, row.friction.begin());
+    std::copy_n(element(m->pair_solref, ipair, mjNREF), mjNREF, row.solref.begin());
+    std::copy_n(element(m->pair_solimp, ipair, mjNIMP), mjNIMP, row.solimp.begin());
+  } else {
+    const int p1 = m->geom_priority[g1], p2 = m->geom_priority[g2];
+    if (p1 != p2) {
+      const int gp = p1 > p2 ? g1 : g2;
+      row.condim = m->geom_condim[gp];
+      for (size_t i = 0; i < 3; ++i) row.friction[2 * i] = element(m->geom_friction, gp, 3)[i];
+      std::copy_n(element(m->geom_solref, gp, mjNREF), mjNREF, row.solref.begin());
+      std::copy_n(element(m->geom_solimp, gp, mjNIMP), mjNIMP, row.solimp.begin());
+    } else {
+      row.condim = std::max(m->geom_condim[g1], m->geom_condim[g2]);
+      for (size_t i = 0; i < 3; ++i)
+        row.friction[2 * i] =
+            std::max(element(m->geom_friction, g1, 3)[i], element(m->geom_friction, g2, 3)[i]);
+      const double s1 = m->geom_solmix[g1], s2 = m->geom_solmix[g2];
+      double mix = 0.5;
+      if (s1 >= mjMINVAL && s2 >= mjMINVAL)
+        mix = s1 / (s1 + s2);
+      else if (s1 < mjMINVAL && s2 >= mjMINVAL)
+        mix = 0.0;
+      else if (s1 >= mjMINVAL && s2 < mjMINVAL)
+        mix = 1.0;
+      const double* r1 = element(m->geom_solref, g1, mjNREF);
+      const double* r2 = element(m->geom_solref, g2, mjNREF);
+      const bool standard = r1[0] > 0.0 && r2[0] > 0.0;
+      for (int i = 0; i < mjNREF; ++i)
+        row.solref[static_cast<size_t>(i)] =
+            standard ? mix * r1[i] + (1.0 - mix) * r2[i] : std::min(r1[i], r2[i]);
+      const double* i1 = element(m->geom_solimp, g1, mjNIMP);
+      const double* i2 = element(m->geom_solimp, g2, mjNIMP);
+      for (int i = 0; i < mjNIMP; ++i)
+        row.solimp[static_cast<size_t>(i)] = mix * i1[i] + (1.0 - mix) * i2[i];
+    }
+    row.friction[1] = row.friction[0];
+    row.friction[3] = row.friction[4];
+  }
+  for (double& f : row.friction) f = std::max(mjMINMU, f);
+  if (m->opt.enableflags & mjENBL_OVERRIDE) {
+    for (int i = 0; i < mjNREF; ++i) row.solref[static_cast<size_t>(i)] = m->opt.o_solref[i];
+    for (int i = 0; i < mjNIMP; ++i) row.solimp[static_cast<size_t>(i)] = m->opt.o_solimp[i];
+  }
+}
+
+struct Context {
+  const mjModel* m;
+  mjData* d;
+  Integrator integrator;
+  bool pyramidal;
+  std::optional<double> slope;
+};
+
+// Everything that follows from solref, solimp, condim, friction, A, Â and the load.
+void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warnings,
+              const std::string& label) {
+  const mjModel* m = ctx.m;
+  std::array<double, 2> ref = r.solref;
+  if ((ref[0] > 0.0) != (ref[1] > 0.0)) {
+    warnings.push_back(label + ": solref " + g(ref[0]) + " " + g(ref[1]) +
+                       " mixes the standard and direct forms: MuJoCo replaces it with its "
+                       "default 0.02 1");
+    ref = {0.02, 1.0};
+  }
+  r.timeconst_used = 0.0;
+  r.refsafe_changes = false;
+  if (ref[0] > 0.0) {
+    if (!(m->opt.disableflags & mjDSBL_REFSAFE) && ref[0] < 2.0 * m->opt.timestep) {
+      r.refsafe_changes = true;
+      ref[0] = 2.0 * m->opt.timestep;
+    }
+    r.timeconst_used = ref[0];
+  }
+  r.dmax = std::clamp(r.solimp[1], mjMINIMP, mjMAXIMP);
+  r.K = ref[0] > 0.0 ? 1.0 / std::max(mjMINVAL, r.dmax * r.dmax * ref[0] * ref[0] * ref[1] * ref[1])
+                     : -ref[0] / std::max(mjMINVAL, r.dmax * r.dmax);
+  r.B = ref[1] > 0.0 ? 2.0 / std::max(mjMINVAL, r.dmax * ref[0])
+                     : -ref[1] / std::max(mjMINVAL, r.dmax);
+  r.inv_weight =
+      element(m->body_invweight0, r.body1, 2)[0] + element(m->body_invweight0, r.body2, 2)[0];
+  const double mu = r.friction[0];
+  r.phi = 1.0;
+  if (ctx.pyramidal && r.condim > 1)
+    r.phi = mu * mu * (1.0 + mu * mu) / ((r.condim - 1) * std::max(mjMINVAL, m->opt.impratio));
+  r.normal_weight = r.inv_weight * r.phi;
+  if (!r.A_measured) r.A = r.inv_weight;
+  r.d_now = mujoco_impedance(r.solimp, r.dist);
+  if (std::isfinite(r.load)) {
+    r.penetration = static_penetration(r.solimp, r.K, r.normal_weight, r.load);
+    r.d_rest = mujoco_impedance(r.solimp, -r.penetration);
+  } else {
+    r.penetration = kNaN;
+    r.d_rest = mujoco_impedance(r.solimp, 0.0);
+  }
+  auto regime = [&](double dd, double& k, double& c, double& omega, double& zeta) {
+    const double denominator = dd * r.A + (1.0 - dd) * r.normal_weight;
+    k = dd * dd * r.K / denominator;
+    c = dd * r.B / denominator;
+    omega = std::sqrt(r.A * k);
+    zeta = r.A * c / (2.0 * omega);
+  };
+  regime(r.d_rest, r.k, r.c, r.omega, r.zeta);
+  double k_max = 0.0, c_max = 0.0;
+  regime(r.dmax, k_max, c_max, r.omega_max, r.zeta_max);
+  r.omega_dt = r.omega_max * m->opt.timestep;
+  r.limit = stability_limit(ctx.integrator, r.zeta_max);
+  r.restitution = kelvin_voigt_restitution(r.zeta);
+  if (!(r.A > 0.0)) {  // the joints cannot move the contact along its normal
+    r.zeta = r.zeta_max = r.limit = r.restitution = kNaN;
+    r.omega = r.omega_max = r.omega_dt = 0.0;
+  }
+
+  r.creep = kNaN;
+  r.creep_note.clear();
+  if (ctx.slope) {
+    const double th = *ctx.slope * kPi / 180.0;
+    if (r.condim == 1) {
+      r.creep_note = "condim 1, no friction: slides";
+    } else if (std::tan(th) >= mu) {
+      r.creep_note = "tanθ ≥ μ = " + g(mu) + ": slides (Coulomb)";
+    } else if (ctx.pyramidal && std::tan(th) >= mu / (r.condim - 1)) {
+      // Each edge row carries f/(2(condim − 1)) ± f_t/(2μ): one unloads at
+      // f_t = μ·f/(condim − 1), and the solver leaves its quadratic zone.
+      r.creep_note = "tanθ ≥ μ/(condim − 1) = " + g(mu / (r.condim - 1)) +
+                     ": an edge of the pyramidal cone unloads; faster than the viscous creep "
+                     "(slides at tanθ ≥ μ)";
+    } else if (!std::isfinite(r.load)) {
+      r.creep_note = "no static load known (not in contact now)";
+    } else if (!(r.load > 0.0)) {
+      r.creep_note = "carries no load at rest";
+    } else if (th == 0.0) {
+      r.creep = 0.0;
+    } else {
+      const double p = static_penetration(r.solimp, r.K, r.normal_weight, r.load * std::cos(th));
+      const double dd = mujoco_impedance(r.solimp, -p);
+      const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
+      r.creep = r.load * std::sin(th) * (1.0 - dd) * r.inv_weight * shape /
+                (std::max(mjMINVAL, m->opt.impratio) * r.B * dd);
+    }
+  }
+}
+
+Integrator integrator_of(const mjModel* m) {
+  return m->opt.integrator == mjINT_RK4 ? Integrator::RK4 : Integrator::SemiImplicitEuler;
+}
+
+std::string mj_integrator_name(const mjModel* m) {
+  switch (m->opt.integrator) {
+    case mjINT_EULER: return "Euler";
+    case mjINT_RK4: return "RK4";
+    case mjINT_IMPLICIT: return "implicit";
+    default: return "integrator " + std::to_string(m->opt.integrator);
+  }
+}
+
+std::string label_of(const InspectRow& r) {
+  return (r.active ? "contact " + std::to_string(r.contact) : std::string("pair")) + " (" +
+         r.geom1_name + " – " + r.geom2_name + ")";
+}
+
+void fill_names(const mjModel* m, InspectRow& r) {
+  r.body1 = m->geom_bodyid[r.geom1];
+  r.body2 = m->geom_bodyid[r.geom2];
+  r.geom1_name = name_of(m, mjOBJ_GEOM, r.geom1, "geom");
+  r.geom2_name = name_of(m, mjOBJ_GEOM, r.geom2, "geom");
+  r.body1_name = name_of(m, mjOBJ_BODY, r.body1, "body");
+  r.body2_name = name_of(m, mjOBJ_BODY, r.body2, "body");
+}
+
+// Both geom types are plane or height field: mj_collision has no function.
+bool no_collision_function(const mjModel* m, int g1, int g2) {
+  auto flat = [&](int gi) {
+    return m->geom_type[gi] == mjGEOM_PLANE || m->geom_type[gi] == mjGEOM_HFIELD;
+  };
+  return flat(g1) && flat(g2);
+}
+
+// mj_contactFilter: 1 discards the pair.
+bool filtered(const mjModel* m, int g1, int g2) {
+  const int w1 = m->body_weldid[m->geom_bodyid[g1]], w2 = m->body_weldid[m->geom_bodyid[g2]];
+  const int p1 = m->body_weldid[m->body_parentid[w1]], p2 = m->body_weldid[m->body_parentid[w2]];
+  if (!(m->geom_contype[g1] & m->geom_conaffinity[g2]) &&
+      !(m->geom_contype[g2] & m->geom_conaffinity[g1]))
+    return true;
+  if (w1 == w2) return true;
+  const bool filterparent = !(m->opt.disableflags & mjDSBL_FILTERPARENT) && w1 && w2;
+  return filterparent && (w1 == p2 || w2 == p1);
+}
+
+void order_by_type(const mjModel* m, int& g1, int& g2) {
+  if (m->geom_type[g1] > m->geom_type[g2]) std::swap(g1, g2);
+}
+
+// The closest points of a geom pair not in contact: MuJoCo's collision on a
+// copy of the model in which only this pair collides, with a margin that
+// reaches it (the centres' distance and both bounding radii), the override
+// flag off; the contacts of least distance (a capsule parallel to a plane
+// has one at each end).
+struct ClosestPoints {
+  std::array<double, 3> pos{}, normal{};
+  double dist = 0.0;
+};
+std::vector<ClosestPoints> closest_points(const mjModel* m, const mjData* d, int ipair, int g1,
+                                          int g2) {
+  const ModelPtr copy(mj_copyModel(nullptr, m));
+  if (!copy) return {};
+  mjModel* c = copy.get();
+  double between[3];
+  mju_sub3(between, d->geom_xpos + 3 * static_cast<std::ptrdiff_t>(g1),
+           d->geom_xpos + 3 * static_cast<std::ptrdiff_t>(g2));
+  const double reach = mju_norm3(between) + m->geom_rbound[g1] + m->geom_rbound[g2] + 1.0;
+  c->opt.enableflags &= ~mjENBL_OVERRIDE;
+  if (ipair >= 0) {
+    for (int gi = 0; gi < c->ngeom; ++gi) c->geom_contype[gi] = c->geom_conaffinity[gi] = 0;
+    c->pair_margin[ipair] = reach;
+  } else {
+    for (int gi = 0; gi < c->ngeom; ++gi)
+      if (gi != g1 && gi != g2) c->geom_contype[gi] = c->geom_conaffinity[gi] = 0;
+    c->npair = 0;
+    c->geom_margin[g1] = c->geom_margin[g2] = reach;
+  }
+  const DataPtr probe = make_data(c);
+  mju_copy(probe->qpos, d->qpos, m->nq);
+  mj_forward(c, probe.get());
+  std::vector<ClosestPoints> all;
+  double least = INFINITY;
+  for (int i = 0; i < probe->ncon; ++i) {
+    const mjContact& con = probe->contact[i];
+    if (!((con.geom1 == g1 && con.geom2 == g2) || (con.geom1 == g2 && con.geom2 == g1))) continue;
+    ClosestPoints p;
+    for (size_t k = 0; k < 3; ++k) {
+      p.pos[k] = con.pos[k];
+      p.normal[k] = con.frame[k];
+    }
+    p.dist = con.dist;
+    least = std::min(least, p.dist);
+    all.push_back(p);
+  }
+  std::vector<ClosestPoints> out;
+  for (const ClosestPoints& p : all)
+    if (p.dist <= least + 1e-9 * std::max(1.0, std::abs(least))) out.push_back(p);
+  return out;
+}
+
+}  // namespace
+
+double kelvin_voigt_restitution(double zeta) {
+  if (!(zeta >= 0.0)) return kNaN;
+  if (std::abs(zeta - 1.0) < 1e-6) zeta = 1.0 + 1e-6;  // the critical case as its limit
+  // Time in units of 1/ω; x(0) = 0, x'(0) = 1; force ∝ x + 2ζ·x'.
+  if (zeta < 1.0) {
+    const double wd = std::sqrt(1.0 - zeta * zeta);
+    const double theta = std::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta);
+    const double tc = (kPi - theta) / wd;  // first zero of the force after t = 0
+    const double v = std::exp(-zeta * tc) * (std::cos(wd * tc) - zeta / wd * std::sin(wd * tc));
+    return -v;
+  }
+  const double s = std::sqrt(zeta * zeta - 1.0);
+  const double l1 = -zeta + s, l2 = -zeta - s;
+  const double a1 = 1.0 + 2.0 * zeta * l1, a2 = 1.0 + 2.0 * zeta * l2;
+  const double tc = std::log(a2 / a1) / (l1 - l2);
+  const double v = (l1 * std::exp(l1 * tc) - l2 * std::exp(l2 * tc)) / (l1 - l2);
+  return -v;
+}
+
+InspectReport inspect(const InspectOptions& options) {
+  if (options.slope && !(*options.slope >= 0.0 && *options.slope < 90.0))
+    throw InputError("--slope " + g(*options.slope) + ": must be in [0, 90) degrees");
+  {
+    std::ifstream file(options.path);
+    if (!file) throw InputError(options.path + ": cannot open the file");
+  }
+  InspectReport rep;
+  rep.path = options.path;
+  rep.key = options.key;
+  rep.slope = options.slope;
+  std::vector<std::string> messages;
+  WarningCapture capture(messages);
+  char error[1000] = "";
+  mjModel* raw = nullptr;
+  try {
+    raw = mj_loadXML(options.path.c_str(), nullptr, error, sizeof error);
+  } catch (const MujocoError& e) {
+    throw InputError(options.path + ": MuJoCo cannot load the model: " + one_line(e.what()));
+  }
+  if (!raw) throw InputError(options.path + ": MuJoCo cannot load the model: " + one_line(error));
+  const ModelPtr model(raw);
+  const mjModel* m = model.get();
+  rep.load_warning = one_line(error);
+  for (const std::string& w : messages)
+    rep.load_warning += (rep.load_warning.empty() ? "" : "; ") + w;
+  messages.clear();
+
+  int key = -1;
+  if (!options.key.empty()) {
+    key = mj_name2id(m, mjOBJ_KEY, options.key.c_str());
+    if (key < 0) {
+      std::string names;
+      for (int i = 0; i < m->nkey; ++i)
+        names += (names.empty() ? "" : ", ") + name_of(m, mjOBJ_KEY, i, "key");
+      throw InputError("--key " + options.key + ": no keyframe of that name in " + options.path +
+                       (m->nkey ? " (its keyframes: " + names + ")" : " (it has none)"));
+    }
+  }
+  const DataPtr data = make_data(m);
+  mjData* d = data.get();
+  if (key >= 0)
+    mj_resetDataKeyframe(m, d, key);
+  else
+    mj_resetData(m, d);
+  mj_forward(m, d);
+  // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0.
+  const DataPtr still = make_data(m);
+  mju_copy(still->qpos, d->qpos, m->nq);
+  mju_zero(still->qvel, m->nv);
+  mj_forward(m, still.get());
+
+  rep.integrator = mj_integrator_name(m);
+  rep.dt = m->opt.timestep;
+  rep.cone = m->opt.cone == mjCONE_ELLIPTIC ? "elliptic" : "pyramidal";
+  rep.impratio = m->opt.impratio;
+  for (int i = 0; i < 3; ++i) rep.gravity[static_cast<size_t>(i)] = m->opt.gravity[i];
+  rep.refsafe_enabled = !(m->opt.disableflags & mjDSBL_REFSAFE);
+  const Context ctx{m, d, integrator_of(m), m->opt.cone != mjCONE_ELLIPTIC, options.slope};
+
+  // The contacts, their normal rows and A.
+  std::vector<std::vector<double>> rows;
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& con = d->contact[i];
+    InspectRow r;
+    r.active = true;
+    r.contact = i;
+    r.geom1 = con.geom1;
+    r.geom2 = con.geom2;
+    fill_names(m, r);
+    r.source = "default collision";
+    for (int p = 0; p < m->npair; ++p) {
+      if ((m->pair_geom1[p] == con.geom1 && m->pair_geom2[p] == con.geom2) ||
+          (m->pair_geom1[p] == con.geom2 && m->pair_geom2[p] == con.geom1))
+        r.source = "explicit <pair>";
+    }
+    r.dist = con.dist - con.includemargin;
+    for (size_t k = 0; k < 3; ++k) {
+      r.pos[k] = con.pos[k];
+      r.normal[k] = con.frame[k];
+    }
+    r.condim = con.dim;
+    for (size_t k = 0; k < 5; ++k) r.friction[k] = con.friction[k];
+    for (size_t k = 0; k < 2; ++k) r.solref[k] = con.solref[k];
+    for (size_t k = 0; k < 5; ++k) r.solimp[k] = con.solimp[k];
+    rows.push_back(normal_jacobian(m, d, r.body1, r.body2, r.pos, r.normal));
+    r.A = inverse_mass(m, d, rows.back());
+    r.A_measured = true;
+    rep.contacts.push_back(r);
+  }
+
+  // Static loads: Jₙᵀ·f = qfrc_bias (qvel = 0), least squares, minimum norm.
+  const int nc = static_cast<int>(rows.size());
+  if (nc > 0) {
+    Eigen::MatrixXd jt(m->nv, nc);
+    Eigen::VectorXd b(m->nv);
+    for (int i = 0; i < m->nv; ++i) b(i) = still->qfrc_bias[i];
+    for (int c = 0; c < nc; ++c)
+      for (int i = 0; i < m->nv; ++i)
+        jt(i, c) = rows[static_cast<size_t>(c)][static_cast<size_t>(i)];
+    const Eigen::VectorXd f = jt.completeOrthogonalDecomposition().solve(b);
+    const double scale = b.norm();
+    rep.residual = scale > 0.0 ? (jt * f - b).norm() / scale : 0.0;
+    rep.balanced =
+        rep.residual < 1e-6 && f.minCoeff() >= -1e-9 * std::max(1.0, f.cwiseAbs().maxCoeff());
+    for (int c = 0; c < nc; ++c) rep.contacts[static_cast<size_t>(c)].load = std::max(0.0, f(c));
+  }
+  for (InspectRow& r : rep.contacts) evaluate(ctx, r, rep.warnings, label_of(r));
+
+  // Every geom pair that can collide.
+  if (options.pairs) {
+    rep.pairs_listed = true;
+    auto add = [&](int ipair, int g1, int g2) {
+      InspectRow r;
+      order_by_type(m, g1, g2);
+      r.geom1 = g1;
+      r.geom2 = g2;
+      fill_names(m, r);
+      r.source = ipair >= 0 ? "explicit <pair>" : "default collision";
+      resolve_pair(m, ipair, g1, g2, r);
+      r.load = kNaN;
+      for (const InspectRow& c : rep.contacts) {
+        if (!((c.geom1 == g1 && c.geom2 == g2) || (c.geom1 == g2 && c.geom2 == g1))) continue;
+        if (r.contacts_now++ == 0) {
+          r.A = c.A;
+          r.A_measured = true;
+          r.load = c.load;
+          r.dist = c.dist;
+          r.pos = c.pos;
+          r.normal = c.normal;
+        }
+      }
+      if (r.contacts_now == 0) {
+        std::vector<std::string> ignored;  // the probe's own warnings (nconmax) are not the model's
+        WarningCapture quiet(ignored);
+        // Of equally close points, the one the joints move most easily (the largest A).
+        for (const ClosestPoints& near : closest_points(m, d, ipair, g1, g2)) {
+          const double a =
+              inverse_mass(m, d, normal_jacobian(m, d, r.body1, r.body2, near.pos, near.normal));
+          if (r.closest && !(a > r.A)) continue;
+          r.A = a;
+          r.A_measured = r.closest = true;
+          r.dist = near.dist;
+          r.pos = near.pos;
+          r.normal = near.normal;
+        }
+      }
+      evaluate(ctx, r, rep.warnings, label_of(r));
+      rep.pairs.push_back(r);
+    };
+    // mj_collision returns at once when contacts or constraints are disabled.
+    const bool disabled = (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT)) != 0;
+    const bool use_pairs = !disabled && m->opt.collision != mjCOL_DYNAMIC;
+    const bool use_dynamic = !disabled && m->opt.collision != mjCOL_PAIR && m->nbody >= 2;
+    if (use_pairs)
+      for (int p = 0; p < m->npair; ++p) add(p, m->pair_geom1[p], m->pair_geom2[p]);
+    if (use_dynamic) {
+      for (int b1 = 0; b1 < m->nbody; ++b1) {
+        for (int b2 = b1 + 1; b2 < m->nbody; ++b2) {
+          const int signature = ((b1 + 1) << 16) + (b2 + 1);
+          bool excluded = false;
+          for (int e = 0; e < m->nexclude; ++e) excluded |= m->exclude_signature[e] == signature;
+          if (excluded) continue;
+          for (int g1 = m->body_geomadr[b1]; g1 < m->body_geomadr[b1] + m->body_geomnum[b1]; ++g1) {
+            for (int g2 = m->body_geomadr[b2]; g2 < m->body_geomadr[b2] + m->body_geomnum[b2];
+                 ++g2) {
+              bool explicit_pair = false;
+              for (int p = 0; use_pairs && p < m->npair; ++p)
+                explicit_pair |= (m->pair_geom1[p] == g1 && m->pair_geom2[p] == g2) ||
+                                 (m->pair_geom1[p] == g2 && m->pair_geom2[p] == g1);
+              if (explicit_pair || no_collision_function(m, g1, g2) || filtered(m, g1, g2))
+                continue;
+              add(-1, g1, g2);
+            }
+          }
+        }
+      }
+    }
+  }
+
+  // Warnings.
+  auto warn_rows = [&](const std::vector<InspectRow>& list) {
+    for (const InspectRow& r : list) {
+      const std::string label = label_of(r);
+      if (r.A > 0.0 && !(r.omega_dt < r.limit))
+        rep.warnings.push_back(label + ": ω·Δt = " + g(r.omega_dt) + " at d_max exceeds " +
+                               rep.integrator + "'s limit " + g(r.limit) +
+                               " (ζ = " + g(r.zeta_max) + "): unstable; a timestep below " +
+                               g(r.limit / r.omega_max) + " s is stable");
+      if (r.refsafe_changes)
+        rep.warnings.push_back(
+            label + ": refsafe raises the solref timeconst " + g(r.solref[0]) +
+            " s to 2·timestep = " + g(r.timeconst_used) + " s: K is " +
+            g(r.solref[0] * r.solref[0] / (r.timeconst_used * r.timeconst_used)) + "× and B " +
+            g(r.solref[0] / r.timeconst_used) + "× what the timeconst asks");
+      if (r.phi > 1.0)
+        rep.warnings.push_back(
+            label + ": pyramidal cone with μ = " + g(r.friction[0]) + ", condim " +
+            std::to_string(r.condim) + ": the normal sees Â·μ²(1 + μ²)/((condim − 1)·impratio) = " +
+            g(r.phi) + "·Â, a contact about " + g(r.phi) +
+            "× softer than without friction that sinks deeper (cone=\"elliptic\" "
+            "or impratio ≥ " +
+            g(r.friction[0] * r.friction[0] * (1.0 + r.friction[0] * r.friction[0]) /
+              (r.condim - 1)) +
+            " removes it)");
+    }
+  };
+  warn_rows(rep.contacts);
+  warn_rows(rep.pairs);
+  bool friction = false;
+  for (const auto* list : {&rep.contacts, &rep.pairs})
+    for (const InspectRow& r : *list) friction |= r.condim > 1;
+  if (friction && rep.impratio < 1.0)
+    rep.warnings.push_back("impratio = " + g(rep.impratio) +
+                           " < 1: MuJoCo 2.2 gives the friction rows R_t = R/impratio, so friction "
+                           "is " +
+                           g(1.0 / rep.impratio) +
+                           "× softer than the normal (a body creeps that much faster); "
+                           "impratio > 1 makes friction stiffer, not softer");
+  std::map<int, std::pair<double, double>> masses;  // body → (min, max) of 1/A
+  for (const InspectRow& r : rep.contacts) {
+    for (int b : {r.body1, r.body2}) {
+      if (m->body_weldid[b] == 0 || !(r.A > 0.0)) continue;
+      auto [it, fresh] = masses.emplace(b, std::make_pair(1.0 / r.A, 1.0 / r.A));
+      if (!fresh) {
+        it->second.first = std::min(it->second.first, 1.0 / r.A);
+        it->second.second = std::max(it->second.second, 1.0 / r.A);
+      }
+    }
+  }
+  for (const auto& [b, range] : masses)
+    if (range.second > 10.0 * range.first)
+      rep.warnings.push_back("body " + name_of(m, mjOBJ_BODY, b, "body") +
+                             ": its effective mass differs " + g(range.second / range.first) +
+                             "× across its contacts (" + g(range.first) + " to " + g(range.second) +
+                             " kg): the same solref gives each a different k and c");
+  if (!rep.balanced && nc > 0)
+    rep.warnings.push_back(
+        "the contacts' normal forces alone do not hold the model at rest under gravity "
+        "(relative residual " +
+        g(rep.residual) +
+        "): the static loads are a least-squares share, and the penetrations follow them");
+  if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT))
+    rep.warnings.push_back(std::string("the model disables ") +
+                           (m->opt.disableflags & mjDSBL_CONTACT ? "contacts" : "constraints") +
+                           " (<option><flag>): MuJoCo makes no contacts at all");
+  for (const std::string& w : messages) rep.warnings.push_back("MuJoCo: " + w);
+  return rep;
+}
+
+namespace {
+
+void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow& r) {
+  o << (r.active ? "contact " + std::to_string(r.contact) : std::string("pair")) << ": "
+    << r.body1_name << " / " << r.body2_name << " (geoms " << r.geom1_name << ", " << r.geom2_name
+    << "), " << r.source;
+  if (r.active)
+    o << ", dist " << g(r.dist) << " m";
+  else
+    o << ", " << r.contacts_now << " contact" << (r.contacts_now == 1 ? "" : "s") << " now";
+  o << "\n";
+  o << "  condim " << r.condim << ", friction " << list_text(r.friction.data(), 5) << "\n";
+  o << "  solref " << list_text(r.solref.data(), 2) << ", solimp " << list_text(r.solimp.data(), 5)
+    << "\n";
+  if (r.solref[0] > 0.0 && r.solref[1] > 0.0)
+    o << "  refsafe: "
+      << (r.refsafe_changes ? "CHANGES the timeconst " + g(r.solref[0]) + " s to " +
+                                  g(r.timeconst_used) + " s (2·timestep)"
+                            : std::string(rep.refsafe_enabled ? "keeps the timeconst (≥ 2·timestep)"
+                                                              : "disabled"))
+      << "\n";
+  else
+    o << "  refsafe: does not apply (direct form)\n";
+  o << "  K = " << g(r.K) << " 1/s², B = " << g(r.B) << " 1/s; impedance d = " << g(r.d_rest)
+    << " at rest, " << g(r.dmax) << " max\n";
+  o << "  A = " << g(r.A) << " 1/kg (effective mass " << g(1.0 / r.A) << " kg"
+    << (r.closest      ? "; at the closest points, " + g(r.dist) + " m apart"
+        : r.A_measured ? std::string()
+                       : std::string("; no contact point: A = Â assumed"))
+    << "), Â = " << g(r.inv_weight) << " 1/kg";
+  if (r.phi != 1.0)
+    o << ", the normal sees Â·φ = " << g(r.normal_weight) << " (φ = " << g(r.phi) << ")";
+  o << "\n";
+  if (!(r.A > 0.0)) {
+    o << "  the joints cannot move this contact along its normal (A = 0): no contact dynamics\n";
+  } else {
+    o << "  k = " << g(r.k) << " N/m, c = " << g(r.c) << " N·s/m; ω = " << g(r.omega)
+      << " rad/s, ζ = " << g(r.zeta) << "; restitution " << g(r.restitution) << "\n";
+    o << "  ω·Δt = " << g(r.omega_dt) << " at d_max (ω = " << g(r.omega_max)
+      << ", ζ = " << g(r.zeta_max) << "): " << rep.integrator << "'s limit " << g(r.limit) << " ("
+      << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
+  }
+  if (std::isfinite(r.load))
+    o << "  static load " << g(r.load) << " N, static penetration " << g(r.penetration) << " m\n";
+  else
+    o << "  static load: not known (not in contact now)\n";
+  if (rep.slope) {
+    o << "  slope " << g(*rep.slope) << "°: ";
+    if (std::isfinite(r.creep))
+      o << "creep " << g(r.creep) << " m/s\n";
+    else
+      o << r.creep_note << "\n";
+  }
+}
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (char ch : text) {
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (ch == '\n') {
+      out += "\\n";
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+std::string jn(double v) { return std::isfinite(v) ? format_exact(v) : "null"; }
+
+std::string json_array(const double* v, int n) {
+  std::string out = "[";
+  for (int i = 0; i < n; ++i) out += (i ? ", " : "") + jn(v[i]);
+  return out + "]";
+}
+
+void json_row(std::ostringstream& o, const InspectRow& r) {
+  o << "    {\"contact\": " << (r.active ? std::to_string(r.contact) : "null")
+    << ", \"body1\": " << json_string(r.body1_name) << ", \"body2\": " << json_string(r.body2_name)
+    << ", \"geom1\": " << json_string(r.geom1_name) << ", \"geom2\": " << json_string(r.geom2_name)
+    << ", \"source\": " << json_string(r.source);
+  if (!r.active) o << ", \"contacts_now\": " << r.contacts_now;
+  const bool point = r.active || r.contacts_now > 0 || r.closest;
+  o << ",\n     \"dist\": " << (point ? jn(r.dist) : "null")
+    << ", \"pos\": " << (point ? json_array(r.pos.data(), 3) : "null")
+    << ", \"normal\": " << (point ? json_array(r.normal.data(), 3) : "null")
+    << ", \"closest_points\": " << (r.closest ? "true" : "false") << ", \"condim\": " << r.condim
+    << ", \"friction\": " << json_array(r.friction.data(), 5)
+    << ",\n     \"solref\": " << json_array(r.solref.data(), 2)
+    << ", \"solimp\": " << json_array(r.solimp.data(), 5)
+    << ", \"refsafe_changes\": " << (r.refsafe_changes ? "true" : "false")
+    << ", \"timeconst_used\": " << (r.timeconst_used > 0.0 ? jn(r.timeconst_used) : "null")
+    << ",\n     \"K\": " << jn(r.K) << ", \"B\": " << jn(r.B) << ", \"dmax\": " << jn(r.dmax)
+    << ", \"d_rest\": " << jn(r.d_rest) << ", \"A\": " << jn(r.A)
+    << ", \"A_measured\": " << (r.A_measured ? "true" : "false")
+    << ", \"invweight\": " << jn(r.inv_weight) << ", \"normal_weight\": " << jn(r.normal_weight)
+    << ",\n     \"k\": " << jn(r.k) << ", \"c\": " << jn(r.c) << ", \"omega\": " << jn(r.omega)
+    << ", \"zeta\": " << jn(r.zeta) << ", \"omega_max\": " << jn(r.omega_max)
+    << ", \"zeta_max\": " << jn(r.zeta_max) << ", \"omega_dt\": " << jn(r.omega_dt)
+    << ", \"limit\": " << jn(r.limit) << ",\n     \"restitution\": " << jn(r.restitution)
+    << ", \"load\": " << jn(r.load) << ", \"penetration\": " << jn(r.penetration)
+    << ", \"creep\": " << jn(r.creep) << ", \"creep_note\": " << json_string(r.creep_note) << "}";
+}
+
+}  // namespace
+
+std::string format_inspect_text(const InspectReport& rep) {
+  std::ostringstream o;
+  o << "model " << rep.path << " at " << (rep.key.empty() ? "qpos0" : "keyframe " + rep.key)
+    << "\n";
+  if (!rep.load_warning.empty()) o << "MuJoCo warns while loading: " << rep.load_warning << "\n";
+  o << "integrator " << rep.integrator << ", timestep " << g(rep.dt) << " s, cone " << rep.cone
+    << ", impratio " << g(rep.impratio) << " (friction rows: R_t = R/impratio"
+    << (rep.impratio > 1.0   ? ", friction " + g(rep.impratio) + "× stiffer than the normal"
+        : rep.impratio < 1.0 ? ", friction " + g(1.0 / rep.impratio) + "× softer than the normal"
+                             : std::string())
+    << "), gravity " << list_text(rep.gravity.data(), 3) << " m/s²\n";
+  if (rep.contacts.empty()) {
+    o << "no contacts at " << (rep.key.empty() ? "qpos0" : "keyframe " + rep.key) << "\n";
+  } else {
+    o << rep.contacts.size() << " contact" << (rep.contacts.size() == 1 ? "" : "s")
+      << "; static loads: normal forces holding the model against gravity at rest"
+      << (rep.balanced ? "" : " (least squares: they do not balance it)") << "\n";
+  }
+  // A contact whose text is that of the one before (but for its index), as
+  // a box's corners on a plane: one line naming them.
+  std::string previous_body;
+  int first = -1;
+  std::vector<int> same;
+  auto flush = [&] {
+    if (same.empty()) return;
+    o << "\ncontact" << (same.size() > 1 ? "s " : " ");
+    for (size_t i = 0; i < same.size(); ++i) o << (i ? ", " : "") << same[i];
+    o << ": the same as contact " << first << " (to the digits printed)\n";
+    same.clear();
+  };
+  for (const InspectRow& r : rep.contacts) {
+    std::ostringstream row;
+    text_row(row, rep, r);
+    const std::string text = row.str();
+    const std::string body = text.substr(text.find(':'));
+    if (body == previous_body) {
+      same.push_back(r.contact);
+      continue;
+    }
+    flush();
+    previous_body = body;
+    first = r.contact;
+    o << "\n" << text;
+  }
+  flush();
+  if (rep.pairs_listed) {
+    o << "\n"
+      << rep.pairs.size() << " geom pair" << (rep.pairs.size() == 1 ? "" : "s")
+      << " that can collide\n";
+    for (const InspectRow& r : rep.pairs) {
+      o << "\n";
+      text_row(o, rep, r);
+    }
+  }
+  if (!rep.warnings.empty()) {
+    o << "\nwarnings:\n";
+    for (const std::string& w : rep.warnings) o << "  " << w << "\n";
+  }
+  return o.str();
+}
+
+std::string format_inspect_json(const InspectReport& rep) {
+  std::ostringstream o;
+  o << "{\n  \"model\": " << json_string(rep.path)
+    << ",\n  \"key\": " << (rep.key.empty() ? "null" : json_string(rep.key))
+    << ",\n  \"load_warning\": " << json_string(rep.load_warning)
+    << ",\n  \"integrator\": " << json_string(rep.integrator) << ",\n  \"timestep\": " << jn(rep.dt)
+    << ",\n  \"cone\": " << json_string(rep.cone) << ",\n  \"impratio\": " << jn(rep.impratio)
+    << ",\n  \"gravity\": " << json_array(rep.gravity.data(), 3)
+    << ",\n  \"slope\": " << (rep.slope ? jn(*rep.slope) : "null")
+    << ",\n  \"balanced\": " << (rep.balanced ? "true" : "false")
+    << ",\n  \"residual\": " << jn(rep.residual) << ",\n  \"contacts\": [";
+  for (size_t i = 0; i < rep.contacts.size(); ++i) {
+    o << (i ? ",\n" : "\n");
+    json_row(o, rep.contacts[i]);
+  }
+  o << (rep.contacts.empty() ? "]" : "\n  ]");
+  o << ",\n  \"pairs\": ";
+  if (!rep.pairs_listed) {
+    o << "null";
+  } else {
+    o << "[";
+    for (size_t i = 0; i < rep.pairs.size(); ++i) {
+      o << (i ? ",\n" : "\n");
+      json_row(o, rep.pairs[i]);
+    }
+    o << (rep.pairs.empty() ? "]" : "\n  ]");
+  }
+  o << ",\n  \"warnings\": [";
+  for (size_t i = 0; i < rep.warnings.size(); ++i)
+    o << (i ? ",\n    " : "\n    ") << json_string(rep.warnings[i]);
+  o << (rep.warnings.empty() ? "]" : "\n  ]") << "\n}\n";
+  return o.str();
+}
+
+}  // namespace contact2d::mujoco

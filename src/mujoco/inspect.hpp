@@ -1,0 +1,129 @@
+// `contact2d inspect`: what the contacts of a user's own MJCF model are in
+// physical units, as MuJoCo 2.2.2 resolves and integrates them.
+//
+// The model is loaded from its file with mj_loadXML (so <include>s and
+// meshes resolve next to it) and mj_forward runs at a keyframe or at qpos0.
+// For every contact d->contact[i] (and, with `pairs`, every geom pair that
+// can collide: explicit <pair>s, and default collisions filtered as
+// mj_collision filters them: contype/conaffinity, the same weld body, the
+// parent filter, <exclude>) the report gives:
+//
+//   solref, solimp, condim, friction as MuJoCo resolved them: d->contact[i]
+//   for a contact; for a pair the explicit <pair>'s values, or the geoms'
+//   mixed as mj_collideGeoms mixes them (the geom of higher priority wins;
+//   at equal priority friction is the max, solimp and a standard-form
+//   solref are mixed by solmix, a direct-form solref takes the min);
+//   refsafe (standard form: timeconst raised to 2Δt) as getsolparam applies it;
+//   K = 1/(d_max²·tc²·dr²), B = 2/(d_max·tc) (standard) or
+//   K = −solref[0]/d_max², B = −solref[1]/d_max (direct), mj_makeImpedance;
+//   A: the contact's true inverse mass, n·J·M⁻¹·Jᵀ·n (mj_jac, mj_solveM);
+//   for a pair not in contact, at its closest points (MuJoCo's own collision
+//   function run on a copy of the model with the pair's margin raised to
+//   reach it);
+//   Â: what MuJoCo's regulariser uses (efc_diagApprox: body_invweight0 of
+//   both bodies; with a pyramidal cone and friction the normal sees
+//   Â·μ²(1 + μ²)/((condim − 1)·impratio), mujoco/solref_tool.hpp);
+//   the linear regime at impedance d (f = d·(−B·v − K·d·p)/(d·A + (1 − d)·Â)):
+//     k = d²·K/(d·A + (1 − d)·Â) N/m,  c = d·B/(d·A + (1 − d)·Â) N·s/m,
+//     ω = √(A·k),  ζ = A·c/(2ω);
+//   ω·Δt at d_max (the stiffest the contact gets) against the limit of the
+//   model's integrator (Euler and implicit: semi-implicit Euler's, RK4: RK4's;
+//   core stability_limit);
+//   the static load f: the normal forces that hold the model against gravity
+//   at qvel = 0, the least-squares (minimum-norm) solution of Jₙᵀ·f = qfrc_bias
+//   over every contact, and the static penetration p solving
+//   p·K·d(p)² = f·Â·(1 − d(p)) (mujoco/solref_tool.hpp);
+//   the restitution of the Kelvin–Voigt oscillator at (ω, ζ) with its force
+//   clamped at zero (the contact lets go when k·x + c·ẋ = 0, before x = 0);
+//   the creep speed on a slope of θ: inside the friction cone MuJoCo's
+//   tangential rows have no spring, aref = −B·v, and R_t = R/impratio, so at
+//   steady creep (qacc = 0) a contact carries impratio·B·d·v/((1 − d)·Â)
+//   (elliptic; the pyramidal cone's edge rows give the same divided by 1 + μ²);
+//   with the tangential load f·sinθ: v = f·sinθ·(1 − d)·Â·(1 + μ²)/(impratio·B·d)
+//   (no (1 + μ²) for the elliptic cone), d at the depth under f·cosθ. The
+//   solver stays in its quadratic zone (where this holds) while tanθ < μ
+//   for the elliptic cone, and while no edge row unloads for the pyramidal
+//   one, each carrying f/(2(condim − 1)) ± f·sinθ/(2μ): tanθ < μ/(condim − 1).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace contact2d::mujoco {
+
+struct InspectOptions {
+  std::string path;
+  std::string key;              // keyframe name; empty: qpos0
+  bool pairs = false;           // also every geom pair that can collide
+  std::optional<double> slope;  // degrees, [0, 90)
+};
+
+struct InspectRow {
+  bool active = false;  // a contact at this state (else a pair that may collide)
+  int contact = -1;     // index in d->contact, or -1
+  int geom1 = -1, geom2 = -1, body1 = -1, body2 = -1;
+  std::string geom1_name, geom2_name, body1_name, body2_name;
+  std::string source;    // "explicit <pair>" or "default collision"
+  int contacts_now = 0;  // pairs: how many contacts the pair has now
+  double dist = 0.0;     // contact distance (negative: penetrating)
+  std::array<double, 3> pos{}, normal{};
+  int condim = 1;
+  std::array<double, 5> friction{};
+  std::array<double, 2> solref{};
+  std::array<double, 5> solimp{};
+  double timeconst_used = 0.0;  // standard form: after refsafe; 0 for the direct form
+  bool refsafe_changes = false;
+  double K = 0.0, B = 0.0;
+  double dmax = 0.0;               // solimp[1] after MuJoCo's clamps
+  double d_now = 0.0;              // impedance at dist
+  double d_rest = 0.0;             // impedance at the static penetration
+  double A = 0.0;                  // true inverse mass at the contact, 1/kg
+  bool A_measured = false;         // false: no contact point found, A = Â assumed
+  bool closest = false;            // a pair not in contact: A at its closest points (dist > 0)
+  double inv_weight = 0.0;         // Â: body_invweight0 of both bodies
+  double normal_weight = 0.0;      // Â the normal row sees (pyramidal: ·φ)
+  double phi = 1.0;                // normal_weight / inv_weight
+  double load = 0.0;               // static normal load, N (NaN: not known)
+  double penetration = 0.0;        // static penetration, m (NaN: not known)
+  double k = 0.0, c = 0.0;         // N/m, N·s/m at d_rest
+  double omega = 0.0, zeta = 0.0;  // at d_rest
+  double omega_max = 0.0, zeta_max = 0.0;  // at d_max
+  double omega_dt = 0.0, limit = 0.0;      // ω·Δt at d_max and the integrator's limit
+  double restitution = 0.0;
+  double creep = 0.0;      // m/s at --slope (NaN: not computed)
+  std::string creep_note;  // why there is no creep number, or what it assumes
+};
+
+struct InspectReport {
+  std::string path, key;
+  std::string load_warning;
+  std::string integrator;  // Euler, RK4, implicit
+  double dt = 0.0;
+  std::string cone;  // pyramidal, elliptic
+  double impratio = 1.0;
+  std::array<double, 3> gravity{};
+  bool refsafe_enabled = true;
+  std::optional<double> slope;
+  bool balanced = true;   // the contacts' normal forces alone hold the model at rest
+  double residual = 0.0;  // |Jₙᵀ·f − qfrc_bias| / |qfrc_bias|
+  std::vector<InspectRow> contacts;
+  std::vector<InspectRow> pairs;  // with --pairs
+  bool pairs_listed = false;
+  std::vector<std::string> warnings;
+};
+
+// Throws InputError: the file cannot be read or MuJoCo cannot load it
+// (MuJoCo's message on one line), an unknown --key, --slope out of range.
+InspectReport inspect(const InspectOptions& options);
+
+// The Kelvin–Voigt oscillator x'' + 2ζω·x' + ω²·x = 0 entered at x = 0 with
+// speed v0, its force ω²·x + 2ζω·x' clamped at zero: the speed it leaves
+// with over v0 (closed form for ζ < 1 and ζ > 1; independent of ω).
+double kelvin_voigt_restitution(double zeta);
+
+std::string format_inspect_text(const InspectReport& report);
+std::string format_inspect_json(const InspectReport& report);
+
+}  // namespace contact2d::mujoco

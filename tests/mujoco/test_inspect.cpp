@@ -1,0 +1,737 @@
+// `contact2d inspect` against MuJoCo itself, on three models written here by
+// hand (not by contact2d's generator): a box on a plane with MuJoCo's
+// defaults, a sphere whose contact comes from a default class and a <pair>
+// override, and a two-body arm on hinges touching a wall. Each printed number
+// is checked against a measurement in MuJoCo: the depth a settled body rests
+// at, the speed a body rebounds with, the speed a body creeps at under a
+// tilted gravity, the acceleration a known force gives the contact point.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include "mujoco/inspect.hpp"
+#include "mujoco/model.hpp"
+#include "mujoco/solref_tool.hpp"
+
+namespace contact2d {
+namespace {
+
+namespace fs = std::filesystem;
+namespace mj = contact2d::mujoco;
+
+constexpr double kPiInspect = 3.14159265358979323846;
+
+// MuJoCo's defaults everywhere: solref 0.02 1, solimp 0.9 0.95 0.001 0.5 2,
+// friction 1, condim 3, pyramidal cone, timestep 0.002, Euler. The box
+// starts 0.1 mm into the plane so that its four bottom corners touch.
+const char* kBoxModel = R"(<mujoco model="box on a plane">
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <body name="box" pos="0 0 0.0999">
+      <freejoint/>
+      <geom name="box" type="box" size="0.1 0.1 0.1" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+
+// The ball's class sets solref, solimp, friction and priority; the <pair>
+// with the floor overrides them (direct solref, flat solimp, condim 1), so
+// the floor contact has k = 1e4 N/m and c = 20 N·s/m for m = 1 kg. The wall
+// collides by default: the class's values win there (priority 1).
+const char* kBallModel = R"(<mujoco model="ball with a class and a pair">
+  <option timestep="0.0001"/>
+  <default>
+    <default class="ball">
+      <geom solref="0.01 0.5" solimp="0.8 0.9 0.01" friction="0.7" priority="1" condim="4"/>
+    </default>
+  </default>
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <geom name="wall" type="box" pos="1 0 0.5" size="0.05 2 0.5" solref="0.05 1" friction="0.2"/>
+    <body name="ball" pos="0 0 0.0999">
+      <freejoint/>
+      <geom name="ball" class="ball" type="sphere" size="0.1" mass="1"/>
+    </body>
+  </worldbody>
+  <contact>
+    <pair geom1="ball" geom2="floor" condim="1" solref="-10000 -20" solimp="0.99 0.99 0.001"/>
+  </contact>
+  <keyframe>
+    <key name="at_wall" qpos="0.8501 0 0.0999 1 0 0 0"/>
+  </keyframe>
+</mujoco>
+)";
+
+// Two links on hinges about z, straight along x; the fingertip (a sphere at
+// x = 0.5) moves along y, toward the wall at y = 0.031 when the shoulder
+// turns positive. Frictionless, flat impedance 0.5 (so that A ≠ Â shows in
+// ω and ζ), standard solref 0.01 0.2.
+const char* kArmModel = R"(<mujoco model="two-link arm and a wall">
+  <option timestep="0.0001" gravity="0 0 0"/>
+  <worldbody>
+    <geom name="wall" type="plane" pos="0.25 0.031 0" zaxis="0 -1 0" size="1 1 0.1"
+          condim="1" solref="0.01 0.2" solimp="0.5 0.5 0.001"/>
+    <body name="upper">
+      <joint name="shoulder" type="hinge" axis="0 0 1"/>
+      <geom name="upper" type="capsule" fromto="0 0 0 0.3 0 0" size="0.02" mass="1"
+            condim="1" solref="0.01 0.2" solimp="0.5 0.5 0.001"/>
+      <body name="fore" pos="0.3 0 0">
+        <joint name="elbow" type="hinge" axis="0 0 1"/>
+        <geom name="fore" type="capsule" fromto="0 0 0 0.2 0 0" size="0.02" mass="0.5"
+              condim="1" solref="0.01 0.2" solimp="0.5 0.5 0.001"/>
+        <geom name="tip" type="sphere" pos="0.2 0 0" size="0.03" mass="0.2"
+              condim="1" solref="0.01 0.2" solimp="0.5 0.5 0.001"/>
+      </body>
+    </body>
+  </worldbody>
+  <keyframe>
+    <key name="touch" qpos="0.0022 0"/>
+  </keyframe>
+</mujoco>
+)";
+
+class Inspect : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("contact2d_inspect_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+
+  mj::InspectReport report(const std::string& xml, const std::string& key = "",
+                           std::optional<double> slope = std::nullopt, bool pairs = false) const {
+    mj::InspectOptions o;
+    o.path = write("model.xml", xml);
+    o.key = key;
+    o.slope = slope;
+    o.pairs = pairs;
+    return mj::inspect(o);
+  }
+
+  struct Run {
+    int status = -1;
+    std::string out, err;
+  };
+  Run run(const std::string& args) const {
+    const std::string out = (dir_ / "stdout").string(), err = (dir_ / "stderr").string();
+    const std::string command = "cd '" + dir_.string() + "' && '" CONTACT2D_BINARY "' " + args +
+                                " >'" + out + "' 2>'" + err + "'";
+    const int raw = std::system(command.c_str());
+    auto slurp = [](const std::string& path) {
+      std::ifstream in(path);
+      std::ostringstream s;
+      s << in.rdbuf();
+      return s.str();
+    };
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  }
+
+  fs::path dir_;
+};
+
+// The model text compiled by MuJoCo, for the measurements.
+struct Sim {
+  mj::ModelPtr model;
+  mj::DataPtr data;
+  explicit Sim(const std::string& xml) : model(mj::load_model(xml, "test model")) {
+    data = mj::make_data(model.get());
+  }
+  mjModel* m() const { return model.get(); }
+  mjData* d() const { return data.get(); }
+};
+
+double mean_contact_depth(const Sim& s) {
+  double sum = 0.0;
+  for (int i = 0; i < s.d()->ncon; ++i) sum -= s.d()->contact[i].dist;
+  return s.d()->ncon ? sum / s.d()->ncon : 0.0;
+}
+
+TEST_F(Inspect, BoxOnAPlaneWithDefaultsRestsAtThePrintedStaticPenetration) {
+  const mj::InspectReport rep = report(kBoxModel);
+  ASSERT_EQ(rep.contacts.size(), 4u);
+  EXPECT_TRUE(rep.balanced);
+  EXPECT_EQ(rep.cone, "pyramidal");
+  for (const mj::InspectRow& r : rep.contacts) {
+    EXPECT_NEAR(r.load, 9.81 / 4.0, 1e-9);  // the minimum-norm share of the weight
+    EXPECT_EQ(r.condim, 3);
+    EXPECT_DOUBLE_EQ(r.solref[0], 0.02);
+    // μ = 1, condim 3, impratio 1: φ = 1·2/2, the normal sees Â itself.
+    EXPECT_DOUBLE_EQ(r.phi, 1.0);
+    // A free box pushed at a corner along the normal: 1/m + |r × n|²/I with
+    // r × n = (0.1, −0.1, 0) m and I = m·(0.2² + 0.2²)/12: 1 + 0.02/(0.08/12) = 4 1/kg,
+    // four times MuJoCo's Â = 1/m.
+    EXPECT_NEAR(r.A, 4.0, 1e-9);
+    EXPECT_NEAR(r.inv_weight, 1.0, 1e-9);
+  }
+  Sim s(kBoxModel);
+  for (int i = 0; i < 1500; ++i) mj_step(s.m(), s.d());  // 3 s: ζ = 1, ω ≈ 50 /s
+  ASSERT_EQ(s.d()->ncon, 4);
+  const double depth = mean_contact_depth(s);
+  // Settled for 3 s (e^(−150) of the initial offset is left): measured
+  // 8e-17 m apart, 8e-13 relative (the solver's residual and rounding of the
+  // bisection); bound 1e-9 relative. A wrong load share (mg instead of mg/4)
+  // or a wrong Â would move p by a factor of 2 or more.
+  EXPECT_NEAR(depth, rep.contacts[0].penetration, 1e-9 * rep.contacts[0].penetration);
+}
+
+// The box crept for 1 s on gravity tilted by θ, after 1 s to settle; returns
+// (measured, printed averaged over the four corners).
+std::pair<double, double> box_creep(const mj::InspectReport& rep, const std::string& xml,
+                                    double theta) {
+  double printed = 0.0;
+  for (const mj::InspectRow& r : rep.contacts) printed += r.creep / 4.0;
+  Sim s(xml);
+  const double th = theta * kPiInspect / 180.0;
+  s.m()->opt.gravity[0] = 9.81 * std::sin(th);
+  s.m()->opt.gravity[2] = -9.81 * std::cos(th);
+  for (int i = 0; i < 500; ++i) mj_step(s.m(), s.d());  // 1 s: the creep settles at ~2e3 /s
+  const double x0 = s.d()->qpos[0];
+  for (int i = 0; i < 500; ++i) mj_step(s.m(), s.d());
+  return {(s.d()->qpos[0] - x0) / 1.0, printed};
+}
+
+TEST_F(Inspect, BoxCreepsOnATiltedGravityAtThePrintedSpeed) {
+  const mj::InspectReport rep = report(kBoxModel, "", 10.0);
+  ASSERT_EQ(rep.contacts.size(), 4u);
+  const auto [measured, printed] = box_creep(rep, kBoxModel, 10.0);
+  ASSERT_GT(printed, 0.0);
+  // The printed speed gives every corner the same load share and d; on the
+  // tilt the box's downhill corners carry more than its uphill ones (the
+  // friction at the face against the weight at the centre, 0.1 m up), which
+  // moves d(p) a little apart between them (solimp's x² start near d = 0.9).
+  // Measured 3.6e-4 relative (0.000887500 against 0.000887819 m/s); bound
+  // 2e-3. The (1 + μ²) of the pyramidal cone alone is a factor of 2.
+  EXPECT_NEAR(measured, printed, 2e-3 * printed);
+}
+
+TEST_F(Inspect, BoxCreepsAtThePrintedSpeedInAnEllipticCone) {
+  std::string xml = kBoxModel;
+  xml.replace(xml.find("<worldbody>"), 11, "<option cone=\"elliptic\"/>\n  <worldbody>");
+  const mj::InspectReport rep = report(xml, "", 10.0);
+  ASSERT_EQ(rep.contacts.size(), 4u);
+  EXPECT_EQ(rep.cone, "elliptic");
+  const auto [measured, printed] = box_creep(rep, xml, 10.0);
+  ASSERT_GT(printed, 0.0);
+  // No (1 + μ²) here: half the pyramidal cone's speed. Same bound and reason
+  // as the pyramidal case; measured 3.6e-4 relative (0.000443750 against
+  // 0.000443909 m/s).
+  EXPECT_NEAR(measured, printed, 2e-3 * printed);
+}
+
+TEST_F(Inspect, PyramidalCreepIsNotPrintedWhereAnEdgeUnloads) {
+  // μ = 1, condim 3: each corner's edges carry f/4 ± f_t/2, one unloads at
+  // tanθ = 1/2; beyond it the viscous closed form does not hold.
+  const mj::InspectReport above = report(kBoxModel, "", 30.0);  // tan = 0.577
+  ASSERT_EQ(above.contacts.size(), 4u);
+  EXPECT_FALSE(std::isfinite(above.contacts[0].creep));
+  EXPECT_NE(above.contacts[0].creep_note.find("an edge of the pyramidal cone unloads"),
+            std::string::npos);
+  EXPECT_TRUE(std::isfinite(report(kBoxModel, "", 25.0).contacts[0].creep));  // tan = 0.466
+  // The formula evaluated by hand at 30° against MuJoCo: measured 0.00335
+  // m/s against 0.00256, 31 % faster (bound: 10 %).
+  const mj::InspectRow& r = above.contacts[0];
+  const double th = 30.0 * kPiInspect / 180.0;
+  const double p = mj::static_penetration(r.solimp, r.K, r.normal_weight, r.load * std::cos(th));
+  const double d = mj::mujoco_impedance(r.solimp, -p);
+  const double formula = r.load * std::sin(th) * (1 - d) * r.inv_weight * 2.0 / (r.B * d);
+  EXPECT_GT(box_creep(above, kBoxModel, 30.0).first, 1.1 * formula);
+}
+
+TEST_F(Inspect, BallPairOverridesItsClassAndRestsAtThePrintedDepth) {
+  const mj::InspectReport rep = report(kBallModel);
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  const mj::InspectRow& r = rep.contacts[0];
+  EXPECT_EQ(r.source, "explicit <pair>");
+  EXPECT_EQ(r.condim, 1);
+  EXPECT_DOUBLE_EQ(r.solref[0], -10000.0);
+  EXPECT_NEAR(r.k, 1e4, 1e-6);  // A = Â = 1/m: k = d²·K·m = −solref[0]·m
+  EXPECT_NEAR(r.c, 20.0, 1e-9);
+  Sim s(kBallModel);
+  for (int i = 0; i < 30000; ++i) mj_step(s.m(), s.d());  // 3 s at ζ = 0.1, ω = 100: e^(−30)
+  ASSERT_EQ(s.d()->ncon, 1);
+  // p = m·g·(1 − d)·Â/(K·d²) = 9.81e-6 m; measured 8e-17 m apart (9e-12
+  // relative: e^(−30) of the initial 1e-4 m offset is 1e-17 m, and rounding);
+  // bound 1e-9 relative.
+  EXPECT_NEAR(-s.d()->contact[0].dist, r.penetration, 1e-9 * r.penetration);
+  EXPECT_NEAR(r.penetration, 9.81 * 0.01 / 1e4, 1e-12);
+}
+
+// The ball dropped on the floor without gravity (the closed form has none)
+// from 5 mm above at 1 m/s: its speed once the contact has ended.
+double ball_rebound(const std::string& xml) {
+  Sim s(xml);
+  s.m()->opt.gravity[2] = 0.0;
+  s.d()->qpos[2] = 0.105;
+  s.d()->qvel[2] = -1.0;
+  bool touched = false;
+  for (int steps = 0; steps < 100000; ++steps) {
+    mj_step(s.m(), s.d());
+    if (s.d()->ncon > 0) touched = true;
+    if (touched && s.d()->ncon == 0) return s.d()->qvel[2] / 1.0;
+  }
+  return std::nan("");
+}
+
+TEST_F(Inspect, BallReboundsWithThePrintedRestitution) {
+  const mj::InspectReport rep = report(kBallModel);
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  const double printed = rep.contacts[0].restitution;
+  EXPECT_NEAR(rep.contacts[0].zeta, 0.1, 1e-9);
+  const double measured = ball_rebound(kBallModel);
+  // The closed form is the continuous oscillator; MuJoCo steps it with
+  // semi-implicit Euler at ω·Δt = 0.01 (the contact lasts ~300 steps) and
+  // lets go at a step boundary: an O(ω·Δt) error, measured 8.4e-4 (0.74324
+  // against 0.74408); bound 2e-3. The unclamped formula exp(−ζπ/√(1 − ζ²))
+  // = 0.7292 is 0.015 away.
+  EXPECT_NEAR(measured, printed, 2e-3);
+}
+
+TEST_F(Inspect, BallReboundsWithThePrintedRestitutionUnderAndOverDamped) {
+  // c = 100 and 300 N·s/m: ζ = 0.5 and 1.5 (the closed form's other branch).
+  // The same O(ω·Δt) error of the step as at ζ = 0.1: measured −2.2e-3
+  // (0.29624 against 0.29844) and −2.0e-3 (0.07358 against 0.07559) at the
+  // model's Δt = 1e-4 s, +2.0e-4 and +6.6e-5 at Δt/4 (run once by hand), so
+  // it is the step's and shrinks with it; bound 4e-3, twice the larger.
+  for (const auto& [c, zeta] :
+       {std::pair<const char*, double>{"-100", 0.5}, std::pair<const char*, double>{"-300", 1.5}}) {
+    std::string xml = kBallModel;
+    xml.replace(xml.find("-10000 -20"), 10, std::string("-10000 ") + c);
+    const mj::InspectReport rep = report(xml);
+    ASSERT_EQ(rep.contacts.size(), 1u);
+    EXPECT_NEAR(rep.contacts[0].zeta, zeta, 1e-9);
+    EXPECT_NEAR(ball_rebound(xml), rep.contacts[0].restitution, 4e-3) << "ζ = " << zeta;
+  }
+}
+
+TEST_F(Inspect, PairsResolveClassPriorityAndPairsAsMujocoDoes) {
+  // At the wall both contacts exist: the printed pair values must be what
+  // MuJoCo put into d->contact.
+  const mj::InspectReport rep = report(kBallModel, "at_wall", std::nullopt, true);
+  ASSERT_EQ(rep.contacts.size(), 2u);
+  ASSERT_EQ(rep.pairs.size(), 2u);  // ball–floor (explicit), ball–wall (default)
+  for (const mj::InspectRow& p : rep.pairs) {
+    EXPECT_EQ(p.contacts_now, 1) << p.geom1_name << " " << p.geom2_name;
+    for (const mj::InspectRow& c : rep.contacts) {
+      if (c.geom1 != p.geom1 || c.geom2 != p.geom2) continue;
+      EXPECT_EQ(c.condim, p.condim);
+      for (size_t i = 0; i < 2; ++i) EXPECT_EQ(c.solref[i], p.solref[i]);
+      for (size_t i = 0; i < 5; ++i) EXPECT_EQ(c.solimp[i], p.solimp[i]);
+      for (size_t i = 0; i < 5; ++i) EXPECT_EQ(c.friction[i], p.friction[i]);
+    }
+  }
+  for (const mj::InspectRow& p : rep.pairs) {
+    if (p.source != "default collision") continue;
+    EXPECT_EQ(p.condim, 4);               // the ball's class: higher priority
+    EXPECT_DOUBLE_EQ(p.solref[0], 0.01);  // not the wall's 0.05
+    EXPECT_DOUBLE_EQ(p.friction[0], 0.7);
+  }
+}
+
+TEST_F(Inspect, PairsFollowContypeConaffinityTheParentFilterAndExclude) {
+  auto names = [](const mj::InspectReport& rep) {
+    std::set<std::string> out;
+    for (const mj::InspectRow& p : rep.pairs) out.insert(p.geom1_name + "/" + p.geom2_name);
+    return out;
+  };
+  // upper and fore are parent and child (filtered); each meets the wall.
+  EXPECT_EQ(names(report(kArmModel, "", std::nullopt, true)),
+            (std::set<std::string>{"wall/upper", "wall/fore", "wall/tip"}));
+  std::string xml = kArmModel;
+  xml.replace(xml.find("<keyframe>"), 10,
+              "<contact><exclude body1=\"world\" body2=\"upper\"/></contact>\n  <keyframe>");
+  EXPECT_EQ(names(report(xml, "", std::nullopt, true)),
+            (std::set<std::string>{"wall/fore", "wall/tip"}));
+  xml = kArmModel;
+  xml.replace(xml.find("name=\"tip\""), 10, "name=\"tip\" contype=\"2\" conaffinity=\"2\"");
+  EXPECT_EQ(names(report(xml, "", std::nullopt, true)),
+            (std::set<std::string>{"wall/upper", "wall/fore"}));
+  // And MuJoCo agrees that the tip no longer touches the wall at the key.
+  EXPECT_TRUE(report(xml, "touch").contacts.empty());
+  xml = kArmModel;
+  xml.replace(xml.find("<worldbody>"), 11,
+              "<option><flag contact=\"disable\"/></option>\n  <worldbody>");
+  const mj::InspectReport off = report(xml, "touch", std::nullopt, true);
+  EXPECT_TRUE(off.contacts.empty());
+  EXPECT_TRUE(off.pairs.empty());
+  ASSERT_EQ(off.warnings.size(), 1u);
+  EXPECT_NE(off.warnings[0].find("disables contacts"), std::string::npos);
+}
+
+TEST_F(Inspect, ArmEffectiveMassIsWhatAForceAtTheTipMeasures) {
+  const mj::InspectReport rep = report(kArmModel, "touch");
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  const mj::InspectRow& r = rep.contacts[0];
+  EXPECT_EQ(r.geom2_name, "tip");
+  // MuJoCo's estimate differs from the true value here (the point of this model).
+  EXPECT_GT(std::abs(r.inv_weight / r.A - 1.0), 0.2);
+  // Measure: push the tip along the normal with 1 N (mj_applyFT at the
+  // contact point), contacts off, at rest; MuJoCo's forward dynamics gives
+  // qacc, and the point's normal acceleration n·J·qacc (no velocity term at
+  // rest, Jacobian by finite differences of the point's position) is A·F.
+  Sim s(kArmModel);
+  mj_resetDataKeyframe(s.m(), s.d(), 0);
+  s.m()->opt.disableflags |= mjDSBL_CONTACT;
+  const int tip = mj_name2id(s.m(), mjOBJ_GEOM, "tip");
+  const int body = s.m()->geom_bodyid[tip];
+  mj_forward(s.m(), s.d());
+  double point[3] = {r.pos[0], r.pos[1], r.pos[2]};
+  double force[3] = {r.normal[0], r.normal[1], r.normal[2]}, torque[3] = {0, 0, 0};
+  mj_applyFT(s.m(), s.d(), force, torque, point, body, s.d()->qfrc_applied);
+  mj_forward(s.m(), s.d());
+  // The point fixed to the forearm, in its frame, moved by each joint.
+  double local[3], rel[3];
+  mju_sub3(rel, point, s.d()->xpos + 3 * body);
+  mju_mulMatTVec(local, s.d()->xmat + 9 * body, rel, 3, 3);
+  auto normal_position = [&](const double* qpos) {
+    mj::DataPtr probe = mj::make_data(s.m());
+    mju_copy(probe->qpos, qpos, s.m()->nq);
+    mj_kinematics(s.m(), probe.get());
+    double world[3];
+    mju_mulMatVec(world, probe->xmat + 9 * body, local, 3, 3);
+    mju_addTo3(world, probe->xpos + 3 * body);
+    return mju_dot3(world, force);
+  };
+  double measured = 0.0;
+  const double h = 1e-6;  // central differences: error h²·(curvature) ≈ 1e-12 relative
+  for (int j = 0; j < s.m()->nv; ++j) {
+    double plus[2] = {s.d()->qpos[0], s.d()->qpos[1]}, minus[2] = {plus[0], plus[1]};
+    plus[j] += h;
+    minus[j] -= h;
+    measured += (normal_position(plus) - normal_position(minus)) / (2 * h) * s.d()->qacc[j];
+  }
+  // Rounding of the differences (~1e-16 m over 2e-6 m per joint, 5e-11):
+  // measured 3.3e-11 relative; bound 1e-8.
+  EXPECT_NEAR(measured, r.A, 1e-8 * r.A);
+}
+
+TEST_F(Inspect, PairNotInContactGetsItsAAtTheClosestPoints) {
+  // At qpos0 the tip is 1 mm from the wall: MuJoCo's collision with a margin
+  // finds the closest points, and A there is the contact's A at the key
+  // where it touches (the shoulder turned by 0.0022 rad: measured 7e-6
+  // relative apart; bound 1e-4). Â would be 6.7× off.
+  const mj::InspectReport apart = report(kArmModel, "", std::nullopt, true);
+  const mj::InspectReport touching = report(kArmModel, "touch");
+  ASSERT_EQ(touching.contacts.size(), 1u);
+  bool found = false;
+  for (const mj::InspectRow& p : apart.pairs) {
+    if (p.geom2_name != "tip") continue;
+    found = true;
+    EXPECT_EQ(p.contacts_now, 0);
+    EXPECT_TRUE(p.closest);
+    EXPECT_NEAR(p.dist, 0.001, 1e-9);
+    EXPECT_NEAR(p.A, touching.contacts[0].A, 1e-4 * p.A);
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST_F(Inspect, ArmReboundsWithThePrintedRestitution) {
+  const mj::InspectReport rep = report(kArmModel, "touch");
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  const mj::InspectRow& r = rep.contacts[0];
+  // With A ≠ Â the damping ratio is not solref's 0.2: ζ = dr·√(A/(d·A + (1 − d)·Â)).
+  EXPECT_NEAR(r.zeta, 0.2 * std::sqrt(r.A / (0.5 * r.A + 0.5 * r.inv_weight)), 1e-12);
+  Sim s(kArmModel);
+  s.m()->opt.timestep = 2e-5;  // ω·Δt = 0.013 (see the bound below)
+  const int tip = mj_name2id(s.m(), mjOBJ_GEOM, "tip");
+  s.d()->qvel[0] = 0.4;  // the tip at 0.2 m/s toward the wall, 1 mm away
+  mj_forward(s.m(), s.d());
+  auto normal_speed = [&] {
+    double jacp[6];
+    mj_jac(s.m(), s.d(), jacp, nullptr, s.d()->geom_xpos + 3 * tip, s.m()->geom_bodyid[tip]);
+    return -(jacp[2] * s.d()->qvel[0] + jacp[3] * s.d()->qvel[1]);  // along the wall's −y normal
+  };
+  double v_in = 0.0;
+  bool touched = false;
+  int steps = 0;
+  for (; steps < 1000000; ++steps) {
+    if (!touched) v_in = normal_speed();
+    mj_step(s.m(), s.d());
+    if (s.d()->ncon > 0) touched = true;
+    if (touched && s.d()->ncon == 0) break;
+  }
+  ASSERT_TRUE(touched);
+  ASSERT_LT(steps, 1000000);
+  mj_forward(s.m(), s.d());
+  const double measured = -normal_speed() / v_in;
+  // Semi-implicit Euler at ω·Δt = 0.013 (as for the ball, O(ω·Δt)), and the
+  // arm turns by ~1e-4 rad during the bounce: measured 1.2e-3 (0.49116
+  // against 0.48997); bound 3e-3. With Â in place of A (ζ = 0.2, solref's
+  // dampratio) the closed form gives 0.572.
+  EXPECT_NEAR(measured, r.restitution, 3e-3);
+}
+
+// The printed K, B, d and the Â the normal sees are what MuJoCo's own
+// mj_makeImpedance put into efc_KBIP and efc_diagApprox (which it adjusts so
+// that R = (1 − d)/d·diagApprox; a pyramidal contact's normal force is the
+// sum of its 2(condim − 1) edge rows, so the normal sees diagApprox/(2(condim − 1))).
+void expect_impedance_as_mujoco(const mj::InspectReport& rep, const std::string& xml,
+                                const std::string& key) {
+  Sim s(xml);
+  if (!key.empty()) mj_resetDataKeyframe(s.m(), s.d(), mj_name2id(s.m(), mjOBJ_KEY, key.c_str()));
+  mj_forward(s.m(), s.d());
+  ASSERT_EQ(s.d()->ncon, static_cast<int>(rep.contacts.size()));
+  for (const mj::InspectRow& r : rep.contacts) {
+    const mjContact& con = s.d()->contact[r.contact];
+    const int adr = con.efc_address;
+    ASSERT_GE(adr, 0);
+    SCOPED_TRACE(xml.substr(0, 60) + " contact " + std::to_string(r.contact));
+    EXPECT_NEAR(r.K, s.d()->efc_KBIP[4 * adr], 1e-12 * r.K);
+    EXPECT_NEAR(r.B, s.d()->efc_KBIP[4 * adr + 1], 1e-12 * r.B);
+    EXPECT_NEAR(r.d_now, s.d()->efc_KBIP[4 * adr + 2], 1e-12);
+    const bool pyramidal = s.m()->opt.cone == mjCONE_PYRAMIDAL && con.dim > 1;
+    const double normal = s.d()->efc_diagApprox[adr] / (pyramidal ? 2.0 * (con.dim - 1) : 1.0);
+    EXPECT_NEAR(r.normal_weight, normal, 1e-12 * normal);
+  }
+}
+
+TEST_F(Inspect, KBImpedanceAndNormalWeightAreWhatMujocoComputes) {
+  std::string elliptic = kBoxModel, rough = kBoxModel, refsafe = kBoxModel;
+  elliptic.replace(elliptic.find("<worldbody>"), 11, "<option cone=\"elliptic\"/><worldbody>");
+  rough.replace(rough.find("<worldbody>"), 11,
+                "<option impratio=\"0.5\"/><default><geom friction=\"2\"/></default><worldbody>");
+  refsafe.replace(refsafe.find("<worldbody>"), 11,
+                  "<default><geom solref=\"0.001 1\"/></default><worldbody>");
+  for (const std::string& xml : {std::string(kBoxModel), elliptic, rough, refsafe})
+    expect_impedance_as_mujoco(report(xml), xml, "");
+  expect_impedance_as_mujoco(report(kBallModel, "at_wall"), kBallModel, "at_wall");
+  expect_impedance_as_mujoco(report(kArmModel, "touch"), kArmModel, "touch");
+}
+
+TEST_F(Inspect, KelvinVoigtRestitutionClampedAtZeroMatchesItsKnownValues) {
+  // Undamped: no loss. Light damping: the clamp lets go before x = 0, so e
+  // is below the unclamped exp(−ζπ/√(1 − ζ²)).
+  EXPECT_NEAR(mj::kelvin_voigt_restitution(0.0), 1.0, 1e-12);
+  const double z = 0.1;
+  EXPECT_GT(mj::kelvin_voigt_restitution(z), std::exp(-z * kPiInspect / std::sqrt(1 - z * z)));
+  // Continuous across critical damping, decreasing.
+  EXPECT_NEAR(mj::kelvin_voigt_restitution(0.999), mj::kelvin_voigt_restitution(1.001), 1e-3);
+  EXPECT_GT(mj::kelvin_voigt_restitution(0.5), mj::kelvin_voigt_restitution(2.0));
+}
+
+TEST_F(Inspect, WarnsWhenRefsafeChangesTheTimeconst) {
+  std::string xml = kBoxModel;
+  xml.replace(xml.find("<worldbody>"), 11,
+              "<default><geom solref=\"0.001 1\"/></default>\n  <worldbody>");
+  const mj::InspectReport rep = report(xml);
+  ASSERT_FALSE(rep.contacts.empty());
+  EXPECT_TRUE(rep.contacts[0].refsafe_changes);
+  EXPECT_DOUBLE_EQ(rep.contacts[0].timeconst_used, 0.004);
+  ASSERT_FALSE(rep.warnings.empty());
+  EXPECT_NE(rep.warnings[0].find("refsafe raises the solref timeconst 0.001 s"), std::string::npos)
+      << rep.warnings[0];
+  EXPECT_TRUE(report(kBoxModel).warnings.empty());
+}
+
+TEST_F(Inspect, WarnsWhenOmegaDtExceedsTheIntegratorsLimit) {
+  std::string xml = kBoxModel;
+  xml.replace(xml.find("<worldbody>"), 11,
+              "<default><geom solref=\"-1e7 -100\"/></default>\n  <worldbody>");
+  const mj::InspectReport rep = report(xml);
+  ASSERT_FALSE(rep.contacts.empty());
+  EXPECT_GT(rep.contacts[0].omega_dt, rep.contacts[0].limit);
+  bool found = false;
+  for (const std::string& w : rep.warnings)
+    found |= w.find("exceeds Euler's limit") != std::string::npos;
+  EXPECT_TRUE(found);
+  // And MuJoCo does blow up: the box leaves the plane faster than any fall.
+  Sim s(xml);
+  bool diverged = false;
+  for (int i = 0; i < 500 && !diverged; ++i) {
+    mj_step(s.m(), s.d());
+    diverged = !(std::abs(s.d()->qvel[2]) < 10.0) || s.d()->warning[mjWARN_BADQACC].number > 0;
+  }
+  EXPECT_TRUE(diverged);
+}
+
+TEST_F(Inspect, MujocoTurnsUnstableWhereThePrintedOmegaDtLimitIs) {
+  // The ball's pair (flat d, ζ = 0.1, ω = 100 /s) resting on the floor, 1e-6 m
+  // off its rest depth, at timesteps of 0.9× and 1.1× the printed limit, under
+  // each of MuJoCo's integrators.
+  for (const std::string integrator : {"Euler", "RK4", "implicit"}) {
+    std::string xml = kBallModel;
+    xml.replace(xml.find("<option timestep=\"0.0001\"/>"), 28,
+                "<option timestep=\"0.0001\" integrator=\"" + integrator + "\"/>");
+    const mj::InspectReport rep = report(xml);
+    EXPECT_EQ(rep.integrator, integrator);
+    ASSERT_EQ(rep.contacts.size(), 1u);
+    const mj::InspectRow& r = rep.contacts[0];
+    const double dt_limit = r.limit / r.omega_max;
+    auto growth = [&](double dt) {
+      Sim s(xml);
+      s.m()->opt.timestep = dt;
+      s.d()->qpos[2] = 0.1 - r.penetration - 1e-6;
+      mj_forward(s.m(), s.d());
+      double largest = 0.0;
+      for (int i = 0; i < 400; ++i) {
+        mj_step(s.m(), s.d());
+        if (i >= 300) largest = std::max(largest, std::abs(s.d()->qpos[2] - (0.1 - r.penetration)));
+      }
+      return largest / 1e-6;
+    };
+    // Semi-implicit Euler's update at ζ = 0.1 has |λ| = 0.82 at 0.9× its
+    // limit (1.81) and 2.07 at 1.1×: over steps 300–400 the offset is ~1e-26
+    // of its start, or the ball has long left the floor. Measured 1.4e-11
+    // (rounding of the rest position) and 1.2e7 (it bounces) for Euler, 1.4e-11
+    // and 3.6e7 for RK4 (limit 2.95), 0 and 7.5e6 for implicit (Euler's limit:
+    // MuJoCo's implicit integrator treats contacts explicitly); bounds ×0.5, ×2.
+    const double stable = growth(0.9 * dt_limit), unstable = growth(1.1 * dt_limit);
+    EXPECT_LT(stable, 0.5) << "dt " << 0.9 * dt_limit;
+    EXPECT_GT(unstable, 2.0) << "dt " << 1.1 * dt_limit;
+  }
+}
+
+TEST_F(Inspect, WarnsForAPyramidalConeWithHighFrictionAndForImpratioBelowOne) {
+  std::string xml = kBoxModel;
+  xml.replace(xml.find("<worldbody>"), 11,
+              "<option impratio=\"0.5\"/><default><geom friction=\"2\"/></default>\n  <worldbody>");
+  const mj::InspectReport rep = report(xml);
+  ASSERT_FALSE(rep.contacts.empty());
+  // φ = μ²(1 + μ²)/((condim − 1)·impratio) = 4·5/(2·0.5) = 20.
+  EXPECT_DOUBLE_EQ(rep.contacts[0].phi, 20.0);
+  bool cone = false, impratio = false;
+  for (const std::string& w : rep.warnings) {
+    cone |= w.find("pyramidal cone with μ = 2") != std::string::npos;
+    impratio |= w.find("impratio = 0.5 < 1") != std::string::npos;
+  }
+  EXPECT_TRUE(cone);
+  EXPECT_TRUE(impratio);
+  // The box does rest at the printed depth, the one φ gives.
+  Sim s(xml);
+  for (int i = 0; i < 1500; ++i) mj_step(s.m(), s.d());
+  // Measured 1.5e-14 relative; bound 1e-9 (the default box, φ = 1, rests 9.1× shallower).
+  EXPECT_NEAR(mean_contact_depth(s), rep.contacts[0].penetration,
+              1e-9 * rep.contacts[0].penetration);
+}
+
+TEST_F(Inspect, WarnsWhenABodysEffectiveMassDiffersTenfoldAcrossItsContacts) {
+  // A rod hinged at x = 0 resting on two posts, at x = 0.1 and x = 0.9: A ∝ x²/I.
+  const char* xml = R"(<mujoco>
+  <worldbody>
+    <geom name="near" type="box" pos="0.1 0 -0.05" size="0.02 0.1 0.05"/>
+    <geom name="far" type="box" pos="0.9 0 -0.05" size="0.02 0.1 0.05"/>
+    <body name="rod" pos="0 0 0.0199">
+      <joint type="hinge" axis="0 1 0"/>
+      <geom name="rod" type="capsule" fromto="0 0 0 1 0 0" size="0.02" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+  const mj::InspectReport rep = report(xml);
+  ASSERT_GE(rep.contacts.size(), 2u);
+  bool found = false;
+  for (const std::string& w : rep.warnings)
+    found |= w.find("body rod: its effective mass") != std::string::npos;
+  EXPECT_TRUE(found);
+  EXPECT_FALSE(report(kBoxModel).warnings.size());
+}
+
+TEST_F(Inspect, SaysSoWhenTheNormalForcesCannotHoldTheModel) {
+  // A ball on a plane tilted by 20° about y: without friction nothing holds it
+  // along the slope; the least-squares load is the weight's normal part.
+  const char* xml = R"(<mujoco>
+  <worldbody>
+    <geom name="slope" type="plane" size="2 2 0.1" euler="0 20 0"/>
+    <body name="ball" pos="0 0 0.0999">
+      <freejoint/>
+      <geom name="ball" type="sphere" size="0.1" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+  const mj::InspectReport rep = report(xml);
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  EXPECT_FALSE(rep.balanced);
+  EXPECT_NEAR(rep.residual, std::sin(20.0 * kPiInspect / 180.0), 1e-9);
+  EXPECT_NEAR(rep.contacts[0].load, 9.81 * std::cos(20.0 * kPiInspect / 180.0), 1e-9);
+  bool found = false;
+  for (const std::string& w : rep.warnings)
+    found |= w.find("normal forces alone do not hold the model") != std::string::npos;
+  EXPECT_TRUE(found);
+  EXPECT_TRUE(report(kBoxModel).balanced);
+}
+
+TEST_F(Inspect, AContactItsJointsCannotMoveAlongTheNormalHasNoDynamics) {
+  // A sphere on a hinge through its centre touching the floor: n·J = 0.
+  const char* xml = R"(<mujoco>
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <body name="wheel" pos="0 0 0.0999">
+      <joint type="hinge" axis="0 1 0"/>
+      <geom name="wheel" type="sphere" size="0.1" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+  const mj::InspectReport rep = report(xml);
+  ASSERT_EQ(rep.contacts.size(), 1u);
+  EXPECT_NEAR(rep.contacts[0].A, 0.0, 1e-15);
+  EXPECT_TRUE(std::isnan(rep.contacts[0].zeta));
+  EXPECT_TRUE(rep.warnings.empty()) << rep.warnings[0];  // no ω·Δt warning from a NaN limit
+  EXPECT_NE(mj::format_inspect_text(rep).find("no contact dynamics"), std::string::npos);
+}
+
+TEST_F(Inspect, CliPrintsMujocosMessageOnOneLineForAModelItCannotLoad) {
+  write("bad.xml", "<mujoco><worldbody><geom type=\"sphere\" size=\"-1\"/></wordbody></mujoco>\n");
+  const Run r = run("inspect bad.xml");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("bad.xml: MuJoCo cannot load the model: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("XML parse error"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  const Run missing = run("inspect missing.xml");
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.err.find("missing.xml: cannot open the file"), std::string::npos);
+}
+
+TEST_F(Inspect, CliSaysSoForAModelWithNoContactsAndExitsZero) {
+  write("free.xml",
+        "<mujoco><worldbody><body pos=\"0 0 1\"><freejoint/><geom type=\"sphere\" "
+        "size=\"0.1\"/></body></worldbody></mujoco>\n");
+  const Run r = run("inspect free.xml");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("no contacts at qpos0"), std::string::npos) << r.out;
+  const Run json = run("inspect free.xml --json");
+  EXPECT_EQ(json.status, 0);
+  EXPECT_NE(json.out.find("\"contacts\": []"), std::string::npos) << json.out;
+}
+
+TEST_F(Inspect, CliNamesABadKeyOrSlopeAndItsRange) {
+  write("box.xml", kBoxModel);
+  const Run key = run("inspect box.xml --key nowhere");
+  EXPECT_EQ(key.status, 2);
+  EXPECT_NE(key.err.find("--key nowhere: no keyframe of that name"), std::string::npos) << key.err;
+  const Run slope = run("inspect box.xml --slope 95");
+  EXPECT_EQ(slope.status, 2);
+  EXPECT_NE(slope.err.find("--slope 95: must be in [0, 90) degrees"), std::string::npos)
+      << slope.err;
+  // The text names identical contacts once; the JSON lists each.
+  const Run text = run("inspect box.xml");
+  EXPECT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("\ncontacts 1, 2, 3: the same as contact 0"), std::string::npos)
+      << text.out;
+  const Run ok = run("inspect box.xml --slope 10 --json");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_NE(ok.out.find("\"creep\": "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace contact2d
