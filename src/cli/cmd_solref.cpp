@@ -1,4 +1,5 @@
-// contact2d solref --k N/m --c N·s/m --dt S (--mass KG [--joint J] [--inertia I --lever R]
+// contact2d solref (--k N/m | --penetration M | --contact-time S) (--c N·s/m | --restitution E)
+//                  --dt S (--mass KG [--joint J] [--inertia I --lever R]
 //                  [--pivot P] | --model FILE --body NAME) [--mu μ] [--mu-roll M]
 //                  [--mapping NAME|all] [--contacts N] [--json]
 // MuJoCo's solref, solimp, impratio and cone for a user's own model, and
@@ -15,7 +16,9 @@ namespace contact2d::cli {
 namespace {
 
 struct SolrefOptions {
-  double k = 0.0, c = 0.0, dt = 0.0;
+  std::optional<double> k, c;
+  double dt = 0.0;
+  contact2d::mujoco::SolrefTargets targets;
   std::optional<double> mass, mu;
   double inertia = 0.0, lever = 0.0, pivot = 0.0, mu_roll = 0.0;
   std::string model, body;
@@ -45,8 +48,8 @@ int solref(const SolrefOptions& options) {
   namespace mj = contact2d::mujoco;
   const auto mappings = chosen_mappings(options.mapping);
   mj::SolrefInput in;
-  in.k = options.k;
-  in.c = options.c;
+  in.k = options.k.value_or(1.0);  // a placeholder until solve_targets when a target gives it
+  in.c = options.c.value_or(0.0);
   in.dt = options.dt;
   in.inertia = options.inertia;
   in.lever = options.lever;
@@ -117,6 +120,9 @@ int solref(const SolrefOptions& options) {
     in.mass = *options.mass;
     in.body_source = "--mass " + format_number(in.mass, 6);
   }
+  const mj::SolrefTargets& t = options.targets;
+  if (t.restitution || t.contact_time || t.penetration || !options.k || !options.c)
+    mj::solve_targets(in, t, options.k.has_value(), options.c.has_value());
   const mj::SolrefReport report = mj::solref_report(in, mappings);
   // One mapping asked for by name and it cannot express k, c: bad input.
   if (report.mappings.size() == 1 && !report.mappings[0].unavailable.empty())
@@ -131,9 +137,19 @@ Command add_solref(CLI::App& app) {
   auto options = std::make_shared<SolrefOptions>();
   CLI::App* cmd = app.add_subcommand(
       "solref", "MuJoCo solref, solimp, impratio and cone for your own model, per mapping");
-  cmd->add_option("--k", options->k, "Contact stiffness per MuJoCo contact, N/m (> 0)")->required();
-  cmd->add_option("--c", options->c, "Contact damping per MuJoCo contact, N·s/m (>= 0)")
-      ->required();
+  cmd->add_option("--k", options->k,
+                  "Contact stiffness per MuJoCo contact, N/m (> 0; or --penetration, or "
+                  "--contact-time with --restitution)");
+  cmd->add_option("--c", options->c,
+                  "Contact damping per MuJoCo contact, N·s/m (>= 0; or --restitution)");
+  cmd->add_option("--restitution", options->targets.restitution,
+                  "Target coefficient of restitution in (0, 1): c from it (the Kelvin–Voigt "
+                  "law, force clamped at zero)");
+  cmd->add_option("--contact-time", options->targets.contact_time,
+                  "Target duration of an impact, s (> 0; with --restitution): k from it");
+  cmd->add_option("--penetration", options->targets.penetration,
+                  "Target static depth per contact under gravity, m (> 0): k from it (the "
+                  "calibrated mapping's rest depth)");
   cmd->add_option("--dt", options->dt, "MuJoCo's timestep, s (> 0)")->required();
   CLI::Option* mass = cmd->add_option("--mass", options->mass, "Body mass, kg (> 0)");
   cmd->add_option("--joint", options->joint,

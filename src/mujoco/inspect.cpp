@@ -322,23 +322,37 @@ std::vector<ClosestPoints> closest_points(const mjModel* m, const mjData* d, int
 
 }  // namespace
 
-double kelvin_voigt_restitution(double zeta) {
-  if (!(zeta >= 0.0)) return kNaN;
+namespace {
+// The Kelvin–Voigt oscillator in units of 1/ω: x(0) = 0, x'(0) = 1, force
+// ∝ x + 2ζ·x'; the time its force first returns to zero and the speed then.
+struct KelvinVoigtExit {
+  double time = 0.0;   // ω·t_c
+  double speed = 0.0;  // x'(t_c) (negative: leaving)
+};
+KelvinVoigtExit kelvin_voigt_exit(double zeta) {
   if (std::abs(zeta - 1.0) < 1e-6) zeta = 1.0 + 1e-6;  // the critical case as its limit
-  // Time in units of 1/ω; x(0) = 0, x'(0) = 1; force ∝ x + 2ζ·x'.
   if (zeta < 1.0) {
     const double wd = std::sqrt(1.0 - zeta * zeta);
     const double theta = std::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta);
     const double tc = (kPi - theta) / wd;  // first zero of the force after t = 0
-    const double v = std::exp(-zeta * tc) * (std::cos(wd * tc) - zeta / wd * std::sin(wd * tc));
-    return -v;
+    return {tc, std::exp(-zeta * tc) * (std::cos(wd * tc) - zeta / wd * std::sin(wd * tc))};
   }
   const double s = std::sqrt(zeta * zeta - 1.0);
   const double l1 = -zeta + s, l2 = -zeta - s;
   const double a1 = 1.0 + 2.0 * zeta * l1, a2 = 1.0 + 2.0 * zeta * l2;
   const double tc = std::log(a2 / a1) / (l1 - l2);
-  const double v = (l1 * std::exp(l1 * tc) - l2 * std::exp(l2 * tc)) / (l1 - l2);
-  return -v;
+  return {tc, (l1 * std::exp(l1 * tc) - l2 * std::exp(l2 * tc)) / (l1 - l2)};
+}
+}  // namespace
+
+double kelvin_voigt_restitution(double zeta) {
+  if (!(zeta >= 0.0)) return kNaN;
+  return -kelvin_voigt_exit(zeta).speed;
+}
+
+double kelvin_voigt_contact_time(double zeta) {
+  if (!(zeta >= 0.0)) return kNaN;
+  return kelvin_voigt_exit(zeta).time;
 }
 
 InspectReport inspect(const InspectOptions& options) {

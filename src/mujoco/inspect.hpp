@@ -122,6 +122,9 @@ InspectReport inspect(const InspectOptions& options);
 // speed v0, its force ω²·x + 2ζω·x' clamped at zero: the speed it leaves
 // with over v0 (closed form for ζ < 1 and ζ > 1; independent of ω).
 double kelvin_voigt_restitution(double zeta);
+// The same oscillator's time in contact (until its force returns to zero),
+// in units of 1/ω.
+double kelvin_voigt_contact_time(double zeta);
 
 std::string format_inspect_text(const InspectReport& report);
 std::string format_inspect_json(const InspectReport& report);

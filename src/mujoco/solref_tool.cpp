@@ -11,6 +11,7 @@
 #include "core/input_error.hpp"
 #include "core/integrators.hpp"
 #include "io/json.hpp"
+#include "mujoco/inspect.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
 
@@ -289,22 +290,98 @@ double static_penetration(const std::array<double, 5>& solimp, double K, double 
   return 0.5 * (lo + hi);
 }
 
+ContactMechanics contact_mechanics(const SolrefInput& input) {
+  ContactMechanics m;
+  if (input.joint == Joint::Hinge) {
+    const double hinge_inertia = input.inertia + input.mass * input.pivot * input.pivot;
+    m.inv_mass = input.lever * input.lever / hinge_inertia;
+    // The hinge axis horizontal, the COM level with it at the pivot distance
+    // and the contact normal vertical at the lever: the torque balance
+    // m·g·pivot = N·f·lever.
+    m.load = input.mass * input.gravity * input.pivot / (input.lever * input.contacts);
+  } else {
+    m.inv_mass =
+        1.0 / input.mass + (input.inertia > 0.0 ? input.lever * input.lever / input.inertia : 0.0);
+    m.load = input.mass * input.gravity / input.contacts;
+  }
+  return m;
+}
+
+void solve_targets(SolrefInput& in, const SolrefTargets& t, bool k_given, bool c_given) {
+  const int k_sources = (k_given ? 1 : 0) + (t.penetration ? 1 : 0) + (t.contact_time ? 1 : 0);
+  if (k_sources > 1)
+    throw InputError(std::string(k_given ? "--k" : "--penetration") +
+                     ": give k one way only: --k, --penetration or --contact-time");
+  if (k_sources == 0)
+    throw InputError("--k: required (or --penetration, or --contact-time with --restitution)");
+  if (c_given && t.restitution) throw InputError("--c: give c one way only: --c or --restitution");
+  if (!c_given && !t.restitution) throw InputError("--c: required (or --restitution)");
+  if (t.contact_time && !t.restitution)
+    throw InputError("--contact-time: needs --restitution (the time depends on ζ too)");
+  auto finite = [](double v) { return std::isfinite(v); };
+  if (t.restitution)
+    require(finite(*t.restitution) && *t.restitution > 0.0 && *t.restitution < 1.0, "--restitution",
+            *t.restitution, "a number in (0, 1)");
+  if (t.contact_time)
+    require(finite(*t.contact_time) && *t.contact_time > 0.0, "--contact-time", *t.contact_time,
+            "a finite number > 0 (s)");
+  if (t.penetration)
+    require(finite(*t.penetration) && *t.penetration > 0.0, "--penetration", *t.penetration,
+            "a finite number > 0 (m)");
+  {
+    // The body's numbers first (A and f need them); k and c are placeholders.
+    SolrefInput probe = in;
+    probe.k = 1.0;
+    probe.c = 0.0;
+    validate(probe);
+  }
+  const ContactMechanics mech = contact_mechanics(in);
+  std::string note;
+  double zeta = 0.0;
+  if (t.restitution) {
+    // e(ζ) falls from 1 at ζ = 0 (2.5e-7 at ζ = 1000): bisection on log ζ.
+    const double e = *t.restitution;
+    double lo = 1e-9, hi = 1e4;
+    if (!(kelvin_voigt_restitution(hi) < e))
+      throw InputError("--restitution " + g(e) + ": below what a Kelvin–Voigt contact reaches (" +
+                       g(kelvin_voigt_restitution(hi)) + " at ζ = 1e4)");
+    if (!(kelvin_voigt_restitution(lo) > e))
+      throw InputError("--restitution " + g(e) + ": too close to 1 (ζ < 1e-9)");
+    for (int i = 0; i < 200; ++i) {
+      const double mid = std::sqrt(lo * hi);
+      (kelvin_voigt_restitution(mid) > e ? lo : hi) = mid;
+    }
+    zeta = std::sqrt(lo * hi);
+  }
+  if (t.penetration) {
+    constexpr double kCalibratedImpedance = 1e-4;  // calibrated's flat solimp
+    in.k = (1.0 - kCalibratedImpedance) * mech.load / *t.penetration;
+    note += "k = (1 − d)·f/p = (1 − 1e-4)·" + g(mech.load) + "/" + g(*t.penetration) + " = " +
+            g(in.k) + " N/m (calibrated's rest depth per contact, f = " + g(mech.load) + " N)";
+  }
+  if (t.contact_time) {
+    const double omega = kelvin_voigt_contact_time(zeta) / *t.contact_time;
+    in.k = omega * omega / mech.inv_mass;
+    note += "k = ω²/A with ω = τ(ζ)/T = " + g(kelvin_voigt_contact_time(zeta)) + "/" +
+            g(*t.contact_time) + " s = " + g(omega) + " rad/s: k = " + g(in.k) + " N/m";
+  }
+  if (t.restitution) {
+    in.c = 2.0 * zeta * std::sqrt(in.k / mech.inv_mass);
+    note += std::string(note.empty() ? "" : "; ") + "ζ = " + g(zeta) +
+            " rebounds at e = " + g(*t.restitution) +
+            " (Kelvin–Voigt, force clamped at zero): " + "c = 2ζ·√(k/A) = " + g(in.c) +
+            " N·s/m (A = " + g(mech.inv_mass) + " 1/kg)";
+  }
+  in.targets_note = note;
+}
+
 SolrefReport solref_report(const SolrefInput& input, const std::vector<Mapping>& mappings) {
   validate(input);
   SolrefReport report;
   report.input = input;
-  if (input.joint == Joint::Hinge) {
-    const double hinge_inertia = input.inertia + input.mass * input.pivot * input.pivot;
-    report.inv_mass = input.lever * input.lever / hinge_inertia;
-    // The hinge axis horizontal, the COM level with it at the pivot distance
-    // and the contact normal vertical at the lever: the torque balance
-    // m·g·pivot = N·f·lever.
-    report.load = input.mass * input.gravity * input.pivot / (input.lever * input.contacts);
-  } else {
-    report.inv_mass =
-        1.0 / input.mass + (input.inertia > 0.0 ? input.lever * input.lever / input.inertia : 0.0);
-    report.load = input.mass * input.gravity / input.contacts;
-  }
+  const ContactMechanics mech = contact_mechanics(input);
+  report.inv_mass = mech.inv_mass;
+  report.load = mech.load;
   report.inv_weight = input.inv_weight > 0.0
                           ? input.inv_weight
                           : joint_inv_weight(input.joint, input.mass, input.inertia, input.pivot);
@@ -443,6 +520,7 @@ std::string format_report_text(const SolrefReport& r) {
          "printed below says why).\n";
   o << "\nk = " << g(in.k) << " N/m, c = " << g(in.c)
     << " N·s/m per MuJoCo contact, Δt = " << g(in.dt) << " s; body: " << in.body_source << "\n";
+  if (!in.targets_note.empty()) o << "from your targets: " << in.targets_note << "\n";
   const bool hinge = in.joint == Joint::Hinge;
   o << "m = " << g(in.mass) << " kg; A = "
     << (hinge            ? "lever²/(I + m·pivot²)"
@@ -545,6 +623,7 @@ std::string format_report_json(const SolrefReport& r) {
     << ",\n  \"contacts\": " << in.contacts
     << ",\n  \"contacts_source\": " << json::string(in.contacts_source)
     << ",\n  \"body\": " << json::string(in.body_source)
+    << ",\n  \"targets\": " << json::string(in.targets_note)
     << ",\n  \"inv_mass\": " << json::number(r.inv_mass)
     << ",\n  \"body_invweight0\": " << json::number(r.inv_weight)
     << ",\n  \"load_per_contact\": " << json::number(r.load)

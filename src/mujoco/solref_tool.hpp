@@ -81,7 +81,42 @@ struct SolrefInput {
   double gravity = 9.81;                       // m/s²
   // Where the numbers come from, for the text ("--mass 1" or "model.xml, body 'box'").
   std::string body_source;
+  // How k and c were found when targets gave them (solve_targets), for the
+  // text; empty when --k and --c were given.
+  std::string targets_note;
 };
+
+// The contact as a mechanism: A, the true inverse mass along the normal
+// (1/m + lever²/I; a hinge lever²/(I + m·pivot²)), and f, the normal load
+// per MuJoCo contact at rest (m·g/contacts; a hinge m·g·pivot/(lever·contacts)).
+struct ContactMechanics {
+  double inv_mass = 0.0;
+  double load = 0.0;
+};
+ContactMechanics contact_mechanics(const SolrefInput& input);
+
+// What a user wants of a contact instead of k and c (`contact2d solref
+// --restitution e [--k K | --contact-time T] | --penetration p`):
+//   restitution e   the Kelvin–Voigt law with its force clamped at zero
+//                   rebounds at e = v_out/v_in, a function of ζ alone
+//                   (inspect.hpp, decreasing from 1 at ζ = 0): ζ by bisection,
+//                   then c = 2ζ·√(k/A);
+//   contact time T  the same oscillator's time until its force returns to
+//                   zero is τ(ζ)/ω: with e's ζ, ω = τ(ζ)/T, k = ω²/A;
+//   penetration p   the calibrated mapping's static depth per contact is
+//                   (1 − d)·f/k (d = 1e-4, its flat impedance): k = (1 − d)·f/p.
+// k comes from exactly one of --k, --penetration, --contact-time; c from
+// --c or --restitution.
+struct SolrefTargets {
+  std::optional<double> restitution;
+  std::optional<double> contact_time;
+  std::optional<double> penetration;
+};
+// Sets input.k and/or input.c from the targets (the others stay as given)
+// and input.targets_note; throws InputError naming the option for a value
+// out of range or a combination that over- or under-determines k or c.
+// `k_given`, `c_given`: whether --k and --c were on the command line.
+void solve_targets(SolrefInput& input, const SolrefTargets& targets, bool k_given, bool c_given);
 
 struct MappingOutcome {
   Mapping mapping = kDefaultMapping;
