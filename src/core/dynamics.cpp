@@ -14,18 +14,6 @@ namespace {
 // more than one batch, summed in the same order.
 constexpr size_t kBatch = 16;
 
-// The contact forces and torques of contacts [first, last) of `contacts`
-// added to `force` and `torque`, in the order of the list — the order and
-// the arithmetic of every sum are those of the one-contact-at-a-time loop
-// this replaced, so that on the scalar tanh path the result is bit for bit
-// the same. In two passes per batch: the normal forces and every tanh
-// argument (friction α·v_t, rolling α·R·ω) first, then one tanh_batch,
-// then the sums.
-//
-// With a Jacobian (Newton, core/integrators.cpp) it also adds the analytic
-// derivatives of (F_x, F_y, τ) with respect to (q, v) = (x, y, θ, vx, vy, ω)
-// to the rows of `jac` (3 × 6, row-major), for contacts
-// whose normal does not turn with q (the ground); see acceleration_jacobian.
 // One contact under a cone law (core/contact.hpp); `fn` is the normal law's
 // force. Under soft_cone on the ground the force acts halfway into the
 // penetration, where MuJoCo puts the contact point: lever r + (0, d/2), so
@@ -48,6 +36,20 @@ void add_cone(const Contact& c, const ContactParams& law, bool on_ground, double
   torque += rx * total.y() - ry * total.x() + f.roll;
 }
 
+// The contact forces and torques of contacts [first, last) of `contacts`
+// added to `force` and `torque`, in the order of the list — the order and
+// the arithmetic of every sum are those of the one-contact-at-a-time loop
+// this replaced, so that on the scalar tanh path the result is bit for bit
+// the same. In two passes per batch: the normal forces and every tanh
+// argument (friction α·v_t, rolling α·R·ω) first, then one tanh_batch,
+// then the sums.
+//
+// With a Jacobian (Newton, core/integrators.cpp) it also adds the analytic
+// derivatives of (F_x, F_y, τ) with respect to (q, v) = (x, y, θ, vx, vy, ω)
+// to the rows of `jac` (3 × 6, row-major), for contacts
+// whose normal does not turn with q (the ground); see acceleration_jacobian.
+// A contact under a cone friction law is added by add_cone instead (its
+// Jacobian is never asked for: acceleration_jacobian differences it).
 template <bool kJacobian>
 void add_contacts(const Model& model, const ContactSet& contacts, size_t first, size_t last,
                   const Vec3& v, Vec2& force, double& torque, double (*jac)[6]) {

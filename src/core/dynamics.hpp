@@ -61,7 +61,9 @@ Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v)
 // ∂a/∂q is taken by forward differences of their part (three contact
 // stages into `probe`, sized for the model). At a kink of the law (d = 0,
 // v_n = 0 under compression, k·d = c·v_n under Kelvin–Voigt) it is the
-// derivative of the branch the state is on. Allocation-free.
+// derivative of the branch the state is on. Under a cone friction law
+// (core/contact.hpp) the whole of it is taken by forward differences
+// (three contact stages into `probe`). Allocation-free.
 struct AccelerationJacobian {
   Eigen::Matrix3d dq;  // ∂a/∂q
   Eigen::Matrix3d dv;  // ∂a/∂v
