@@ -8,31 +8,18 @@
 #include <string>
 
 #include "analysis/comparison.hpp"
+#include "diagnosis_util.hpp"
 #include "mj_test_util.hpp"
 
 namespace contact2d {
 namespace {
 
-struct Diagnosed {
-  analysis::ThreeWay three;
-  analysis::Diagnosis diagnosis;
-};
-
-Diagnosed diagnosed(const Scene& scene) {
-  engines::EngineSpec spec;
-  spec.kind = "mujoco";
-  const engines::EngineRun ref = engines::run_engine("ref", scene);
-  const engines::EngineRun mj = engines::run_engine(spec, scene);
-  Diagnosed d;
-  d.three = analysis::three_way(scene, ref.trajectory, mj.trajectory, 1e-12);
-  d.diagnosis = analysis::diagnose(scene, spec, ref, mj, d.three);
-  return d;
-}
+using test::Diagnosed;
+using test::diagnosed;
 
 const analysis::Finding* named(const analysis::Diagnosis& d, const std::string& cause) {
-  for (const analysis::Finding& f : d.findings)
-    if (f.cause == cause && f.named) return &f;
-  return nullptr;
+  const analysis::Finding* f = test::finding(d, cause);
+  return f != nullptr && f->named ? f : nullptr;
 }
 
 // The shipped scenes' law: compression-only damping, which MuJoCo cannot
@@ -113,13 +100,8 @@ TEST(CompareDiagnosis, ModelDtHoldsTheDtDependentImpratioAndIsDiagnosed) {
   EXPECT_DOUBLE_EQ(fine_held.impratio, at_coarse.impratio);
   EXPECT_NEAR(own.impratio, 10.0 * at_coarse.impratio, 1e-12 * own.impratio);
 
-  const engines::EngineRun ref = engines::run_engine("ref", scene);
-  const analysis::ThreeWay three =
-      analysis::three_way(scene, ref.trajectory, own.trajectory, 1e-10);
-  const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, own, three);
-  const analysis::Finding* model = nullptr;
-  for (const analysis::Finding& f : d.findings)
-    if (f.cause == "dt_dependent_model") model = &f;
+  const Diagnosed d = diagnosed(scene, spec, 1e-10);
+  const analysis::Finding* model = test::finding(d.diagnosis, "dt_dependent_model");
   ASSERT_NE(model, nullptr);
   EXPECT_EQ(model->fix, "--model-dt 0.0001");
   EXPECT_TRUE(std::isfinite(model->share));

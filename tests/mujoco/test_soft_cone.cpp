@@ -24,6 +24,7 @@
 
 #include "analysis/comparison.hpp"
 #include "analysis/friction_table.hpp"
+#include "diagnosis_util.hpp"
 #include "io/scene_file.hpp"
 #include "mj_test_util.hpp"
 
@@ -85,16 +86,9 @@ TEST(SoftCone, TheDiagnosisNamesTheFrictionLaw) {
   ASSERT_EQ(analysis::friction_scenes()[1].name, "box_slide");
   for (const char* mapping : {"calibrated", "compensated"}) {
     engines::EngineSpec spec;
-    spec.kind = "mujoco";
     spec.mapping = mapping;
-    const engines::EngineRun ref = engines::run_engine("ref", scene);
-    const engines::EngineRun mj = engines::run_engine(spec, scene);
-    const analysis::ThreeWay three =
-        analysis::three_way(scene, ref.trajectory, mj.trajectory, 1e-10);
-    const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, mj, three);
-    const analysis::Finding* law = nullptr;
-    for (const analysis::Finding& f : d.findings)
-      if (f.cause == "friction_law") law = &f;
+    const analysis::Diagnosis d = test::diagnosed(scene, spec, 1e-10).diagnosis;
+    const analysis::Finding* law = test::finding(d, "friction_law");
     ASSERT_NE(law, nullptr) << mapping;
     std::printf("%s: friction_law %.3g -> %.3g m (%.3f)\n", mapping, law->before, law->after,
                 law->share);
