@@ -14,7 +14,7 @@
 #include <sstream>
 #include <utility>
 
-#include "analysis/comparison.hpp"
+#include "analysis/compare_run.hpp"
 #include "analysis/trajectory_error.hpp"
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
@@ -46,121 +46,9 @@ struct CompareOptions {
   bool allow_nonphysical = false;
 };
 
-struct Comparison {
-  Scene scene;
-  mj::MjcfOptions mjcf;
-  engines::EngineRun ref;
-  engines::EngineRun mujoco;
-  analysis::TrajectoryError errors;  // ref ↔ MuJoCo
-  analysis::ThreeWay three;
-  analysis::Diagnosis diagnosis;
-};
-
-struct Energies {
-  double initial = 0.0;
-  double final = 0.0;
-};
-
-Energies energies(const Scene& scene, const Trajectory& t) {
-  const Model model = make_model(scene);
-  return {energy(model, t.samples.front().state), energy(model, t.samples.back().state)};
-}
-
-// `prefix`_max_pos_err, …: one pair's distances (null when not measured).
-void json_errors(std::ostringstream& o, const std::string& prefix,
-                 const analysis::TrajectoryError& e, bool measured) {
-  auto n = [measured](double v) { return measured ? json::number(v, 10) : std::string("null"); };
-  o << ", \"" << prefix << "_max_pos_err\": " << n(e.max_pos) << ", \"" << prefix
-    << "_rms_pos_err\": " << n(e.rms_pos) << ", \"" << prefix << "_end_pos_err\": " << n(e.end_pos)
-    << ", \"" << prefix << "_max_angle_err\": " << n(e.max_angle) << ", \"" << prefix
-    << "_end_angle_err\": " << n(e.end_angle) << ", \"" << prefix
-    << "_max_vel_err\": " << n(e.max_vel) << ", \"" << prefix
-    << "_max_omega_err\": " << n(e.max_omega);
-}
-
-void json_diagnosis(std::ostringstream& o, const analysis::Diagnosis& d) {
-  o << ", \"diagnosis_ran\": " << (d.ran ? "true" : "false")
-    << ", \"agrees\": " << (d.agrees ? "true" : "false")
-    << ", \"diagnosis_summary\": " << json::string(d.summary) << ", \"diagnosis\": [";
-  bool first = true;
-  for (const analysis::Finding& f : d.findings) {
-    if (!f.named) continue;
-    o << (first ? "" : ", ");
-    first = false;
-    o << "{\"cause\": " << json::string(f.cause) << ", \"share\": " << json::number(f.share, 10)
-      << ", \"before\": " << json::number(f.before, 10)
-      << ", \"after\": " << json::number(f.after, 10) << ", \"fix\": " << json::string(f.fix)
-      << ", \"explanation\": " << json::string(f.explanation);
-    if (f.cause == "friction") {
-      o << ", \"sliding_phases\": [";
-      for (size_t i = 0; i < f.phases.size(); ++i)
-        o << (i ? ", " : "") << "{\"t0\": " << json::number(f.phases[i].t0, 10)
-          << ", \"t1\": " << json::number(f.phases[i].t1, 10)
-          << ", \"distance0\": " << json::number(f.phases[i].distance0, 10)
-          << ", \"distance1\": " << json::number(f.phases[i].distance1, 10) << "}";
-      o << "]";
-    }
-    o << "}";
-  }
-  o << "], \"ruled_out\": [";
-  first = true;
-  for (const analysis::Finding& f : d.findings) {
-    if (f.named) continue;
-    o << (first ? "" : ", ") << "{\"cause\": " << json::string(f.cause)
-      << ", \"share\": " << json::number(f.share, 10)
-      << ", \"after\": " << json::number(f.after, 10) << "}";
-    first = false;
-  }
-  o << "]";
-}
-
-void print_json(const Comparison& c, const std::string& path) {
-  const Energies er = energies(c.scene, c.ref.trajectory);
-  const Energies em = energies(c.scene, c.mujoco.trajectory);
-  const analysis::TrajectoryError& e = c.errors;
-  const analysis::ConvergedSolution& conv = c.three.converged;
-  std::ostringstream o;
-  o << "{\"scene\": " << json::string(path) << ", \"shape\": \"" << shape_name(c.scene.shape)
-    << "\""
-    << ", \"mapping\": \"" << mj::mapping_name(c.mjcf.mapping) << "\", \"geometry\": \""
-    << mj::geometry_name(c.mjcf.geometry) << "\", \"damping\": \""
-    << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") << "\""
-    << ", \"friction_law\": \"" << friction_law_name(c.scene.contact.friction) << "\""
-    << ", \"integrators\": {\"ref\": \"" << integrator_name(c.scene.sim.integrator)
-    << "\", \"mujoco\": \"" << mj::mujoco_integrator(c.scene.sim.integrator) << "\"}"
-    << ", \"dt\": " << json::number(c.scene.sim.dt, 10)
-    << ", \"duration\": " << json::number(c.scene.sim.duration, 10)
-    << ", \"samples\": " << e.samples << ", \"max_pos_err\": " << json::number(e.max_pos, 10)
-    << ", \"rms_pos_err\": " << json::number(e.rms_pos, 10)
-    << ", \"max_angle_err\": " << json::number(e.max_angle, 10)
-    << ", \"max_vel_err\": " << json::number(e.max_vel, 10)
-    << ", \"max_omega_err\": " << json::number(e.max_omega, 10)
-    << ", \"end_pos_err\": " << json::number(e.end_pos, 10)
-    << ", \"end_angle_err\": " << json::number(e.end_angle, 10)
-    << ", \"time_of_max_pos_err\": " << json::number(e.time_of_max_pos, 10) << ", \"ref_energy\": ["
-    << json::number(er.initial, 10) << ", " << json::number(er.final, 10) << "]"
-    << ", \"mujoco_energy\": [" << json::number(em.initial, 10) << ", "
-    << json::number(em.final, 10) << "]"
-    << ", \"ref_seconds\": " << json::number(c.ref.seconds, 10)
-    << ", \"mujoco_seconds\": " << json::number(c.mujoco.seconds, 10) << ", \"solref\": ["
-    << json::number(c.mujoco.solref[0], 10) << ", " << json::number(c.mujoco.solref[1], 10) << "]"
-    << ", \"impratio\": " << json::number(c.mujoco.impratio, 10) << ", \"mujoco_warnings\": [";
-  for (size_t i = 0; i < c.mujoco.warnings.size(); ++i)
-    o << (i ? ", " : "") << json::string(c.mujoco.warnings[i]);
-  o << "], \"converged_tol\": " << json::number(conv.tol, 10)
-    << ", \"converged_available\": " << (conv.available ? "true" : "false")
-    << ", \"converged_why_not\": " << (conv.available ? "null" : json::string(conv.why_not))
-    << ", \"converged_own_error\": "
-    << (conv.available ? json::number(conv.own_error, 10) : std::string("null"))
-    << ", \"converged_seconds\": " << json::number(conv.seconds, 10) << ", \"amplification\": "
-    << (conv.available ? json::number(conv.amplification, 10) : std::string("null"));
-  json_errors(o, "ref_vs_converged", c.three.ref_vs_converged, conv.available);
-  json_errors(o, "mujoco_vs_converged", c.three.mujoco_vs_converged, conv.available);
-  json_errors(o, "ref_vs_mujoco", c.three.ref_vs_mujoco, true);
-  json_diagnosis(o, c.diagnosis);
-  o << "}\n";
-  std::cout << o.str();
-}
+using analysis::Comparison;
+using analysis::energies;
+using analysis::Energies;
 
 // Words wrapped at `width` columns after an indent.
 std::string wrapped(const std::string& text, const std::string& indent, size_t width = 78) {
@@ -304,25 +192,10 @@ void write_csv(AtomicFile& out, const Comparison& c) {
   }
 }
 
-// Reports a divergence of either engine; true when one diverged.
-bool report_divergence(const Comparison& c, const std::string& path) {
-  bool diverged = false;
-  for (const auto& [name, run] : {std::pair{"ref", &c.ref}, std::pair{"MuJoCo", &c.mujoco}}) {
-    if (!run->trajectory.divergence) continue;
-    std::cerr << "contact2d: " << path << ": " << name << ": " << run->divergence_message << "\n";
-    diverged = true;
-  }
-  return diverged;
-}
-
 int compare(const CompareOptions& options) {
   options.outputs.check();
-  Comparison c;
-  c.scene = options.scene.load();
   const engines::EngineSpec spec = options.mujoco.spec(options.scene.path);
-  c.mjcf = mj::mjcf_options(spec.mapping, spec.geometry, spec.source);
-  c.mjcf.model_dt = spec.model_dt;
-  mj::mujoco_integrator(c.scene.sim.integrator);  // explicit Euler: fail before any work
+  Comparison c = analysis::prepare_comparison(options.scene.load(), spec);
   if (!options.video.empty()) {
 #ifdef CONTACT2D_WITH_WINDOW
     game::check_video_path(options.video);
@@ -334,22 +207,23 @@ int compare(const CompareOptions& options) {
   }
   std::unique_ptr<AtomicFile> csv;
   if (!options.csv.empty()) csv = std::make_unique<AtomicFile>(options.csv);
-  c.mujoco = engines::run_engine(spec, c.scene);
-  c.ref = engines::run_engine(engines::parse_engine("ref"), c.scene);
+  analysis::run_engines(c);
   for (const std::string& w : c.mujoco.warnings)
     std::cerr << "contact2d: MuJoCo warning: " << w << "\n";
-  if (report_divergence(c, options.scene.path)) return kExitDiverged;
-  bool nonphysical_run = false;
-  for (const auto& [name, run] : {std::pair{"ref", &c.ref}, std::pair{"MuJoCo", &c.mujoco}}) {
-    nonphysical_run |= reject_nonphysical(nonphysical(run->trajectory, c.scene),
-                                          options.allow_nonphysical, options.scene.path, name);
+  const std::vector<analysis::RunProblem> problems = analysis::run_problems(c);
+  bool stop = false;
+  for (const analysis::RunProblem& p : problems) {
+    if (p.diverged) {
+      std::cerr << "contact2d: " << options.scene.path << ": " << p.engine << ": " << p.message
+                << "\n";
+      stop = true;
+    } else {
+      stop |=
+          reject_nonphysical(p.message, options.allow_nonphysical, options.scene.path, p.engine);
+    }
   }
-  if (nonphysical_run) return kExitDiverged;
-  c.three =
-      analysis::three_way(c.scene, c.ref.trajectory, c.mujoco.trajectory, options.converged_tol);
-  c.errors = c.three.ref_vs_mujoco;
-  if (!options.no_diagnosis)
-    c.diagnosis = analysis::diagnose(c.scene, spec, c.ref, c.mujoco, c.three);
+  if (stop) return kExitDiverged;
+  analysis::measure(c, options.converged_tol, !options.no_diagnosis);
   if (csv) write_csv(*csv, c);  // committed last: a plot or video that fails leaves no CSV
   if (!options.plot.empty()) {
     const std::string title =
@@ -376,7 +250,7 @@ int compare(const CompareOptions& options) {
 #endif
   if (csv) csv->commit();
   if (options.json) {
-    print_json(c, options.scene.path);
+    std::cout << analysis::comparison_json(c, options.scene.path);
   } else {
     print_table(c);
   }
