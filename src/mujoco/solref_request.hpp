@@ -35,13 +35,13 @@ struct SolrefRequest {
 // InputError for an unknown name and for compensated (not offered, with why).
 std::vector<Mapping> chosen_mappings(const std::string& name);
 
-// The report of a request. Notes that are not failures (MuJoCo's warning
-// while loading the model, a body on none of the four joint sets) go to
+// The report of the request `options`. Notes that are not failures (MuJoCo's
+// warning while loading the model, a body on none of the four joint sets) go to
 // `note` as one line each, without a prefix, as they arise. Throws
 // InputError naming the option for a value out of range, a combination of
 // options that does not go together, a model MuJoCo cannot load, or a
 // mapping asked for by name that cannot express k and c.
-SolrefReport solref_request(const SolrefRequest& request,
+SolrefReport solref_request(const SolrefRequest& options,
                             const std::function<void(const std::string&)>& note = {});
 
 }  // namespace contact2d::mujoco
