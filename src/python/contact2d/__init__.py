@@ -1,0 +1,119 @@
+"""contact2d from Python: the reference solver, MuJoCo beside it, and the
+numbers for your own MuJoCo contact (docs/python.md).
+
+The compiled extension ``_contact2d`` calls the same library functions as
+the ``contact2d`` program, so every number is the program's to the bit.
+What the program prints with ``--json`` arrives here as that same JSON,
+parsed into a dict; trajectories are numpy arrays with the columns of
+``COLUMNS`` (t, x, y, theta, vx, vy, omega).
+
+Errors are exceptions carrying the program's one-line message: ValueError
+for bad input, FileNotFoundError for a missing file, RuntimeError when a
+run diverged or is not physics. Notes the program prints on stderr
+(MuJoCo's warnings while loading a model, the refsafe note of generate)
+are issued as Python warnings (``Contact2dNote``).
+"""
+
+import json
+import warnings
+from dataclasses import dataclass, field
+from typing import List, Optional
+
+import numpy as np
+
+from ._contact2d import BoxPart, Contact, Scene, Sim, State, mujoco_available
+from . import _contact2d
+
+__all__ = [
+    "BoxPart", "COLUMNS", "Contact", "Contact2dNote", "Scene", "Sim", "Simulation", "State",
+    "compare", "generate", "inspect", "mujoco_available", "simulate", "solref",
+]
+
+COLUMNS = ("t", "x", "y", "theta", "vx", "vy", "omega")
+
+
+class Contact2dNote(UserWarning):
+    """A note the program prints on stderr ("contact2d: note: ...")."""
+
+
+def _notes(lines):
+    for line in lines:
+        warnings.warn(line, Contact2dNote, stacklevel=3)
+
+
+@dataclass
+class Simulation:
+    """One engine's run of a scene (``simulate``)."""
+
+    trajectory: np.ndarray  # one row per sample, columns COLUMNS
+    warnings: List[str]  # what the engine warned about; a kept non-physical run
+    notes: List[str]  # facts that are not failures, e.g. "refsafe"
+    engine: str  # the engine's name ("ref", "mujoco:calibrated")
+    description: str  # e.g. "mujoco calibrated Euler"
+    seconds: float  # wall clock of the run loop
+    summary: str  # the line `contact2d simulate` prints
+    columns: tuple = field(default=COLUMNS)
+
+    def column(self, name: str) -> np.ndarray:
+        """One column of the trajectory by name ("t", "x", ..., "omega")."""
+        return self.trajectory[:, self.columns.index(name)]
+
+
+def simulate(scene: Scene, engine: str = "ref", integrator: Optional[str] = None,
+             dt: Optional[float] = None, duration: Optional[float] = None, mapping: str = "",
+             geometry: str = "", model_dt: float = 0.0,
+             allow_nonphysical: bool = False) -> Simulation:
+    """Runs one engine on the scene, as ``contact2d simulate``."""
+    run = _contact2d._simulate(scene, engine, integrator, dt, duration, mapping, geometry,
+                               model_dt, allow_nonphysical)
+    return Simulation(**run)
+
+
+def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: float = 0.0,
+            integrator: Optional[str] = None, dt: Optional[float] = None,
+            duration: Optional[float] = None, converged_tol: float = 1e-12,
+            diagnosis: bool = True, allow_nonphysical: bool = False) -> dict:
+    """Both engines against the converged solution and each other, as
+    ``contact2d compare --json``: that JSON object as a dict, with the
+    trajectories added as arrays ("ref_trajectory", "mujoco_trajectory",
+    "converged_trajectory": the converged solution at the reference's sample
+    times, None where it is not available) and "warnings"."""
+    run = _contact2d._compare(scene, integrator, dt, duration, mapping, geometry, model_dt,
+                              converged_tol, diagnosis, allow_nonphysical)
+    result = json.loads(run["json"])
+    for key in ("ref_trajectory", "mujoco_trajectory", "converged_trajectory", "warnings"):
+        result[key] = run[key]
+    return result
+
+
+def generate(scene: Scene, mapping: str = "", geometry: str = "", model_dt: float = 0.0,
+             integrator: Optional[str] = None, dt: Optional[float] = None,
+             duration: Optional[float] = None) -> str:
+    """The MuJoCo MJCF of the scene, as ``contact2d generate``."""
+    run = _contact2d._generate(scene, integrator, dt, duration, mapping, geometry, model_dt)
+    _notes(run["notes"])
+    return run["xml"]
+
+
+def solref(k: Optional[float] = None, c: Optional[float] = None, *, dt: float,
+           mass: Optional[float] = None, mapping: str = "all", joint: Optional[str] = None,
+           inertia: float = 0.0, lever: float = 0.0, pivot: float = 0.0,
+           mu: Optional[float] = None, mu_roll: float = 0.0, model: str = "", body: str = "",
+           contacts: Optional[int] = None, restitution: Optional[float] = None,
+           contact_time: Optional[float] = None,
+           penetration: Optional[float] = None) -> dict:
+    """solref, solimp, impratio and what MuJoCo does with them, per mapping,
+    as ``contact2d solref --json`` (each keyword is that option)."""
+    run = _contact2d._solref(k, c, dt, mass, mapping, joint, inertia, lever, pivot, mu, mu_roll,
+                             model, body, contacts, restitution, contact_time, penetration)
+    _notes(run["notes"])
+    return json.loads(run["json"])
+
+
+def inspect(path: str, key: str = "", pairs: bool = False,
+            slope: Optional[float] = None) -> dict:
+    """Any MJCF model's contacts in physical units, as
+    ``contact2d inspect --json``."""
+    run = _contact2d._inspect(path, key, pairs, slope)
+    _notes(run["notes"])
+    return json.loads(run["json"])

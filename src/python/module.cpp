@@ -1,0 +1,440 @@
+// _contact2d: the compiled half of the Python module `contact2d`
+// (src/python/contact2d/__init__.py is the other half; docs/python.md).
+//
+// A thin layer over the libraries the program calls, so the numbers are
+// the program's to the bit: a scene is the core's Scene struct itself,
+// simulate runs engines::run_engine, compare the comparison of
+// analysis/compare_run.hpp and its --json text, generate the MJCF writer,
+// solref mujoco/solref_request.hpp and inspect mujoco/inspect.hpp with
+// their --json texts. What the program prints as JSON reaches Python as
+// that same text (the Python half parses it), so a dict holds exactly the
+// numbers `--json` prints; trajectories cross as numpy arrays of the
+// engines' doubles.
+//
+// Errors become Python exceptions with the program's one-line message:
+// InputError (bad input) → ValueError, a file that does not exist →
+// FileNotFoundError, a divergence or a run that is not physics →
+// RuntimeError. The GIL is released while engines run.
+//
+// Enumerations cross as their names (the scene file's words: "box",
+// "kelvin_voigt", "rk4"), through the core's name and parse functions.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/compare_run.hpp"
+#include "analysis/output.hpp"
+#include "core/format.hpp"
+#include "core/input_error.hpp"
+#include "core/scene.hpp"
+#include "engines/engines.hpp"
+#include "io/scene_file.hpp"
+#include "mujoco/inspect.hpp"
+#include "mujoco/mjcf.hpp"
+#include "mujoco/solref_request.hpp"
+
+namespace py = pybind11;
+using namespace contact2d;
+
+namespace {
+
+// A file named by the caller that does not exist: FileNotFoundError.
+struct FileMissing : InputError {
+  using InputError::InputError;
+};
+// A run that diverged or is not physics: RuntimeError.
+struct RunFailed : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Runs `f`; an InputError while `path` does not exist becomes FileMissing
+// with the same message (the program's line for that file).
+template <typename F>
+auto reading(const std::string& path, F&& f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    std::error_code ec;
+    if (!path.empty() && !std::filesystem::exists(path, ec)) throw FileMissing(e.what());
+    throw;
+  }
+}
+
+// The scene file's words for the enumerations; a bad word is the scene
+// reader's message for that key.
+std::string damping_name(DampingLaw law) {
+  return law == DampingLaw::Compression ? "compression" : "kelvin_voigt";
+}
+DampingLaw parse_damping(const std::string& name) {
+  if (name == "compression") return DampingLaw::Compression;
+  if (name == "kelvin_voigt") return DampingLaw::KelvinVoigt;
+  throw InputError("contact.damping = \"" + name +
+                   "\" is not a damping law: use \"compression\" or \"kelvin_voigt\"");
+}
+FrictionLaw parse_friction(const std::string& name) {
+  if (const auto law = parse_friction_law(name)) return *law;
+  throw InputError("contact.friction_law = \"" + name +
+                   "\" is not a friction law: use \"tanh\", \"viscous_cone\" or \"soft_cone\"");
+}
+Integrator parse_integrator_or_throw(const std::string& name) {
+  if (const auto i = parse_integrator(name)) return *i;
+  throw InputError("sim.integrator = \"" + name +
+                   "\" is not an integrator: use explicit_euler, semi_implicit_euler, "
+                   "implicit_euler or rk4");
+}
+Shape parse_shape_or_throw(const std::string& name) {
+  if (const auto s = parse_shape(name)) return *s;
+  throw InputError("scene = \"" + name +
+                   "\" is not a scene: use point_mass, box, tshape or circle");
+}
+
+// The scene file of a scene, as given to Scene.load ("" when built in Python).
+std::string source_of(const py::object& scene) {
+  return py::hasattr(scene, "source") ? py::str(scene.attr("source")).cast<std::string>() : "";
+}
+
+// A copy of the scene with the run's overrides, checked as the scene reader
+// checks a file ("FILE: key = value is out of range: range").
+Scene checked_scene(const py::object& object, const std::optional<std::string>& integrator,
+                    std::optional<double> dt, std::optional<double> duration) {
+  Scene scene = object.cast<Scene>();
+  if (integrator) scene.sim.integrator = parse_integrator_or_throw(*integrator);
+  if (dt) scene.sim.dt = *dt;
+  if (duration) scene.sim.duration = *duration;
+  if (const auto error = validate(scene)) {
+    const std::string source = source_of(object);
+    throw InputError((source.empty() ? std::string("scene") : source) + ": " + error->key + " = " +
+                     format_number("%g", error->value) + " is out of range: " + error->range);
+  }
+  return scene;
+}
+
+// The MuJoCo engine of simulate and compare: "mujoco" with its mapping,
+// geometry and model Δt, as --mapping, --geometry, --model-dt give them.
+engines::EngineSpec mujoco_spec(const std::string& mapping, const std::string& geometry,
+                                double model_dt, const std::string& source) {
+  engines::EngineSpec spec;
+  spec.kind = "mujoco";
+  spec.mapping = mapping;
+  spec.geometry = geometry;
+  spec.source = source;
+  spec.model_dt = model_dt;
+  return spec;
+}
+
+py::array_t<double> trajectory_array(const Trajectory& t) {
+  py::array_t<double> a({static_cast<py::ssize_t>(t.samples.size()), py::ssize_t{7}});
+  auto m = a.mutable_unchecked<2>();
+  for (size_t i = 0; i < t.samples.size(); ++i) {
+    const Sample& s = t.samples[i];
+    const auto r = static_cast<py::ssize_t>(i);
+    m(r, 0) = s.t;
+    for (int j = 0; j < 3; ++j) {
+      m(r, 1 + j) = s.state.q[j];
+      m(r, 4 + j) = s.state.v[j];
+    }
+  }
+  return a;
+}
+
+// The converged solution at the samples of `at` (compare's CSV columns).
+py::array_t<double> converged_array(const DenseTrajectory& d, const Trajectory& at) {
+  Trajectory t;
+  for (const Sample& s : at.samples) t.samples.push_back({s.t, d.at(s.t)});
+  return trajectory_array(t);
+}
+
+// A kept run that is not physics: the program's line, with the keyword
+// that keeps it in Python's terms.
+std::string not_physics(const std::string& source, const std::string& engine,
+                        const std::string& reason, bool kept) {
+  const std::string who = source + ": " + (engine.empty() ? "" : engine + " ");
+  return kept ? who + "warning: not physics, kept (allow_nonphysical=True): " + reason
+              : who + "not physics: " + reason + ". Pass allow_nonphysical=True to keep the run.";
+}
+
+py::dict py_simulate(const py::object& scene_object, const std::string& engine,
+                     const std::optional<std::string>& integrator, std::optional<double> dt,
+                     std::optional<double> duration, const std::string& mapping,
+                     const std::string& geometry, double model_dt, bool allow_nonphysical) {
+  const Scene scene = checked_scene(scene_object, integrator, dt, duration);
+  const std::string source = source_of(scene_object);
+  engines::EngineSpec spec;
+  if (engine == "mujoco") {
+    spec = mujoco_spec(mapping, geometry, model_dt, source);
+  } else {
+    spec = engines::parse_engine(engine, "engine");
+    if (!mapping.empty() || !geometry.empty() || model_dt != 0.0)
+      throw InputError("engine = " + engine +
+                       ": mapping, geometry and model_dt are options of "
+                       "engine = \"mujoco\"");
+  }
+  engines::EngineRun run;
+  {
+    py::gil_scoped_release release;
+    run = engines::run_engine(spec, scene);
+  }
+  if (run.trajectory.divergence) throw RunFailed(source + ": " + run.divergence_message);
+  std::vector<std::string> warnings = run.warnings;
+  if (const std::string reason = nonphysical(run.trajectory, scene); !reason.empty()) {
+    if (!allow_nonphysical) throw RunFailed(not_physics(source, "", reason, false));
+    warnings.push_back(not_physics(source, "", reason, true));
+  }
+  py::dict out;
+  out["trajectory"] = trajectory_array(run.trajectory);
+  out["warnings"] = warnings;
+  out["notes"] = run.notes;
+  out["engine"] = run.engine;
+  out["description"] = run.description;
+  out["seconds"] = run.seconds;
+  out["summary"] = analysis::run_summary(scene, engine, run);
+  return out;
+}
+
+py::dict py_compare(const py::object& scene_object, const std::optional<std::string>& integrator,
+                    std::optional<double> dt, std::optional<double> duration,
+                    const std::string& mapping, const std::string& geometry, double model_dt,
+                    double converged_tol, bool diagnosis, bool allow_nonphysical) {
+  const std::string source = source_of(scene_object);
+  if (!(converged_tol >= 1e-14 && converged_tol <= 1e-6))
+    throw InputError("converged_tol = " + format_number("%g", converged_tol) +
+                     " is out of range: must be in [1e-14, 1e-6]");
+  analysis::Comparison c =
+      analysis::prepare_comparison(checked_scene(scene_object, integrator, dt, duration),
+                                   mujoco_spec(mapping, geometry, model_dt, source));
+  std::vector<std::string> warnings;
+  {
+    py::gil_scoped_release release;
+    analysis::run_engines(c);
+  }
+  for (const std::string& w : c.mujoco.warnings) warnings.push_back("MuJoCo warning: " + w);
+  for (const analysis::RunProblem& p : analysis::run_problems(c)) {
+    if (p.diverged) throw RunFailed(source + ": " + p.engine + ": " + p.message);
+    if (!allow_nonphysical) throw RunFailed(not_physics(source, p.engine, p.message, false));
+    warnings.push_back(not_physics(source, p.engine, p.message, true));
+  }
+  {
+    py::gil_scoped_release release;
+    analysis::measure(c, converged_tol, diagnosis);
+  }
+  py::dict out;
+  out["json"] = analysis::comparison_json(c, source);
+  out["ref_trajectory"] = trajectory_array(c.ref.trajectory);
+  out["mujoco_trajectory"] = trajectory_array(c.mujoco.trajectory);
+  out["converged_trajectory"] =
+      c.three.converged.available
+          ? py::object(converged_array(c.three.converged.trajectory, c.ref.trajectory))
+          : py::object(py::none());
+  out["warnings"] = warnings;
+  return out;
+}
+
+py::dict py_generate(const py::object& scene_object, const std::optional<std::string>& integrator,
+                     std::optional<double> dt, std::optional<double> duration,
+                     const std::string& mapping, const std::string& geometry, double model_dt) {
+  const Scene scene = checked_scene(scene_object, integrator, dt, duration);
+  mujoco::MjcfOptions options = mujoco::mjcf_options(mapping, geometry, source_of(scene_object));
+  options.model_dt = model_dt;
+  mujoco::GeneratedModel model;
+  {
+    py::gil_scoped_release release;
+    model = mujoco::generate_mjcf(scene, options);
+  }
+  std::vector<std::string> notes;
+  if (model.settings.refsafe_clamped)
+    notes.push_back("timeconst " + format_number(model.settings.solref[0]) +
+                    " s < 2 dt: MuJoCo raises it to 2 dt (refsafe), a softer contact than "
+                    "contact.k");
+  py::dict out;
+  out["xml"] = model.xml;
+  out["notes"] = notes;
+  return out;
+}
+
+py::dict py_solref(const mujoco::SolrefRequest& request) {
+  std::vector<std::string> notes;
+  mujoco::SolrefReport report;
+  {
+    py::gil_scoped_release release;
+    report = reading(request.model, [&] {
+      return mujoco::solref_request(request,
+                                    [&notes](const std::string& line) { notes.push_back(line); });
+    });
+  }
+  py::dict out;
+  out["json"] = mujoco::format_report_json(report);
+  out["notes"] = notes;
+  return out;
+}
+
+py::dict py_inspect(const std::string& path, const std::string& key, bool pairs,
+                    std::optional<double> slope) {
+  mujoco::InspectOptions options;
+  options.path = path;
+  options.key = key;
+  options.pairs = pairs;
+  options.slope = slope;
+  mujoco::InspectReport report;
+  {
+    py::gil_scoped_release release;
+    report = reading(path, [&] { return mujoco::inspect(options); });
+  }
+  std::vector<std::string> notes;
+  if (!report.load_warning.empty())
+    notes.push_back("MuJoCo warns while loading " + path + ": " + report.load_warning);
+  py::dict out;
+  out["json"] = mujoco::format_inspect_json(report);
+  out["notes"] = notes;
+  return out;
+}
+
+// A copy that keeps the scene file it came from.
+py::object copy_scene(const py::object& self) {
+  py::object copy = py::cast(self.cast<Scene>());
+  if (py::hasattr(self, "source")) copy.attr("source") = self.attr("source");
+  return copy;
+}
+
+py::object load(const std::string& path, const std::vector<std::string>& sets) {
+  std::vector<Override> overrides;
+  overrides.reserve(sets.size());
+  for (const std::string& s : sets) overrides.push_back(parse_override(s));
+  py::object object = py::cast(reading(path, [&] { return load_scene(path, overrides); }));
+  object.attr("source") = path;
+  return object;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_contact2d, m) {
+  m.doc() = "contact2d's libraries (the Python half: contact2d/__init__.py, docs/python.md)";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const FileMissing& e) {
+      PyErr_SetString(PyExc_FileNotFoundError, e.what());
+    } catch (const InputError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const RunFailed& e) {
+      PyErr_SetString(PyExc_RuntimeError, e.what());
+    }
+  });
+
+  py::class_<BoxPart>(m, "BoxPart", "One rectangle of a tshape's body (body.parts)")
+      .def(py::init([](double width, double height, double x, double y, double mass) {
+             return BoxPart{width, height, x, y, mass};
+           }),
+           py::arg("width"), py::arg("height"), py::arg("x"), py::arg("y"), py::arg("mass"))
+      .def_readwrite("width", &BoxPart::width)
+      .def_readwrite("height", &BoxPart::height)
+      .def_readwrite("x", &BoxPart::x)
+      .def_readwrite("y", &BoxPart::y)
+      .def_readwrite("mass", &BoxPart::mass);
+
+  py::class_<ContactParams>(m, "Contact", "[contact]: the contact law (docs/scenes.md)")
+      .def_readwrite("k", &ContactParams::k)
+      .def_readwrite("c", &ContactParams::c)
+      .def_readwrite("mu", &ContactParams::mu)
+      .def_readwrite("alpha", &ContactParams::alpha)
+      .def_readwrite("mu_roll", &ContactParams::mu_roll)
+      .def_readwrite("mu_torsion", &ContactParams::mu_torsion)
+      .def_readwrite("cone_ratio", &ContactParams::cone_ratio)
+      .def_property(
+          "damping", [](const ContactParams& p) { return damping_name(p.damping); },
+          [](ContactParams& p, const std::string& name) { p.damping = parse_damping(name); })
+      .def_property(
+          "friction_law",
+          [](const ContactParams& p) { return std::string(friction_law_name(p.friction)); },
+          [](ContactParams& p, const std::string& name) { p.friction = parse_friction(name); });
+
+  // [initial]: q = (x, y, θ), v = (vx, vy, ω), by the scene file's keys.
+  auto component = [](Vec3 State::*vector, int i) {
+    return std::make_pair([vector, i](const State& s) { return (s.*vector)[i]; },
+                          [vector, i](State& s, double value) { (s.*vector)[i] = value; });
+  };
+  py::class_<State> state(m, "State", "[initial]: the initial state (docs/scenes.md)");
+  const char* names[] = {"x", "y", "theta", "vx", "vy", "omega"};
+  for (int i = 0; i < 6; ++i) {
+    const auto [get, set] = component(i < 3 ? &State::q : &State::v, i % 3);
+    state.def_property(names[i], get, set);
+  }
+
+  py::class_<SimParams>(m, "Sim", "[sim]: time stepping (docs/scenes.md)")
+      .def_readwrite("dt", &SimParams::dt)
+      .def_readwrite("duration", &SimParams::duration)
+      .def_readwrite("output_dt", &SimParams::output_dt)
+      .def_readwrite("gravity", &SimParams::gravity)
+      .def_property(
+          "integrator",
+          [](const SimParams& s) { return std::string(integrator_name(s.integrator)); },
+          [](SimParams& s, const std::string& name) {
+            s.integrator = parse_integrator_or_throw(name);
+          });
+
+  py::class_<Scene>(m, "Scene", py::dynamic_attr(), "A scene: body, contact, initial state, sim")
+      .def(py::init(
+               [](const std::string& shape) { return default_scene(parse_shape_or_throw(shape)); }),
+           py::arg("shape") = "point_mass")
+      .def_static("load", &load, py::arg("path"), py::arg("set") = std::vector<std::string>{})
+      .def_property(
+          "shape", [](const Scene& s) { return std::string(shape_name(s.shape)); },
+          [](Scene& s, const std::string& name) { s.shape = parse_shape_or_throw(name); })
+      .def_readwrite("mass", &Scene::mass)
+      .def_readwrite("half_height", &Scene::half_height)
+      .def_readwrite("width", &Scene::width)
+      .def_readwrite("height", &Scene::height)
+      .def_readwrite("radius", &Scene::radius)
+      .def_readwrite("parts", &Scene::parts)
+      .def_readwrite("contact", &Scene::contact)
+      .def_readwrite("initial", &Scene::initial)
+      .def_readwrite("sim", &Scene::sim)
+      .def_property_readonly("obstacles", [](const Scene& s) { return s.obstacles.size(); })
+      .def("validate", [](const py::object& self) { checked_scene(self, {}, {}, {}); })
+      .def("copy", &copy_scene)
+      .def("__copy__", &copy_scene)
+      .def("__deepcopy__", [](const py::object& self, const py::dict&) { return copy_scene(self); })
+      .def("__repr__", [](const py::object& self) {
+        const Scene& s = self.cast<const Scene&>();
+        const std::string source = source_of(self);
+        return "<contact2d.Scene " + std::string(shape_name(s.shape)) +
+               (source.empty() ? std::string() : " from " + source) + ">";
+      });
+
+  m.def("_simulate", &py_simulate);
+  m.def("_compare", &py_compare);
+  m.def("_generate", &py_generate);
+  m.def("_inspect", &py_inspect);
+  m.def(
+      "_solref",
+      [](std::optional<double> k, std::optional<double> c, double dt, std::optional<double> mass,
+         const std::string& mapping, std::optional<std::string> joint, double inertia, double lever,
+         double pivot, std::optional<double> mu, double mu_roll, const std::string& model,
+         const std::string& body, std::optional<int> contacts, std::optional<double> restitution,
+         std::optional<double> contact_time, std::optional<double> penetration) {
+        mujoco::SolrefRequest r;
+        r.k = k;
+        r.c = c;
+        r.dt = dt;
+        r.mass = mass;
+        r.mapping = mapping;
+        r.joint = std::move(joint);
+        r.inertia = inertia;
+        r.lever = lever;
+        r.pivot = pivot;
+        r.mu = mu;
+        r.mu_roll = mu_roll;
+        r.model = model;
+        r.body = body;
+        r.contacts = contacts;
+        r.targets.restitution = restitution;
+        r.targets.contact_time = contact_time;
+        r.targets.penetration = penetration;
+        return py_solref(r);
+      });
+  m.attr("mujoco_available") = engines::mujoco_available();
+}

@@ -1,0 +1,139 @@
+"""Errors are Python exceptions with the program's one-line message (the
+program's stderr line without "contact2d: "), never a crash."""
+
+import threading
+import time
+
+import pytest
+
+import contact2d
+from conftest import program_error, run_program
+
+BOX = "validation/scenes/box.toml"
+
+
+def test_missing_scene_file():
+    message = program_error("simulate", "no/such/scene.toml")
+    with pytest.raises(FileNotFoundError) as e:
+        contact2d.Scene.load("no/such/scene.toml")
+    assert str(e.value) == message
+
+
+def test_bad_value_in_file(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text('scene = "box"\n[contact]\nk = -5\n')
+    message = program_error("simulate", str(path))
+    with pytest.raises(ValueError) as e:
+        contact2d.Scene.load(str(path))
+    assert str(e.value) == message
+
+
+def test_bad_value_set_in_python(tmp_path):
+    # A value set from Python is named as the scene file would name it.
+    path = tmp_path / "scene.toml"
+    path.write_text('scene = "box"\n')
+    scene = contact2d.Scene.load(str(path))
+    path.write_text('scene = "box"\n[contact]\nk = -5\n')
+    message = program_error("simulate", str(path))
+    scene.contact.k = -5
+    for call in (contact2d.simulate, contact2d.compare, contact2d.generate,
+                 contact2d.Scene.validate):
+        with pytest.raises(ValueError) as e:
+            call(scene)
+        assert str(e.value) == message
+
+
+def test_bad_override():
+    message = program_error("simulate", BOX, "--set", "contact.c=-1")
+    with pytest.raises(ValueError) as e:
+        contact2d.Scene.load(BOX, set=["contact.c=-1"])
+    assert str(e.value) == message
+
+
+def test_bad_names():
+    scene = contact2d.Scene.load(BOX)
+    with pytest.raises(ValueError, match="is not an integrator"):
+        scene.sim.integrator = "leapfrog"
+    with pytest.raises(ValueError, match="is not a damping law"):
+        scene.contact.damping = "viscous"
+    with pytest.raises(ValueError, match="is not a friction law"):
+        scene.contact.friction_law = "coulomb"
+    with pytest.raises(ValueError, match="is not a scene"):
+        scene.shape = "sphere"
+    with pytest.raises(ValueError):
+        contact2d.simulate(scene, engine="bullet")
+    with pytest.raises(ValueError):
+        contact2d.generate(scene, mapping="nosuch")
+
+
+def test_explicit_euler_in_mujoco():
+    message = program_error("compare", BOX, "--integrator", "explicit_euler")
+    with pytest.raises(ValueError) as e:
+        contact2d.compare(contact2d.Scene.load(BOX), integrator="explicit_euler")
+    assert str(e.value) == message
+
+
+def test_divergence():
+    path = "tests/cli/bad_inputs/diverging_dt.toml"
+    message = program_error("simulate", path, "--integrator", "explicit_euler", "--dt", "0.005",
+                            status=3)
+    with pytest.raises(RuntimeError) as e:
+        contact2d.simulate(contact2d.Scene.load(path), integrator="explicit_euler", dt=0.005)
+    assert str(e.value) == message
+
+
+def test_not_physics():
+    path = "tests/cli/bad_inputs/nonphysical_sunk.toml"
+    message = program_error("simulate", path, status=3)
+    reason = message.split("not physics: ", 1)[1].rsplit(". Pass --allow-nonphysical", 1)[0]
+    scene = contact2d.Scene.load(path)
+    with pytest.raises(RuntimeError) as e:
+        contact2d.simulate(scene)
+    assert str(e.value) == f"{path}: not physics: {reason}. Pass allow_nonphysical=True to keep the run."
+    run = contact2d.simulate(scene, allow_nonphysical=True)
+    assert run.warnings[-1].endswith(reason)
+
+
+def test_solref_errors():
+    message = program_error("solref", "--k", "-1", "--c", "1", "--dt", "1e-3", "--mass", "1")
+    with pytest.raises(ValueError) as e:
+        contact2d.solref(k=-1, c=1, dt=1e-3, mass=1)
+    assert str(e.value) == message
+    message = program_error("solref", "--k", "1e4", "--c", "1", "--dt", "1e-3",
+                            "--model", "no/such.xml", "--body", "b")
+    with pytest.raises(FileNotFoundError) as e:
+        contact2d.solref(k=1e4, c=1, dt=1e-3, model="no/such.xml", body="b")
+    assert str(e.value) == message
+
+
+def test_inspect_missing_file():
+    message = program_error("inspect", "no/such.xml")
+    with pytest.raises(FileNotFoundError) as e:
+        contact2d.inspect("no/such.xml")
+    assert str(e.value) == message
+
+
+def test_gil_released_while_running():
+    # While another thread simulates, this one keeps running Python: the
+    # engine runs without the GIL. Held, this loop would stop for the whole
+    # run; released, its longest pause is a scheduling slice.
+    scene = contact2d.Scene.load(BOX)
+    scene.sim.duration = 100.0
+    done = threading.Event()
+
+    def work():
+        contact2d.simulate(scene, integrator="rk4")
+        done.set()
+
+    thread = threading.Thread(target=work)
+    start = last = time.perf_counter()
+    thread.start()
+    longest = 0.0
+    while not done.is_set():
+        now = time.perf_counter()
+        longest = max(longest, now - last)
+        last = now
+        time.sleep(0.001)
+    thread.join()
+    elapsed = time.perf_counter() - start
+    assert elapsed > 0.1 and longest < 0.5 * elapsed, (elapsed, longest)
