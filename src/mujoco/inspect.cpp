@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "benchmarks/impact.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/integrators.hpp"
@@ -182,7 +183,7 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
   regime(r.dmax, k_max, c_max, r.omega_max, r.zeta_max);
   r.omega_dt = r.omega_max * m->opt.timestep;
   r.limit = stability_limit(ctx.integrator, r.zeta_max);
-  r.restitution = kelvin_voigt_restitution(r.zeta);
+  r.restitution = benchmarks::kelvin_voigt_restitution(r.zeta);
   if (!(r.A > 0.0)) {  // the joints cannot move the contact along its normal
     r.zeta = r.zeta_max = r.limit = r.restitution = kNaN;
     r.omega = r.omega_max = r.omega_dt = 0.0;
@@ -321,39 +322,6 @@ std::vector<ClosestPoints> closest_points(const mjModel* m, const mjData* d, int
 }
 
 }  // namespace
-
-namespace {
-// The Kelvin–Voigt oscillator in units of 1/ω: x(0) = 0, x'(0) = 1, force
-// ∝ x + 2ζ·x'; the time its force first returns to zero and the speed then.
-struct KelvinVoigtExit {
-  double time = 0.0;   // ω·t_c
-  double speed = 0.0;  // x'(t_c) (negative: leaving)
-};
-KelvinVoigtExit kelvin_voigt_exit(double zeta) {
-  if (std::abs(zeta - 1.0) < 1e-6) zeta = 1.0 + 1e-6;  // the critical case as its limit
-  if (zeta < 1.0) {
-    const double wd = std::sqrt(1.0 - zeta * zeta);
-    const double theta = std::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta);
-    const double tc = (kPi - theta) / wd;  // first zero of the force after t = 0
-    return {tc, std::exp(-zeta * tc) * (std::cos(wd * tc) - zeta / wd * std::sin(wd * tc))};
-  }
-  const double s = std::sqrt(zeta * zeta - 1.0);
-  const double l1 = -zeta + s, l2 = -zeta - s;
-  const double a1 = 1.0 + 2.0 * zeta * l1, a2 = 1.0 + 2.0 * zeta * l2;
-  const double tc = std::log(a2 / a1) / (l1 - l2);
-  return {tc, (l1 * std::exp(l1 * tc) - l2 * std::exp(l2 * tc)) / (l1 - l2)};
-}
-}  // namespace
-
-double kelvin_voigt_restitution(double zeta) {
-  if (!(zeta >= 0.0)) return kNaN;
-  return -kelvin_voigt_exit(zeta).speed;
-}
-
-double kelvin_voigt_contact_time(double zeta) {
-  if (!(zeta >= 0.0)) return kNaN;
-  return kelvin_voigt_exit(zeta).time;
-}
 
 InspectReport inspect(const InspectOptions& options) {
   if (options.slope && !(*options.slope >= 0.0 && *options.slope < 90.0))
