@@ -1,5 +1,7 @@
 // Both engines and the converged solution against closed forms
-// (analysis/closed_forms.hpp; derivations in docs/closed-forms.md).
+// (analysis/closed_forms.hpp; derivations in docs/closed-forms.md). Every
+// closed form is computed by src/benchmarks/; this file builds the scenes,
+// states the tolerances and reads the runs.
 #include "analysis/closed_forms.hpp"
 
 #include <algorithm>
@@ -11,6 +13,11 @@
 
 #include "analysis/engine.hpp"
 #include "analysis/reference.hpp"
+#include "benchmarks/impact.hpp"
+#include "benchmarks/rest.hpp"
+#include "benchmarks/rolling.hpp"
+#include "benchmarks/sliding.hpp"
+#include "benchmarks/slope.hpp"
 #include "core/format.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
@@ -18,6 +25,8 @@
 
 namespace contact2d::analysis {
 namespace {
+
+namespace bm = benchmarks;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -122,7 +131,7 @@ ClosedFormCase static_case(Shape shape) {
   const double surface = box ? 0.5 * s.height : s.half_height;  // COM above the contact points
   s.initial.q = Vec3(0.0, surface, 0.0);
   const double m = s.mass, g = s.sim.gravity;
-  const double depth = m * g / (n * k);
+  const double depth = bm::rest_depth(m, g, k, n);
   const Extractor extract = [surface](const Scene&, const Trajectory& tr) {
     return surface - last(tr).q.y();
   };
@@ -155,8 +164,9 @@ ClosedFormCase static_case(Shape shape) {
   ClosedFormQuantity own;
   own.name = "MuJoCo's own rest depth (m)";
   own.formula = "m·g·Â·(1−d)/(N·n·s)";
-  own.closed_form =
-      m * g * mj.inv_weight * (1.0 - mj.impedance) / (n * mj.split * mj.stiffness) - eps;
+  own.closed_form = bm::soft_constraint_rest_depth(m, g, mj.inv_weight, mj.impedance, n * mj.split,
+                                                   mj.stiffness) -
+                    eps;
   own.extract = extract;
   own.reference_applies = false;
   own.mujoco_bound = 1e-9 * depth;
@@ -168,16 +178,25 @@ ClosedFormCase static_case(Shape shape) {
   return cs;
 }
 
-// e of one impact on the linear spring–damper at damping ratio ζ < 1/√2
-// (derivations in docs/closed-forms.md and tests/core/test_rebound.cpp).
-double compression_e(double zeta) {
-  const double r = std::sqrt(1.0 - zeta * zeta);
-  return std::exp(-zeta * std::atan(r / zeta) / r);
-}
-double kelvin_voigt_e(double zeta) {
-  const double r = std::sqrt(1.0 - zeta * zeta);
-  const double phase = kPi - std::atan2(2.0 * zeta * r, 1.0 - 2.0 * zeta * zeta);
-  return std::exp(-zeta * phase / r) * std::abs(std::cos(phase) - zeta / r * std::sin(phase));
+// Semi-implicit Euler's error on the restitution e(ζ) of one impact, to
+// first order in ωΔt (docs/closed-forms.md): (1) the damper's force c·v0
+// switches on at touchdown and the first step applies it for a whole Δt
+// where the velocity it acts on lags by Δt/2: an early impulse that lowers e
+// by about ζ·ωΔt·e; (2) the damper evaluated at the lagging velocity acts
+// like a mass m·(1 − ζωΔt), raising ζ to ζ/√(1 − ζωΔt). Tolerance: twice
+// their sum (they are estimates to first order) plus (ωΔt)² for the next
+// order and the exit inside a step.
+struct RestitutionTolerance {
+  double early = 0.0, shift = 0.0, total = 0.0;
+};
+RestitutionTolerance sie_restitution_tolerance(double (*e_of)(double), double zeta, double w_dt) {
+  RestitutionTolerance t;
+  const double e = e_of(zeta);
+  const double zeta_eff = zeta / std::sqrt(1.0 - zeta * w_dt);
+  t.shift = std::abs(e_of(zeta_eff) - e);
+  t.early = zeta * w_dt * e;
+  t.total = 2.0 * (t.early + t.shift) + w_dt * w_dt;
+  return t;
 }
 
 ClosedFormCase rebound_case(DampingLaw law, double zeta) {
@@ -199,24 +218,17 @@ ClosedFormCase rebound_case(DampingLaw law, double zeta) {
   q.name = "restitution v_out/v_in";
   q.formula =
       kv ? "e^(−ζωt_e)·|cos φ − ζ sin φ/√(1−ζ²)|, φ = ω_d t_e" : "exp(−ζ·atan(√(1−ζ²)/ζ)/√(1−ζ²))";
-  q.closed_form = kv ? kelvin_voigt_e(zeta) : compression_e(zeta);
+  double (*const e_of)(double) = kv ? bm::kelvin_voigt_restitution : bm::compression_restitution;
+  q.closed_form = e_of(zeta);
   q.extract = [](const Scene& sc, const Trajectory& tr) {
     return last(tr).v.y() / -sc.initial.v.y();
   };
-  // Semi-implicit Euler, to first order in ωΔt (docs/closed-forms.md):
-  // (1) the damper's force c·v0 switches on at touchdown and the first step
-  // applies it for a whole Δt where the velocity it acts on lags by Δt/2: an
-  // early impulse that lowers e by about ζ·ωΔt·e; (2) the damper evaluated
-  // at the lagging velocity acts like a mass m·(1 − ζωΔt), raising ζ to
-  // ζ/√(1 − ζωΔt). Tolerance: twice their sum (they are estimates to first
-  // order) plus (ωΔt)² for the next order and the exit inside a step.
+  // Semi-implicit Euler, to first order in ωΔt: sie_restitution_tolerance.
   const double e = q.closed_form;
-  const double zeta_eff = zeta / std::sqrt(1.0 - zeta * w_dt);
-  const double shift = std::abs((kv ? kelvin_voigt_e(zeta_eff) : compression_e(zeta_eff)) - e);
-  const double early = zeta * w_dt * e;
-  q.tolerance = 2.0 * (early + shift) + w_dt * w_dt;
-  q.why = "SIE, first order: early damper impulse ζωΔt·e = " + format_number(early, 2) +
-          " + ζ → ζ/√(1−ζωΔt): " + format_number(shift, 2) + "; 2× their sum + (ωΔt)²";
+  const RestitutionTolerance tol = sie_restitution_tolerance(e_of, zeta, w_dt);
+  q.tolerance = tol.total;
+  q.why = "SIE, first order: early damper impulse ζωΔt·e = " + format_number(tol.early, 2) +
+          " + ζ → ζ/√(1−ζωΔt): " + format_number(tol.shift, 2) + "; 2× their sum + (ωΔt)²";
   q.converged_tolerance = 1e-8;
   if (kv) {
     // MuJoCo's Euler is semi-implicit too (same shift); its force is the
@@ -228,9 +240,9 @@ ClosedFormCase rebound_case(DampingLaw law, double zeta) {
   } else {
     // MuJoCo's damper acts both ways: it can only do Kelvin–Voigt, so it
     // misses by |e_KV − e_compression| (a finding, not a tolerance).
-    q.mujoco_bound = std::abs(kelvin_voigt_e(zeta) - e) + q.tolerance + 5e-5;
+    q.mujoco_bound = std::abs(bm::kelvin_voigt_restitution(zeta) - e) + q.tolerance + 5e-5;
     q.mujoco_why = "MISS: MuJoCo has no compression-only damper, it gives e_KV = " +
-                   format_number(kelvin_voigt_e(zeta), 4);
+                   format_number(bm::kelvin_voigt_restitution(zeta), 4);
   }
   cs.quantities.push_back(q);
   return cs;
@@ -246,16 +258,15 @@ ClosedFormCase slide_case() {
   s.contact.alpha = 10.0;
   const double g = s.sim.gravity, mu = s.contact.mu, alpha = s.contact.alpha;
   const double w = s.width, h = s.height, v0 = 1.5;
-  s.initial.q = Vec3(0.0, 0.5 * h - m * g / (2.0 * k), 0.0);
+  s.initial.q = Vec3(0.0, 0.5 * h - bm::rest_depth(m, g, k, 2), 0.0);
   s.initial.v = Vec3(v0, 0.0, 0.0);
-  const double coulomb = v0 * v0 / (2.0 * mu * g);
-  const double tanh_term = kPi * kPi / (12.0 * alpha * alpha * mu * g);
-  const double compliance = -m * mu * g * h * h * (kPi * kPi / 8.0 - 0.5) / (2.0 * k * w * w);
+  const bm::BoxSlide slide = bm::box_sliding_distance(v0, mu, g, alpha, m, w, h, k);
+  const double coulomb = slide.coulomb, tanh_term = slide.tanh, compliance = slide.pitch;
 
   ClosedFormQuantity q;
   q.name = "distance to rest (m)";
   q.formula = "v0²/(2μg) + π²/(12α²μg) + s_k";
-  q.closed_form = coulomb + tanh_term + compliance;
+  q.closed_form = slide.distance();
   q.extract = [](const Scene& sc, const Trajectory& tr) {
     return last(tr).q.x() - sc.initial.q.x();
   };
@@ -305,9 +316,10 @@ ClosedFormCase roll_case() {
   s.contact.mu_roll = 0.01;
   s.contact.alpha = 100.0;
   const double g = s.sim.gravity, R = s.radius, alpha = s.contact.alpha, v0 = 1.0;
-  s.initial.q = Vec3(0.0, R - m * g / k, 0.0);
+  s.initial.q = Vec3(0.0, R - bm::rest_depth(m, g, k, 1), 0.0);
   s.initial.v = Vec3(v0, 0.0, -v0 / R);
-  const double a = s.contact.mu_roll * g / (1.5 * R);  // I = m·R²/2
+  const double kappa = bm::kDiscInertiaRatio;  // I = m·R²/2
+  const double a = bm::rolling_resistance_deceleration(s.contact.mu_roll, g, R, kappa);
 
   ClosedFormQuantity dec;
   dec.name = "deceleration over [0.2, 1] s (m/s²)";
@@ -330,9 +342,7 @@ ClosedFormCase roll_case() {
   ClosedFormQuantity dist;
   dist.name = "distance to rest (m)";
   dist.formula = "v0²/(2a) + v_s·v0/(3a) + π²/(12α²a)";
-  const double slip = std::atanh(a / (s.contact.mu * g)) / alpha;
-  dist.closed_form =
-      v0 * v0 / (2.0 * a) + slip * v0 / (3.0 * a) + kPi * kPi / (12.0 * alpha * alpha * a);
+  dist.closed_form = bm::rolling_distance(v0, a, s.contact.mu, g, alpha, kappa);
   dist.extract = [](const Scene& sc, const Trajectory& tr) {
     return last(tr).q.x() - sc.initial.q.x();
   };
@@ -366,15 +376,16 @@ ClosedFormCase bowling_case() {
   s.sim.output_dt = 1e-4;
   const double g = s.sim.gravity, R = s.radius, mu = s.contact.mu, alpha = s.contact.alpha;
   const double v0 = 1.0;
-  s.initial.q = Vec3(0.0, R - m * g / k, 0.0);
+  s.initial.q = Vec3(0.0, R - bm::rest_depth(m, g, k, 1), 0.0);
   s.initial.v = Vec3(v0, 0.0, 0.0);
   const double inertia = 0.5 * m * R * R;
-  const double ratio = m * R * R / inertia;  // 2 for the disc
+  const double kappa = inertia / (m * R * R);  // I/(m·R²) = ½ for the disc
+  const double ratio = m * R * R / inertia;    // 2 for the disc
 
   ClosedFormQuantity v;
   v.name = "final speed (m/s)";
   v.formula = "v0/(1 + I/(mR²)) = 2v0/3";
-  v.closed_form = v0 / (1.0 + inertia / (m * R * R));
+  v.closed_form = bm::slide_to_roll_final_speed(v0, 0.0, kappa);
   v.extract = [](const Scene&, const Trajectory& tr) { return last(tr).v.x(); };
   v.tolerance = 1e-11;
   v.why = "I·ω − m·R·v conserved by the step: rounding";
@@ -390,7 +401,7 @@ ClosedFormCase bowling_case() {
   t.name = "time until the slip is 0.01 m/s (s)";
   t.formula = "ln(sinh(αv0)/sinh(αu))/((1 + mR²/I)μgα)";
   t.closed_form =
-      std::log(std::sinh(alpha * v0) / std::sinh(alpha * u_th)) / ((1.0 + ratio) * mu * g * alpha);
+      bm::tanh_sliding_time(v0, u_th, bm::slide_to_roll_slip_deceleration(mu, g, kappa), alpha);
   t.extract = [u_th](const Scene& sc, const Trajectory& tr) { return slip_time(sc, tr, u_th); };
   // Read by linear interpolation between samples Δs = output_dt apart:
   // error ≤ (Δs²/8)·|ü/u̇| ≤ (Δs²/8)·(1 + mR²/I)·μgα. The reference's slip
@@ -412,8 +423,8 @@ ClosedFormCase bowling_case() {
 // v_x = 1 m/s and backspin ω > 0 (slip u = v_x + ω·R at the contact point),
 // Kelvin–Voigt at ζ = 0.3: one impact, normal impulse P = m·(1 + e)·v_in
 // with the rebound case's e (the normal force acts through the centre, so
-// friction does not change it). Coulomb friction's impulse on the slip:
-// the disc's slip mass is m/3 (1/m + R²/I = 3/m), so
+// friction does not change it), and Coulomb friction's impulse balance on
+// the slip (benchmarks::spin_impact):
 //   sliding through  (u > 3·μ·P/m):  v_x′ = v_x − μ·P/m,  R·ω′ = R·ω − 2·μ·P/m
 //   rolling out      (u ≤ 3·μ·P/m):  v_x′ = v_x − u/3,    R·ω′ = R·ω − 2·u/3 (u′ = 0)
 // `rolls`: ω = 5 rad/s (u = 1.5 m/s, stops slipping during the impact);
@@ -432,14 +443,12 @@ ClosedFormCase backspin_case(bool rolls) {
   const double omega = rolls ? 5.0 : 30.0;
   s.initial.q = Vec3(0.0, R - 1e-12, 0.0);
   s.initial.v = Vec3(vx, -v_in, omega);
-  const double e = kelvin_voigt_e(zeta);
-  const double impulse = m * (1.0 + e) * v_in;  // P
-  const double u = vx + omega * R;
-  const double slip_capacity = 3.0 * mu * impulse / m;
-  if (rolls != (u <= slip_capacity))
+  const double e = bm::kelvin_voigt_restitution(zeta);
+  const double impulse = bm::impact_normal_impulse(m, e, v_in);  // P
+  const bm::SpinImpact after =
+      bm::spin_impact(vx, omega * R, impulse, m, mu, bm::kDiscInertiaRatio);
+  if (rolls != after.rolls)
     throw std::logic_error(cs.id + ": the case does not do what its name says");
-  const double dvx = rolls ? u / 3.0 : mu * impulse / m;
-  const double drw = rolls ? 2.0 * u / 3.0 : 2.0 * mu * impulse / m;
   // The rebound case's tolerance on e (semi-implicit Euler at ωΔt = 0.01),
   // carried through P: δv_x = μ·v_in·δe, δ(Rω) = 2μ·v_in·δe while sliding.
   // Rolling out does not depend on P at all (once stuck, the friction
@@ -450,15 +459,13 @@ ClosedFormCase backspin_case(bool rolls) {
   // impulse sum but not in where the slip stops: bounded by Δt·(its rate
   // μ·Fn_peak·3/m)·(1/α) ≈ 1.5e-2 m/s … measured and stated below.
   const double w_dt = std::sqrt(k / m) * s.sim.dt;
-  const double zeta_eff = zeta / std::sqrt(1.0 - zeta * w_dt);
-  const double tol_e =
-      2.0 * (zeta * w_dt * e + std::abs(kelvin_voigt_e(zeta_eff) - e)) + w_dt * w_dt;
+  const double tol_e = sie_restitution_tolerance(bm::kelvin_voigt_restitution, zeta, w_dt).total;
   for (int which = 0; which < 2; ++which) {
     ClosedFormQuantity q;
     q.name = which == 0 ? "v_x after the bounce (m/s)" : "R·ω after the bounce (m/s)";
     q.formula = rolls ? (which == 0 ? "v_x − u/3" : "R·ω − 2u/3")
                       : (which == 0 ? "v_x − μ(1+e)v_in" : "R·ω − 2μ(1+e)v_in");
-    q.closed_form = which == 0 ? vx - dvx : omega * R - drw;
+    q.closed_form = which == 0 ? after.vx : after.rim;
     if (which == 0)
       q.extract = [](const Scene&, const Trajectory& tr) { return last(tr).v.x(); };
     else
@@ -518,7 +525,7 @@ ClosedFormCase slope_case(double degrees, double mu, double v0) {
   const Vec2 u(std::cos(th), std::sin(th)), n(-std::sin(th), std::cos(th));
   const Vec2 p0(0.0, 1.0);
   s.obstacles.push_back(make_segment_obstacle(p0 - u, p0 + u, r));
-  const double depth = m * g * std::cos(th) / (2.0 * k);
+  const double depth = bm::slope_rest_depth(m, g, th, k, 2);
   const Vec2 c = p0 + 0.3 * u + (r + 0.5 * s.height - depth) * n;
   cs.slope_frame = SlopeFrame{th, p0 + r * n};
   s.initial.q = Vec3(c.x(), c.y(), th);
@@ -529,7 +536,7 @@ ClosedFormCase slope_case(double degrees, double mu, double v0) {
   if (slides) {
     q.name = "acceleration down the slope, fitted over [0.1, 0.4] s (m/s²)";
     q.formula = "g·(sinθ − μ·cosθ)";
-    q.closed_form = g * (std::sin(th) - mu * std::cos(th));
+    q.closed_form = bm::slope_sliding_acceleration(g, th, mu);
     q.extract = [down](const Scene&, const Trajectory& tr) {
       return fitted_acceleration(tr, down, 0.1, 0.4);
     };
@@ -553,7 +560,7 @@ ClosedFormCase slope_case(double degrees, double mu, double v0) {
   } else {
     q.name = "creep speed down the slope over [0.3, 0.5] s (m/s)";
     q.formula = "atanh(tanθ/μ)/α (Coulomb: 0)";
-    q.closed_form = std::atanh(std::tan(th) / mu) / s.contact.alpha;
+    q.closed_form = bm::tanh_creep_speed(th, mu, s.contact.alpha);
     q.extract = [down](const Scene&, const Trajectory& tr) {
       const Vec3 a = at(tr, 0.3).q, b = at(tr, 0.5).q;
       return ((b.x() - a.x()) * down.x() + (b.y() - a.y()) * down.y()) / 0.2;
@@ -570,21 +577,19 @@ ClosedFormCase slope_case(double degrees, double mu, double v0) {
     // one it misses by most of it.
     q.mujoco_bound = q.closed_form;
     q.mujoco_why = "MISS: MuJoCo creeps at its own viscous speed (next row), not the tanh law's";
-    // MuJoCo's own creep. Inside the elliptic cone a tangential row has
-    // R_t = R/impratio, R = (1 − d)/d·Â, and no spring: aref_t = −B·v_t with
-    // B = c·Â/(n·d) (direct form, flat d). In the solver's quadratic regime
-    // f = (aref − J·qacc)/R_t for every row, and at steady creep qacc = 0,
-    // so each of the N·n contacts carries impratio·c·v/(n·(1 − d)), whatever
-    // the true inverse mass (the argument of the rest depth in
-    // docs/mujoco.md): v = (1 − d)·m·g·sinθ/(N·impratio·c) exactly. Bound:
-    // rounding and the transient, which relaxes at N·impratio·c/m = 5e3 /s.
+    // MuJoCo's own creep: its tangential rows inside the elliptic cone are
+    // viscous, and at steady creep (qacc = 0) each of the N·n contacts
+    // carries impratio·c·v/(n·(1 − d)), whatever the true inverse mass
+    // (benchmarks::soft_constraint_creep_speed derives it): v = (1 − d)·m·g·
+    // sinθ/(N·impratio·c) exactly. Bound: rounding and the transient, which
+    // relaxes at N·impratio·c/m = 5e3 /s.
     const MujocoConstants mj = mujoco_constants(s);
     const int contacts = 2;  // the bottom corners
     ClosedFormQuantity own;
     own.name = "MuJoCo's own creep speed (m/s)";
     own.formula = "(1−d)·m·g·sinθ/(N·impratio·c)";
     own.closed_form =
-        (1.0 - mj.impedance) * m * g * std::sin(th) / (contacts * mj.impratio * s.contact.c);
+        bm::soft_constraint_creep_speed(m, g, th, contacts, mj.impratio, s.contact.c, mj.impedance);
     own.extract = q.extract;
     own.reference_applies = false;
     own.mujoco_bound = 1e-6 * own.closed_form;

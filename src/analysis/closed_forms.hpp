@@ -1,7 +1,7 @@
 // Both engines and the converged solution against closed forms: the table of
 // validation/report/closed_forms.md and the runs that tests/mujoco/test_closed_forms.cpp checks.
-// docs/closed-forms.md derives every closed form and every tolerance; this file only runs and
-// measures.
+// docs/closed-forms.md derives every closed form and every tolerance; the closed forms are
+// computed by src/benchmarks/, and this file only builds the scenes, runs and measures.
 //
 // A case is one scene; each of its quantities is read off the sampled
 // trajectory of three runs with the same extractor:

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "benchmarks/impact.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/integrators.hpp"
@@ -182,7 +183,7 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
   regime(r.dmax, k_max, c_max, r.omega_max, r.zeta_max);
   r.omega_dt = r.omega_max * m->opt.timestep;
   r.limit = stability_limit(ctx.integrator, r.zeta_max);
-  r.restitution = kelvin_voigt_restitution(r.zeta);
+  r.restitution = benchmarks::kelvin_voigt_restitution(r.zeta);
   if (!(r.A > 0.0)) {  // the joints cannot move the contact along its normal
     r.zeta = r.zeta_max = r.limit = r.restitution = kNaN;
     r.omega = r.omega_max = r.omega_dt = 0.0;
@@ -320,102 +321,12 @@ std::vector<ClosestPoints> closest_points(const mjModel* m, const mjData* d, int
   return out;
 }
 
-}  // namespace
+// The stages of inspect(), in order: the contacts, their static loads, the
+// pairs, the warnings.
 
-namespace {
-// The Kelvin–Voigt oscillator in units of 1/ω: x(0) = 0, x'(0) = 1, force
-// ∝ x + 2ζ·x'; the time its force first returns to zero and the speed then.
-struct KelvinVoigtExit {
-  double time = 0.0;   // ω·t_c
-  double speed = 0.0;  // x'(t_c) (negative: leaving)
-};
-KelvinVoigtExit kelvin_voigt_exit(double zeta) {
-  if (std::abs(zeta - 1.0) < 1e-6) zeta = 1.0 + 1e-6;  // the critical case as its limit
-  if (zeta < 1.0) {
-    const double wd = std::sqrt(1.0 - zeta * zeta);
-    const double theta = std::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta);
-    const double tc = (kPi - theta) / wd;  // first zero of the force after t = 0
-    return {tc, std::exp(-zeta * tc) * (std::cos(wd * tc) - zeta / wd * std::sin(wd * tc))};
-  }
-  const double s = std::sqrt(zeta * zeta - 1.0);
-  const double l1 = -zeta + s, l2 = -zeta - s;
-  const double a1 = 1.0 + 2.0 * zeta * l1, a2 = 1.0 + 2.0 * zeta * l2;
-  const double tc = std::log(a2 / a1) / (l1 - l2);
-  return {tc, (l1 * std::exp(l1 * tc) - l2 * std::exp(l2 * tc)) / (l1 - l2)};
-}
-}  // namespace
-
-double kelvin_voigt_restitution(double zeta) {
-  if (!(zeta >= 0.0)) return kNaN;
-  return -kelvin_voigt_exit(zeta).speed;
-}
-
-double kelvin_voigt_contact_time(double zeta) {
-  if (!(zeta >= 0.0)) return kNaN;
-  return kelvin_voigt_exit(zeta).time;
-}
-
-InspectReport inspect(const InspectOptions& options) {
-  if (options.slope && !(*options.slope >= 0.0 && *options.slope < 90.0))
-    throw InputError("--slope " + g(*options.slope) + ": must be in [0, 90) degrees");
-  {
-    std::ifstream file(options.path);
-    if (!file) throw InputError(options.path + ": cannot open the file");
-  }
-  InspectReport rep;
-  rep.path = options.path;
-  rep.key = options.key;
-  rep.slope = options.slope;
-  std::vector<std::string> messages;
-  WarningCapture capture(messages);
-  char error[1000] = "";
-  mjModel* raw = nullptr;
-  try {
-    raw = mj_loadXML(options.path.c_str(), nullptr, error, sizeof error);
-  } catch (const MujocoError& e) {
-    throw InputError(options.path + ": MuJoCo cannot load the model: " + one_line(e.what()));
-  }
-  if (!raw) throw InputError(options.path + ": MuJoCo cannot load the model: " + one_line(error));
-  const ModelPtr model(raw);
-  const mjModel* m = model.get();
-  rep.load_warning = one_line(error);
-  for (const std::string& w : messages)
-    rep.load_warning += (rep.load_warning.empty() ? "" : "; ") + w;
-  messages.clear();
-
-  int key = -1;
-  if (!options.key.empty()) {
-    key = mj_name2id(m, mjOBJ_KEY, options.key.c_str());
-    if (key < 0) {
-      std::string names;
-      for (int i = 0; i < m->nkey; ++i)
-        names += (names.empty() ? "" : ", ") + name_of(m, mjOBJ_KEY, i, "key");
-      throw InputError("--key " + options.key + ": no keyframe of that name in " + options.path +
-                       (m->nkey ? " (its keyframes: " + names + ")" : " (it has none)"));
-    }
-  }
-  const DataPtr data = make_data(m);
-  mjData* d = data.get();
-  if (key >= 0)
-    mj_resetDataKeyframe(m, d, key);
-  else
-    mj_resetData(m, d);
-  mj_forward(m, d);
-  // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0.
-  const DataPtr still = make_data(m);
-  mju_copy(still->qpos, d->qpos, m->nq);
-  mju_zero(still->qvel, m->nv);
-  mj_forward(m, still.get());
-
-  rep.integrator = mj_integrator_name(m);
-  rep.dt = m->opt.timestep;
-  rep.cone = m->opt.cone == mjCONE_ELLIPTIC ? "elliptic" : "pyramidal";
-  rep.impratio = m->opt.impratio;
-  for (int i = 0; i < 3; ++i) rep.gravity[static_cast<size_t>(i)] = m->opt.gravity[i];
-  rep.refsafe_enabled = !(m->opt.disableflags & mjDSBL_REFSAFE);
-  const Context ctx{m, d, integrator_of(m), m->opt.cone != mjCONE_ELLIPTIC, options.slope};
-
-  // The contacts, their normal rows and A.
+// The contacts MuJoCo has now, with their normal rows of the Jacobian
+// (returned) and A, into rep.contacts.
+std::vector<std::vector<double>> collect_contacts(const mjModel* m, mjData* d, InspectReport& rep) {
   std::vector<std::vector<double>> rows;
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& con = d->contact[i];
@@ -445,8 +356,13 @@ InspectReport inspect(const InspectOptions& options) {
     r.A_measured = true;
     rep.contacts.push_back(r);
   }
+  return rows;
+}
 
-  // Static loads: Jₙᵀ·f = qfrc_bias (qvel = 0), least squares, minimum norm.
+// The static loads: Jₙᵀ·f = qfrc_bias (qvel = 0) over every contact, least
+// squares, minimum norm; `still` is the model at this configuration at rest.
+void static_loads(const mjModel* m, const mjData* still,
+                  const std::vector<std::vector<double>>& rows, InspectReport& rep) {
   const int nc = static_cast<int>(rows.size());
   if (nc > 0) {
     Eigen::MatrixXd jt(m->nv, nc);
@@ -462,80 +378,82 @@ InspectReport inspect(const InspectOptions& options) {
         rep.residual < 1e-6 && f.minCoeff() >= -1e-9 * std::max(1.0, f.cwiseAbs().maxCoeff());
     for (int c = 0; c < nc; ++c) rep.contacts[static_cast<size_t>(c)].load = std::max(0.0, f(c));
   }
-  for (InspectRow& r : rep.contacts) evaluate(ctx, r, rep.warnings, label_of(r));
+}
 
-  // Every geom pair that can collide.
-  if (options.pairs) {
-    rep.pairs_listed = true;
-    auto add = [&](int ipair, int g1, int g2) {
-      InspectRow r;
-      order_by_type(m, g1, g2);
-      r.geom1 = g1;
-      r.geom2 = g2;
-      fill_names(m, r);
-      r.source = ipair >= 0 ? "explicit <pair>" : "default collision";
-      resolve_pair(m, ipair, g1, g2, r);
-      r.load = kNaN;
-      for (const InspectRow& c : rep.contacts) {
-        if (!((c.geom1 == g1 && c.geom2 == g2) || (c.geom1 == g2 && c.geom2 == g1))) continue;
-        if (r.contacts_now++ == 0) {
-          r.A = c.A;
-          r.A_measured = true;
-          r.load = c.load;
-          r.dist = c.dist;
-          r.pos = c.pos;
-          r.normal = c.normal;
-        }
+// Every geom pair that can collide (--pairs), into rep.pairs.
+void collect_pairs(const Context& ctx, InspectReport& rep) {
+  const mjModel* m = ctx.m;
+  mjData* d = ctx.d;
+  rep.pairs_listed = true;
+  auto add = [&](int ipair, int g1, int g2) {
+    InspectRow r;
+    order_by_type(m, g1, g2);
+    r.geom1 = g1;
+    r.geom2 = g2;
+    fill_names(m, r);
+    r.source = ipair >= 0 ? "explicit <pair>" : "default collision";
+    resolve_pair(m, ipair, g1, g2, r);
+    r.load = kNaN;
+    for (const InspectRow& c : rep.contacts) {
+      if (!((c.geom1 == g1 && c.geom2 == g2) || (c.geom1 == g2 && c.geom2 == g1))) continue;
+      if (r.contacts_now++ == 0) {
+        r.A = c.A;
+        r.A_measured = true;
+        r.load = c.load;
+        r.dist = c.dist;
+        r.pos = c.pos;
+        r.normal = c.normal;
       }
-      if (r.contacts_now == 0) {
-        std::vector<std::string> ignored;  // the probe's own warnings (nconmax) are not the model's
-        WarningCapture quiet(ignored);
-        // Of equally close points, the one the joints move most easily (the largest A).
-        for (const ClosestPoints& near : closest_points(m, d, ipair, g1, g2)) {
-          const double a =
-              inverse_mass(m, d, normal_jacobian(m, d, r.body1, r.body2, near.pos, near.normal));
-          if (r.closest && !(a > r.A)) continue;
-          r.A = a;
-          r.A_measured = r.closest = true;
-          r.dist = near.dist;
-          r.pos = near.pos;
-          r.normal = near.normal;
-        }
+    }
+    if (r.contacts_now == 0) {
+      std::vector<std::string> ignored;  // the probe's own warnings (nconmax) are not the model's
+      WarningCapture quiet(ignored);
+      // Of equally close points, the one the joints move most easily (the largest A).
+      for (const ClosestPoints& near : closest_points(m, d, ipair, g1, g2)) {
+        const double a =
+            inverse_mass(m, d, normal_jacobian(m, d, r.body1, r.body2, near.pos, near.normal));
+        if (r.closest && !(a > r.A)) continue;
+        r.A = a;
+        r.A_measured = r.closest = true;
+        r.dist = near.dist;
+        r.pos = near.pos;
+        r.normal = near.normal;
       }
-      evaluate(ctx, r, rep.warnings, label_of(r));
-      rep.pairs.push_back(r);
-    };
-    // mj_collision returns at once when contacts or constraints are disabled.
-    const bool disabled = (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT)) != 0;
-    const bool use_pairs = !disabled && m->opt.collision != mjCOL_DYNAMIC;
-    const bool use_dynamic = !disabled && m->opt.collision != mjCOL_PAIR && m->nbody >= 2;
-    if (use_pairs)
-      for (int p = 0; p < m->npair; ++p) add(p, m->pair_geom1[p], m->pair_geom2[p]);
-    if (use_dynamic) {
-      for (int b1 = 0; b1 < m->nbody; ++b1) {
-        for (int b2 = b1 + 1; b2 < m->nbody; ++b2) {
-          const int signature = ((b1 + 1) << 16) + (b2 + 1);
-          bool excluded = false;
-          for (int e = 0; e < m->nexclude; ++e) excluded |= m->exclude_signature[e] == signature;
-          if (excluded) continue;
-          for (int g1 = m->body_geomadr[b1]; g1 < m->body_geomadr[b1] + m->body_geomnum[b1]; ++g1) {
-            for (int g2 = m->body_geomadr[b2]; g2 < m->body_geomadr[b2] + m->body_geomnum[b2];
-                 ++g2) {
-              bool explicit_pair = false;
-              for (int p = 0; use_pairs && p < m->npair; ++p)
-                explicit_pair |= (m->pair_geom1[p] == g1 && m->pair_geom2[p] == g2) ||
-                                 (m->pair_geom1[p] == g2 && m->pair_geom2[p] == g1);
-              if (explicit_pair || no_collision_function(m, g1, g2) || filtered(m, g1, g2))
-                continue;
-              add(-1, g1, g2);
-            }
+    }
+    evaluate(ctx, r, rep.warnings, label_of(r));
+    rep.pairs.push_back(r);
+  };
+  // mj_collision returns at once when contacts or constraints are disabled.
+  const bool disabled = (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT)) != 0;
+  const bool use_pairs = !disabled && m->opt.collision != mjCOL_DYNAMIC;
+  const bool use_dynamic = !disabled && m->opt.collision != mjCOL_PAIR && m->nbody >= 2;
+  if (use_pairs)
+    for (int p = 0; p < m->npair; ++p) add(p, m->pair_geom1[p], m->pair_geom2[p]);
+  if (use_dynamic) {
+    for (int b1 = 0; b1 < m->nbody; ++b1) {
+      for (int b2 = b1 + 1; b2 < m->nbody; ++b2) {
+        const int signature = ((b1 + 1) << 16) + (b2 + 1);
+        bool excluded = false;
+        for (int e = 0; e < m->nexclude; ++e) excluded |= m->exclude_signature[e] == signature;
+        if (excluded) continue;
+        for (int g1 = m->body_geomadr[b1]; g1 < m->body_geomadr[b1] + m->body_geomnum[b1]; ++g1) {
+          for (int g2 = m->body_geomadr[b2]; g2 < m->body_geomadr[b2] + m->body_geomnum[b2]; ++g2) {
+            bool explicit_pair = false;
+            for (int p = 0; use_pairs && p < m->npair; ++p)
+              explicit_pair |= (m->pair_geom1[p] == g1 && m->pair_geom2[p] == g2) ||
+                               (m->pair_geom1[p] == g2 && m->pair_geom2[p] == g1);
+            if (explicit_pair || no_collision_function(m, g1, g2) || filtered(m, g1, g2)) continue;
+            add(-1, g1, g2);
           }
         }
       }
     }
   }
+}
 
-  // Warnings.
+// The warnings on the rows and on the model, then MuJoCo's own messages.
+void add_warnings(const mjModel* m, const std::vector<std::string>& messages, InspectReport& rep) {
+  const size_t nc = rep.contacts.size();
   auto warn_rows = [&](const std::vector<InspectRow>& list) {
     for (const InspectRow& r : list) {
       const std::string label = label_of(r);
@@ -602,6 +520,75 @@ InspectReport inspect(const InspectOptions& options) {
                            (m->opt.disableflags & mjDSBL_CONTACT ? "contacts" : "constraints") +
                            " (<option><flag>): MuJoCo makes no contacts at all");
   for (const std::string& w : messages) rep.warnings.push_back("MuJoCo: " + w);
+}
+
+}  // namespace
+
+InspectReport inspect(const InspectOptions& options) {
+  if (options.slope && !(*options.slope >= 0.0 && *options.slope < 90.0))
+    throw InputError("--slope " + g(*options.slope) + ": must be in [0, 90) degrees");
+  {
+    std::ifstream file(options.path);
+    if (!file) throw InputError(options.path + ": cannot open the file");
+  }
+  InspectReport rep;
+  rep.path = options.path;
+  rep.key = options.key;
+  rep.slope = options.slope;
+  std::vector<std::string> messages;
+  WarningCapture capture(messages);
+  char error[1000] = "";
+  mjModel* raw = nullptr;
+  try {
+    raw = mj_loadXML(options.path.c_str(), nullptr, error, sizeof error);
+  } catch (const MujocoError& e) {
+    throw InputError(options.path + ": MuJoCo cannot load the model: " + one_line(e.what()));
+  }
+  if (!raw) throw InputError(options.path + ": MuJoCo cannot load the model: " + one_line(error));
+  const ModelPtr model(raw);
+  const mjModel* m = model.get();
+  rep.load_warning = one_line(error);
+  for (const std::string& w : messages)
+    rep.load_warning += (rep.load_warning.empty() ? "" : "; ") + w;
+  messages.clear();
+
+  int key = -1;
+  if (!options.key.empty()) {
+    key = mj_name2id(m, mjOBJ_KEY, options.key.c_str());
+    if (key < 0) {
+      std::string names;
+      for (int i = 0; i < m->nkey; ++i)
+        names += (names.empty() ? "" : ", ") + name_of(m, mjOBJ_KEY, i, "key");
+      throw InputError("--key " + options.key + ": no keyframe of that name in " + options.path +
+                       (m->nkey ? " (its keyframes: " + names + ")" : " (it has none)"));
+    }
+  }
+  const DataPtr data = make_data(m);
+  mjData* d = data.get();
+  if (key >= 0)
+    mj_resetDataKeyframe(m, d, key);
+  else
+    mj_resetData(m, d);
+  mj_forward(m, d);
+  // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0.
+  const DataPtr still = make_data(m);
+  mju_copy(still->qpos, d->qpos, m->nq);
+  mju_zero(still->qvel, m->nv);
+  mj_forward(m, still.get());
+
+  rep.integrator = mj_integrator_name(m);
+  rep.dt = m->opt.timestep;
+  rep.cone = m->opt.cone == mjCONE_ELLIPTIC ? "elliptic" : "pyramidal";
+  rep.impratio = m->opt.impratio;
+  for (int i = 0; i < 3; ++i) rep.gravity[static_cast<size_t>(i)] = m->opt.gravity[i];
+  rep.refsafe_enabled = !(m->opt.disableflags & mjDSBL_REFSAFE);
+  const Context ctx{m, d, integrator_of(m), m->opt.cone != mjCONE_ELLIPTIC, options.slope};
+
+  const std::vector<std::vector<double>> rows = collect_contacts(m, d, rep);
+  static_loads(m, still.get(), rows, rep);
+  for (InspectRow& r : rep.contacts) evaluate(ctx, r, rep.warnings, label_of(r));
+  if (options.pairs) collect_pairs(ctx, rep);
+  add_warnings(m, messages, rep);
   return rep;
 }
 

@@ -34,7 +34,8 @@
 //   over every contact, and the static penetration p solving
 //   p·K·d(p)² = f·Â·(1 − d(p)) (mujoco/solref_tool.hpp);
 //   the restitution of the Kelvin–Voigt oscillator at (ω, ζ) with its force
-//   clamped at zero (the contact lets go when k·x + c·ẋ = 0, before x = 0);
+//   clamped at zero (the contact lets go when k·x + c·ẋ = 0, before x = 0;
+//   benchmarks/impact.hpp);
 //   the creep speed on a slope of θ: inside the friction cone MuJoCo's
 //   tangential rows have no spring, aref = −B·v, and R_t = R/impratio, so at
 //   steady creep (qacc = 0) a contact carries impratio·B·d·v/((1 − d)·Â)
@@ -117,14 +118,6 @@ struct InspectReport {
 // Throws InputError: the file cannot be read or MuJoCo cannot load it
 // (MuJoCo's message on one line), an unknown --key, --slope out of range.
 InspectReport inspect(const InspectOptions& options);
-
-// The Kelvin–Voigt oscillator x'' + 2ζω·x' + ω²·x = 0 entered at x = 0 with
-// speed v0, its force ω²·x + 2ζω·x' clamped at zero: the speed it leaves
-// with over v0 (closed form for ζ < 1 and ζ > 1; independent of ω).
-double kelvin_voigt_restitution(double zeta);
-// The same oscillator's time in contact (until its force returns to zero),
-// in units of 1/ω.
-double kelvin_voigt_contact_time(double zeta);
 
 std::string format_inspect_text(const InspectReport& report);
 std::string format_inspect_json(const InspectReport& report);

@@ -7,11 +7,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "benchmarks/impact.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/integrators.hpp"
 #include "io/json.hpp"
-#include "mujoco/inspect.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
 
@@ -342,14 +342,14 @@ void solve_targets(SolrefInput& in, const SolrefTargets& t, bool k_given, bool c
     // e(ζ) falls from 1 at ζ = 0 (2.5e-7 at ζ = 1000): bisection on log ζ.
     const double e = *t.restitution;
     double lo = 1e-9, hi = 1e4;
-    if (!(kelvin_voigt_restitution(hi) < e))
+    if (!(benchmarks::kelvin_voigt_restitution(hi) < e))
       throw InputError("--restitution " + g(e) + ": below what a Kelvin–Voigt contact reaches (" +
-                       g(kelvin_voigt_restitution(hi)) + " at ζ = 1e4)");
-    if (!(kelvin_voigt_restitution(lo) > e))
+                       g(benchmarks::kelvin_voigt_restitution(hi)) + " at ζ = 1e4)");
+    if (!(benchmarks::kelvin_voigt_restitution(lo) > e))
       throw InputError("--restitution " + g(e) + ": too close to 1 (ζ < 1e-9)");
     for (int i = 0; i < 200; ++i) {
       const double mid = std::sqrt(lo * hi);
-      (kelvin_voigt_restitution(mid) > e ? lo : hi) = mid;
+      (benchmarks::kelvin_voigt_restitution(mid) > e ? lo : hi) = mid;
     }
     zeta = std::sqrt(lo * hi);
   }
@@ -360,9 +360,9 @@ void solve_targets(SolrefInput& in, const SolrefTargets& t, bool k_given, bool c
             g(in.k) + " N/m (calibrated's rest depth per contact, f = " + g(mech.load) + " N)";
   }
   if (t.contact_time) {
-    const double omega = kelvin_voigt_contact_time(zeta) / *t.contact_time;
+    const double omega = benchmarks::kelvin_voigt_contact_time(zeta) / *t.contact_time;
     in.k = omega * omega / mech.inv_mass;
-    note += "k = ω²/A with ω = τ(ζ)/T = " + g(kelvin_voigt_contact_time(zeta)) + "/" +
+    note += "k = ω²/A with ω = τ(ζ)/T = " + g(benchmarks::kelvin_voigt_contact_time(zeta)) + "/" +
             g(*t.contact_time) + " s = " + g(omega) + " rad/s: k = " + g(in.k) + " N/m";
   }
   if (t.restitution) {

@@ -60,6 +60,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "benchmarks/rolling.hpp"
+#include "benchmarks/sliding.hpp"
 #include "support/support.hpp"
 
 namespace contact2d {
@@ -102,10 +104,10 @@ TEST(SlidingFriction, FlatBoxStopsAtCoulombDistancePlusTanhCorrection) {
     scene.initial.q = Vec3(0.0, 0.5 * h - m * g / (2.0 * k), 0.0);
     scene.initial.v = Vec3(v0, 0.0, 0.0);
 
-    const double coulomb = v0 * v0 / (2.0 * mu * g);
-    const double tanh_tail = kPi * kPi / (12.0 * alpha * alpha * mu * g);
-    const double compliance = -m * mu * g * h * h * (kPi * kPi / 8.0 - 0.5) / (2.0 * k * w * w);
-    const double expected = coulomb + tanh_tail + compliance;
+    const benchmarks::BoxSlide slide =
+        benchmarks::box_sliding_distance(v0, mu, g, alpha, m, w, h, k);
+    const double coulomb = slide.coulomb, tanh_tail = slide.tanh, compliance = slide.pitch;
+    const double expected = slide.distance();
     const double lag = scene.contact.c / k * mu * g * alpha;  // τ·μ·g·α, τ ≤ c/k
     const double tolerance = lag * std::abs(compliance) + 1e-9;
     // The regularised law never stops exactly; 1e-9 m/s leaves < 1e-10 m to go.
@@ -132,7 +134,8 @@ TEST(RollingFriction, DiscDeceleratesAtMuRollGOverOnePointFiveR) {
   scene.initial.q = Vec3(0.0, R - scene.mass * g / scene.contact.k, 0.0);
   scene.initial.v = Vec3(v0, 0.0, -v0 / R);
 
-  const double decel = scene.contact.mu_roll * g / (1.5 * R);
+  const double decel = benchmarks::rolling_resistance_deceleration(scene.contact.mu_roll, g, R,
+                                                                   benchmarks::kDiscInertiaRatio);
   // Deceleration over the first second, from the sampled velocity.
   const Trajectory trajectory = simulate(scene);
   ASSERT_FALSE(trajectory.divergence);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "benchmarks/impact.hpp"
 #include "core/divergence.hpp"
 #include "core/integrators.hpp"
 #include "core/obstacles.hpp"
@@ -95,8 +96,9 @@ TEST_P(WallRebound, BallOffABoxWallMatchesClosedForm) {
   scene.initial.q = Vec3(wall - scene.radius + 1e-12, 1.0, 0.0);
   scene.initial.v = Vec3(v0, 0.0, 0.0);
   const State end = test::final_state(scene);
-  const double expected = law == DampingLaw::Compression ? test::compression_restitution(zeta)
-                                                         : test::kelvin_voigt_restitution(zeta);
+  const double expected = law == DampingLaw::Compression
+                              ? benchmarks::compression_restitution(zeta)
+                              : benchmarks::kelvin_voigt_restitution(zeta);
   EXPECT_LT(end.q.x(), wall - scene.radius) << "still in contact at the end";
   EXPECT_NEAR(-end.v.x() / v0, expected, 2e-6 * zeta * expected);
   EXPECT_DOUBLE_EQ(end.v.y(), 0.0);
@@ -118,8 +120,9 @@ TEST_P(WallRebound, BallOffASlantedSegmentReflectsTheNormalComponent) {
   scene.initial.v = Vec3(v0.x(), v0.y(), 0.0);
   const State end = test::final_state(scene);
   const Vec2 v(end.v.x(), end.v.y());
-  const double expected = law == DampingLaw::Compression ? test::compression_restitution(zeta)
-                                                         : test::kelvin_voigt_restitution(zeta);
+  const double expected = law == DampingLaw::Compression
+                              ? benchmarks::compression_restitution(zeta)
+                              : benchmarks::kelvin_voigt_restitution(zeta);
   EXPECT_NEAR(v.dot(n), expected, 2e-6 * zeta * expected);
   EXPECT_NEAR(v.dot(along), 0.8, 1e-12);
   EXPECT_NEAR(end.v.z(), 0.0, 1e-12) << "no friction, no spin";

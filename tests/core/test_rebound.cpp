@@ -26,6 +26,7 @@
 
 #include <cmath>
 
+#include "benchmarks/impact.hpp"
 #include "support/support.hpp"
 
 namespace contact2d {
@@ -49,7 +50,7 @@ class Rebound : public ::testing::TestWithParam<double> {};
 
 TEST_P(Rebound, CompressionLawMatchesClosedForm) {
   const double zeta = GetParam();
-  const double expected = test::compression_restitution(zeta);
+  const double expected = benchmarks::compression_restitution(zeta);
   const double e = simulated_restitution(DampingLaw::Compression, zeta);
   std::printf("compression  zeta=%.2f  e_sim=%.8f  e_closed=%.8f\n", zeta, e, expected);
   EXPECT_NEAR(e, expected, kKinkError * zeta * expected);
@@ -57,7 +58,7 @@ TEST_P(Rebound, CompressionLawMatchesClosedForm) {
 
 TEST_P(Rebound, KelvinVoigtLawMatchesClosedForm) {
   const double zeta = GetParam();
-  const double expected = test::kelvin_voigt_restitution(zeta);
+  const double expected = benchmarks::kelvin_voigt_restitution(zeta);
   const double e = simulated_restitution(DampingLaw::KelvinVoigt, zeta);
   std::printf("kelvin_voigt zeta=%.2f  e_sim=%.8f  e_closed=%.8f\n", zeta, e, expected);
   EXPECT_NEAR(e, expected, kKinkError * zeta * expected);

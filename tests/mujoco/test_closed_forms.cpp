@@ -1,11 +1,10 @@
-// Both engines and the converged solution against closed forms (issue 13,
-// item 4): the runs of analysis/closed_forms.hpp, the table of
-// validation/report/closed_forms.md. Every closed form is written again
-// here from the scene's parameters (the restitutions are the test suite's
-// own, tests/support/support.hpp), never taken from the code under test;
-// the runner's closed-form column is checked against them too, so the
-// report shows the right number. docs/closed-forms.md has the derivations;
-// the comments below give each tolerance in short.
+// Both engines and the converged solution against closed forms: the runs
+// of analysis/closed_forms.hpp, the table of validation/report/closed_forms.md.
+// Every closed form is computed here from the scene's parameters by
+// src/benchmarks/ (checked on its own against the integrated ODEs in
+// tests/benchmarks), never read from the runner; the runner's closed-form
+// column is checked against them too, so the report shows the right number. docs/closed-forms.md
+// has the derivations; the comments below give each tolerance in short.
 //
 // Who is held to what:
 //   reference (semi-implicit Euler, Δt = 1e-4) and converged solution
@@ -40,17 +39,20 @@
 #include <string>
 
 #include "analysis/closed_forms.hpp"
+#include "benchmarks/impact.hpp"
+#include "benchmarks/rest.hpp"
+#include "benchmarks/rolling.hpp"
+#include "benchmarks/sliding.hpp"
+#include "benchmarks/slope.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
-#include "support/support.hpp"
 
 namespace contact2d {
 namespace {
 
 using analysis::ClosedFormRow;
 using analysis::ClosedFormTable;
-
-constexpr double kPi = 3.14159265358979323846;
+namespace bm = benchmarks;
 
 // MuJoCo's contact constants, read here from the compiled model of the
 // scene under the default mapping (not from the runner): the direct-form
@@ -145,7 +147,7 @@ TEST_F(ClosedForms, StaticPenetrationIsWeightOverStiffness) {
     const Scene& s = scene(id);
     const int n_points = s.shape == Shape::Box ? 2 : 1;
     const double eps = s.shape == Shape::Box ? mujoco::kCornerRadius : 0.0;
-    const double depth = s.mass * s.sim.gravity / (n_points * s.contact.k);
+    const double depth = bm::rest_depth(s.mass, s.sim.gravity, s.contact.k, n_points);
     const std::vector<ClosedFormRow> r = rows(id);
     ASSERT_EQ(r.size(), 2u);
     expect_closed_form(r[0], depth);
@@ -155,9 +157,9 @@ TEST_F(ClosedForms, StaticPenetrationIsWeightOverStiffness) {
     const MujocoModelConstants mj = read_model(s);
     ASSERT_TRUE(mj.direct_flat) << "the default mapping is no longer direct with a flat solimp: "
                                    "this test's closed form for MuJoCo needs updating";
-    const double own =
-        s.mass * s.sim.gravity * mj.inv_weight * (1.0 - mj.impedance) / (n_points * mj.stiffness) -
-        eps;
+    const double own = bm::soft_constraint_rest_depth(s.mass, s.sim.gravity, mj.inv_weight,
+                                                      mj.impedance, n_points, mj.stiffness) -
+                       eps;
     expect_closed_form(r[1], own);
     EXPECT_NEAR(r[1].mujoco, own, 1e-9 * depth) << id << ": MuJoCo against its own law";
     EXPECT_NEAR(r[0].mujoco, depth, mj.impedance * depth + eps + 1e-9 * depth)
@@ -190,7 +192,7 @@ TEST_F(ClosedForms, ReboundRestitution) {
       const double omega = std::sqrt(s.contact.k / s.mass);
       const double zeta = s.contact.c / (2.0 * std::sqrt(s.contact.k * s.mass));
       const auto e_of = [kv](double zt) {
-        return kv ? test::kelvin_voigt_restitution(zt) : test::compression_restitution(zt);
+        return kv ? bm::kelvin_voigt_restitution(zt) : bm::compression_restitution(zt);
       };
       const double e = e_of(zeta);
       const double w_dt = omega * s.sim.dt;
@@ -203,7 +205,7 @@ TEST_F(ClosedForms, ReboundRestitution) {
       EXPECT_NEAR(r.reference, e, tolerance) << id;
       std::printf("%s: reference error %.3g = %.0f %% of its tolerance %.3g\n", id.c_str(),
                   r.reference - e, 100.0 * std::abs(r.reference - e) / tolerance, tolerance);
-      const double e_kv = test::kelvin_voigt_restitution(zeta);
+      const double e_kv = bm::kelvin_voigt_restitution(zeta);
       EXPECT_NEAR(r.mujoco, e_kv, tolerance + 5e-5) << id << ": MuJoCo does Kelvin–Voigt";
       if (!kv) {
         std::printf("%s: MuJoCo misses the compression law's e by %.3g\n", id.c_str(),
@@ -231,10 +233,9 @@ TEST_F(ClosedForms, BoxSlidesToRest) {
   const double g = s.sim.gravity, mu = s.contact.mu, alpha = s.contact.alpha;
   const double m = s.mass, w = s.width, h = s.height, k = s.contact.k, dt = s.sim.dt;
   const double v0 = s.initial.v.x();
-  const double coulomb = v0 * v0 / (2.0 * mu * g);
-  const double tanh_term = kPi * kPi / (12.0 * alpha * alpha * mu * g);
-  const double s_k = -m * mu * g * h * h * (kPi * kPi / 8.0 - 0.5) / (2.0 * k * w * w);
-  const double expected = coulomb + tanh_term + s_k;
+  const bm::BoxSlide slide = bm::box_sliding_distance(v0, mu, g, alpha, m, w, h, k);
+  const double coulomb = slide.coulomb, tanh_term = slide.tanh, s_k = slide.pitch;
+  const double expected = slide.distance();
   const double lag = s.contact.c / k * mu * g * alpha * std::abs(s_k);
   const std::vector<ClosedFormRow> r = rows("slide.box");
   ASSERT_EQ(r.size(), 2u);
@@ -263,10 +264,9 @@ TEST_F(ClosedForms, DiscRollsToRestUnderRollingResistance) {
   const double g = s.sim.gravity, R = s.radius, m = s.mass, alpha = s.contact.alpha;
   const double inertia = 0.5 * m * R * R;
   const double v0 = s.initial.v.x();
-  const double a = s.contact.mu_roll * g / (R * (1.0 + inertia / (m * R * R)));
-  const double slip = std::atanh(a / (s.contact.mu * g)) / alpha;
-  const double distance =
-      v0 * v0 / (2.0 * a) + slip * v0 / (3.0 * a) + kPi * kPi / (12.0 * alpha * alpha * a);
+  const double kappa = inertia / (m * R * R);
+  const double a = bm::rolling_resistance_deceleration(s.contact.mu_roll, g, R, kappa);
+  const double distance = bm::rolling_distance(v0, a, s.contact.mu, g, alpha, kappa);
   const std::vector<ClosedFormRow> r = rows("roll.disc");
   ASSERT_EQ(r.size(), 2u);
   expect_closed_form(r[0], a);
@@ -297,10 +297,12 @@ TEST_F(ClosedForms, DiscSlidesIntoRolling) {
   const double g = s.sim.gravity, R = s.radius, m = s.mass, mu = s.contact.mu;
   const double alpha = s.contact.alpha, v0 = s.initial.v.x();
   const double inertia = 0.5 * m * R * R;
-  const double v_final = v0 * m * R * R / (inertia + m * R * R);
-  const double rate = (1.0 + m * R * R / inertia) * mu * g * alpha;
+  const double kappa = inertia / (m * R * R);
+  const double v_final = bm::slide_to_roll_final_speed(v0, 0.0, kappa);
+  const double rate = (1.0 + m * R * R / inertia) * mu * g * alpha;  // of the slip, 1/s
   const double u_th = 0.01;
-  const double t_th = std::log(std::sinh(alpha * v0) / std::sinh(alpha * u_th)) / rate;
+  const double t_th =
+      bm::tanh_sliding_time(v0, u_th, bm::slide_to_roll_slip_deceleration(mu, g, kappa), alpha);
   const double interpolation = s.sim.output_dt * s.sim.output_dt / 8.0 * rate;
   const std::vector<ClosedFormRow> r = rows("bowling.disc");
   ASSERT_EQ(r.size(), 2u);
@@ -332,7 +334,7 @@ TEST_F(ClosedForms, BlockOnASlope) {
     const Scene& s = scene("slope.slides");
     const double th = s.initial.q.z(), g = s.sim.gravity, mu = s.contact.mu;
     ASSERT_GT(std::tan(th), mu);
-    const double a = g * (std::sin(th) - mu * std::cos(th));
+    const double a = bm::slope_sliding_acceleration(g, th, mu);
     const ClosedFormRow r = rows("slope.slides").at(0);
     expect_closed_form(r, a);
     // The converged solution in the slope's frame (flat ground, gravity
@@ -345,7 +347,7 @@ TEST_F(ClosedForms, BlockOnASlope) {
     const Scene& s = scene("slope.rests");
     const double th = s.initial.q.z(), g = s.sim.gravity, mu = s.contact.mu;
     ASSERT_LT(std::tan(th), mu);
-    const double creep = std::atanh(std::tan(th) / mu) / s.contact.alpha;
+    const double creep = bm::tanh_creep_speed(th, mu, s.contact.alpha);
     const std::vector<ClosedFormRow> r = rows("slope.rests");
     ASSERT_EQ(r.size(), 2u);
     expect_closed_form(r[0], creep);
@@ -354,7 +356,7 @@ TEST_F(ClosedForms, BlockOnASlope) {
     const MujocoModelConstants mj = read_model(s);
     ASSERT_TRUE(mj.direct_flat);
     const double own =
-        (1.0 - mj.impedance) * s.mass * g * std::sin(th) / (2.0 * mj.impratio * s.contact.c);
+        bm::soft_constraint_creep_speed(s.mass, g, th, 2, mj.impratio, s.contact.c, mj.impedance);
     expect_closed_form(r[1], own);
     EXPECT_NEAR(r[1].mujoco, own, 1e-6 * own) << "MuJoCo against its own viscous creep";
     EXPECT_LE(std::abs(r[0].mujoco - creep), creep) << "MuJoCo creeps, slower than the tanh law";
@@ -377,19 +379,19 @@ TEST_F(ClosedForms, BlockOnASlope) {
 // (rolling out, 1.2e-2 / 4e-3 m/s); measured and explained in
 // closed_forms.cpp.
 TEST_F(ClosedForms, DiscBouncesWithBackspin) {
-  const double kPi = 3.14159265358979323846;
-  const double zeta = 0.3, r = std::sqrt(1 - zeta * zeta);
-  const double phase = kPi - std::atan2(2 * zeta * r, 1 - 2 * zeta * zeta);
-  const double e =
-      std::exp(-zeta * phase / r) * std::abs(std::cos(phase) - zeta / r * std::sin(phase));
-  const double mu = 0.5, v_in = 1.0, vx = 1.0, R = 0.1, P = (1 + e) * v_in;
+  const double e = bm::kelvin_voigt_restitution(0.3);
+  const double mu = 0.5, v_in = 1.0, vx = 1.0, R = 0.1, m = 1.0;
+  const double P = bm::impact_normal_impulse(m, e, v_in);
+  const double kappa = bm::kDiscInertiaRatio;
   {
     const std::vector<ClosedFormRow> rw = rows("backspin.slides");
     ASSERT_EQ(rw.size(), 2u);
     const double u = vx + 30 * R;
     ASSERT_GT(u, 3 * mu * P);
-    expect_closed_form(rw[0], vx - mu * P);
-    expect_closed_form(rw[1], 30 * R - 2 * mu * P);
+    const bm::SpinImpact after = bm::spin_impact(vx, 30 * R, P, m, mu, kappa);
+    ASSERT_FALSE(after.rolls);
+    expect_closed_form(rw[0], after.vx);
+    expect_closed_form(rw[1], after.rim);
     for (const ClosedFormRow& x : rw) {
       EXPECT_NEAR(x.reference, x.quantity.closed_form, x.quantity.tolerance) << x.quantity.name;
       EXPECT_NEAR(x.converged, x.quantity.closed_form, 1e-8) << x.quantity.name;
@@ -403,8 +405,10 @@ TEST_F(ClosedForms, DiscBouncesWithBackspin) {
     ASSERT_EQ(rw.size(), 2u);
     const double u = vx + 5 * R;
     ASSERT_LT(u, 3 * mu * P);
-    expect_closed_form(rw[0], vx - u / 3);
-    expect_closed_form(rw[1], 5 * R - 2 * u / 3);
+    const bm::SpinImpact after = bm::spin_impact(vx, 5 * R, P, m, mu, kappa);
+    ASSERT_TRUE(after.rolls);
+    expect_closed_form(rw[0], after.vx);
+    expect_closed_form(rw[1], after.rim);
     for (const ClosedFormRow& x : rw) {
       EXPECT_NEAR(x.reference, x.quantity.closed_form, 1e-6) << x.quantity.name;
       EXPECT_NEAR(x.converged, x.quantity.closed_form, 1e-6) << x.quantity.name;

@@ -23,6 +23,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include "benchmarks/impact.hpp"
 #include "mujoco/inspect.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
@@ -106,8 +107,9 @@ Impact impact(const std::string& xml, double seconds) {
 }
 
 double restitution_tolerance(double zeta, double omega_dt) {
-  const double e = mj::kelvin_voigt_restitution(zeta);
-  const double shifted = mj::kelvin_voigt_restitution(zeta / std::sqrt(1.0 - zeta * omega_dt));
+  const double e = benchmarks::kelvin_voigt_restitution(zeta);
+  const double shifted =
+      benchmarks::kelvin_voigt_restitution(zeta / std::sqrt(1.0 - zeta * omega_dt));
   return 2.0 * (zeta * omega_dt * e + std::abs(shifted - e)) + omega_dt * omega_dt + 1e-4;
 }
 
@@ -120,7 +122,7 @@ TEST(SolrefTargets, RestitutionIsWhatMujocoRebounds) {
     mj::solve_targets(in, t, /*k_given=*/true, /*c_given=*/false);
     EXPECT_FALSE(in.targets_note.empty());
     const double omega = std::sqrt(in.k / in.mass), zeta = in.c / (2.0 * std::sqrt(in.k * in.mass));
-    EXPECT_NEAR(mj::kelvin_voigt_restitution(zeta), e, 1e-12);  // the solve itself
+    EXPECT_NEAR(benchmarks::kelvin_voigt_restitution(zeta), e, 1e-12);  // the solve itself
     const mj::MappingOutcome o = calibrated(in);
     const Impact hit = impact(free_sphere(in.mass, in.dt, 0.0, o.default_snippet), 0.1);
     const double tolerance = restitution_tolerance(zeta, omega * in.dt);
@@ -138,7 +140,7 @@ TEST(SolrefTargets, ContactTimeIsHowLongMujocosForceActs) {
     t.contact_time = duration;
     mj::solve_targets(in, t, /*k_given=*/false, /*c_given=*/false);
     const double omega = std::sqrt(in.k / in.mass), zeta = in.c / (2.0 * std::sqrt(in.k * in.mass));
-    EXPECT_NEAR(mj::kelvin_voigt_contact_time(zeta) / omega, duration, 1e-12 * duration);
+    EXPECT_NEAR(benchmarks::kelvin_voigt_contact_time(zeta) / omega, duration, 1e-12 * duration);
     const mj::MappingOutcome o = calibrated(in);
     const Impact hit = impact(free_sphere(in.mass, in.dt, 0.0, o.default_snippet), 0.1);
     std::printf("contact time %.3g s: k = %.6g N/m, MuJoCo's force acts %.6g s, rebounds at %.4f\n",

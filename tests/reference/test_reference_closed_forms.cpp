@@ -54,6 +54,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "benchmarks/sliding.hpp"
 #include "reference/dense_reference.hpp"
 
 namespace contact2d {
@@ -82,10 +83,7 @@ Scene disc_scene(double v0, double omega0, double duration) {
 // The exact slip u(t) of the regularised law: sinh(αu) = sinh(αu0)·e^{−3μgαt},
 // in logarithms (sinh(α·u0) reaches e^{250}).
 double slip(double u0, double g, double t) {
-  const double a = kAlpha * u0;
-  const double log_sinh = a + std::log1p(-std::exp(-2.0 * a)) - std::log(2.0);
-  const double log_rhs = log_sinh - 3.0 * kMu * g * kAlpha * t;
-  return std::asinh(std::exp(log_rhs)) / kAlpha;
+  return benchmarks::tanh_sliding_speed(u0, 3.0 * kMu * g, kAlpha, t);
 }
 
 void check_disc(double v0, double omega0) {
@@ -154,9 +152,8 @@ TEST(ReferenceClosedForms, FlatBoxStopsAtCoulombPlusTanhDistance) {
   const DenseTrajectory ref = converged_reference(scene, kTol);
   ASSERT_TRUE(ref.ok()) << ref.failure();
 
-  const double coulomb = v0 * v0 / (2.0 * mu * g);
-  const double tanh_tail = kPi * kPi / (12.0 * alpha * alpha * mu * g);
-  const double compliance = -m * mu * g * h * h * (kPi * kPi / 8.0 - 0.5) / (2.0 * k * w * w);
+  const benchmarks::BoxSlide slide = benchmarks::box_sliding_distance(v0, mu, g, alpha, m, w, h, k);
+  const double coulomb = slide.coulomb, tanh_tail = slide.tanh, compliance = slide.pitch;
   const State end = ref.at(scene.sim.duration);
   const double s = end.q.x() - scene.initial.q.x();
   const double lag = scene.contact.c / k * mu * g * alpha;  // τ·μ·g·α, τ ≤ c/k

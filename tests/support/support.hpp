@@ -1,6 +1,7 @@
-// Shared fixtures of the test suites: scenes built in code, closed forms the
-// tests compare against, stepping without the run loop, and running the real
-// program. One header, so no two suites keep their own copy.
+// Shared fixtures of the test suites: scenes built in code, stepping without
+// the run loop, and running the real program. One header, so no two suites
+// keep their own copy. The closed forms the tests compare against are
+// src/benchmarks/'s.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -50,23 +51,6 @@ inline State final_state(const Scene& scene) {
   const Trajectory trajectory = simulate(scene);
   EXPECT_FALSE(trajectory.divergence);
   return trajectory.samples.back().state;
-}
-
-// Restitution of one impact on a linear spring–damper at damping ratio ζ < 1
-// (derivations in tests/core/test_rebound.cpp):
-//   compression law  e = exp(−ζ·atan(√(1−ζ²)/ζ)/√(1−ζ²))
-inline double compression_restitution(double zeta) {
-  const double s = std::sqrt(1.0 - zeta * zeta);
-  return std::exp(-zeta * std::atan(s / zeta) / s);
-}
-
-//   Kelvin–Voigt     e = e^(−ζω t_e)·|cos(ω_d t_e) − ζ/√(1−ζ²)·sin(ω_d t_e)|,
-//                    ω_d·t_e = π − atan2(2ζ√(1−ζ²), 1−2ζ²)
-inline double kelvin_voigt_restitution(double zeta) {
-  const double s = std::sqrt(1.0 - zeta * zeta);
-  const double phase = kPi - std::atan2(2.0 * zeta * s, 1.0 - 2.0 * zeta * zeta);  // ω_d·t_e
-  const double decay = std::exp(-zeta * phase / s);  // e^(−ζω t_e)
-  return decay * std::abs(std::cos(phase) - zeta / s * std::sin(phase));
 }
 
 // Steps a model n times from s with the core's step() (no divergence rule,
