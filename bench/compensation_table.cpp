@@ -1,5 +1,5 @@
-// contact2d_compensation: the frictionless agreement table of issue 13
-// (body × ζ, before and after) and the same on seeded random scenes.
+// contact2d_compensation: the frictionless agreement table
+// (body × ζ, calibrated and compensated) and the same on seeded random scenes.
 //
 //   build-dir/bench/contact2d_compensation [--random N] [--seed S] [--mappings a,b] [--keep-mu]
 //

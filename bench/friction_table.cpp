@@ -1,4 +1,4 @@
-// contact2d_friction: the friction table of issue 13, item 3: scene ×
+// contact2d_friction: the friction table: scene ×
 // mapping, the max position difference (m) between the reference and MuJoCo
 // at Δt = 1e-4 s (Kelvin–Voigt, k = 1e4 N/m, semi-implicit Euler in both,
 // samples every 1 ms), and what MuJoCo does that the reference does not: its

@@ -215,7 +215,7 @@ bool implicit_euler_newton(const Model& model, double dt, State& s, StepWorkspac
     // The convergence test asks |δ|∞ ≤ tol·s of the step a solve here would
     // give; when the bound on |δ|∞ (newton_step_bound) meets half of that,
     // the solve could only confirm it: the same iterate is accepted, bit for
-    // bit, one 3×3 solve sooner. Otherwise the solve decides, as before.
+    // bit, one 3×3 solve sooner. Otherwise the solve decides.
     if (small(g, v_next) && newton_step_bound(e, g) <=
                                 0.5 * kNewtonTolerance * (1.0 + v_next.lpNorm<Eigen::Infinity>()))
       return accept(v_next);

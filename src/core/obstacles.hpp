@@ -82,7 +82,7 @@
 //     overlapping parts makes two springs, and an inner edge between parts
 //     can be the nearest one (the body's own corners behave the same way).
 //
-// An edge can no longer pass a corner: a plank dropped across a thin post
+// An edge cannot pass a corner: a plank dropped across a thin post
 // rests on the post's corners or cap (tests/core/test_obstacle_edges.cpp).
 // What still holds is the depth rule of any penalty contact without memory:
 // a vertex that sinks more than halfway into a thin box, or into a body's

@@ -60,7 +60,7 @@ void install_interrupt_cleanup() {
   for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, s);  // one at a time
   for (int s : {SIGINT, SIGTERM, SIGHUP}) {
     // A signal the caller ignores stays ignored (nohup, a background job of
-    // a non-interactive shell): the program then runs on, as before.
+    // a non-interactive shell): the program then runs on, uninterrupted.
     struct sigaction current {};
     if (::sigaction(s, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
     ::sigaction(s, &action, nullptr);

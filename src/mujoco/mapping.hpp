@@ -45,7 +45,7 @@
 // J·M⁻¹·Jᵀ at that body's COM (engine_setconst.c). A massless body without
 // joints, fixed to the moving one at a lever L in the plane and turned by
 // its hinge of inertia I, has Â = (2/m + L²/I)/3; the contact geoms moved
-// onto it (each placed back at its own point) touch exactly as before, and
+// onto it (each placed back at its own point) touch exactly where they did on the moving body, and
 // with Â = G·A_max both error terms fall by G: relative ≤ d/G = 1e-10, the
 // offset ≤ 1e-10·m·g. The coupling of several contacts (off-diagonal
 // A_ij) is of the same relative order d·A_ij/Â. The point mass has no

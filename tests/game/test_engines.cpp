@@ -1,4 +1,4 @@
-// The game on both engines (issue 14): the shipped goal replay, a round with
+// The game on both engines: the shipped goal replay, a round with
 // no input, a ball kicked into the net, the crossbar bounce against its
 // closed form, a circle scene without [game], and the feedback for a kick
 // pressed after the round ended. Every MuJoCo case runs only when MuJoCo was

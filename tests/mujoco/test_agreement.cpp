@@ -12,7 +12,7 @@
 // and circle (A = 1/m), 6e-4 for the box (r²/I ≤ 3/m) and 6.3e-4 for the T.
 //
 // ζ ≥ 1: the body lands once or twice and settles; the force error moves it
-// by micrometres. The tolerance is a requirement, the goal of issue 3
+// by micrometres. The tolerance is a requirement, the agreement goal
 // (1e-5 m, 1e-4 rad). Measured (max position m / angle rad):
 //   ζ = 1   point mass 1.8e-6 / 0,  box 5.9e-7 / 1.0e-5,
 //           T 7.8e-7 / 1.6e-6,      disc 4.8e-7 / 6e-12
@@ -75,7 +75,7 @@
 // R − p/2; (3) for the disc the elliptic cone shares one friction budget
 // between sliding and rolling (see RollingStop in test_contact_laws.cpp).
 // The point mass differs least (it cannot rock, so nothing amplifies the
-// difference): its tolerance is issue 3's goal, 1e-3 m, a requirement
+// difference): its tolerance is the agreement goal, 1e-3 m, a requirement
 // (measured 2.3e-4 m at c = 200 and 1.8e-5 m at c = 1000, 4× and 50×
 // below it).
 // Pins: measured maxima (c = 200, c = 1000) box 4.04e-3 and 4.83e-3 m, T
@@ -84,7 +84,7 @@
 // rounding differences between builds, which the chaotic landings amplify):
 // box 7e-3 m, T 4e-3 m, circle 7e-3 m. Each run prints its value; if a pin
 // fails, the change in the engine or the mapping must be explained before
-// the pin moves. Issue 3 asks for 3e-3 m (box, T) and 1e-3 m (circle): not
+// the pin moves. The agreement goal is 3e-3 m (box, T) and 1e-3 m (circle): not
 // reached; see validation/report/README.md.
 #include <algorithm>
 #include <cmath>

@@ -120,7 +120,7 @@ TEST_F(Cli, SceneMujocoWarnsOnIsBadInput) {
   EXPECT_TRUE(leftovers().empty());
 }
 
-// Obstacles run on both engines (issue 14): a box sliding at 6 m/s into a
+// Obstacles run on both engines: a box sliding at 6 m/s into a
 // wall whose face is at x = 1.9 m stops against it on both (centre within
 // the half-width 0.2 m plus the deepest penetration, 1.7 cm, of the face;
 // without the wall μ = 0.5 would let it slide to x = 3.7 m). compare has no

@@ -12,7 +12,7 @@
 //    geoms sit on a body L ≈ 450 m from the COM, so MuJoCo's corner position
 //    carries a rounding of a few ε·L (L·ε = 1e-13 m), i.e. k·16·ε·L in force.
 // 2. The drops of test_agreement.cpp (each body at ζ ∈ {0.1, 0.3, 1, 5}):
-//    issue 13's goal, 1e-5 m and 1e-4 rad, is the tolerance (a requirement).
+//    the compensated mapping's goal, 1e-5 m and 1e-4 rad, is the tolerance (a requirement).
 //    Measured (build/bench/contact2d_compensation): 2.1e-14 to 3.9e-8 m and
 //    ≤ 1.7e-7 rad, the largest the T at ζ = 0.1; under calibrated 1.3e-7 to
 //    1.3e-3 m and up to 6.2e-3 rad. So the goal holds with ≥ 250× margin
@@ -46,7 +46,7 @@ namespace {
 namespace mj = contact2d::mujoco;
 using mj::Mapping;
 
-constexpr double kGoalPosition = 1e-5;  // m, issue 13
+constexpr double kGoalPosition = 1e-5;  // m, the compensated mapping's goal
 constexpr double kGoalAngle = 1e-4;     // rad
 constexpr double kEpsilon = 2.220446049250313e-16;
 
@@ -188,7 +188,7 @@ namespace contact2d {
 namespace {
 
 // ---------------------------------------------------------------------------
-// Friction (issue 13, item 3). compensated keeps calibrated's friction (the
+// Friction. compensated keeps calibrated's friction (the
 // elliptic cone, impratio = 1/(c·Δt·A_t)) except the disc's rolling
 // coefficient (mjcf.cpp, cone_mu_roll).
 //

@@ -1,4 +1,4 @@
-// Obstacles in the MJCF (issue 14): the game's pitch loads in MuJoCo without
+// Obstacles in the MJCF: the game's pitch loads in MuJoCo without
 // a warning (load_model throws on any), with one world geom per obstacle,
 // each touched through one explicit pair carrying the obstacle's own law.
 #include <gtest/gtest.h>

@@ -247,10 +247,10 @@ TEST(DenseReference, BounceErrorFollowsTolerance) {
 // contains the whole 9.5 ms flight: the contact function is on its wrong
 // side at both of its ends in the free mode, and (rounding) at its start in
 // the contact mode too. The modes flipped back and forth at that instant;
-// the old code, after 8 such zero-length flips, accepted the step in the
+// a rule that gives up after 8 such zero-length flips accepted the step in the
 // free mode with the point 2.5 mm inside the ground at its end, missing the
 // re-entry at t = 1.67077 s: the point fell on without any contact force and
-// the trajectory left the closed form by 2.4 mm (measured on the old code:
+// the trajectory left the closed form by 2.4 mm (measured with that rule:
 // it fails this test with 2.39e-3 m at t = 1.7434 s). The rate at the start says the point is
 // leaving the ground, so the free mode is right and the return within the step is a crossing to
 // locate. Tolerance: 1e-9 m as in the closed-form bounce tests above (their derivation applies
