@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Largest distance between two trajectory CSVs of `contact2d simulate --csv`
 (columns t,x,y,theta,...), row by row: max |Δ(x, y)| in m and max |Δθ| in rad.
-docs/speed.md uses it for implicit Euler, main against this branch.
+docs/speed.md uses it for implicit Euler, one build against another.
 
     bench/csv_distance.py A.csv B.csv
 """

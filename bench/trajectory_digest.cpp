@@ -7,7 +7,7 @@
 //
 //   build/bench/contact2d_digest SCENE.toml...   (one line per scene × integrator)
 //
-// docs/speed.md says how it was used (the scalar tanh path against main).
+// docs/speed.md says how to use it (two builds, or the scalar and vector tanh paths).
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
