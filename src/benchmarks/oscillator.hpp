@@ -1,6 +1,7 @@
 // Closed forms of a body on one linear spring–damper under gravity, and of
-// its flight (docs/closed-forms.md, section 2; the rebound of
-// benchmarks/impact.hpp is the same oscillator without gravity).
+// its flight: the phases of a point mass bouncing on a penalty contact (the
+// rebound of benchmarks/impact.hpp, docs/closed-forms.md section 2, is the
+// same oscillator without gravity).
 //
 // The height z (m) of the contact point above the ground, w = dz/dt (m/s),
 // gravity g (m/s²); in contact the spring k and the damper c act per unit
