@@ -13,12 +13,24 @@ double rolling_resistance_deceleration(double mu_roll, double gravity, double ra
   return mu_roll * gravity / (radius * (1.0 + kappa));  // μ_roll·g/(R·(1 + κ))
 }
 
-double rolling_distance(double v0, double deceleration, double mu, double gravity, double alpha,
-                        double kappa) {
+RollingStop rolling_distance_terms(double v0, double deceleration, double mu, double gravity,
+                                   double alpha, double kappa) {
   const double a = deceleration;
   const double slip = std::atanh(a / (mu * gravity)) / alpha;  // v_s: μg·tanh(α·v_s) = a
-  return v0 * v0 / (2.0 * a) + slip * v0 * kappa / ((1.0 + kappa) * a) +
-         kPi * kPi / (12.0 * alpha * alpha * a);
+  RollingStop out;
+  out.roll = rolling_resistance_distance(v0, a);
+  out.slip = slip * v0 * kappa / ((1.0 + kappa) * a);
+  out.tanh = kPi * kPi / (12.0 * alpha * alpha * a);
+  return out;
+}
+
+double rolling_distance(double v0, double deceleration, double mu, double gravity, double alpha,
+                        double kappa) {
+  return rolling_distance_terms(v0, deceleration, mu, gravity, alpha, kappa).distance();
+}
+
+double rolling_resistance_distance(double v0, double deceleration) {
+  return v0 * v0 / (2.0 * deceleration);  // v0²/(2a)
 }
 
 double slide_to_roll_final_speed(double v0, double rim0, double kappa) {

@@ -34,9 +34,20 @@ double rolling_resistance_deceleration(double mu_roll, double gravity, double ra
 // by κ·v_s/(1 + κ) and lowers the rim speed −ω·R by v_s/(1 + κ); the rim then
 // stops after (v0 − v_s/(1 + κ))/a while v runs v_s ahead. The last term is
 // the regularised stop of the rolling torque (benchmarks/sliding.hpp).
-// Remainder O(v_s², 1/α²).
+// Remainder O(v_s², 1/α²). The terms one by one: distance() = roll + slip + tanh.
+struct RollingStop {
+  double roll = 0.0;  // v0²/(2a), the Coulomb laws' distance
+  double slip = 0.0;  // κ/(1 + κ)·v_s·v0/a
+  double tanh = 0.0;  // π²/(12α²a)
+  double distance() const { return roll + slip + tanh; }
+};
+RollingStop rolling_distance_terms(double v0, double deceleration, double mu, double gravity,
+                                   double alpha, double kappa);
 double rolling_distance(double v0, double deceleration, double mu, double gravity, double alpha,
                         double kappa);
+// Under the Coulomb laws (α = ∞) the roll stops after
+//   s = v0²/(2a)   (m).
+double rolling_resistance_distance(double v0, double deceleration);
 
 // Sliding into rolling (the bowling ball), μ_roll = 0. Friction changes
 // v and ω·R by the same impulse, so L = κ·R·ω − v (I·ω − m·R·v over m·R) is

@@ -14,10 +14,12 @@
 #include <vector>
 
 #include "benchmarks/impact.hpp"
+#include "benchmarks/oscillator.hpp"
 #include "benchmarks/rest.hpp"
 #include "benchmarks/rolling.hpp"
 #include "benchmarks/sliding.hpp"
 #include "benchmarks/slope.hpp"
+#include "benchmarks/soft_constraint.hpp"
 
 namespace contact2d::benchmarks {
 namespace {
@@ -280,8 +282,8 @@ TEST(Rolling, ResistanceDeceleratesAtMuRollGOverROnePlusKappa) {
       }
     }
     const double s = rolling_distance(v0, a, disc.mu, kG, alpha, kappa);
-    const double slip = std::atanh(a / (disc.mu * kG)) / alpha;
-    const double slip_term = slip * v0 * kappa / ((1.0 + kappa) * a);
+    const RollingStop terms = rolling_distance_terms(v0, a, disc.mu, kG, alpha, kappa);
+    const double slip_term = terms.slip;
     std::printf(
         "rolling κ = %g, α = %g: integrated %.9f m, closed form %.9f m, off %.3g m "
         "(slip term %.3g m)\n",
@@ -293,6 +295,12 @@ TEST(Rolling, ResistanceDeceleratesAtMuRollGOverROnePlusKappa) {
     const double tolerance = 3e-5 * (100.0 / alpha) * (100.0 / alpha);
     EXPECT_NEAR(s, y[0], tolerance) << "κ = " << kappa << ", α = " << alpha;
     EXPECT_GT(slip_term, 20.0 * tolerance);
+    // Term by term: the roll is the uniform deceleration's v0²/(2a), the
+    // tanh term the sliding law's π²/(12α²a), and what the integration
+    // adds beyond them is the slip term (the same remainder).
+    EXPECT_NEAR(terms.roll, v0 * v0 / (2.0 * a), 1e-15 * terms.roll);
+    EXPECT_NEAR(terms.tanh, tanh_sliding_distance_excess(1.0, a, alpha), 1e-15 * terms.tanh);
+    EXPECT_NEAR(y[0] - terms.roll - terms.tanh, terms.slip, tolerance);
   }
   EXPECT_NEAR(rolling_resistance_deceleration(0.01, kG, 0.1, 0.5), 0.654, 1e-12);  // docs
 }
@@ -415,6 +423,131 @@ TEST(Slope, ViscousCreepBalancesTheWeightAlongTheSlope) {
       slope_speed(0.0, 0.5, [&](double u) { return kG * std::sin(th) - n * b * u / m; });
   EXPECT_NEAR(soft_constraint_creep_speed(m, kG, th, n, impratio, c, d), v, 1e-15);
   EXPECT_NEAR(slope_rest_depth(m, kG, th, 1e5, 2) * 2.0 * 1e5, m * kG * std::cos(th), 1e-12);
+}
+
+// ------------------------------------------------------------ rolling stop
+
+TEST(Rolling, CoulombRollStopsAtVSquaredOverTwoA) {
+  // Uniform deceleration a = 0.5 m/s² from 2 m/s: 4 m, integrated with
+  // RK4 (exact for the quadratic) until the speed reaches 0.
+  EXPECT_NEAR(rolling_resistance_distance(2.0, 0.5), 4.0, 1e-15);
+  Vec<2> y{0.0, 3.0};  // x, v
+  const double a = 0.7, h = 1e-4;
+  while (y[1] > a * h) rk4<2>(y, h, [&](const Vec<2>& s) { return Vec<2>{s[1], -a}; });
+  rk4<2>(y, y[1] / a, [&](const Vec<2>& s) { return Vec<2>{s[1], -a}; });  // the last bit
+  EXPECT_NEAR(rolling_resistance_distance(3.0, a), y[0], 1e-9);
+  // The tanh laws' distance tends to it as α → ∞ (slip and tanh terms
+  // fall as 1/α and 1/α²).
+  const double a_roll = rolling_resistance_deceleration(0.01, kG, 0.1, kDiscInertiaRatio);
+  EXPECT_NEAR(rolling_distance(2.0, a_roll, 0.5, kG, 1e9, kDiscInertiaRatio),
+              rolling_resistance_distance(2.0, a_roll), 1e-8);
+}
+
+// ------------------------------------------------------------ oscillator
+
+// z'' = −g − k·z − c·z' per unit mass, integrated with RK4.
+Vec<2> integrate_oscillator(double k, double c, double z0, double w0, double s, long steps) {
+  Vec<2> y{z0, w0};
+  const double h = s / static_cast<double>(steps);
+  for (long i = 0; i < steps; ++i)
+    rk4<2>(y, h, [&](const Vec<2>& q) { return Vec<2>{q[1], -kG - k * q[0] - c * q[1]}; });
+  return y;
+}
+
+TEST(Oscillator, DampedSolutionMatchesTheIntegratedOde) {
+  // k = 1e4 1/s², ζ = 0.1 and 0.6, entering at 2.4 m/s; after 3 ms (in
+  // contact) and 40 ms (several periods, settled towards z_eq = −g/k).
+  // RK4 at ω·h = 1e-4: error ~ (ω·h)⁴ per period, far below 1e-10 m.
+  for (double zeta : {0.1, 0.6}) {
+    const double k = 1e4, c = 2.0 * zeta * std::sqrt(k);
+    for (double s : {3e-3, 4e-2}) {
+      const Vec<2> y = integrate_oscillator(k, c, 0.0, -2.4, s, static_cast<long>(s / 1e-6));
+      const OscillatorState exact = damped_oscillator(kG, k, c, 0.0, -2.4, s);
+      EXPECT_NEAR(exact.z, y[0], 1e-10) << "ζ " << zeta << ", s " << s;
+      EXPECT_NEAR(exact.w, y[1], 1e-8) << "ζ " << zeta << ", s " << s;
+    }
+  }
+  // The undamped spring without gravity: z = z0·cos(ωt), ω = √k.
+  const OscillatorState cosine = damped_oscillator(0.0, 4.0, 0.0, 0.1, 0.0, 0.3);
+  EXPECT_NEAR(cosine.z, 0.1 * std::cos(0.6), 1e-16);
+  EXPECT_NEAR(cosine.w, -0.2 * std::sin(0.6), 1e-16);
+  // Overdamped and critical: outside the closed form, NaN.
+  EXPECT_TRUE(std::isnan(damped_oscillator(kG, 1e4, 200.0, 0.0, -1.0, 1e-3).z));
+  EXPECT_TRUE(std::isnan(damped_oscillator(kG, 1e4, 300.0, 0.0, -1.0, 1e-3).w));
+}
+
+TEST(Oscillator, FlightIsTheParabolaAndFallTimeItsRoot) {
+  // RK4 is exact on the parabola (to the rounding of 1000 steps).
+  const Vec<2> y = integrate_oscillator(0.0, 0.0, 0.3, 1.2, 0.25, 1000);
+  const OscillatorState flight = damped_oscillator(kG, 0.0, 0.0, 0.3, 1.2, 0.25);
+  EXPECT_NEAR(flight.z, y[0], 1e-12);
+  EXPECT_NEAR(flight.w, y[1], 1e-12);
+  // From rest at 0.3 m: √(2·0.3/g) = 0.2473097 s.
+  EXPECT_NEAR(fall_time(kG, 0.3, 0.0), std::sqrt(0.6 / kG), 1e-15);
+  EXPECT_NEAR(fall_time(kG, 0.3, 0.0), 0.2473097, 1e-7);
+  // Thrown up at 1.2 m/s: the integrated flight reaches z = 0 then.
+  const double t = fall_time(kG, 0.3, 1.2);
+  EXPECT_NEAR(integrate_oscillator(0.0, 0.0, 0.3, 1.2, t, 1000)[0], 0.0, 1e-12);
+}
+
+TEST(Oscillator, DropDepthIsTheUndampedTurningPoint) {
+  // m = 2 kg dropped from rest 0.1 m above a spring k = 5e4 N/m: flight,
+  // then m·z'' = −m·g − k·z below z = 0, integrated (RK4, h = 1e-7 s) to
+  // the turning point w = 0. The force is continuous at z = 0, so RK4
+  // loses at most O(h²) there: below 1e-12 m.
+  const double m = 2.0, k = 5e4, height = 0.1;
+  Vec<2> y{height, 0.0};
+  const auto rate = [&](const Vec<2>& q) {
+    return Vec<2>{q[1], -kG - (q[0] < 0.0 ? k / m * q[0] : 0.0)};
+  };
+  double deepest = 0.0;
+  while (y[1] <= 0.0) {
+    rk4<2>(y, 1e-7, rate);
+    deepest = std::min(deepest, y[0]);
+  }
+  EXPECT_NEAR(drop_depth(m, kG, k, height), -deepest, 1e-9);
+  // Dropped from the spring's top (H = 0): twice the static depth m·g/k.
+  EXPECT_NEAR(drop_depth(m, kG, k, 0.0), 2.0 * rest_depth(m, kG, k, 1), 1e-18);
+}
+
+// ------------------------------------------------------- soft constraint
+
+TEST(SoftConstraint, RowForceSolvesItsEquation) {
+  // f·R = aref − a0 − A·f, R = (1 − d)/d·Â, at several constants.
+  for (double d : {1e-4, 0.5, 0.9, 0.99}) {
+    const double a = 1.7, a_hat = 2.0 / 3.0, aref = 35.0, a0 = -kG;
+    const double f = soft_constraint_force(a, a_hat, d, aref, a0);
+    const double r = (1.0 - d) / d * a_hat;
+    EXPECT_NEAR(f * r, aref - a0 - a * f, 1e-12 * (aref - a0)) << "d " << d;
+  }
+  // d → 1: the hard constraint, f = (aref − a0)/A.
+  EXPECT_NEAR(soft_constraint_force(2.0, 0.5, 1.0, 3.0, -1.0), 2.0, 1e-15);
+  // At the depth of benchmarks/rest.hpp (aref = K·d·p, K = s/d², a0 = −g)
+  // the row carries the weight m·g and the body does not accelerate.
+  const double m = 1.5, a_hat = 2.0 / 3.0, d = 0.9, stiffness = 1e4 * a_hat;
+  const double p = soft_constraint_rest_depth(m, kG, a_hat, d, 1, stiffness);
+  const double big_k = stiffness / (d * d);
+  EXPECT_NEAR(soft_constraint_force(1.0 / m, a_hat, d, big_k * d * p, -kG), m * kG, 1e-12 * kG);
+}
+
+TEST(SoftConstraint, EllipticConeIsTheWeightedProjection) {
+  const double k = 1e4, p = 1e-3, c = 50.0, mu = 0.5, impratio = 200.0;
+  // Inside the cone: the rows alone.
+  const ConeForce inside = elliptic_cone_force(k, p, c, -0.1, 1e-5, mu, impratio);
+  EXPECT_EQ(inside.normal, k * p + c * 0.1);
+  EXPECT_EQ(inside.tangential, -impratio * c * 1e-5);
+  // On it: the f_n minimising (f_n − f_n⁰)² + (μ·f_n − |f_t⁰|)²/impratio
+  // (bisection on the sign of the cost's slope), and |f_t| = μ·f_n.
+  for (double vt : {2.0, -0.5}) {
+    const double fn0 = k * p, ft0 = std::abs(impratio * c * vt);
+    const auto slope = [&](double fn) { return (fn - fn0) + mu * (mu * fn - ft0) / impratio; };
+    double lo = 0.0, hi = 1e4;
+    for (int i = 0; i < 200; ++i) (slope(0.5 * (lo + hi)) < 0.0 ? lo : hi) = 0.5 * (lo + hi);
+    const ConeForce on = elliptic_cone_force(k, p, c, 0.0, vt, mu, impratio);
+    EXPECT_NEAR(on.normal, 0.5 * (lo + hi), 1e-9 * on.normal) << "v_t " << vt;
+    EXPECT_NEAR(std::abs(on.tangential), mu * on.normal, 1e-12 * on.normal);
+    EXPECT_LT(on.tangential * vt, 0.0);  // against the slip
+  }
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include <cmath>
 
+#include "benchmarks/rest.hpp"
 #include "core/contact.hpp"
 #include "core/contacts.hpp"
 #include "core/divergence.hpp"
@@ -108,7 +109,7 @@ TEST(SoftCone, ASlidingPointMassSinksLessAsThePushGrows) {
     scene.contact = cone(FrictionLaw::SoftCone);
     scene.mass = 1.0;
     scene.half_height = 0.05;
-    const double p0 = scene.mass * scene.sim.gravity / scene.contact.k;
+    const double p0 = benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 1);
     const double mu2 = scene.contact.mu * scene.contact.mu;
     const double expected =
         1.0 + mu2 / scene.contact.cone_ratio -

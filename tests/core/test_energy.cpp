@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/rest.hpp"
 #include "support/support.hpp"
 
 namespace contact2d {
@@ -37,7 +38,8 @@ Oscillator conservative_oscillator() {
   scene.contact.c = 0.0;
   scene.contact.mu = 0.0;
   Oscillator o{make_model(scene), {}, {}};
-  const double y_eq = scene.half_height - scene.mass * scene.sim.gravity / scene.contact.k;
+  const double y_eq =
+      scene.half_height - benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 1);
   o.rest.q = Vec3(0.0, y_eq, 0.0);
   o.start.q = Vec3(0.0, y_eq + 2e-3, 0.0);
   return o;

@@ -67,8 +67,6 @@
 namespace contact2d {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // x where the body's speed first drops below v_stop (or the last x).
 double stop_distance(const Scene& scene, double v_stop) {
   const Trajectory trajectory = simulate(scene);
@@ -149,10 +147,9 @@ TEST(RollingFriction, DiscDeceleratesAtMuRollGOverOnePointFiveR) {
   EXPECT_NEAR(measured_decel, decel, 1e-6 * decel);
 
   const double alpha = scene.contact.alpha;
-  const double coulomb = v0 * v0 / (2.0 * decel);
-  const double slip = std::atanh(decel / (scene.contact.mu * g)) / alpha;
-  const double slip_term = slip * v0 / (3.0 * decel);
-  const double tanh_tail = kPi * kPi / (12.0 * alpha * alpha * decel);
+  const benchmarks::RollingStop stop = benchmarks::rolling_distance_terms(
+      v0, decel, scene.contact.mu, g, alpha, benchmarks::kDiscInertiaRatio);
+  const double coulomb = stop.roll, slip_term = stop.slip, tanh_tail = stop.tanh;
   const double s = stop_distance(scene, 1e-9);
   std::printf("disc roll: s = %.9f m, analytic %.9f m + slip %.4g m + tanh %.3g m = %.9f m\n", s,
               coulomb, slip_term, tanh_tail, coulomb + slip_term + tanh_tail);

@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "benchmarks/oscillator.hpp"
+#include "benchmarks/rest.hpp"
+#include "benchmarks/sliding.hpp"
 #include "core/contacts.hpp"
 #include "core/integrators.hpp"
 #include "core/obstacles.hpp"
@@ -63,7 +66,7 @@ TEST_P(RestOnObstacleVertex, PlankAcrossARoundPostSinksByWeightOverStiffness) {
   Scene scene = plank_scene(GetParam());
   scene.obstacles = {round_post(0.0)};
   scene.initial.q = Vec3(0.0, kPostTop + 0.5 * kPlankHeight + 0.01, 0.0);  // dropped from 1 cm
-  const double d = scene.mass * scene.sim.gravity / scene.contact.k;
+  const double d = benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 1);
   const State s = test::final_state(scene);
   EXPECT_NEAR(kPostTop + 0.5 * kPlankHeight - s.q.y(), d, 1e-9 * d);
   EXPECT_EQ(s.q.z(), 0.0);
@@ -81,7 +84,7 @@ TEST_P(RestOnObstacleVertex, PlankAcrossABoxPostRestsOnItsTwoCorners) {
   Scene scene = plank_scene(GetParam());
   scene.obstacles = {box_post(0.0)};
   scene.initial.q = Vec3(0.0, kPostTop + 0.5 * kPlankHeight + 0.01, 0.0);
-  const double d = scene.mass * scene.sim.gravity / (2.0 * scene.contact.k);
+  const double d = benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 2);
   const State s = test::final_state(scene);
   EXPECT_NEAR(kPostTop + 0.5 * kPlankHeight - s.q.y(), d, 1e-9 * d);
   EXPECT_EQ(s.q.z(), 0.0);
@@ -98,7 +101,7 @@ TEST_P(RestOnObstacleVertex, BoxBridgingTwoBlocksRestsOnFourSprings) {
   scene.obstacles = {make_box_obstacle(-0.5 * gap - 0.5, 0.5 * top, 1.0, top),
                      make_box_obstacle(0.5 * gap + 0.5, 0.5 * top, 1.0, top)};
   scene.initial.q = Vec3(0.0, top + 0.5 * scene.height + 0.01, 0.0);
-  const double d = scene.mass * scene.sim.gravity / (4.0 * scene.contact.k);
+  const double d = benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 4);
   const State s = test::final_state(scene);
   EXPECT_NEAR(top + 0.5 * scene.height - s.q.y(), d, 1e-9 * d);
   EXPECT_EQ(s.q.z(), 0.0);
@@ -122,7 +125,7 @@ TEST_P(RestOnObstacleVertex, CompoundHungByItsBarAcrossTwoPosts) {
   scene.obstacles = {box_post(-0.15), box_post(0.15)};
   scene.initial.q = Vec3(0.0, kPostTop - 0.05 + 0.01, 0.0);
   const Model model = make_model(scene);
-  const double d = model.body.mass * scene.sim.gravity / (4.0 * scene.contact.k);
+  const double d = benchmarks::rest_depth(model.body.mass, scene.sim.gravity, scene.contact.k, 4);
   const State s = test::final_state(scene);
   EXPECT_NEAR(kPostTop - 0.05 - s.q.y(), d, 1e-9 * d);
   EXPECT_NEAR(s.q.z(), 0.0, 1e-12);
@@ -162,7 +165,7 @@ TEST(SlideOverPosts, PlankDeceleratesAtMuGAndStaysOnTop) {
   const double D = 0.6;
   scene.obstacles = {round_post(-0.5 * D), round_post(0.5 * D)};
   const double g = scene.sim.gravity, mu = scene.contact.mu, alpha = scene.contact.alpha;
-  const double rest = scene.mass * g / (2.0 * scene.contact.k);
+  const double rest = benchmarks::rest_depth(scene.mass, g, scene.contact.k, 2);
   const double v0 = 1.0;
   scene.initial.q = Vec3(0.0, kPostTop + 0.5 * kPlankHeight - rest, 0.0);
   scene.initial.v = Vec3(v0, 0.0, 0.0);
@@ -179,7 +182,7 @@ TEST(SlideOverPosts, PlankDeceleratesAtMuGAndStaysOnTop) {
   }
   ASSERT_TRUE(std::isfinite(v1) && std::isfinite(v2));
   const double mu_g = mu * g;
-  const double stop = v0 * v0 / (2.0 * mu_g);
+  const double stop = benchmarks::coulomb_sliding_distance(v0, mu, g);
   const double tilt =
       2.0 * scene.mass * g * (stop + mu * 0.5 * kPlankHeight) / (scene.contact.k * D * D);
   const double tolerance = (1.0 + mu * mu) * g * tilt;
@@ -189,7 +192,7 @@ TEST(SlideOverPosts, PlankDeceleratesAtMuGAndStaysOnTop) {
   EXPECT_GT(lowest, kPostTop - 2.0 * rest - tilt * 0.5 * kPlankWidth);
   const State& end = trajectory.samples.back().state;
   EXPECT_LT(std::abs(end.v.x()), 1e-5) << "stopped on the posts";
-  const double tail = test::kPi * test::kPi / (12.0 * alpha * alpha * mu_g);
+  const double tail = benchmarks::tanh_sliding_distance_excess(mu, g, alpha);
   EXPECT_NEAR(end.q.x(), stop + tail - 0.5 * v0 * scene.sim.dt, stop * tolerance / mu_g);
 }
 
@@ -227,9 +230,8 @@ TEST_P(PlankDrop, PlankDroppedAcrossAPostStaysOnTop) {
   double lowest = INFINITY;
   for (const Sample& s : trajectory.samples)
     lowest = std::min(lowest, lowest_point(model.body, s.state.q));
-  const double mg = scene.mass * scene.sim.gravity;
   const double k_eff = round ? scene.contact.k : 2.0 * scene.contact.k;
-  const double d_max = (mg + std::sqrt(mg * mg + 2.0 * k_eff * mg * drop)) / k_eff;
+  const double d_max = benchmarks::drop_depth(scene.mass, scene.sim.gravity, k_eff, drop);
   ASSERT_LT(d_max, 0.5 * kPlankHeight);
   EXPECT_GT(lowest, kPostTop - 1.02 * d_max);
   EXPECT_GT(trajectory.samples.back().state.q.y(), kPostTop) << "still on the post";

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "benchmarks/impact.hpp"
+#include "benchmarks/rest.hpp"
 #include "core/divergence.hpp"
 #include "core/integrators.hpp"
 #include "core/obstacles.hpp"
@@ -32,7 +33,7 @@ TEST_P(RestOnObstacle, BallOnBoxSinksByWeightOverStiffness) {
   scene.obstacles = {
       make_box_obstacle(0.0, 0.5 * top, 1.0, top)};             // a table standing on the ground
   scene.initial.q = Vec3(0.1, top + scene.radius + 0.02, 0.0);  // dropped from 2 cm
-  const double d = scene.mass * scene.sim.gravity / scene.contact.k;
+  const double d = benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 1);
   const State s = test::final_state(scene);
   EXPECT_NEAR(top + scene.radius - s.q.y(), d, 1e-9 * d);
   EXPECT_NEAR(s.q.x(), 0.1, 1e-12) << "a vertical drop on a flat top has no sideways force";
@@ -43,7 +44,7 @@ TEST_P(RestOnObstacle, BallOnSegmentSinksByWeightOverStiffness) {
   const double radius = 0.05, height = 0.4;  // a horizontal bar of thickness 0.1 at y = 0.4
   scene.obstacles = {make_segment_obstacle(Vec2(-1.0, height), Vec2(1.0, height), radius)};
   scene.initial.q = Vec3(0.3, height + radius + scene.radius, 0.0);
-  const double d = scene.mass * scene.sim.gravity / scene.contact.k;
+  const double d = benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 1);
   const State s = test::final_state(scene);
   EXPECT_NEAR(height + radius + scene.radius - s.q.y(), d, 1e-9 * d);
 }
@@ -55,7 +56,7 @@ TEST_P(RestOnObstacle, FlatBoxOnBoxSinksByHalfTheWeightPerCorner) {
   const double top = 0.3;
   scene.obstacles = {make_box_obstacle(0.0, 0.0, 2.0, 2.0 * top)};
   scene.initial.q = Vec3(0.0, top + 0.5 * scene.height, 0.0);
-  const double d = scene.mass * scene.sim.gravity / (2.0 * scene.contact.k);
+  const double d = benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 2);
   const State s = test::final_state(scene);
   EXPECT_NEAR(top + 0.5 * scene.height - s.q.y(), d, 1e-9 * d);
   EXPECT_NEAR(s.q.z(), 0.0, 1e-12);

@@ -7,6 +7,7 @@
 // ω ≥ 100 rad/s (< 1e-80), plus rounding: tolerance 1e-9 relative to d.
 #include <gtest/gtest.h>
 
+#include "benchmarks/rest.hpp"
 #include "support/support.hpp"
 
 namespace contact2d {
@@ -17,7 +18,7 @@ class StaticPenetration : public ::testing::TestWithParam<Integrator> {};
 TEST_P(StaticPenetration, PointMassSinksByWeightOverStiffness) {
   Scene scene = test::resting_scene(Shape::PointMass, GetParam());
   scene.initial.q = Vec3(0.0, scene.half_height, 0.0);
-  const double d = scene.mass * scene.sim.gravity / scene.contact.k;
+  const double d = benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 1);
   const State s = test::final_state(scene);
   EXPECT_NEAR(scene.half_height - s.q.y(), d, 1e-9 * d);
 }
@@ -25,7 +26,7 @@ TEST_P(StaticPenetration, PointMassSinksByWeightOverStiffness) {
 TEST_P(StaticPenetration, FlatBoxSinksByHalfTheWeightPerCorner) {
   Scene scene = test::resting_scene(Shape::Box, GetParam());
   scene.initial.q = Vec3(0.0, 0.5 * scene.height, 0.0);
-  const double d = scene.mass * scene.sim.gravity / (2.0 * scene.contact.k);
+  const double d = benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 2);
   const State s = test::final_state(scene);
   EXPECT_NEAR(0.5 * scene.height - s.q.y(), d, 1e-9 * d);
   EXPECT_NEAR(s.q.z(), 0.0, 1e-12);
@@ -35,7 +36,7 @@ TEST_P(StaticPenetration, CircleSinksByWeightOverStiffness) {
   Scene scene = test::resting_scene(Shape::Circle, GetParam());
   scene.contact.mu_roll = 0.01;
   scene.initial.q = Vec3(0.0, scene.radius, 0.0);
-  const double d = scene.mass * scene.sim.gravity / scene.contact.k;
+  const double d = benchmarks::rest_depth(scene.mass, scene.sim.gravity, scene.contact.k, 1);
   const State s = test::final_state(scene);
   EXPECT_NEAR(scene.radius - s.q.y(), d, 1e-9 * d);
 }

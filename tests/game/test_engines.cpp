@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/impact.hpp"
 #include "core/input_error.hpp"
 #include "engines/engines.hpp"
 #include "game/game.hpp"
@@ -164,12 +165,9 @@ double bounce(const std::string& engine, double v0, bool& left) {
 TEST(BothEngines, TheCrossbarBounceMatchesItsClosedForm) {
   const Pitch p = default_pitch();
   const double m = p.scene.mass, k = p.scene.contact.k, c = p.scene.contact.c;
-  const double zeta = c / (2.0 * std::sqrt(k * m)), root = std::sqrt(1.0 - zeta * zeta);
-  const double e_compression = std::exp(-zeta * std::atan(root / zeta) / root);
-  const double phi =
-      3.14159265358979323846 - std::atan(2.0 * zeta * root / (1.0 - 2.0 * zeta * zeta));
-  const double e_kelvin_voigt =
-      std::exp(-zeta * phi / root) * (zeta * std::sin(phi) / root - std::cos(phi));
+  const double zeta = c / (2.0 * std::sqrt(k * m));
+  const double e_compression = benchmarks::compression_restitution(zeta);
+  const double e_kelvin_voigt = benchmarks::kelvin_voigt_restitution(zeta);
   for (const std::string& engine : engines_to_test()) {
     for (double v0 : {2.0, 8.0}) {
       bool left = false;

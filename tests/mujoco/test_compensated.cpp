@@ -34,6 +34,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "benchmarks/soft_constraint.hpp"
 #include "core/body.hpp"
 #include "mj_test_util.hpp"
 #include "mujoco/mjcf.hpp"
@@ -199,7 +200,8 @@ namespace {
 //   f_n = (k·p − c·v_n + μ·c·|v_t|)/(1 + μ²/impratio),  f_t = −μ·f_n·sgn v_t:
 // the damper B, shared by every row of a contact in MuJoCo 2.2.2 (no
 // solreffriction before 2.3.6), adds μ·c·|v_t| to the normal force whatever
-// impratio is. Inside the cone f_t = −impratio·c·v_t, f_n = k·p − c·v_n.
+// impratio is. Inside the cone f_t = −impratio·c·v_t, f_n = k·p − c·v_n
+// (benchmarks::elliptic_cone_force).
 // Checked against MuJoCo (mj_forward, the point mass, compensated) to
 // 1e-8 of f_n: the neglected terms are compensated's d·A/Â ≤ 1e-10, times
 // impratio (200 here) on the tangential rows (R_t = R/impratio): measured
@@ -231,13 +233,9 @@ TEST(CompensatedFriction, TheConeProjectionAddsTheDampersSlipTermToTheNormalForc
       // MuJoCo's contact frame
       const double ft = d->efc_force[row + 1] * d->contact[0].frame[3] +
                         d->efc_force[row + 2] * d->contact[0].frame[6];
-      const double inside_ft = -impratio * c * vt;
-      const double inside_fn = k * p - c * vn;
-      double want_fn = inside_fn, want_ft = inside_ft;
-      if (std::abs(inside_ft) > mu * inside_fn) {  // on the cone
-        want_fn = (k * p - c * vn + mu * c * std::abs(vt)) / (1 + mu * mu / impratio);
-        want_ft = -mu * want_fn * (vt > 0 ? 1 : -1);
-      }
+      const benchmarks::ConeForce want =
+          benchmarks::elliptic_cone_force(k, p, c, vn, vt, mu, impratio);
+      const double want_fn = want.normal, want_ft = want.tangential;
       std::printf("v_n %g, v_t %g: f_n %.12g (closed form %.12g), f_t %.12g (%.12g)\n", vn, vt, fn,
                   want_fn, ft, want_ft);
       EXPECT_NEAR(fn, want_fn, 1e-8 * std::abs(want_fn)) << "v_n " << vn << ", v_t " << vt;

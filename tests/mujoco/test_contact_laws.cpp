@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "benchmarks/rolling.hpp"
 #include "mj_test_util.hpp"
 
 namespace contact2d {
@@ -114,7 +115,9 @@ TEST_P(RollingStop, StopsNearTheAnalyticDistance) {
   ASSERT_FALSE(run.trajectory.divergence.has_value());
   const State& end = run.trajectory.samples.back().state;
   EXPECT_LT(std::abs(end.v.x()), 1e-3);  // it has stopped
-  const double analytic = rc.v0 * rc.v0 / (2.0 * rc.mu_roll * g / (1.5 * rc.radius));
+  const double analytic = benchmarks::rolling_resistance_distance(
+      rc.v0, benchmarks::rolling_resistance_deceleration(rc.mu_roll, g, rc.radius,
+                                                         benchmarks::kDiscInertiaRatio));
   const double excess = end.q.x() / analytic - 1.0;
   std::printf(
       "MuJoCo disc m = %g, R = %g, mu_roll = %g, v0 = %g: stops at %.6f m, analytic %.6f m, "

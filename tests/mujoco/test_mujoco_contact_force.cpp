@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "benchmarks/soft_constraint.hpp"
 #include "mj_test_util.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
@@ -112,8 +113,8 @@ Measured measure(const ForceCase& c, double penetration, double velocity) {
   const double d = c.d;
   const double K = gain_S(c.direct) / (d * d), B = gain_D(c.direct) / d;
   const double pos = data->efc_pos[0], vel = data->efc_vel[0];
-  const double predicted = d * (-B * vel - K * d * pos - a0) / (d * A + (1.0 - d) * Ahat);
   const double aref = -B * vel - K * d * pos, R = (1.0 - d) / d * Ahat;
+  const double predicted = benchmarks::soft_constraint_force(A, Ahat, d, aref, a0);
   const double cancel = (std::abs(B * vel) + std::abs(K * d * pos) + std::abs(a0)) /
                         std::abs(aref - a0);  // the numerator's cancellation
   const double primal = std::max(std::abs(aref), std::abs(a0)) / std::abs(aref - a0) * (A + R) / R;
@@ -201,7 +202,7 @@ TEST(MujocoContactForceTerms, TrueInverseInertiaAndGravityTerm) {
   const mj::DataPtr data = mj::make_data(model.get());
   data->qpos[1] = kDrop + kRho - 1e-3;
   mj_forward(model.get(), data.get());
-  const double drop = 0.5 * kG / (0.5 * Ap + 0.5 * Ahat);
+  const double drop = benchmarks::soft_constraint_force(Ap, Ahat, 0.5, 0.0, -kG);
   std::printf("gravity term: MuJoCo %.15g N, closed form d·g/(d·A + (1 − d)·Â) = %.15g N\n",
               fp.force - data->efc_force[0], drop);
   EXPECT_NEAR((fp.force - data->efc_force[0]) / drop, 1.0, 1e-12);

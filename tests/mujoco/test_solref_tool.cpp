@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "benchmarks/rest.hpp"
 #include "mj_test_util.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
@@ -211,7 +212,7 @@ TEST_P(SolrefDrop, RestsAtThePrintedStaticPenetration) {
   }
   const Rest rest = settle(xml, 3.0);
   ASSERT_EQ(rest.contacts, 1) << xml;  // a pair is merged with, not added to, the dynamic contact
-  const double nominal = m * g / k;
+  const double nominal = benchmarks::rest_depth(m, g, k, 1);
   std::printf(
       "%s mu = %g, mu_roll = %g (%s): p = %.12g m, printed %.12g m (%.6g of m·g/k), residual %.3g "
       "of p; "

@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "benchmarks/oscillator.hpp"
 #include "core/run.hpp"
 #include "io/scene_file.hpp"
 #include "reference/dense_reference.hpp"
@@ -96,21 +97,12 @@ struct Piece {
 
 constexpr double kG = 9.81;
 
-// Closed form of z'' = −g − k·z − c·z' from (z0, w0) after time s.
+// Closed form of z'' = −g − k·z − c·z' from (z0, w0) after time s
+// (benchmarks/oscillator.hpp; underdamped in this test).
 void evolve(const Phase& p, double z0, double w0, double s, double& z, double& w) {
-  if (p.k == 0.0) {
-    z = z0 + w0 * s - 0.5 * kG * s * s;
-    w = w0 - kG * s;
-    return;
-  }
-  const double z_eq = -kG / p.k;
-  const double beta = 0.5 * p.c;
-  const double wd = std::sqrt(p.k - beta * beta);  // underdamped in this test
-  const double u0 = z0 - z_eq;
-  const double e = std::exp(-beta * s);
-  const double cs = std::cos(wd * s), sn = std::sin(wd * s);
-  z = z_eq + e * (u0 * cs + (w0 + beta * u0) / wd * sn);
-  w = e * (w0 * cs - (p.k * u0 + beta * w0) / wd * sn);
+  const benchmarks::OscillatorState out = benchmarks::damped_oscillator(kG, p.k, p.c, z0, w0, s);
+  z = out.z;
+  w = out.w;
 }
 
 // First s > 0 where f(z, w) changes sign from its sign just after s = 0.
@@ -151,7 +143,7 @@ std::vector<Piece> analytic_bounces(DampingLaw law, double c, double duration) {
   };
   while (t < duration) {
     // Flight down to the ground: z = 0.
-    const double s_fall = (w + std::sqrt(w * w + 2.0 * kG * z)) / kG;
+    const double s_fall = benchmarks::fall_time(kG, z, w);
     push(Phase{}, s_fall);
     if (law == DampingLaw::Compression) {
       const Phase damped{k, c}, spring{k, 0.0};

@@ -54,13 +54,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "benchmarks/rolling.hpp"
 #include "benchmarks/sliding.hpp"
 #include "reference/dense_reference.hpp"
 
 namespace contact2d {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kTol = 1e-10;    // the reference's tolerance
 constexpr double kClosed = 1e-8;  // exact closed forms: 10× the reference's global error
 constexpr double kAlpha = 100.0;  // s/m
@@ -94,23 +94,27 @@ void check_disc(double v0, double omega0) {
   ASSERT_TRUE(ref.ok()) << ref.failure();
 
   const double u0 = v0 + omega0 * R;
-  const double v_star = v0 - u0 / 3.0;
-  const double t_star = u0 / (3.0 * kMu * g);
+  const double kappa = benchmarks::kDiscInertiaRatio;
+  const double v_star = benchmarks::slide_to_roll_speed(v0, u0, 0.0, kappa);  // slip gone
+  const double t_star = u0 / benchmarks::slide_to_roll_slip_deceleration(kMu, g, kappa);
   double worst_v = 0.0, worst_w = 0.0, worst_y = 0.0;
   for (int i = 0; i <= 2000; ++i) {
     const double t = duration * i / 2000.0;
     const State s = ref.at(t);
     const double u = slip(u0, g, t);
-    worst_v = std::max(worst_v, std::abs(s.v.x() - (v0 - (u0 - u) / 3.0)));
-    worst_w = std::max(worst_w, std::abs(s.v.z() - (omega0 - 2.0 * (u0 - u) / (3.0 * R))));
+    worst_v =
+        std::max(worst_v, std::abs(s.v.x() - benchmarks::slide_to_roll_speed(v0, u0, u, kappa)));
+    worst_w = std::max(worst_w,
+                       std::abs(s.v.z() - benchmarks::slide_to_roll_spin(omega0, u0, u, R, kappa)));
     worst_y = std::max(worst_y, std::abs(s.q.y() - scene.initial.q.y()));
   }
   // At the Coulomb transition time the regularised slip is asinh(½)/α, not 0.
   const double u_at_t_star = ref.at(t_star).v.x() + ref.at(t_star).v.z() * R;
   const State end = ref.at(duration);
   const double x_end =
-      v_star * duration + (0.5 * u0 * u0 + kPi * kPi / (12.0 * kAlpha * kAlpha)) / (9.0 * kMu * g);
-  const double tanh_distance = kPi * kPi / (12.0 * kAlpha * kAlpha) / (9.0 * kMu * g);
+      v_star * duration + benchmarks::slide_to_roll_distance_offset(u0, kMu, g, kAlpha, kappa);
+  const double tanh_distance =
+      benchmarks::slide_to_roll_distance_offset(0.0, kMu, g, kAlpha, kappa);
   std::printf(
       "disc v0 = %g, omega0 = %g: max |v - closed form| %.3g m/s, |omega - closed form| %.3g "
       "rad/s, |y - y0| %.3g m; slip at t* %.9f (asinh(1/2)/alpha = %.9f) m/s; x(T) - closed form "

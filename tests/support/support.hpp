@@ -1,7 +1,7 @@
 // Shared fixtures of the test suites: scenes built in code, stepping without
-// the run loop, and running the real program. One header, so no two suites
-// keep their own copy. The closed forms the tests compare against are
-// src/benchmarks/'s.
+// the run loop, and running the real program, in one header every suite
+// includes. It holds no closed forms: each closed form a test compares
+// against is a function of src/benchmarks/ (library contact2d_benchmarks).
 #pragma once
 
 #include <gtest/gtest.h>

@@ -1,0 +1,41 @@
+// Closed forms of the spring–damper under gravity (benchmarks/oscillator.hpp).
+#include "benchmarks/oscillator.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace contact2d::benchmarks {
+
+OscillatorState damped_oscillator(double gravity, double stiffness, double damping, double z0,
+                                  double w0, double s) {
+  OscillatorState out;
+  if (stiffness == 0.0 && damping == 0.0) {  // flight
+    out.z = z0 + w0 * s - 0.5 * gravity * s * s;
+    out.w = w0 - gravity * s;
+    return out;
+  }
+  const double beta = 0.5 * damping;
+  if (!(beta * beta < stiffness)) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {nan, nan};
+  }
+  const double z_eq = -gravity / stiffness;
+  const double wd = std::sqrt(stiffness - beta * beta);  // ω_d
+  const double u0 = z0 - z_eq;
+  const double e = std::exp(-beta * s);
+  const double cs = std::cos(wd * s), sn = std::sin(wd * s);
+  out.z = z_eq + e * (u0 * cs + (w0 + beta * u0) / wd * sn);
+  out.w = e * (w0 * cs - (stiffness * u0 + beta * w0) / wd * sn);
+  return out;
+}
+
+double fall_time(double gravity, double z, double w) {
+  return (w + std::sqrt(w * w + 2.0 * gravity * z)) / gravity;
+}
+
+double drop_depth(double mass, double gravity, double stiffness, double height) {
+  const double mg = mass * gravity;
+  return (mg + std::sqrt(mg * mg + 2.0 * stiffness * mg * height)) / stiffness;
+}
+
+}  // namespace contact2d::benchmarks
