@@ -318,8 +318,8 @@ void write_report(const ReportRequest& o) {
   const std::vector<analysis::FrictionRow> friction = friction_rows();
   // atlas.md: the small default atlas (its rows in OUT/atlas/).
   progress("atlas validation/atlas/default.toml");
-  const AtlasRun atlas =
-      run_atlas("validation/atlas/default.toml", o.out + "/atlas", o.out, "atlas.");
+  AtlasRun atlas;
+  run_atlas("validation/atlas/default.toml", o.out + "/atlas", o.out, "atlas.", atlas);
   sweep.info.cores = std::thread::hardware_concurrency();
   sweep.info.load = load_average();
   sweep.info.sweep_seconds = static_cast<long long>(sweep_seconds);

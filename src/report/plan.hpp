@@ -35,6 +35,6 @@ const std::vector<std::string>& page_names();
 // run fails). Throws InputError for a scene or spec that cannot be read,
 // std::runtime_error when a run fails (an engine diverged, gnuplot or the
 // bench failed).
-void write_report(const ReportRequest& request);
+void write_report(const ReportRequest& o);
 
 }  // namespace contact2d::report

@@ -363,19 +363,17 @@ analysis::ClosedFormTable closed_form_rows() { return analysis::closed_form_tabl
 
 std::vector<analysis::FrictionRow> friction_rows() { return analysis::friction_table(); }
 
-AtlasRun run_atlas(const std::string& spec_path, const std::string& out_dir,
-                   const std::string& plot_dir, const std::string& png_prefix) {
+void run_atlas(const std::string& spec_path, const std::string& out_dir,
+               const std::string& plot_dir, const std::string& png_prefix, AtlasRun& run) {
   const AtlasSpec spec = load_atlas_spec(spec_path);
   analysis::AtlasRunOptions options;
   options.threads = analysis::default_threads();
   const analysis::AtlasRunStats stats = analysis::run_atlas(spec, out_dir, options);
-  const analysis::AtlasData data = analysis::read_atlas_shards({out_dir});
-  AtlasRun run;
-  run.summary = analysis::summarize_atlas(data);
-  analysis::draw_atlas_heatmaps(data, run.summary, plot_dir, png_prefix);
+  run.data = analysis::read_atlas_shards({out_dir});
+  run.summary = analysis::summarize_atlas(run.data);
+  analysis::draw_atlas_heatmaps(run.data, run.summary, plot_dir, png_prefix);
   run.info = {spec_path,          stats.points,          options.threads,
               stats.wall_seconds, stats.cpu_per_point(), stats.points_per_core()};
-  return run;
 }
 
 Bench run_bench(const std::string& executable, const std::string& min_time) {

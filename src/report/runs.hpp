@@ -105,13 +105,19 @@ analysis::ClosedFormTable closed_form_rows();
 std::vector<analysis::FrictionRow> friction_rows();
 
 // `contact2d atlas SPEC --out OUT_DIR` on every core, then its summary and
-// heat maps (PNG_PREFIX*.png under PLOT_DIR).
+// heat maps (PNG_PREFIX*.png under PLOT_DIR) into `run`. The summary points
+// into the rows of `run.data` (its worst and failed points), so `run` is
+// filled in place and is not copied.
 struct AtlasRun {
+  analysis::AtlasData data;
   analysis::AtlasSummary summary;
   AtlasRunInfo info;
+  AtlasRun() = default;
+  AtlasRun(const AtlasRun&) = delete;
+  AtlasRun& operator=(const AtlasRun&) = delete;
 };
-AtlasRun run_atlas(const std::string& spec_path, const std::string& out_dir,
-                   const std::string& plot_dir, const std::string& png_prefix);
+void run_atlas(const std::string& spec_path, const std::string& out_dir,
+               const std::string& plot_dir, const std::string& png_prefix, AtlasRun& run);
 
 // `contact2d_bench --benchmark_min_time=MIN --benchmark_out=…
 // --benchmark_out_format=json`, run as a subprocess from the current
