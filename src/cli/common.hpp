@@ -9,12 +9,14 @@
 #include "core/format.hpp"
 #include "core/run.hpp"
 #include "engines/engines.hpp"
+#include "io/exit_status.hpp"
 
 namespace contact2d::cli {
 
-constexpr int kExitOk = 0;
-constexpr int kExitBadInput = 2;
-constexpr int kExitDiverged = 3;
+// The exit status, shared with the layers below (io/exit_status.hpp).
+using contact2d::kExitBadInput;
+using contact2d::kExitDiverged;
+using contact2d::kExitOk;
 
 // The output options of a subcommand (--csv FILE, --plot FILE.png, --out
 // DIR, …), all checked by check() before the run starts: a path that cannot

@@ -16,19 +16,22 @@
 #include <utility>
 
 #include "analysis/comparison.hpp"
+#include "analysis/engine.hpp"
 #include "analysis/output.hpp"
 #include "analysis/stability.hpp"
 #include "analysis/sweep.hpp"
 #include "analysis/trajectory_error.hpp"
-#include "cli/common.hpp"
 #include "core/divergence.hpp"
+#include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/integrator_label.hpp"
 #include "engines/engines.hpp"
 #include "game/pitch.hpp"
 #include "game/replay.hpp"
 #include "game/session.hpp"
+#include "io/atlas_spec.hpp"
 #include "io/csv.hpp"
+#include "io/exit_status.hpp"
 #include "io/plot.hpp"
 #include "io/scene_file.hpp"
 #include "mujoco/mjcf.hpp"
@@ -292,22 +295,85 @@ EngineOutcome simulate_outcome(const std::string& path, const std::string& engin
     spec.source = path;
     run = engines::run_engine(spec, scene);
   } catch (const InputError& e) {
-    return {cli::kExitBadInput, "contact2d: " + std::string(e.what()) + "\n"};
+    return {kExitBadInput, "contact2d: " + std::string(e.what()) + "\n"};
   }
   std::string text;
   for (const std::string& w : run.warnings)
     text += "contact2d: " + engine + " warning: " + w + "\n";
   if (run.trajectory.divergence) {
     text += "contact2d: " + path + ": " + run.divergence_message + "\n";
-    return {cli::kExitDiverged, text};
+    return {kExitDiverged, text};
   }
-  // As `contact2d simulate` without --allow-nonphysical (cli/common.hpp).
+  // As `contact2d simulate` without --allow-nonphysical (core/run.hpp).
   if (const std::string reason = nonphysical(run.trajectory, scene); !reason.empty()) {
     text += "contact2d: " + path + ": not physics: " + reason +
             ". Pass --allow-nonphysical to keep the run.\n";
-    return {cli::kExitDiverged, text};
+    return {kExitDiverged, text};
   }
-  return {cli::kExitOk, analysis::run_summary(scene, engine, run) + "\n"};
+  return {kExitOk, analysis::run_summary(scene, engine, run) + "\n"};
+}
+
+double named_share() { return analysis::kNamedShare; }
+
+void add_friction_parts(const Scene& scene, const std::string& mapping, GoalCase& g) {
+  const analysis::FrictionParts parts = analysis::friction_parts(scene, mapping);
+  g.friction_shape = parts.shape;
+  g.friction_push = parts.push;
+  g.friction_rest = parts.rest;
+}
+
+void compare_random_scenes(const std::vector<RandomScene>& scenes,
+                           std::vector<RandomCase>& calibrated,
+                           std::vector<RandomCase>& compensated) {
+  calibrated.resize(scenes.size());
+  compensated.resize(scenes.size());
+  analysis::parallel_for(2 * scenes.size(), 0, [&](size_t job) {
+    // Even jobs: calibrated (the default mapping); odd: compensated.
+    const size_t i = job / 2;
+    const bool is_compensated = job % 2 == 1;
+    const char* const mapping = is_compensated ? "compensated" : "calibrated";
+    const RandomScene& r = scenes[i];
+    Scene frictionless = r.scene;
+    frictionless.contact.mu = 0.0;
+    const std::string source = "random scene " + r.name;
+    const Comparison without = compare_engines(frictionless, source, mapping, "corners");
+    const Comparison friction = compare_engines(r.scene, source, mapping, "corners");
+    const analysis::FrictionParts parts = analysis::friction_parts(r.scene, mapping);
+    (is_compensated ? compensated : calibrated)[i] = {r.name,
+                                                      without.shape,
+                                                      r.mass,
+                                                      r.scene.contact.k,
+                                                      r.scene.contact.c,
+                                                      r.scene.contact.mu,
+                                                      without.max_pos,
+                                                      without.max_angle,
+                                                      friction.max_pos,
+                                                      parts.shape,
+                                                      parts.push,
+                                                      parts.rest};
+  });
+}
+
+bool points_turn(const Scene& scene) {
+  const RigidBody body = make_model(scene).body;
+  return body.rotates && body.points_rotate;
+}
+
+analysis::ClosedFormTable closed_form_rows() { return analysis::closed_form_table(); }
+
+std::vector<analysis::FrictionRow> friction_rows() { return analysis::friction_table(); }
+
+void run_atlas(const std::string& spec_path, const std::string& out_dir,
+               const std::string& plot_dir, const std::string& png_prefix, AtlasRun& run) {
+  const AtlasSpec spec = load_atlas_spec(spec_path);
+  analysis::AtlasRunOptions options;
+  options.threads = analysis::default_threads();
+  const analysis::AtlasRunStats stats = analysis::run_atlas(spec, out_dir, options);
+  run.data = analysis::read_atlas_shards({out_dir});
+  run.summary = analysis::summarize_atlas(run.data);
+  analysis::draw_atlas_heatmaps(run.data, run.summary, plot_dir, png_prefix);
+  run.info = {spec_path,          stats.points,          options.threads,
+              stats.wall_seconds, stats.cpu_per_point(), stats.points_per_core()};
 }
 
 Bench run_bench(const std::string& executable, const std::string& min_time) {

@@ -1,20 +1,26 @@
 // The seam between the report and the engines: EVERY call that runs an
 // engine or an analysis for `contact2d report` is in runs.cpp, and each
-// returns the report's plain structs (report/results.hpp). The page writers
-// never see an engine type, so pointing the report at another engine API
-// means changing runs.cpp alone.
+// returns the report's plain structs (report/results.hpp) or the analysis
+// tables a page reads as they are (closed forms, friction, atlas). The page
+// writers never see an engine type, so pointing the report at another
+// engine API means changing runs.cpp alone. The plan (report/plan.hpp)
+// says which of these run, on which scenes.
 //
-// runs.cpp is compiled into the contact2d program (not the contact2d_report
-// library): it calls the same functions the CLI subcommands call, several of
-// which live in src/cli (the MuJoCo runner, the comparison plot, the
-// analysis runner of sweep and stability).
+// runs.cpp and plan.cpp are the library contact2d_report_runs (CMake),
+// beside the page library contact2d_report, which runs nothing: the same
+// engine, analysis and game libraries the CLI subcommands call.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "analysis/atlas.hpp"
+#include "analysis/closed_forms.hpp"
+#include "analysis/friction_table.hpp"
 #include "core/scene.hpp"
+#include "report/pages.hpp"
+#include "report/random_scenes.hpp"
 #include "report/results.hpp"
 
 namespace contact2d::report {
@@ -72,6 +78,46 @@ StabilityMap stability_map(const Scene& scene, const std::string& name,
 
 // `contact2d simulate PATH --engine ENGINE`: its exit status and output.
 EngineOutcome simulate_outcome(const std::string& path, const std::string& engine);
+
+// The share of MuJoCo's difference a cause must take away to be named
+// (analysis/comparison.hpp), as README.md states it.
+double named_share();
+
+// The friction goal's split of MuJoCo's difference under a mapping
+// (analysis/friction_table.hpp: friction_parts) into `g`.
+void add_friction_parts(const Scene& scene, const std::string& mapping, GoalCase& g);
+
+// The random scenes on both engines without and with friction, under the
+// calibrated (`calibrated[i]`) and the compensated (`compensated[i]`)
+// mapping, two runs at a time (one per core; their run times are not shown).
+void compare_random_scenes(const std::vector<RandomScene>& scenes,
+                           std::vector<RandomCase>& calibrated,
+                           std::vector<RandomCase>& compensated);
+
+// Whether the scene's force evaluations start with a sincos: a body that
+// turns, with contact points that turn with it.
+bool points_turn(const Scene& scene);
+
+// Both engines and the converged solution against the closed forms
+// (analysis::closed_form_table), and MuJoCo's friction against the
+// reference (analysis::friction_table).
+analysis::ClosedFormTable closed_form_rows();
+std::vector<analysis::FrictionRow> friction_rows();
+
+// `contact2d atlas SPEC --out OUT_DIR` on every core, then its summary and
+// heat maps (PNG_PREFIX*.png under PLOT_DIR) into `run`. The summary points
+// into the rows of `run.data` (its worst and failed points), so `run` is
+// filled in place and is not copied.
+struct AtlasRun {
+  analysis::AtlasData data;
+  analysis::AtlasSummary summary;
+  AtlasRunInfo info;
+  AtlasRun() = default;
+  AtlasRun(const AtlasRun&) = delete;
+  AtlasRun& operator=(const AtlasRun&) = delete;
+};
+void run_atlas(const std::string& spec_path, const std::string& out_dir,
+               const std::string& plot_dir, const std::string& png_prefix, AtlasRun& run);
 
 // `contact2d_bench --benchmark_min_time=MIN --benchmark_out=…
 // --benchmark_out_format=json`, run as a subprocess from the current

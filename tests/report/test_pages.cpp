@@ -285,8 +285,8 @@ TEST(ReportPages, ReadmeRecommendsOneMappingToBuildOn) {
   EXPECT_NE(page.find("not for a model to build on"), std::string::npos);
 }
 
-// The front page is an index of every page the report writes (cmd_report's
-// write_page calls): each linked by its file name.
+// The front page is an index of every page the report writes (report/plan.cpp:
+// page_names()): each linked by its file name.
 TEST(ReportPages, ReadmeLinksEveryPage) {
   const std::string page = readme_page(fixtures::readme());
   const size_t index = page.find("## The pages of this report");
