@@ -11,7 +11,12 @@
 
 namespace contact2d::report {
 
-std::string friction_page(const std::vector<analysis::FrictionRow>& rows, double goal) {
+namespace {
+
+// The title, the difference per scene and its three parts, and what keeps
+// MuJoCo away.
+std::string friction_difference_section(const std::vector<analysis::FrictionRow>& rows,
+                                        double goal) {
   std::string out = R"md(# Friction: how close MuJoCo 2.2.2 gets, and what keeps it away
 
 Written by `contact2d report` (`src/analysis/friction_table.cpp`); the same
@@ -74,7 +79,14 @@ centre of mass rises above the reference's. No 2.2.2 setting removes the
 term (the table below tries each): it does not depend on impratio, solimp,
 condim or the cone; only `c` itself scales it. A friction reference of its
 own, `solreffriction`, arrived in MuJoCo 2.3.6.
+)md";
+  return out;
+}
 
+// Every 2.2.2 setting that touches friction, each alone; the split; the
+// rolling disc.
+std::string friction_settings_section(const std::vector<analysis::FrictionRow>& rows) {
+  std::string out = R"md(
 ## Every setting of MuJoCo 2.2.2 that touches friction, each alone
 
 The calibrated model with one setting changed, its difference to the
@@ -131,6 +143,12 @@ cone's rolling coefficient to `μ_roll/√(1 − q²)`, `q = κ·μ_roll/(μ·R)
 steady rolling (docs/mujoco.md).
 )md";
   return out;
+}
+
+}  // namespace
+
+std::string friction_page(const std::vector<analysis::FrictionRow>& rows, double goal) {
+  return friction_difference_section(rows, goal) + friction_settings_section(rows);
 }
 
 }  // namespace contact2d::report

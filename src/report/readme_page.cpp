@@ -213,12 +213,10 @@ std::string replay_section(const ReplayComparison& r) {
   return out;
 }
 
-// The first screen: which mapping, and how close MuJoCo then is, by damping
-// band, with and without friction, each line with the command behind it.
-std::string summary(const ReadmeData& d) {
+// The first screen's recommendation: one mapping to build on, and the one
+// that measures closer when it is another.
+std::string recommendation(const ReadmeData& d) {
   const OverallWinner w = overall_winner(mapping_means(d.kelvin_voigt, d.scenes, d.mappings));
-  const RandomConfig& rc = d.random_config;
-  const std::vector<ZetaBand> bands = random_bands(d.random, rc);
   // One recommendation: a model to build on is calibrated's (it sets only
   // solref, solimp and options); compensated, when it measures closer, is
   // named as the comparison's tool, not as a second recommendation.
@@ -242,6 +240,15 @@ std::string summary(const ReadmeData& d) {
                 : ".");
   }
   out += "\n\n";
+  return out;
+}
+
+// How close MuJoCo then is on the random scenes, by damping band and
+// mapping, with the command behind each row.
+std::string closeness_by_band(const ReadmeData& d) {
+  const RandomConfig& rc = d.random_config;
+  const std::vector<ZetaBand> bands = random_bands(d.random, rc);
+  std::string out;
   out += "**How close MuJoCo then is** — " + count_words(rc.count) +
          " random scenes (section 6), Δt = 1e-4, semi-implicit Euler against MuJoCo's Euler;\n"
          "each row of section 6 re-runs with `contact2d compare " +
@@ -269,7 +276,13 @@ std::string summary(const ReadmeData& d) {
         "\n`compensated` (`--mapping compensated`) removes the calibrated force's O(d) term "
         "(section 6); with friction\nboth keep MuJoCo's cone, whose push on a sliding body no "
         "2.2.2 setting removes.\n";
-  // With friction: the measured parts (analysis::friction_parts), per mapping.
+  return out;
+}
+
+// With friction: the measured parts (analysis::friction_parts), per mapping.
+std::string friction_parts_table(const ReadmeData& d) {
+  const std::vector<std::pair<std::string, const std::vector<RandomCase>*>> runs = random_runs(d);
+  std::string out;
   constexpr double kFrictionGoal = 1e-3;
   out +=
       "\n**With friction** the difference is MuJoCo's friction law. Taken apart on the same "
@@ -288,6 +301,14 @@ std::string summary(const ReadmeData& d) {
                     std::to_string(f.rest_within) + " of " + std::to_string(f.count)});
   }
   out += to_markdown(parts);
+  return out;
+}
+
+// The built-in scenes with the Kelvin–Voigt law, and why the engines still
+// differ.
+std::string builtin_verdict(const ReadmeData& d) {
+  const RandomConfig& rc = d.random_config;
+  std::string out;
   double frictionless = 0.0, friction = 0.0;
   double builtin_shape = 0.0, builtin_push = 0.0, builtin_rest = 0.0;
   int frictionless_reached = 0, frictionless_count = 0;
@@ -333,6 +354,12 @@ std::string summary(const ReadmeData& d) {
          "represent. `contact2d compare` measures each cause by removing\nit (section 1) and "
          "section 7 explains them.\n\n";
   return out;
+}
+
+// The first screen: which mapping, and how close MuJoCo then is, by damping
+// band, with and without friction, each line with the command behind it.
+std::string summary(const ReadmeData& d) {
+  return recommendation(d) + closeness_by_band(d) + friction_parts_table(d) + builtin_verdict(d);
 }
 
 // Every page `contact2d report` writes beside this one (cmd_report.cpp),
