@@ -154,9 +154,10 @@ struct DiagnosisInputs {
   double refsafe_dt = kNaN;            // the refsafe re-run's Δt (NaN: none)
 };
 
-// MuJoCo's refsafe raised the timeconst to 2·Δt: the largest Δt/10^j
-// (j ≤ 3) with 2·Δt ≤ timeconst, at which it would not; NaN when refsafe
-// did not act or no such step exists.
+// The step of the refsafe re-run. MuJoCo's refsafe raises a timeconst
+// below 2·Δt to 2·Δt; the largest Δt/10^j (j ≤ 3) whose double is within
+// the timeconst is a step at which it does not. NaN when refsafe did not
+// act or no such step exists.
 double refsafe_step(double dt, const EngineRun& mujoco_run) {
   const bool refsafe = std::find(mujoco_run.notes.begin(), mujoco_run.notes.end(), "refsafe") !=
                        mujoco_run.notes.end();
