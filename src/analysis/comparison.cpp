@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "analysis/reference.hpp"
 #include "core/contacts.hpp"
@@ -17,7 +18,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string g3(double v) { return format_number(v, 3); }
 // "95 %", never "-0 %".
 std::string percent(double share) {
   const double rounded = std::round(100.0 * share);
@@ -138,20 +138,85 @@ std::vector<SlidingPhase> sliding_phases(const Scene& scene, const Trajectory& r
   return phases;
 }
 
-Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const EngineRun& ref,
-                   const EngineRun& mujoco_run, const ThreeWay& base, const EngineRunner& runner,
-                   unsigned threads) {
-  Diagnosis dg;
-  dg.ran = true;
-  const TrajectoryError& d0 = base.ref_vs_mujoco;
-  if (d0.max_pos <= kAgreePosition && d0.max_angle <= kAgreeAngle) {
-    dg.agrees = true;
-    dg.summary = "The engines agree within " + g3(kAgreePosition) + " m and " + g3(kAgreeAngle) +
-                 " rad: nothing to explain.";
-    return dg;
+namespace {
+
+// What every stage of the diagnosis reads: the base runs and the facts
+// about the scene and the mapping that decide which re-runs exist.
+struct DiagnosisInputs {
+  const Scene& scene;
+  const engines::EngineSpec& mujoco;
+  const EngineRun& ref;
+  const EngineRun& mujoco_run;
+  const ThreeWay& base;
+  std::string mapping;                 // "calibrated" when the spec names none
+  bool friction = false;               // μ > 0 or μ_roll > 0
+  bool dt_dependent_impratio = false;  // the mapping's impratio = 1/(c·Δt·A_t)
+  double refsafe_dt = kNaN;            // the refsafe re-run's Δt (NaN: none)
+};
+
+// The step of the refsafe re-run. MuJoCo's refsafe raises a timeconst
+// below 2·Δt to 2·Δt; the largest Δt/10^j (j ≤ 3) whose double is within
+// the timeconst is a step at which it does not. NaN when refsafe did not
+// act or no such step exists.
+double refsafe_step(double dt, const EngineRun& mujoco_run) {
+  const bool refsafe = std::find(mujoco_run.notes.begin(), mujoco_run.notes.end(), "refsafe") !=
+                       mujoco_run.notes.end();
+  double refsafe_dt = kNaN;
+  if (refsafe && mujoco_run.solref[0] > 0.0) {
+    for (int j = 1; j <= 3 && !(refsafe_dt > 0.0); ++j) {
+      const double candidate = dt / std::pow(10.0, j);
+      if (2.0 * candidate <= mujoco_run.solref[0]) refsafe_dt = candidate;
+    }
   }
-  const std::string mapping = mujoco.mapping.empty() ? "calibrated" : mujoco.mapping;
-  const std::string mj = mujoco.name();
+  return refsafe_dt;
+}
+
+DiagnosisInputs diagnosis_inputs(const Scene& scene, const engines::EngineSpec& mujoco,
+                                 const EngineRun& ref, const EngineRun& mujoco_run,
+                                 const ThreeWay& base) {
+  std::string mapping = mujoco.mapping.empty() ? "calibrated" : mujoco.mapping;
+  const bool friction = scene.contact.mu > 0.0 || scene.contact.mu_roll > 0.0;
+  // compensated keeps calibrated's friction rows, impratio included.
+  const bool dt_dependent_impratio = mapping == "calibrated" || mapping == "compensated";
+  return DiagnosisInputs{scene,
+                         mujoco,
+                         ref,
+                         mujoco_run,
+                         base,
+                         std::move(mapping),
+                         friction,
+                         dt_dependent_impratio,
+                         refsafe_step(scene.sim.dt, mujoco_run)};
+}
+
+// The re-runs of the friction law: the reference under MuJoCo's own
+// effective law (soft_cone, at MuJoCo's impratio), and under the cone's
+// shape without its push (viscous_cone); MuJoCo as it was. Their shares say
+// how much of the difference is the law (core/contact.hpp).
+void plan_friction_law_reruns(const DiagnosisInputs& in, const std::string& mj,
+                              std::vector<Rerun>& reruns) {
+  const Scene& scene = in.scene;
+  const bool cone_ratio_known =
+      std::isfinite(in.mujoco_run.impratio) && in.mujoco_run.impratio > 0.0;
+  if (scene.contact.mu > 0.0 && scene.contact.friction == FrictionLaw::Tanh) {
+    for (const FrictionLaw law : {FrictionLaw::SoftCone, FrictionLaw::ViscousCone}) {
+      Rerun r =
+          rerun(law == FrictionLaw::SoftCone ? "friction_law" : "friction_shape", scene, true, mj);
+      r.scene.contact.friction = law;
+      r.scene.contact.cone_ratio = cone_ratio_known ? in.mujoco_run.impratio : 1.0;
+      // MuJoCo's own rolling coefficient (compensated writes μ_roll').
+      if (std::isfinite(in.mujoco_run.mu_roll)) r.scene.contact.mu_roll = in.mujoco_run.mu_roll;
+      r.mujoco_unchanged = true;
+      reruns.push_back(r);
+    }
+  }
+}
+
+// Which re-runs test which cause, in the order the findings list them
+// before ranking.
+std::vector<Rerun> plan_reruns(const DiagnosisInputs& in) {
+  const Scene& scene = in.scene;
+  const std::string mj = in.mujoco.name();
   const double dt = scene.sim.dt;
   std::vector<Rerun> reruns;
   if (scene.contact.damping == DampingLaw::Compression) {
@@ -164,30 +229,13 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
     r.scene.sim.dt = dt / 10.0;
     reruns.push_back(r);
   }
-  const bool friction = scene.contact.mu > 0.0 || scene.contact.mu_roll > 0.0;
-  if (friction) {
+  if (in.friction) {
     Rerun r = rerun("friction", scene, true, mj);
     r.scene.contact.mu = 0.0;
     r.scene.contact.mu_roll = 0.0;
     reruns.push_back(r);
   }
-  // The friction law: the reference re-run under MuJoCo's own effective law
-  // (soft_cone, at MuJoCo's impratio), and under the cone's shape without
-  // its push (viscous_cone); MuJoCo as it was. Their shares say how much of
-  // the difference is the law (core/contact.hpp).
-  const bool cone_ratio_known = std::isfinite(mujoco_run.impratio) && mujoco_run.impratio > 0.0;
-  if (scene.contact.mu > 0.0 && scene.contact.friction == FrictionLaw::Tanh) {
-    for (const FrictionLaw law : {FrictionLaw::SoftCone, FrictionLaw::ViscousCone}) {
-      Rerun r =
-          rerun(law == FrictionLaw::SoftCone ? "friction_law" : "friction_shape", scene, true, mj);
-      r.scene.contact.friction = law;
-      r.scene.contact.cone_ratio = cone_ratio_known ? mujoco_run.impratio : 1.0;
-      // MuJoCo's own rolling coefficient (compensated writes μ_roll').
-      if (std::isfinite(mujoco_run.mu_roll)) r.scene.contact.mu_roll = mujoco_run.mu_roll;
-      r.mujoco_unchanged = true;
-      reruns.push_back(r);
-    }
-  }
+  plan_friction_law_reruns(in, mj, reruns);
   if (scene.contact.mu > 0.0 && scene.contact.mu_roll > 0.0) {
     // Rolling resistance alone, sliding friction kept.
     Rerun r = rerun("rolling_resistance", scene, true, mj);
@@ -197,240 +245,317 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
   // The mapping: seed and exact against calibrated (MuJoCo's default
   // impedance), calibrated against compensated (the O(d) term of MuJoCo's
   // soft contact, docs/mujoco.md). compensated has no better one to try.
-  const std::string better_mapping = mapping == "calibrated" ? "compensated" : "calibrated";
-  if (mapping != "compensated") {
-    engines::EngineSpec better = mujoco;
+  const std::string better_mapping = in.mapping == "calibrated" ? "compensated" : "calibrated";
+  if (in.mapping != "compensated") {
+    engines::EngineSpec better = in.mujoco;
     better.mapping = better_mapping;
     reruns.push_back(rerun("mapping", scene, false, better.name()));
   }
   // The calibrated impratio = 1/(c·Δt·A_t) follows Δt unless the user held
   // it (--model-dt): the Δt/10 re-run then changes MuJoCo's model as well as
   // its step. This re-run steps at Δt/10 with the model of Δt.
-  // (compensated keeps calibrated's friction rows, impratio included.)
-  const bool dt_dependent_impratio = mapping == "calibrated" || mapping == "compensated";
-  const bool model_follows_dt = friction && dt_dependent_impratio && mujoco.model_dt == 0.0 &&
-                                std::isfinite(mujoco_run.impratio);
+  const bool model_follows_dt = in.friction && in.dt_dependent_impratio &&
+                                in.mujoco.model_dt == 0.0 && std::isfinite(in.mujoco_run.impratio);
   if (model_follows_dt) {
     Rerun r = rerun("dt_dependent_model", scene, true, mj);
     r.scene.sim.dt = dt / 10.0;
-    engines::EngineSpec held = mujoco;
+    engines::EngineSpec held = in.mujoco;
     held.model_dt = dt;
     r.mujoco_spec = held;
     reruns.push_back(r);
   }
-  const bool refsafe = std::find(mujoco_run.notes.begin(), mujoco_run.notes.end(), "refsafe") !=
-                       mujoco_run.notes.end();
-  double refsafe_dt = kNaN;
-  if (refsafe && mujoco_run.solref[0] > 0.0) {
-    // The largest Δt/10^j (j ≤ 3) with 2·Δt ≤ timeconst.
-    for (int j = 1; j <= 3 && !(refsafe_dt > 0.0); ++j) {
-      const double candidate = dt / std::pow(10.0, j);
-      if (2.0 * candidate <= mujoco_run.solref[0]) refsafe_dt = candidate;
-    }
-    if (refsafe_dt > 0.0) {
-      Rerun r = rerun("refsafe", scene, true, mj);
-      r.scene.sim.dt = refsafe_dt;
-      reruns.push_back(r);
-    }
+  if (in.refsafe_dt > 0.0) {
+    Rerun r = rerun("refsafe", scene, true, mj);
+    r.scene.sim.dt = in.refsafe_dt;
+    reruns.push_back(r);
   }
+  return reruns;
+}
 
+// Every re-run on `threads` threads, each with its ref ↔ MuJoCo distance;
+// an engine that throws or diverges leaves the re-run's failure.
+void run_reruns(std::vector<Rerun>& reruns, const DiagnosisInputs& in, const EngineRunner& runner,
+                unsigned threads) {
   parallel_for(reruns.size(), threads, [&](size_t i) {
     Rerun& r = reruns[i];
     try {
       if (r.ref) r.ref_run = runner("ref", r.scene);
-      r.mujoco_run = r.mujoco_unchanged ? mujoco_run
+      r.mujoco_run = r.mujoco_unchanged ? in.mujoco_run
                      : r.mujoco_spec    ? engines::run_engine(*r.mujoco_spec, r.scene)
                                         : runner(r.mujoco, r.scene);
     } catch (const std::exception& e) {
       r.failure = e.what();
       return;
     }
-    const Trajectory& a = r.ref_run ? r.ref_run->trajectory : ref.trajectory;
-    const EngineRun* ref_side = r.ref_run ? &*r.ref_run : &ref;
+    const Trajectory& a = r.ref_run ? r.ref_run->trajectory : in.ref.trajectory;
+    const EngineRun* ref_side = r.ref_run ? &*r.ref_run : &in.ref;
     for (const EngineRun* run : {ref_side, static_cast<const EngineRun*>(&r.mujoco_run)})
       if (run->trajectory.divergence) r.failure = run->engine + " diverged";
     r.between = error_between(a, r.mujoco_run.trajectory);
   });
+}
 
-  const double before = d0.max_pos;
-  double follow_after = kNaN;  // the time_step re-run: Δt/10, MuJoCo's model following Δt
-  double follow_impratio = kNaN;
+// The time_step re-run (Δt/10, MuJoCo's model following Δt), against which
+// dt_dependent_model measures the held model.
+struct FollowingModel {
+  double after = kNaN;
+  double impratio = kNaN;
+};
+
+FollowingModel following_model(const std::vector<Rerun>& reruns) {
+  FollowingModel follow;
   for (const Rerun& r : reruns) {
     if (r.cause == "time_step" && r.failure.empty()) {
-      follow_after = r.between.max_pos;
-      follow_impratio = r.mujoco_run.impratio;
+      follow.after = r.between.max_pos;
+      follow.impratio = r.mujoco_run.impratio;
     }
   }
-  for (const Rerun& r : reruns) {
-    Finding f;
-    f.cause = r.cause;
-    f.before = before;
-    f.after = r.failure.empty() ? r.between.max_pos : kNaN;
-    f.share = r.failure.empty() ? (before - f.after) / before : kNaN;
-    f.named = r.failure.empty() && f.share >= kNamedShare;
-    const std::string falls = r.failure.empty()
-                                  ? "the difference goes from " + g3(before) + " m to " +
-                                        g3(f.after) + " m (" + percent(f.share) + " of it removed)"
-                                  : "the run failed (" + r.failure + "), so it was not measured";
-    if (r.cause == "damping_law") {
-      f.fix = "--set contact.damping=kelvin_voigt";
-      f.explanation =
-          "The scene damps only while a point moves into the ground (damping = "
-          "\"compression\"); MuJoCo's contact damper acts both ways (Kelvin–Voigt) and cannot "
-          "represent it, so the two engines run different contact laws. With the Kelvin–Voigt "
-          "law in both, " +
-          falls + ".";
-      if (base.converged.available)
-        f.explanation += " As given, MuJoCo is " + g3(base.mujoco_vs_converged.max_pos) +
-                         " m from the converged compression-law solution.";
-    } else if (r.cause == "time_step") {
-      f.fix = "--dt " + format_shortest(r.scene.sim.dt);
-      f.explanation = "Each engine's own step error. At Δt = " + format_shortest(r.scene.sim.dt) +
-                      " (ten times smaller), " + falls + ".";
-      if (base.converged.available && r.failure.empty()) {
-        const DenseTrajectory& c = base.converged.trajectory;
-        const double ref_fine = error_against(r.ref_run->trajectory, c).max_pos;
-        const double mj_fine = error_against(r.mujoco_run.trajectory, c).max_pos;
-        const bool ref_larger = base.ref_vs_converged.max_pos > base.mujoco_vs_converged.max_pos;
-        f.explanation += " Against the converged solution: the fixed-step reference " +
-                         g3(base.ref_vs_converged.max_pos) + " m at Δt, " + g3(ref_fine) +
-                         " m at Δt/10; MuJoCo " + g3(base.mujoco_vs_converged.max_pos) + " m, " +
-                         g3(mj_fine) + " m. ";
-        const bool neither_closer = ref_fine > 0.5 * base.ref_vs_converged.max_pos &&
-                                    mj_fine > 0.5 * base.mujoco_vs_converged.max_pos;
-        if (neither_closer)
-          f.explanation +=
-              "Neither engine comes much closer to the converged solution: the "
-              "scene magnifies a 1e-8 m change of the initial height " +
-              g3(base.converged.amplification) +
-              "-fold, so a smaller step changes which of the nearby trajectories "
-              "each engine follows more than how close it stays.";
-        else
-          f.explanation += ref_larger ? "The fixed-step reference's own error is the larger part."
-                                      : "MuJoCo's own error is the larger part.";
-      }
-      if (friction && dt_dependent_impratio && std::isfinite(mujoco_run.impratio) &&
-          std::isfinite(r.mujoco_run.impratio) && r.mujoco_run.impratio != mujoco_run.impratio)
-        f.explanation += " The " + mapping + " mapping ties MuJoCo's impratio to Δt (" +
-                         g3(mujoco_run.impratio) + " at Δt, " + g3(r.mujoco_run.impratio) +
-                         " at Δt/10), so part of MuJoCo's change is a different model.";
-    } else if (r.cause == "friction") {
-      f.fix = scene.contact.mu_roll > 0.0 ? "--set contact.mu=0 --set contact.mu_roll=0"
-                                          : "--set contact.mu=0";
-      f.phases = sliding_phases(scene, ref.trajectory, mujoco_run.trajectory);
-      f.explanation =
-          "Friction laws differ: the reference's is −μ·Fn·tanh(α·v_t); MuJoCo's elliptic "
-          "cone is viscous inside the cone and, while sliding, its damper's slip term adds to the "
-          "normal force (the body hops). Without friction in both engines, " +
-          falls + ".";
-      if (!f.phases.empty()) {
-        double grown = 0.0;
-        for (const SlidingPhase& p : f.phases) grown += std::max(0.0, p.distance1 - p.distance0);
-        f.explanation += " The reference slides in " + std::to_string(f.phases.size()) +
-                         " phase(s); the distance grew by " + g3(grown) + " m inside them";
-        const size_t shown = std::min<size_t>(3, f.phases.size());
-        for (size_t i = 0; i < shown; ++i) {
-          const SlidingPhase& p = f.phases[i];
-          f.explanation += (i ? ", " : " (largest: ") + std::string("t = ") +
-                           format_number(p.t0, 4) + "–" + format_number(p.t1, 4) + " s " +
-                           (p.distance1 >= p.distance0 ? "+" : "−") +
-                           g3(std::abs(p.distance1 - p.distance0)) + " m";
-        }
-        f.explanation += ").";
-      }
-      f.explanation +=
-          " No MuJoCo setting reproduces the tanh law; the fix removes friction from the scene.";
-    } else if (r.cause == "friction_law" || r.cause == "friction_shape") {
-      const bool soft = r.cause == "friction_law";
-      f.fix = std::string("--set contact.friction_law=") + (soft ? "soft_cone" : "viscous_cone") +
-              " --set contact.cone_ratio=" + format_shortest(r.scene.contact.cone_ratio, 6);
-      if (r.scene.contact.mu_roll != scene.contact.mu_roll)
-        f.fix += " --set contact.mu_roll=" + format_shortest(r.scene.contact.mu_roll, 6);
-      f.explanation =
-          soft ? "MuJoCo's friction is its soft cone, not −μ·Fn·tanh(α·v_t): viscous (slope "
-                 "impratio·c) inside the cone and, while sliding, a normal force raised by the "
-                 "push c·√((μ·v_t)² + (μ_roll·ω)²) and divided by 1 + μ²/impratio, applied "
-                 "halfway into the penetration (docs/physics.md). With the reference running "
-                 "that law (friction_law = soft_cone, at MuJoCo's impratio " +
-                     g3(r.scene.contact.cone_ratio) + ") and MuJoCo as it was, " + falls +
-                     ": that share of the difference is the friction law; the rest is MuJoCo's "
-                     "soft contact and step."
-               : "The shape of MuJoCo's friction law without its push: viscous inside the cone, "
-                 "μ·Fn on it, sliding and rolling under one budget, the reference's normal law "
-                 "unchanged (friction_law = viscous_cone). With it, " +
-                     falls + ".";
-      f.explanation += soft ? " The soft cone is a conformance law, not physics: it tells what "
-                              "the difference is made of; the push has no physical counterpart."
-                            : " What the full soft cone removes beyond this is the push.";
-    } else if (r.cause == "rolling_resistance") {
-      f.fix = "--set contact.mu_roll=0";
-      f.explanation =
-          "Rolling resistance differs: the reference applies −μ_roll·Fn·tanh(α·R·ω) on top of "
-          "its sliding friction; MuJoCo's elliptic cone puts the rolling torque and the "
-          "sliding force under one budget, (f_t/μ)² + (τ/μ_roll)² ≤ Fn², and resists rolling "
-          "viscously inside it. Without rolling resistance in both engines (sliding friction "
-          "kept), " +
-          falls + ".";
-    } else if (r.cause == "mapping" && mapping == "calibrated") {
-      f.fix = "--mapping compensated";
-      f.explanation =
-          "The calibrated force differs from the Kelvin–Voigt law by a relative d·A/Â and an "
-          "offset d·g/Â (MuJoCo's soft contact at its smallest impedance d = 1e-4): a slightly "
-          "different restitution at every impact, which a bouncing or tumbling body carries "
-          "from bounce to bounce. The compensated mapping scales solref by MuJoCo's own divisor "
-          "and raises Â by a lever, so that the term falls by 10⁶ (docs/mujoco.md). With the "
-          "compensated mapping, " +
-          falls + ".";
-    } else if (r.cause == "mapping") {
-      f.fix = "--mapping calibrated";
-      const double zeta = scene.contact.c / (2.0 * std::sqrt(scene.contact.k * scene.mass));
-      f.explanation =
-          mapping == "seed"
-              ? "The seed mapping sets timeconst = √(m/k) and dampratio = ζ (here ζ = " + g3(zeta) +
-                    "), which reproduces k/m and c/m only at ζ = 1, and keeps MuJoCo's default "
-                    "impedance 0.9–0.95, under which gravity inside a contact is scaled by (1 − d)."
-              : "The " + mapping +
-                    " mapping keeps MuJoCo's default impedance 0.9–0.95, under which gravity "
-                    "inside a contact is scaled by (1 − d) and the body rests at 5–10 % of m·g/k.";
-      f.explanation += " With the calibrated mapping, " + falls + ".";
-    } else if (r.cause == "dt_dependent_model") {
-      // Not "removed" like the others: how much the Δt/10 comparison moves
-      // when MuJoCo's model is held at its Δt values instead of following.
-      f.fix = "--model-dt " + format_shortest(dt);
-      if (r.failure.empty() && std::isfinite(follow_after)) {
-        f.share = (f.after - follow_after) / before;
-        f.named = std::abs(f.share) >= kNamedShare;
-      } else {
-        f.share = kNaN;
-        f.named = false;
-      }
-      f.explanation = "MuJoCo's model depends on Δt: the calibrated impratio = 1/(c·Δt·A_t) is " +
-                      g3(mujoco_run.impratio) + " at Δt and " + g3(follow_impratio) +
-                      " at Δt/10. Both engines at Δt/10 differ by " + g3(follow_after) +
-                      " m with MuJoCo's model following Δt, and by " + g3(f.after) +
-                      " m with it held at its Δt values (" + f.fix +
-                      "): the model's dependence on Δt moves the difference by " +
-                      percent(std::isfinite(f.share) ? std::abs(f.share) : 0.0) +
-                      " of its size at Δt. Hold the model with " + f.fix +
-                      " to see the step's effect alone when changing --dt.";
-    } else if (r.cause == "refsafe") {
-      f.fix = "--dt " + format_shortest(refsafe_dt);
-      f.explanation =
-          "MuJoCo's refsafe raised the solref timeconst " + g3(mujoco_run.solref[0]) +
-          " s to 2·Δt = " + g3(2.0 * dt) +
-          " s: a softer contact than the scene's. At Δt = " + format_shortest(refsafe_dt) +
-          ", where it does not, " + falls + ".";
+  return follow;
+}
+
+// One cause's before and after: the distance as given and with the cause
+// removed, the share removed and whether that names the cause.
+Finding measured_finding(const Rerun& r, double before) {
+  Finding f;
+  f.cause = r.cause;
+  f.before = before;
+  f.after = r.failure.empty() ? r.between.max_pos : kNaN;
+  f.share = r.failure.empty() ? (before - f.after) / before : kNaN;
+  f.named = r.failure.empty() && f.share >= kNamedShare;
+  return f;
+}
+
+// "the difference goes from … m to … m (… of it removed)", or why it was
+// not measured.
+std::string measured_text(const Rerun& r, const Finding& f) {
+  return r.failure.empty()
+             ? "the difference goes from " + format_number(f.before, 3) + " m to " +
+                   format_number(f.after, 3) + " m (" + percent(f.share) + " of it removed)"
+             : "the run failed (" + r.failure + "), so it was not measured";
+}
+
+void explain_damping_law(Finding& f, const std::string& falls, const DiagnosisInputs& in) {
+  f.fix = "--set contact.damping=kelvin_voigt";
+  f.explanation =
+      "The scene damps only while a point moves into the ground (damping = "
+      "\"compression\"); MuJoCo's contact damper acts both ways (Kelvin–Voigt) and cannot "
+      "represent it, so the two engines run different contact laws. With the Kelvin–Voigt "
+      "law in both, " +
+      falls + ".";
+  if (in.base.converged.available)
+    f.explanation += " As given, MuJoCo is " +
+                     format_number(in.base.mujoco_vs_converged.max_pos, 3) +
+                     " m from the converged compression-law solution.";
+}
+
+// Both engines at Δt and Δt/10 against the converged solution.
+std::string time_step_against_converged(const Rerun& r, const ThreeWay& base) {
+  const DenseTrajectory& c = base.converged.trajectory;
+  const double ref_fine = error_against(r.ref_run->trajectory, c).max_pos;
+  const double mj_fine = error_against(r.mujoco_run.trajectory, c).max_pos;
+  const bool ref_larger = base.ref_vs_converged.max_pos > base.mujoco_vs_converged.max_pos;
+  std::string text = " Against the converged solution: the fixed-step reference " +
+                     format_number(base.ref_vs_converged.max_pos, 3) + " m at Δt, " +
+                     format_number(ref_fine, 3) + " m at Δt/10; MuJoCo " +
+                     format_number(base.mujoco_vs_converged.max_pos, 3) + " m, " +
+                     format_number(mj_fine, 3) + " m. ";
+  const bool neither_closer = ref_fine > 0.5 * base.ref_vs_converged.max_pos &&
+                              mj_fine > 0.5 * base.mujoco_vs_converged.max_pos;
+  if (neither_closer)
+    text +=
+        "Neither engine comes much closer to the converged solution: the "
+        "scene magnifies a 1e-8 m change of the initial height " +
+        format_number(base.converged.amplification, 3) +
+        "-fold, so a smaller step changes which of the nearby trajectories "
+        "each engine follows more than how close it stays.";
+  else
+    text += ref_larger ? "The fixed-step reference's own error is the larger part."
+                       : "MuJoCo's own error is the larger part.";
+  return text;
+}
+
+void explain_time_step(Finding& f, const Rerun& r, const std::string& falls,
+                       const DiagnosisInputs& in) {
+  f.fix = "--dt " + format_shortest(r.scene.sim.dt);
+  f.explanation = "Each engine's own step error. At Δt = " + format_shortest(r.scene.sim.dt) +
+                  " (ten times smaller), " + falls + ".";
+  if (in.base.converged.available && r.failure.empty())
+    f.explanation += time_step_against_converged(r, in.base);
+  const double impratio = in.mujoco_run.impratio;
+  if (in.friction && in.dt_dependent_impratio && std::isfinite(impratio) &&
+      std::isfinite(r.mujoco_run.impratio) && r.mujoco_run.impratio != impratio)
+    f.explanation += " The " + in.mapping + " mapping ties MuJoCo's impratio to Δt (" +
+                     format_number(impratio, 3) + " at Δt, " +
+                     format_number(r.mujoco_run.impratio, 3) +
+                     " at Δt/10), so part of MuJoCo's change is a different model.";
+}
+
+void explain_friction(Finding& f, const std::string& falls, const DiagnosisInputs& in) {
+  const Scene& scene = in.scene;
+  f.fix = scene.contact.mu_roll > 0.0 ? "--set contact.mu=0 --set contact.mu_roll=0"
+                                      : "--set contact.mu=0";
+  f.phases = sliding_phases(scene, in.ref.trajectory, in.mujoco_run.trajectory);
+  f.explanation =
+      "Friction laws differ: the reference's is −μ·Fn·tanh(α·v_t); MuJoCo's elliptic "
+      "cone is viscous inside the cone and, while sliding, its damper's slip term adds to the "
+      "normal force (the body hops). Without friction in both engines, " +
+      falls + ".";
+  if (!f.phases.empty()) {
+    double grown = 0.0;
+    for (const SlidingPhase& p : f.phases) grown += std::max(0.0, p.distance1 - p.distance0);
+    f.explanation += " The reference slides in " + std::to_string(f.phases.size()) +
+                     " phase(s); the distance grew by " + format_number(grown, 3) +
+                     " m inside them";
+    const size_t shown = std::min<size_t>(3, f.phases.size());
+    for (size_t i = 0; i < shown; ++i) {
+      const SlidingPhase& p = f.phases[i];
+      f.explanation += (i ? ", " : " (largest: ") + std::string("t = ") + format_number(p.t0, 4) +
+                       "–" + format_number(p.t1, 4) + " s " +
+                       (p.distance1 >= p.distance0 ? "+" : "−") +
+                       format_number(std::abs(p.distance1 - p.distance0), 3) + " m";
     }
-    dg.findings.push_back(f);
+    f.explanation += ").";
   }
-  std::stable_sort(dg.findings.begin(), dg.findings.end(), [](const Finding& a, const Finding& b) {
+  f.explanation +=
+      " No MuJoCo setting reproduces the tanh law; the fix removes friction from the scene.";
+}
+
+// friction_law (the full soft cone) and friction_shape (without its push).
+void explain_friction_law(Finding& f, const Rerun& r, const std::string& falls,
+                          const DiagnosisInputs& in) {
+  const bool soft = r.cause == "friction_law";
+  f.fix = std::string("--set contact.friction_law=") + (soft ? "soft_cone" : "viscous_cone") +
+          " --set contact.cone_ratio=" + format_shortest(r.scene.contact.cone_ratio, 6);
+  if (r.scene.contact.mu_roll != in.scene.contact.mu_roll)
+    f.fix += " --set contact.mu_roll=" + format_shortest(r.scene.contact.mu_roll, 6);
+  f.explanation =
+      soft ? "MuJoCo's friction is its soft cone, not −μ·Fn·tanh(α·v_t): viscous (slope "
+             "impratio·c) inside the cone and, while sliding, a normal force raised by the "
+             "push c·√((μ·v_t)² + (μ_roll·ω)²) and divided by 1 + μ²/impratio, applied "
+             "halfway into the penetration (docs/physics.md). With the reference running "
+             "that law (friction_law = soft_cone, at MuJoCo's impratio " +
+                 format_number(r.scene.contact.cone_ratio, 3) + ") and MuJoCo as it was, " + falls +
+                 ": that share of the difference is the friction law; the rest is MuJoCo's "
+                 "soft contact and step."
+           : "The shape of MuJoCo's friction law without its push: viscous inside the cone, "
+             "μ·Fn on it, sliding and rolling under one budget, the reference's normal law "
+             "unchanged (friction_law = viscous_cone). With it, " +
+                 falls + ".";
+  f.explanation += soft ? " The soft cone is a conformance law, not physics: it tells what "
+                          "the difference is made of; the push has no physical counterpart."
+                        : " What the full soft cone removes beyond this is the push.";
+}
+
+void explain_rolling_resistance(Finding& f, const std::string& falls) {
+  f.fix = "--set contact.mu_roll=0";
+  f.explanation =
+      "Rolling resistance differs: the reference applies −μ_roll·Fn·tanh(α·R·ω) on top of "
+      "its sliding friction; MuJoCo's elliptic cone puts the rolling torque and the "
+      "sliding force under one budget, (f_t/μ)² + (τ/μ_roll)² ≤ Fn², and resists rolling "
+      "viscously inside it. Without rolling resistance in both engines (sliding friction "
+      "kept), " +
+      falls + ".";
+}
+
+// calibrated against compensated, or seed and exact against calibrated.
+void explain_mapping(Finding& f, const std::string& falls, const DiagnosisInputs& in) {
+  const std::string& mapping = in.mapping;
+  if (mapping == "calibrated") {
+    f.fix = "--mapping compensated";
+    f.explanation =
+        "The calibrated force differs from the Kelvin–Voigt law by a relative d·A/Â and an "
+        "offset d·g/Â (MuJoCo's soft contact at its smallest impedance d = 1e-4): a slightly "
+        "different restitution at every impact, which a bouncing or tumbling body carries "
+        "from bounce to bounce. The compensated mapping scales solref by MuJoCo's own divisor "
+        "and raises Â by a lever, so that the term falls by 10⁶ (docs/mujoco.md). With the "
+        "compensated mapping, " +
+        falls + ".";
+    return;
+  }
+  const Scene& scene = in.scene;
+  f.fix = "--mapping calibrated";
+  const double zeta = scene.contact.c / (2.0 * std::sqrt(scene.contact.k * scene.mass));
+  f.explanation =
+      mapping == "seed"
+          ? "The seed mapping sets timeconst = √(m/k) and dampratio = ζ (here ζ = " +
+                format_number(zeta, 3) +
+                "), which reproduces k/m and c/m only at ζ = 1, and keeps MuJoCo's default "
+                "impedance 0.9–0.95, under which gravity inside a contact is scaled by (1 − d)."
+          : "The " + mapping +
+                " mapping keeps MuJoCo's default impedance 0.9–0.95, under which gravity "
+                "inside a contact is scaled by (1 − d) and the body rests at 5–10 % of m·g/k.";
+  f.explanation += " With the calibrated mapping, " + falls + ".";
+}
+
+// Not "removed" like the others: how much the Δt/10 comparison moves when
+// MuJoCo's model is held at its Δt values instead of following.
+void explain_dt_dependent_model(Finding& f, const Rerun& r, const DiagnosisInputs& in,
+                                const FollowingModel& follow) {
+  f.fix = "--model-dt " + format_shortest(in.scene.sim.dt);
+  if (r.failure.empty() && std::isfinite(follow.after)) {
+    f.share = (f.after - follow.after) / f.before;
+    f.named = std::abs(f.share) >= kNamedShare;
+  } else {
+    f.share = kNaN;
+    f.named = false;
+  }
+  f.explanation = "MuJoCo's model depends on Δt: the calibrated impratio = 1/(c·Δt·A_t) is " +
+                  format_number(in.mujoco_run.impratio, 3) + " at Δt and " +
+                  format_number(follow.impratio, 3) +
+                  " at Δt/10. Both engines at Δt/10 differ by " + format_number(follow.after, 3) +
+                  " m with MuJoCo's model following Δt, and by " + format_number(f.after, 3) +
+                  " m with it held at its Δt values (" + f.fix +
+                  "): the model's dependence on Δt moves the difference by " +
+                  percent(std::isfinite(f.share) ? std::abs(f.share) : 0.0) +
+                  " of its size at Δt. Hold the model with " + f.fix +
+                  " to see the step's effect alone when changing --dt.";
+}
+
+void explain_refsafe(Finding& f, const std::string& falls, const DiagnosisInputs& in) {
+  f.fix = "--dt " + format_shortest(in.refsafe_dt);
+  f.explanation =
+      "MuJoCo's refsafe raised the solref timeconst " + format_number(in.mujoco_run.solref[0], 3) +
+      " s to 2·Δt = " + format_number(2.0 * in.scene.sim.dt, 3) +
+      " s: a softer contact than the scene's. At Δt = " + format_shortest(in.refsafe_dt) +
+      ", where it does not, " + falls + ".";
+}
+
+// The fix and the explanation of one cause.
+void explain(Finding& f, const Rerun& r, const DiagnosisInputs& in, const FollowingModel& follow) {
+  const std::string falls = measured_text(r, f);
+  if (r.cause == "damping_law") {
+    explain_damping_law(f, falls, in);
+  } else if (r.cause == "time_step") {
+    explain_time_step(f, r, falls, in);
+  } else if (r.cause == "friction") {
+    explain_friction(f, falls, in);
+  } else if (r.cause == "friction_law" || r.cause == "friction_shape") {
+    explain_friction_law(f, r, falls, in);
+  } else if (r.cause == "rolling_resistance") {
+    explain_rolling_resistance(f, falls);
+  } else if (r.cause == "mapping") {
+    explain_mapping(f, falls, in);
+  } else if (r.cause == "dt_dependent_model") {
+    explain_dt_dependent_model(f, r, in, follow);
+  } else if (r.cause == "refsafe") {
+    explain_refsafe(f, falls, in);
+  }
+}
+
+// Named causes first, each group by the size of its share, largest first.
+void rank_findings(std::vector<Finding>& findings) {
+  std::stable_sort(findings.begin(), findings.end(), [](const Finding& a, const Finding& b) {
     if (a.named != b.named) return a.named;
     const double sa = std::isfinite(a.share) ? std::abs(a.share) : -1e300;
     const double sb = std::isfinite(b.share) ? std::abs(b.share) : -1e300;
     return sa > sb;
   });
+}
+
+// One paragraph: the named causes and their shares, or that none is named.
+std::string diagnosis_summary(const std::vector<Finding>& findings, double before) {
   std::string named, model;
-  for (const Finding& f : dg.findings) {
+  for (const Finding& f : findings) {
     if (!f.named) continue;
     if (f.cause == "dt_dependent_model")
       model = " Holding MuJoCo's Δt-dependent model fixed moves the Δt/10 difference by " +
@@ -438,16 +563,45 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
     else
       named += (named.empty() ? "" : ", ") + f.cause + " (" + percent(f.share) + ")";
   }
+  std::string summary;
   if (named.empty())
-    dg.summary = "None of the causes re-run here takes away " + percent(kNamedShare) +
-                 " or more of the " + g3(before) +
-                 " m difference, so these runs do not attribute it (not re-run here: MuJoCo's "
-                 "soft-constraint contact law itself, and a tumbling body's magnification of a "
-                 "small early difference).";
+    summary = "None of the causes re-run here takes away " + percent(kNamedShare) +
+              " or more of the " + format_number(before, 3) +
+              " m difference, so these runs do not attribute it (not re-run here: MuJoCo's "
+              "soft-constraint contact law itself, and a tumbling body's magnification of a "
+              "small early difference).";
   else
-    dg.summary = "Of the " + g3(before) +
-                 " m difference, removing each cause alone takes away: " + named + ".";
-  dg.summary += model;
+    summary = "Of the " + format_number(before, 3) +
+              " m difference, removing each cause alone takes away: " + named + ".";
+  return summary + model;
+}
+
+}  // namespace
+
+Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const EngineRun& ref,
+                   const EngineRun& mujoco_run, const ThreeWay& base, const EngineRunner& runner,
+                   unsigned threads) {
+  Diagnosis dg;
+  dg.ran = true;
+  const TrajectoryError& d0 = base.ref_vs_mujoco;
+  if (d0.max_pos <= kAgreePosition && d0.max_angle <= kAgreeAngle) {
+    dg.agrees = true;
+    dg.summary = "The engines agree within " + format_number(kAgreePosition, 3) + " m and " +
+                 format_number(kAgreeAngle, 3) + " rad: nothing to explain.";
+    return dg;
+  }
+  const DiagnosisInputs in = diagnosis_inputs(scene, mujoco, ref, mujoco_run, base);
+  std::vector<Rerun> reruns = plan_reruns(in);
+  run_reruns(reruns, in, runner, threads);
+  const FollowingModel follow = following_model(reruns);
+  const double before = d0.max_pos;
+  for (const Rerun& r : reruns) {
+    Finding f = measured_finding(r, before);
+    explain(f, r, in, follow);
+    dg.findings.push_back(f);
+  }
+  rank_findings(dg.findings);
+  dg.summary = diagnosis_summary(dg.findings, before);
   return dg;
 }
 

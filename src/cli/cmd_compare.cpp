@@ -81,14 +81,13 @@ void print_table(const Comparison& c) {
   const Energies er = energies(c.scene, c.ref.trajectory);
   const Energies em = energies(c.scene, c.mujoco.trajectory);
   const analysis::ConvergedSolution& conv = c.three.converged;
-  auto f = [](double v) { return format_number(v, 4); };
   std::cout << shape_name(c.scene.shape) << ": ref vs MuJoCo, "
             << integrator_label(c.scene.sim.integrator, true) << ", mapping "
             << mj::mapping_name(c.mjcf.mapping) << ", geometry "
             << mj::geometry_name(c.mjcf.geometry) << ", "
             << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt")
-            << " damping, dt = " << f(c.scene.sim.dt) << " s, " << c.errors.samples
-            << " samples over " << f(c.scene.sim.duration) << " s\n";
+            << " damping, dt = " << format_number(c.scene.sim.dt, 4) << " s, " << c.errors.samples
+            << " samples over " << format_number(c.scene.sim.duration, 4) << " s\n";
   if (c.scene.contact.friction != FrictionLaw::Tanh) {
     // A cone law is a conformance law, not physics; it matches MuJoCo only
     // at MuJoCo's own impratio.
@@ -118,9 +117,9 @@ void print_table(const Comparison& c) {
   Table t;
   t.columns = {"", "ref <-> converged", "MuJoCo <-> converged", "ref <-> MuJoCo"};
   auto row = [&](const std::string& name, auto field) {
-    add_row(t, {name, conv.available ? f(field(c.three.ref_vs_converged)) : "-",
-                conv.available ? f(field(c.three.mujoco_vs_converged)) : "-",
-                f(field(c.three.ref_vs_mujoco))});
+    add_row(t, {name, conv.available ? format_number(field(c.three.ref_vs_converged), 4) : "-",
+                conv.available ? format_number(field(c.three.mujoco_vs_converged), 4) : "-",
+                format_number(field(c.three.ref_vs_mujoco), 4)});
   };
   using E = analysis::TrajectoryError;
   row("max position (m)", [](const E& e) { return e.max_pos; });
@@ -132,11 +131,13 @@ void print_table(const Comparison& c) {
   row("max omega (rad/s)", [](const E& e) { return e.max_omega; });
   row("time of max position (s)", [](const E& e) { return e.time_of_max_pos; });
   std::cout << to_text(t) << "\n"
-            << "energy ref     " << f(er.initial) << " -> " << f(er.final) << " J\n"
-            << "energy MuJoCo  " << f(em.initial) << " -> " << f(em.final) << " J\n"
-            << "wall clock     ref " << f(c.ref.seconds) << " s, MuJoCo " << f(c.mujoco.seconds)
-            << " s";
-  if (conv.available) std::cout << ", converged " << f(conv.seconds) << " s";
+            << "energy ref     " << format_number(er.initial, 4) << " -> "
+            << format_number(er.final, 4) << " J\n"
+            << "energy MuJoCo  " << format_number(em.initial, 4) << " -> "
+            << format_number(em.final, 4) << " J\n"
+            << "wall clock     ref " << format_number(c.ref.seconds, 4) << " s, MuJoCo "
+            << format_number(c.mujoco.seconds, 4) << " s";
+  if (conv.available) std::cout << ", converged " << format_number(conv.seconds, 4) << " s";
   std::cout << "\n";
   const analysis::Diagnosis& d = c.diagnosis;
   if (!d.ran) return;

@@ -24,8 +24,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = 3.14159265358979323846;
 
-std::string g(double v) { return format_number(v, 6); }
-
 std::string one_line(std::string text) {
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   std::replace(text.begin(), text.end(), '\n', ' ');
@@ -41,7 +39,7 @@ std::string name_of(const mjModel* m, int type, int id, const char* what) {
 
 std::string list_text(const double* v, int n) {
   std::string out;
-  for (int i = 0; i < n; ++i) out += (i ? " " : "") + g(v[i]);
+  for (int i = 0; i < n; ++i) out += (i ? " " : "") + format_number(v[i]);
   return out;
 }
 
@@ -136,7 +134,7 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
   const mjModel* m = ctx.m;
   std::array<double, 2> ref = r.solref;
   if ((ref[0] > 0.0) != (ref[1] > 0.0)) {
-    warnings.push_back(label + ": solref " + g(ref[0]) + " " + g(ref[1]) +
+    warnings.push_back(label + ": solref " + format_number(ref[0]) + " " + format_number(ref[1]) +
                        " mixes the standard and direct forms: MuJoCo replaces it with its "
                        "default 0.02 1");
     ref = {0.02, 1.0};
@@ -196,11 +194,11 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
     if (r.condim == 1) {
       r.creep_note = "condim 1, no friction: slides";
     } else if (std::tan(th) >= mu) {
-      r.creep_note = "tanθ ≥ μ = " + g(mu) + ": slides (Coulomb)";
+      r.creep_note = "tanθ ≥ μ = " + format_number(mu) + ": slides (Coulomb)";
     } else if (ctx.pyramidal && std::tan(th) >= mu / (r.condim - 1)) {
       // Each edge row carries f/(2(condim − 1)) ± f_t/(2μ): one unloads at
       // f_t = μ·f/(condim − 1), and the solver leaves its quadratic zone.
-      r.creep_note = "tanθ ≥ μ/(condim − 1) = " + g(mu / (r.condim - 1)) +
+      r.creep_note = "tanθ ≥ μ/(condim − 1) = " + format_number(mu / (r.condim - 1)) +
                      ": an edge of the pyramidal cone unloads; faster than the viscous creep "
                      "(slides at tanθ ≥ μ)";
     } else if (!std::isfinite(r.load)) {
@@ -458,25 +456,27 @@ void add_warnings(const mjModel* m, const std::vector<std::string>& messages, In
     for (const InspectRow& r : list) {
       const std::string label = label_of(r);
       if (r.A > 0.0 && !(r.omega_dt < r.limit))
-        rep.warnings.push_back(label + ": ω·Δt = " + g(r.omega_dt) + " at d_max exceeds " +
-                               rep.integrator + "'s limit " + g(r.limit) +
-                               " (ζ = " + g(r.zeta_max) + "): unstable; a timestep below " +
-                               g(r.limit / r.omega_max) + " s is stable");
+        rep.warnings.push_back(label + ": ω·Δt = " + format_number(r.omega_dt) +
+                               " at d_max exceeds " + rep.integrator + "'s limit " +
+                               format_number(r.limit) + " (ζ = " + format_number(r.zeta_max) +
+                               "): unstable; a timestep below " +
+                               format_number(r.limit / r.omega_max) + " s is stable");
       if (r.refsafe_changes)
         rep.warnings.push_back(
-            label + ": refsafe raises the solref timeconst " + g(r.solref[0]) +
-            " s to 2·timestep = " + g(r.timeconst_used) + " s: K is " +
-            g(r.solref[0] * r.solref[0] / (r.timeconst_used * r.timeconst_used)) + "× and B " +
-            g(r.solref[0] / r.timeconst_used) + "× what the timeconst asks");
+            label + ": refsafe raises the solref timeconst " + format_number(r.solref[0]) +
+            " s to 2·timestep = " + format_number(r.timeconst_used) + " s: K is " +
+            format_number(r.solref[0] * r.solref[0] / (r.timeconst_used * r.timeconst_used)) +
+            "× and B " + format_number(r.solref[0] / r.timeconst_used) +
+            "× what the timeconst asks");
       if (r.phi > 1.0)
         rep.warnings.push_back(
-            label + ": pyramidal cone with μ = " + g(r.friction[0]) + ", condim " +
+            label + ": pyramidal cone with μ = " + format_number(r.friction[0]) + ", condim " +
             std::to_string(r.condim) + ": the normal sees Â·μ²(1 + μ²)/((condim − 1)·impratio) = " +
-            g(r.phi) + "·Â, a contact about " + g(r.phi) +
+            format_number(r.phi) + "·Â, a contact about " + format_number(r.phi) +
             "× softer than without friction that sinks deeper (cone=\"elliptic\" "
             "or impratio ≥ " +
-            g(r.friction[0] * r.friction[0] * (1.0 + r.friction[0] * r.friction[0]) /
-              (r.condim - 1)) +
+            format_number(r.friction[0] * r.friction[0] * (1.0 + r.friction[0] * r.friction[0]) /
+                          (r.condim - 1)) +
             " removes it)");
     }
   };
@@ -486,10 +486,10 @@ void add_warnings(const mjModel* m, const std::vector<std::string>& messages, In
   for (const auto* list : {&rep.contacts, &rep.pairs})
     for (const InspectRow& r : *list) friction |= r.condim > 1;
   if (friction && rep.impratio < 1.0)
-    rep.warnings.push_back("impratio = " + g(rep.impratio) +
+    rep.warnings.push_back("impratio = " + format_number(rep.impratio) +
                            " < 1: MuJoCo 2.2 gives the friction rows R_t = R/impratio, so friction "
                            "is " +
-                           g(1.0 / rep.impratio) +
+                           format_number(1.0 / rep.impratio) +
                            "× softer than the normal (a body creeps that much faster); "
                            "impratio > 1 makes friction stiffer, not softer");
   std::map<int, std::pair<double, double>> masses;  // body → (min, max) of 1/A
@@ -506,14 +506,15 @@ void add_warnings(const mjModel* m, const std::vector<std::string>& messages, In
   for (const auto& [b, range] : masses)
     if (range.second > 10.0 * range.first)
       rep.warnings.push_back("body " + name_of(m, mjOBJ_BODY, b, "body") +
-                             ": its effective mass differs " + g(range.second / range.first) +
-                             "× across its contacts (" + g(range.first) + " to " + g(range.second) +
+                             ": its effective mass differs " +
+                             format_number(range.second / range.first) + "× across its contacts (" +
+                             format_number(range.first) + " to " + format_number(range.second) +
                              " kg): the same solref gives each a different k and c");
   if (!rep.balanced && nc > 0)
     rep.warnings.push_back(
         "the contacts' normal forces alone do not hold the model at rest under gravity "
         "(relative residual " +
-        g(rep.residual) +
+        format_number(rep.residual) +
         "): the static loads are a least-squares share, and the penetrations follow them");
   if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT))
     rep.warnings.push_back(std::string("the model disables ") +
@@ -526,7 +527,7 @@ void add_warnings(const mjModel* m, const std::vector<std::string>& messages, In
 
 InspectReport inspect(const InspectOptions& options) {
   if (options.slope && !(*options.slope >= 0.0 && *options.slope < 90.0))
-    throw InputError("--slope " + g(*options.slope) + ": must be in [0, 90) degrees");
+    throw InputError("--slope " + format_number(*options.slope) + ": must be in [0, 90) degrees");
   {
     std::ifstream file(options.path);
     if (!file) throw InputError(options.path + ": cannot open the file");
@@ -599,7 +600,7 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
     << r.body1_name << " / " << r.body2_name << " (geoms " << r.geom1_name << ", " << r.geom2_name
     << "), " << r.source;
   if (r.active)
-    o << ", dist " << g(r.dist) << " m";
+    o << ", dist " << format_number(r.dist) << " m";
   else
     o << ", " << r.contacts_now << " contact" << (r.contacts_now == 1 ? "" : "s") << " now";
   o << "\n";
@@ -608,40 +609,45 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
     << "\n";
   if (r.solref[0] > 0.0 && r.solref[1] > 0.0)
     o << "  refsafe: "
-      << (r.refsafe_changes ? "CHANGES the timeconst " + g(r.solref[0]) + " s to " +
-                                  g(r.timeconst_used) + " s (2·timestep)"
+      << (r.refsafe_changes ? "CHANGES the timeconst " + format_number(r.solref[0]) + " s to " +
+                                  format_number(r.timeconst_used) + " s (2·timestep)"
                             : std::string(rep.refsafe_enabled ? "keeps the timeconst (≥ 2·timestep)"
                                                               : "disabled"))
       << "\n";
   else
     o << "  refsafe: does not apply (direct form)\n";
-  o << "  K = " << g(r.K) << " 1/s², B = " << g(r.B) << " 1/s; impedance d = " << g(r.d_rest)
-    << " at rest, " << g(r.dmax) << " max\n";
-  o << "  A = " << g(r.A) << " 1/kg (effective mass " << g(1.0 / r.A) << " kg"
-    << (r.closest      ? "; at the closest points, " + g(r.dist) + " m apart"
+  o << "  K = " << format_number(r.K) << " 1/s², B = " << format_number(r.B)
+    << " 1/s; impedance d = " << format_number(r.d_rest) << " at rest, " << format_number(r.dmax)
+    << " max\n";
+  o << "  A = " << format_number(r.A) << " 1/kg (effective mass " << format_number(1.0 / r.A)
+    << " kg"
+    << (r.closest      ? "; at the closest points, " + format_number(r.dist) + " m apart"
         : r.A_measured ? std::string()
                        : std::string("; no contact point: A = Â assumed"))
-    << "), Â = " << g(r.inv_weight) << " 1/kg";
+    << "), Â = " << format_number(r.inv_weight) << " 1/kg";
   if (r.phi != 1.0)
-    o << ", the normal sees Â·φ = " << g(r.normal_weight) << " (φ = " << g(r.phi) << ")";
+    o << ", the normal sees Â·φ = " << format_number(r.normal_weight)
+      << " (φ = " << format_number(r.phi) << ")";
   o << "\n";
   if (!(r.A > 0.0)) {
     o << "  the joints cannot move this contact along its normal (A = 0): no contact dynamics\n";
   } else {
-    o << "  k = " << g(r.k) << " N/m, c = " << g(r.c) << " N·s/m; ω = " << g(r.omega)
-      << " rad/s, ζ = " << g(r.zeta) << "; restitution " << g(r.restitution) << "\n";
-    o << "  ω·Δt = " << g(r.omega_dt) << " at d_max (ω = " << g(r.omega_max)
-      << ", ζ = " << g(r.zeta_max) << "): " << rep.integrator << "'s limit " << g(r.limit) << " ("
-      << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
+    o << "  k = " << format_number(r.k) << " N/m, c = " << format_number(r.c)
+      << " N·s/m; ω = " << format_number(r.omega) << " rad/s, ζ = " << format_number(r.zeta)
+      << "; restitution " << format_number(r.restitution) << "\n";
+    o << "  ω·Δt = " << format_number(r.omega_dt) << " at d_max (ω = " << format_number(r.omega_max)
+      << ", ζ = " << format_number(r.zeta_max) << "): " << rep.integrator << "'s limit "
+      << format_number(r.limit) << " (" << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
   }
   if (std::isfinite(r.load))
-    o << "  static load " << g(r.load) << " N, static penetration " << g(r.penetration) << " m\n";
+    o << "  static load " << format_number(r.load) << " N, static penetration "
+      << format_number(r.penetration) << " m\n";
   else
     o << "  static load: not known (not in contact now)\n";
   if (rep.slope) {
-    o << "  slope " << g(*rep.slope) << "°: ";
+    o << "  slope " << format_number(*rep.slope) << "°: ";
     if (std::isfinite(r.creep))
-      o << "creep " << g(r.creep) << " m/s\n";
+      o << "creep " << format_number(r.creep) << " m/s\n";
     else
       o << r.creep_note << "\n";
   }
@@ -705,11 +711,14 @@ std::string format_inspect_text(const InspectReport& rep) {
   o << "model " << rep.path << " at " << (rep.key.empty() ? "qpos0" : "keyframe " + rep.key)
     << "\n";
   if (!rep.load_warning.empty()) o << "MuJoCo warns while loading: " << rep.load_warning << "\n";
-  o << "integrator " << rep.integrator << ", timestep " << g(rep.dt) << " s, cone " << rep.cone
-    << ", impratio " << g(rep.impratio) << " (friction rows: R_t = R/impratio"
-    << (rep.impratio > 1.0   ? ", friction " + g(rep.impratio) + "× stiffer than the normal"
-        : rep.impratio < 1.0 ? ", friction " + g(1.0 / rep.impratio) + "× softer than the normal"
-                             : std::string())
+  o << "integrator " << rep.integrator << ", timestep " << format_number(rep.dt) << " s, cone "
+    << rep.cone << ", impratio " << format_number(rep.impratio)
+    << " (friction rows: R_t = R/impratio"
+    << (rep.impratio > 1.0
+            ? ", friction " + format_number(rep.impratio) + "× stiffer than the normal"
+        : rep.impratio < 1.0
+            ? ", friction " + format_number(1.0 / rep.impratio) + "× softer than the normal"
+            : std::string())
     << "), gravity " << list_text(rep.gravity.data(), 3) << " m/s²\n";
   if (rep.contacts.empty()) {
     o << "no contacts at " << (rep.key.empty() ? "qpos0" : "keyframe " + rep.key) << "\n";

@@ -22,8 +22,6 @@ constexpr double kMinImp = 1e-4;    // MuJoCo's mjMINIMP
 constexpr double kMaxImp = 0.9999;  // MuJoCo's mjMAXIMP
 constexpr double kMinVal = 1e-15;   // MuJoCo's mjMINVAL
 
-std::string g(double v) { return format_number(v, 6); }
-
 void require(bool ok, const std::string& option, double value, const std::string& range) {
   if (!ok) throw InputError(option + " " + format_number(value, 6) + ": must be " + range);
 }
@@ -159,13 +157,14 @@ std::string unfit_reason(const SolrefReport& r, const MappingOutcome& o) {
   auto off = [](double value, double want) { return !(std::abs(value / want - 1.0) <= 0.1); };
   std::string why;
   if (off(o.omega, omega) || (zeta > 0.0 && off(o.zeta, zeta)))
-    why = "ω = " + g(o.omega) + " rad/s, ζ = " + g(o.zeta) +
-          " against the physical ω = " + g(omega) + " rad/s, ζ = " + g(zeta);
+    why = "ω = " + format_number(o.omega) + " rad/s, ζ = " + format_number(o.zeta) +
+          " against the physical ω = " + format_number(omega) +
+          " rad/s, ζ = " + format_number(zeta);
   if (off(rest, 1.0))
-    why += (why.empty() ? "" : "; ") + std::string("it rests at ") + g(rest) + " × f/k";
+    why += (why.empty() ? "" : "; ") + std::string("it rests at ") + format_number(rest) + " × f/k";
   if (!(o.omega_dt < o.euler_limit))
-    why += (why.empty() ? "" : "; ") + std::string("ω·Δt = ") + g(o.omega_dt) +
-           " exceeds MuJoCo Euler's limit " + g(o.euler_limit);
+    why += (why.empty() ? "" : "; ") + std::string("ω·Δt = ") + format_number(o.omega_dt) +
+           " exceeds MuJoCo Euler's limit " + format_number(o.euler_limit);
   return why;
 }
 
@@ -221,29 +220,31 @@ void validate(const SolrefInput& in) {
   const std::string joint = "--joint " + std::string(joint_name(in.joint));
   if (in.joint == Joint::Hinge) {
     if (!(in.pivot > 0.0))
-      throw InputError("--pivot " + g(in.pivot) + ": " + joint +
+      throw InputError("--pivot " + format_number(in.pivot) + ": " + joint +
                        " needs the COM's distance from the hinge axis > 0 (m; at 0 MuJoCo's "
                        "body_invweight0 is 0)");
     if (!(in.lever > 0.0))
-      throw InputError("--lever " + g(in.lever) + ": " + joint +
+      throw InputError("--lever " + format_number(in.lever) + ": " + joint +
                        " needs the contact normal's moment arm about the hinge axis > 0 (m)");
   } else {
     if (in.pivot > 0.0)
-      throw InputError("--pivot " + g(in.pivot) + ": only for --joint hinge (here " + joint + ")");
+      throw InputError("--pivot " + format_number(in.pivot) + ": only for --joint hinge (here " +
+                       joint + ")");
     if (in.joint == Joint::Slide && in.lever > 0.0)
-      throw InputError("--lever " + g(in.lever) +
+      throw InputError("--lever " + format_number(in.lever) +
                        ": a body on one slide joint does not rotate (--joint slide)");
     if (in.lever > 0.0 && !(in.inertia > 0.0))
-      throw InputError("--lever " + g(in.lever) + ": needs --inertia > 0 (the body must rotate)");
+      throw InputError("--lever " + format_number(in.lever) +
+                       ": needs --inertia > 0 (the body must rotate)");
   }
   require(finite(in.mu) && in.mu >= 0.0, "--mu", in.mu, "a finite number >= 0");
   require(finite(in.mu_roll) && in.mu_roll >= 0.0, "--mu-roll", in.mu_roll,
           "a finite number >= 0 (m)");
   if (in.mu_roll > 0.0 && (in.joint == Joint::Slide || in.joint == Joint::Hinge))
-    throw InputError("--mu-roll " + g(in.mu_roll) + ": needs --joint free or planar (here " +
-                     joint + ")");
+    throw InputError("--mu-roll " + format_number(in.mu_roll) +
+                     ": needs --joint free or planar (here " + joint + ")");
   if (in.mu_roll > 0.0 && !(in.lever > 0.0))
-    throw InputError("--mu-roll " + g(in.mu_roll) +
+    throw InputError("--mu-roll " + format_number(in.mu_roll) +
                      ": needs --inertia and --lever > 0 (the rolling radius)");
   if (in.contacts < 1)
     throw InputError("--contacts " + std::to_string(in.contacts) + ": must be an integer >= 1");
@@ -343,10 +344,11 @@ void solve_targets(SolrefInput& in, const SolrefTargets& t, bool k_given, bool c
     const double e = *t.restitution;
     double lo = 1e-9, hi = 1e4;
     if (!(benchmarks::kelvin_voigt_restitution(hi) < e))
-      throw InputError("--restitution " + g(e) + ": below what a Kelvin–Voigt contact reaches (" +
-                       g(benchmarks::kelvin_voigt_restitution(hi)) + " at ζ = 1e4)");
+      throw InputError("--restitution " + format_number(e) +
+                       ": below what a Kelvin–Voigt contact reaches (" +
+                       format_number(benchmarks::kelvin_voigt_restitution(hi)) + " at ζ = 1e4)");
     if (!(benchmarks::kelvin_voigt_restitution(lo) > e))
-      throw InputError("--restitution " + g(e) + ": too close to 1 (ζ < 1e-9)");
+      throw InputError("--restitution " + format_number(e) + ": too close to 1 (ζ < 1e-9)");
     for (int i = 0; i < 200; ++i) {
       const double mid = std::sqrt(lo * hi);
       (benchmarks::kelvin_voigt_restitution(mid) > e ? lo : hi) = mid;
@@ -356,21 +358,24 @@ void solve_targets(SolrefInput& in, const SolrefTargets& t, bool k_given, bool c
   if (t.penetration) {
     constexpr double kCalibratedImpedance = 1e-4;  // calibrated's flat solimp
     in.k = (1.0 - kCalibratedImpedance) * mech.load / *t.penetration;
-    note += "k = (1 − d)·f/p = (1 − 1e-4)·" + g(mech.load) + "/" + g(*t.penetration) + " = " +
-            g(in.k) + " N/m (calibrated's rest depth per contact, f = " + g(mech.load) + " N)";
+    note += "k = (1 − d)·f/p = (1 − 1e-4)·" + format_number(mech.load) + "/" +
+            format_number(*t.penetration) + " = " + format_number(in.k) +
+            " N/m (calibrated's rest depth per contact, f = " + format_number(mech.load) + " N)";
   }
   if (t.contact_time) {
     const double omega = benchmarks::kelvin_voigt_contact_time(zeta) / *t.contact_time;
     in.k = omega * omega / mech.inv_mass;
-    note += "k = ω²/A with ω = τ(ζ)/T = " + g(benchmarks::kelvin_voigt_contact_time(zeta)) + "/" +
-            g(*t.contact_time) + " s = " + g(omega) + " rad/s: k = " + g(in.k) + " N/m";
+    note +=
+        "k = ω²/A with ω = τ(ζ)/T = " + format_number(benchmarks::kelvin_voigt_contact_time(zeta)) +
+        "/" + format_number(*t.contact_time) + " s = " + format_number(omega) +
+        " rad/s: k = " + format_number(in.k) + " N/m";
   }
   if (t.restitution) {
     in.c = 2.0 * zeta * std::sqrt(in.k / mech.inv_mass);
-    note += std::string(note.empty() ? "" : "; ") + "ζ = " + g(zeta) +
-            " rebounds at e = " + g(*t.restitution) +
-            " (Kelvin–Voigt, force clamped at zero): " + "c = 2ζ·√(k/A) = " + g(in.c) +
-            " N·s/m (A = " + g(mech.inv_mass) + " 1/kg)";
+    note += std::string(note.empty() ? "" : "; ") + "ζ = " + format_number(zeta) +
+            " rebounds at e = " + format_number(*t.restitution) +
+            " (Kelvin–Voigt, force clamped at zero): " + "c = 2ζ·√(k/A) = " + format_number(in.c) +
+            " N·s/m (A = " + format_number(mech.inv_mass) + " 1/kg)";
   }
   in.targets_note = note;
 }
@@ -399,9 +404,10 @@ SolrefReport solref_report(const SolrefInput& input, const std::vector<Mapping>&
     if (!o.unfit.empty()) continue;
     const double omega = std::sqrt(input.k * report.inv_mass);
     report.recommendation =
-        std::string(mapping_name(candidate)) + ": MuJoCo's contact then has ω = " + g(o.omega) +
-        " rad/s against the physical " + g(omega) + " and rests at " +
-        g(o.static_penetration / o.nominal_penetration) +
+        std::string(mapping_name(candidate)) +
+        ": MuJoCo's contact then has ω = " + format_number(o.omega) +
+        " rad/s against the physical " + format_number(omega) + " and rests at " +
+        format_number(o.static_penetration / o.nominal_penetration) +
         " × f/k; it sets only solref, solimp and MuJoCo's options, so it is a model to build on" +
         (it == report.mappings.end()
              ? " (not printed below: --mapping " + std::string(mapping_name(candidate)) + ")"
@@ -443,11 +449,11 @@ ModelBody read_model_body(const std::string& path, const std::string& body) {
   std::replace(warning.begin(), warning.end(), '\n', ' ');
   out.load_warning = warning;
   if (!(out.mass > 0.0))
-    throw InputError("--body " + body + ": has mass " + g(out.mass) + " kg in " + path +
+    throw InputError("--body " + body + ": has mass " + format_number(out.mass) + " kg in " + path +
                      "; it must be > 0");
   if (!(out.inv_weight > 0.0))
-    throw InputError("--body " + body + ": body_invweight0 is " + g(out.inv_weight) + " in " +
-                     path + " (the body has no translational joint)");
+    throw InputError("--body " + body + ": body_invweight0 is " + format_number(out.inv_weight) +
+                     " in " + path + " (the body has no translational joint)");
   // The joint set, from the body's own joints (a body inside another moving
   // body is none of the four).
   int slides = 0, hinges = 0, frees = 0, others = 0;
@@ -477,15 +483,16 @@ ModelBody read_model_body(const std::string& path, const std::string& body) {
     out.friction.mu = model->geom_friction[3 * static_cast<std::ptrdiff_t>(i)];
     out.friction.condim = model->geom_condim[i];
     const char* name = mj_id2name(model.get(), mjOBJ_GEOM, i);
-    out.friction.source =
-        "geom " + (name ? "'" + std::string(name) + "'" : "#" + std::to_string(i)) + " of " + path +
-        ": μ = " + g(out.friction.mu) + ", condim " + std::to_string(out.friction.condim);
+    out.friction.source = "geom " +
+                          (name ? "'" + std::string(name) + "'" : "#" + std::to_string(i)) +
+                          " of " + path + ": μ = " + format_number(out.friction.mu) + ", condim " +
+                          std::to_string(out.friction.condim);
     break;
   }
   out.friction.elliptic = model->opt.cone == mjCONE_ELLIPTIC;
   out.friction.impratio = model->opt.impratio;
   out.friction.source += std::string(out.friction.elliptic ? ", elliptic" : ", pyramidal") +
-                         " cone, impratio " + g(out.friction.impratio);
+                         " cone, impratio " + format_number(out.friction.impratio);
   // The contacts MuJoCo makes for the body at rest: settle from qpos0 with
   // the model's own contact settings (the count is the geometry's, not the
   // stiffness's), then count the contacts one of whose geoms is the body's.
@@ -518,17 +525,18 @@ std::string format_report_text(const SolrefReport& r) {
   else
     o << "No mapping is fit for a model to build on here (calibrated, exact and seed; each "
          "printed below says why).\n";
-  o << "\nk = " << g(in.k) << " N/m, c = " << g(in.c)
-    << " N·s/m per MuJoCo contact, Δt = " << g(in.dt) << " s; body: " << in.body_source << "\n";
+  o << "\nk = " << format_number(in.k) << " N/m, c = " << format_number(in.c)
+    << " N·s/m per MuJoCo contact, Δt = " << format_number(in.dt) << " s; body: " << in.body_source
+    << "\n";
   if (!in.targets_note.empty()) o << "from your targets: " << in.targets_note << "\n";
   const bool hinge = in.joint == Joint::Hinge;
-  o << "m = " << g(in.mass) << " kg; A = "
+  o << "m = " << format_number(in.mass) << " kg; A = "
     << (hinge            ? "lever²/(I + m·pivot²)"
         : in.lever > 0.0 ? "1/m + r²/I"
                          : "1/m")
-    << " = " << g(r.inv_mass)
-    << " 1/kg (the contact's true inverse mass); Â = body_invweight0 = " << g(r.inv_weight)
-    << " 1/kg";
+    << " = " << format_number(r.inv_mass)
+    << " 1/kg (the contact's true inverse mass); Â = body_invweight0 = "
+    << format_number(r.inv_weight) << " 1/kg";
   if (in.inv_weight > 0.0) {
     o << " (read from the compiled model)";
   } else {
@@ -543,7 +551,7 @@ std::string format_report_text(const SolrefReport& r) {
     << " (" << in.contacts_source << ") carries f = "
     << (hinge ? "m·g·pivot/(lever·" + std::to_string(in.contacts) + ")"
               : "m·g/" + std::to_string(in.contacts))
-    << " = " << g(r.load) << " N; f/k = " << g(r.load / in.k) << " m\n";
+    << " = " << format_number(r.load) << " N; f/k = " << format_number(r.load / in.k) << " m\n";
   if (in.keep_friction)
     o << "friction: no --mu, so the snippets write no condim and no friction: your geoms keep "
          "theirs (the pyramidal cone's effect on the rest depth is computed with "
@@ -570,14 +578,15 @@ std::string format_report_text(const SolrefReport& r) {
       << "  impratio = "
       << (m.condim == 1   ? std::string("1 (condim 1: no friction rows)")
           : m.condim == 0 ? "yours (not written)"
-                          : g(s.impratio))
+                          : format_number(s.impratio))
       << "\n";
     if (s.solref[0] > 0.0) {
       o << "  refsafe: "
-        << (s.refsafe_clamped ? "BITES: timeconst " + g(s.solref[0]) + " s < 2Δt; MuJoCo uses " +
-                                    g(m.timeconst_used) + " s, a softer contact than k"
-                              : "does not bite (timeconst " + g(s.solref[0]) +
-                                    " s ≥ 2Δt = " + g(2.0 * in.dt) + " s)")
+        << (s.refsafe_clamped
+                ? "BITES: timeconst " + format_number(s.solref[0]) + " s < 2Δt; MuJoCo uses " +
+                      format_number(m.timeconst_used) + " s, a softer contact than k"
+                : "does not bite (timeconst " + format_number(s.solref[0]) +
+                      " s ≥ 2Δt = " + format_number(2.0 * in.dt) + " s)")
         << "\n";
     } else {
       o << "  refsafe: does not apply (direct form)\n";
@@ -586,19 +595,22 @@ std::string format_report_text(const SolrefReport& r) {
       o << "  pyramidal cone with friction" << (m.condim == 0 ? " (yours)" : "")
         << ": the normal sees Â·μ²(1 + μ²)/((condim − 1)·impratio) "
            "= "
-        << g(m.normal_weight) << " 1/kg in place of Â (a stiffer contact)\n";
-    o << "  MuJoCo: K = " << g(m.K) << " 1/s², B = " << g(m.B)
-      << " 1/s, impedance d = " << g(m.impedance) << " (max), " << g(m.impedance_at_rest)
-      << " at rest\n";
-    o << "  natural frequency ω = " << g(m.omega) << " rad/s, ζ = " << g(m.zeta)
-      << " (the reference: ω = " << g(std::sqrt(in.k * r.inv_mass))
-      << ", ζ = " << g(in.c * r.inv_mass / (2.0 * std::sqrt(in.k * r.inv_mass))) << ")\n";
-    o << "  ω·Δt = " << g(m.omega_dt) << ": limit " << g(m.euler_limit)
-      << " for MuJoCo's Euler and implicit (" << (m.omega_dt < m.euler_limit ? "ok" : "EXCEEDED")
-      << "), " << g(m.rk4_limit) << " for RK4 (" << (m.omega_dt < m.rk4_limit ? "ok" : "EXCEEDED")
+        << format_number(m.normal_weight) << " 1/kg in place of Â (a stiffer contact)\n";
+    o << "  MuJoCo: K = " << format_number(m.K) << " 1/s², B = " << format_number(m.B)
+      << " 1/s, impedance d = " << format_number(m.impedance) << " (max), "
+      << format_number(m.impedance_at_rest) << " at rest\n";
+    o << "  natural frequency ω = " << format_number(m.omega)
+      << " rad/s, ζ = " << format_number(m.zeta)
+      << " (the reference: ω = " << format_number(std::sqrt(in.k * r.inv_mass))
+      << ", ζ = " << format_number(in.c * r.inv_mass / (2.0 * std::sqrt(in.k * r.inv_mass)))
       << ")\n";
-    o << "  static penetration = " << g(m.static_penetration)
-      << " m = " << g(m.static_penetration / m.nominal_penetration) << " × f/k (per contact)\n";
+    o << "  ω·Δt = " << format_number(m.omega_dt) << ": limit " << format_number(m.euler_limit)
+      << " for MuJoCo's Euler and implicit (" << (m.omega_dt < m.euler_limit ? "ok" : "EXCEEDED")
+      << "), " << format_number(m.rk4_limit) << " for RK4 ("
+      << (m.omega_dt < m.rk4_limit ? "ok" : "EXCEEDED") << ")\n";
+    o << "  static penetration = " << format_number(m.static_penetration)
+      << " m = " << format_number(m.static_penetration / m.nominal_penetration)
+      << " × f/k (per contact)\n";
     o << "  MJCF, a default class (put class=\"contact2d\" on the body's contact geoms; "
          "priority 1 makes its values win over the ground's):\n";
     std::istringstream a(m.default_snippet);

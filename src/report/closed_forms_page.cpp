@@ -14,7 +14,7 @@ namespace {
 // A measured value and its error against the closed form, "v (Δ)".
 std::string measured(double value, double closed) {
   if (!std::isfinite(value)) return "–";
-  return g(value, 7) + " (" + g(value - closed, 2) + ")";
+  return format_significant(value, 7) + " (" + format_significant(value - closed, 2) + ")";
 }
 
 bool within(double value, double closed, double tolerance) {
@@ -33,10 +33,12 @@ std::string closed_forms_page(const analysis::ClosedFormTable& t) {
     const double cf = q.closed_form;
     std::string why;
     if (q.reference_applies) {
-      why = "ref ≤ " + g(q.tolerance, 2) + " (" + q.why + ")";
-      if (std::isfinite(r.converged)) why += "; converged ≤ " + g(q.converged_tolerance, 2);
+      why = "ref ≤ " + format_significant(q.tolerance, 2) + " (" + q.why + ")";
+      if (std::isfinite(r.converged))
+        why += "; converged ≤ " + format_significant(q.converged_tolerance, 2);
     }
-    why += std::string(why.empty() ? "" : "; ") + "MuJoCo ≤ " + g(q.mujoco_bound, 2) + " (" +
+    why += std::string(why.empty() ? "" : "; ") + "MuJoCo ≤ " +
+           format_significant(q.mujoco_bound, 2) + " (" +
            (q.mujoco_bound_derived ? "derived: " : "bound from the measurement: ") + q.mujoco_why +
            ")";
     std::string converged = std::isfinite(r.converged) ? measured(r.converged, cf) : "–";
@@ -48,8 +50,8 @@ std::string closed_forms_page(const analysis::ClosedFormTable& t) {
       converged += " **outside**";
     std::string mujoco = measured(r.mujoco, cf);
     if (!within(r.mujoco, cf, q.mujoco_bound)) mujoco += " **outside its bound**";
-    add_row(table, {r.case_name, q.name, "`" + q.formula + "`", g(cf, 7), converged, reference,
-                    mujoco, why});
+    add_row(table, {r.case_name, q.name, "`" + q.formula + "`", format_significant(cf, 7),
+                    converged, reference, mujoco, why});
     // MuJoCo misses where it is outside the tolerance derived for it, or,
     // where its bound is only measured, outside the tolerance the reference
     // is held to.
@@ -58,11 +60,11 @@ std::string closed_forms_page(const analysis::ClosedFormTable& t) {
     if (!within(r.mujoco, cf, held)) {
       const double miss = r.mujoco - cf;
       misses +=
-          "- " + r.case_name + ", " + q.name + ": MuJoCo " + g(r.mujoco, 6) + " against " +
-          g(cf, 6) + ", off by " + g(miss, 2) + " (" + g(100.0 * std::abs(miss) / std::abs(cf), 2) +
-          " %; " +
+          "- " + r.case_name + ", " + q.name + ": MuJoCo " + format_significant(r.mujoco, 6) +
+          " against " + format_significant(cf, 6) + ", off by " + format_significant(miss, 2) +
+          " (" + format_significant(100.0 * std::abs(miss) / std::abs(cf), 2) + " %; " +
           (q.mujoco_bound_derived ? "its derived tolerance is " : "the reference is held to ") +
-          g(held, 2) + "). " + q.mujoco_why + ".\n";
+          format_significant(held, 2) + "). " + q.mujoco_why + ".\n";
     }
   }
   if (misses.empty()) misses = "- none.\n";
@@ -79,7 +81,7 @@ Engines: reference = `)md" +
          t.reference_engine + "`, MuJoCo = `" + t.mujoco_engine +
          R"md(` (the default mapping), converged =
 Dormand–Prince 5(4) with every contact switch located, rtol = atol = )md" +
-         g(analysis::kConvergedTol, 2) +
+         format_significant(analysis::kConvergedTol, 2) +
          R"md(. Each cell is the value and, in
 brackets, its error against the closed form. Δt = 1e-4 s everywhere; the
 Kelvin–Voigt law unless the case names the compression-only damper.
@@ -96,7 +98,8 @@ findings about MuJoCo's contact model under the mapping, not tolerances to
 widen; `docs/closed-forms.md` explains each.
 
 )md" + misses +
-         "\nWall clock of all the runs of this page (this run: " + g(t.seconds, 2) + " s).\n";
+         "\nWall clock of all the runs of this page (this run: " +
+         format_significant(t.seconds, 2) + " s).\n";
 }
 
 }  // namespace contact2d::report

@@ -11,7 +11,12 @@
 
 namespace contact2d::report {
 
-std::string friction_page(const std::vector<analysis::FrictionRow>& rows, double goal) {
+namespace {
+
+// The title, the difference per scene and its three parts, and what keeps
+// MuJoCo away.
+std::string friction_difference_section(const std::vector<analysis::FrictionRow>& rows,
+                                        double goal) {
   std::string out = R"md(# Friction: how close MuJoCo 2.2.2 gets, and what keeps it away
 
 Written by `contact2d report` (`src/analysis/friction_table.cpp`); the same
@@ -47,17 +52,19 @@ three (triangle inequality).
     conforms += r.conformance <= goal;
     worst_rest = std::max(worst_rest, r.conformance);
     push_larger += r.push > r.shape;
-    add_row(
-        t, {r.what + " (`" + r.name + "`)", g(r.calibrated.max_pos, 3), g(r.compensated.max_pos, 3),
-            g(r.compensated.hop, 3), g(r.shape, 3), g(r.push, 3), g(r.conformance, 3)});
+    add_row(t, {r.what + " (`" + r.name + "`)", format_significant(r.calibrated.max_pos, 3),
+                format_significant(r.compensated.max_pos, 3),
+                format_significant(r.compensated.hop, 3), format_significant(r.shape, 3),
+                format_significant(r.push, 3), format_significant(r.conformance, 3)});
   }
   out += to_markdown(t);
   out += "\n" + std::to_string(reached) + " of " + std::to_string(rows.size()) +
-         " scenes are within " + g(goal) +
+         " scenes are within " + format_significant(goal) +
          " m under the better of the two mappings. With the reference running MuJoCo's own "
          "law (the rest), " +
          std::to_string(conforms) + " of " + std::to_string(rows.size()) + " are, the largest " +
-         g(worst_rest, 3) + " m: what separates the engines is the friction law. Of it the " +
+         format_significant(worst_rest, 3) +
+         " m: what separates the engines is the friction law. Of it the " +
          "push is the larger part in " + std::to_string(push_larger) + " of " +
          std::to_string(rows.size()) + " scenes, the shape in the others.\n";
   out += R"md(
@@ -72,7 +79,14 @@ centre of mass rises above the reference's. No 2.2.2 setting removes the
 term (the table below tries each): it does not depend on impratio, solimp,
 condim or the cone; only `c` itself scales it. A friction reference of its
 own, `solreffriction`, arrived in MuJoCo 2.3.6.
+)md";
+  return out;
+}
 
+// Every 2.2.2 setting that touches friction, each alone; the split; the
+// rolling disc.
+std::string friction_settings_section(const std::vector<analysis::FrictionRow>& rows) {
+  std::string out = R"md(
 ## Every setting of MuJoCo 2.2.2 that touches friction, each alone
 
 The calibrated model with one setting changed, its difference to the
@@ -87,10 +101,10 @@ that has it). "split" is the measurement of the push
   columns.emplace_back("split");
   Table knobs{columns, {}};
   for (const analysis::FrictionRow& r : rows) {
-    std::vector<std::string> cells{"`" + r.name + "`", g(r.calibrated.max_pos, 3)};
+    std::vector<std::string> cells{"`" + r.name + "`", format_significant(r.calibrated.max_pos, 3)};
     for (double d : r.knobs)
-      cells.push_back(std::isnan(d) ? "—" : std::isinf(d) ? "diverged" : g(d, 3));
-    cells.push_back(g(r.split.max_pos, 3));
+      cells.push_back(std::isnan(d) ? "—" : std::isinf(d) ? "diverged" : format_significant(d, 3));
+    cells.push_back(format_significant(r.split.max_pos, 3));
     add_row(knobs, cells);
   }
   out += to_markdown(knobs);
@@ -108,8 +122,9 @@ has no friction-specific reference either).
 **The split** runs the same scene in MuJoCo with every contact geom split in
 two at the same place: a frictionless one carrying the spring and most of
 the damper, and a frictional one carrying
-)md" + g(100.0 * analysis::kSplitShare) +
-         " % of the spring and " + g(analysis::kSplitDamper) + R"md( of the damper, with μ
+)md" + format_significant(100.0 * analysis::kSplitShare) +
+         " % of the spring and " + format_significant(analysis::kSplitDamper) +
+         R"md( of the damper, with μ
 divided by that share so that the friction limit stays the scene's. The
 push then nearly vanishes, but the split also takes the damper out of the
 friction limit (μ·(k·p − ρ·v_n) instead of μ·(k·p − c·v_n)), which decides
@@ -128,6 +143,12 @@ cone's rolling coefficient to `μ_roll/√(1 − q²)`, `q = κ·μ_roll/(μ·R)
 steady rolling (docs/mujoco.md).
 )md";
   return out;
+}
+
+}  // namespace
+
+std::string friction_page(const std::vector<analysis::FrictionRow>& rows, double goal) {
+  return friction_difference_section(rows, goal) + friction_settings_section(rows);
 }
 
 }  // namespace contact2d::report

@@ -23,7 +23,7 @@ double find_error(const std::vector<MappingCase>& cases, const std::string& scen
 
 }  // namespace
 
-std::string g(double x, int digits) {
+std::string format_significant(double x, int digits) {
   if (!std::isfinite(x)) return "–";
   return format_number(x, digits);
 }
@@ -131,7 +131,8 @@ OverallWinner overall_winner(const std::vector<MappingMean>& means) {
   std::vector<std::pair<double, std::string>> printed;
   printed.reserve(means.size());
   for (const MappingMean& m : means) {  // a mean that is not a number sorts last
-    printed.emplace_back(std::isfinite(m.mean) ? std::stod(g(m.mean, 3)) : INFINITY, m.mapping);
+    printed.emplace_back(
+        std::isfinite(m.mean) ? std::stod(format_significant(m.mean, 3)) : INFINITY, m.mapping);
   }
   std::stable_sort(printed.begin(), printed.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });

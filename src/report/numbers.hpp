@@ -13,7 +13,7 @@
 namespace contact2d::report {
 
 // "%.*g" of x ("–" when x is not finite).
-std::string g(double x, int digits = 3);
+std::string format_significant(double x, int digits = 3);
 // x in scientific notation as people write it ("1e-5", "3e-3", "2.5e-4"; not
 // "1e-05" or "0.001"): goals stated on the pages. Three digits at most.
 std::string sci(double x);

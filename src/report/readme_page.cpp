@@ -13,7 +13,7 @@ namespace contact2d::report {
 namespace {
 
 std::string per_step(double seconds, const Comparison& c) {
-  return g(micros_per_step(seconds, c.duration, c.dt));
+  return format_significant(micros_per_step(seconds, c.duration, c.dt));
 }
 
 std::string mapping_table(const std::vector<MappingCase>& cases) {
@@ -22,9 +22,10 @@ std::string mapping_table(const std::vector<MappingCase>& cases) {
           {}};
   for (const MappingCase& c : cases) {
     const Comparison& r = c.result;
-    add_row(t,
-            {c.scene + " / " + c.mapping, g(r.max_pos), g(r.rms_pos), g(r.max_angle), g(r.max_vel),
-             g(r.end_pos), per_step(r.ref_seconds, r), per_step(r.mujoco_seconds, r)});
+    add_row(t, {c.scene + " / " + c.mapping, format_significant(r.max_pos),
+                format_significant(r.rms_pos), format_significant(r.max_angle),
+                format_significant(r.max_vel), format_significant(r.end_pos),
+                per_step(r.ref_seconds, r), per_step(r.mujoco_seconds, r)});
   }
   return to_markdown(t);
 }
@@ -32,17 +33,17 @@ std::string mapping_table(const std::vector<MappingCase>& cases) {
 std::string winners(const std::vector<MappingCase>& cases, const ReadmeData& data) {
   std::string out;
   for (const SceneWinner& w : scene_winners(cases, data.scenes, data.mappings)) {
-    out += "- " + w.scene + ": **" + w.mapping + "** (" + g(w.error) + " m), " +
-           g(w.ratio_to_next) + "× smaller than the next best mapping\n";
+    out += "- " + w.scene + ": **" + w.mapping + "** (" + format_significant(w.error) + " m), " +
+           format_significant(w.ratio_to_next) + "× smaller than the next best mapping\n";
   }
   const std::vector<MappingMean> means = mapping_means(cases, data.scenes, data.mappings);
   for (const MappingMean& m : means) {
     out += "- geometric mean over the " + count_words(static_cast<int>(data.scenes.size())) +
-           " scenes, " + m.mapping + ": " + g(m.mean) + " m\n";
+           " scenes, " + m.mapping + ": " + format_significant(m.mean) + " m\n";
   }
   const OverallWinner overall = overall_winner(means);
   out += "- overall: **" + overall.mapping + "**, its geometric-mean error " +
-         g(overall.ratio_to_next) + "× below the next best mapping\n";
+         format_significant(overall.ratio_to_next) + "× below the next best mapping\n";
   return out;
 }
 
@@ -53,7 +54,8 @@ std::string goal_table(const std::vector<GoalCase>& goals) {
   for (const GoalCase& c : goals) {
     const Comparison& r = c.result;
     const bool ok = goal_reached(r.max_pos, r.max_angle, c.pos_goal, c.angle_goal);
-    add_row(t, {c.label, g(r.impratio), g(r.max_pos), sci(c.pos_goal), g(r.max_angle),
+    add_row(t, {c.label, format_significant(r.impratio), format_significant(r.max_pos),
+                sci(c.pos_goal), format_significant(r.max_angle),
                 c.angle_goal ? sci(*c.angle_goal) : "-", ok ? "yes" : "**no**"});
   }
   return to_markdown(t);
@@ -64,7 +66,8 @@ std::string geometry_table(const std::vector<GeometryCase>& cases) {
   for (const GeometryCase& c : cases) {
     const Comparison& r = c.result;
     add_row(t, {c.scene + ", " + (c.friction ? "friction" : "frictionless"), c.geometry,
-                g(r.max_pos), g(r.max_angle), per_step(r.mujoco_seconds, r)});
+                format_significant(r.max_pos), format_significant(r.max_angle),
+                per_step(r.mujoco_seconds, r)});
   }
   return to_markdown(t);
 }
@@ -75,8 +78,9 @@ std::string integrator_table(const std::vector<IntegratorCase>& cases) {
       {}};
   for (const IntegratorCase& c : cases) {
     const Comparison& r = c.result;
-    add_row(t, {c.scene, c.integrator + " / " + r.mujoco_integrator, g(r.max_pos), g(r.max_angle),
-                per_step(r.ref_seconds, r), per_step(r.mujoco_seconds, r)});
+    add_row(t, {c.scene, c.integrator + " / " + r.mujoco_integrator, format_significant(r.max_pos),
+                format_significant(r.max_angle), per_step(r.ref_seconds, r),
+                per_step(r.mujoco_seconds, r)});
   }
   return to_markdown(t);
 }
@@ -98,9 +102,11 @@ std::string three_way_table(const std::vector<ThreeWayCase>& cases, double named
            "amplification", "named causes (share removed, option)"},
           {}};
   for (const ThreeWayCase& c : cases) {
-    add_row(t, {c.scene, c.law, c.converged ? g(c.ref_vs_converged) : "-",
-                c.converged ? g(c.mujoco_vs_converged) : "-", g(c.ref_vs_mujoco),
-                c.converged ? g(c.amplification) : "-", causes_text(c, named_share)});
+    add_row(t,
+            {c.scene, c.law, c.converged ? format_significant(c.ref_vs_converged) : "-",
+             c.converged ? format_significant(c.mujoco_vs_converged) : "-",
+             format_significant(c.ref_vs_mujoco),
+             c.converged ? format_significant(c.amplification) : "-", causes_text(c, named_share)});
   }
   return to_markdown(t);
 }
@@ -120,16 +126,19 @@ std::string random_table(const std::vector<RandomCase>& cases) {
            "max angle, μ = 0 (rad)", "max pos, with μ (m)"},
           {}};
   for (const RandomCase& c : cases) {
-    add_row(t, {c.name, c.shape, g(c.mass, 6), g(c.k, 6), g(c.c, 6), g(random_zeta(c)), g(c.mu),
-                g(c.max_pos_frictionless), g(c.max_angle_frictionless), g(c.max_pos_friction)});
+    add_row(t,
+            {c.name, c.shape, format_significant(c.mass, 6), format_significant(c.k, 6),
+             format_significant(c.c, 6), format_significant(random_zeta(c)),
+             format_significant(c.mu), format_significant(c.max_pos_frictionless),
+             format_significant(c.max_angle_frictionless), format_significant(c.max_pos_friction)});
   }
   return to_markdown(t);
 }
 
 std::string band_name(const ZetaBand& b) {
-  if (b.lo <= 0.0) return "ζ < " + g(b.hi);
-  if (!std::isfinite(b.hi)) return "ζ ≥ " + g(b.lo);
-  return g(b.lo) + " ≤ ζ < " + g(b.hi);
+  if (b.lo <= 0.0) return "ζ < " + format_significant(b.hi);
+  if (!std::isfinite(b.hi)) return "ζ ≥ " + format_significant(b.lo);
+  return format_significant(b.lo) + " ≤ ζ < " + format_significant(b.hi);
 }
 
 // The random scenes under each mapping that ran them: calibrated (the
@@ -154,7 +163,8 @@ std::string band_table(const ReadmeData& d) {
     for (size_t m = 0; m < runs.size(); ++m) {
       const ZetaBand& z = bands[m][b];
       add_row(t, {band_name(z), runs[m].first, std::to_string(z.count), std::to_string(z.reached),
-                  g(z.median_pos), g(z.max_pos), g(z.max_angle), g(z.max_pos_friction)});
+                  format_significant(z.median_pos), format_significant(z.max_pos),
+                  format_significant(z.max_angle), format_significant(z.max_pos_friction)});
     }
   }
   return to_markdown(t);
@@ -195,20 +205,18 @@ std::string replay_section(const ReplayComparison& r) {
   for (const ReplayEngine& e : r.engines) add_row(t, {e.engine, e.outcome, "`" + e.json + "`"});
   out += to_markdown(t);
   auto when = [](const std::optional<double>& s) {
-    return s ? "at t = " + g(*s) + " s" : std::string("never");
+    return s ? "at t = " + format_significant(*s) + " s" : std::string("never");
   };
   out += "\nThe two balls are 0.01 m apart " + when(r.part_1cm) + " and a ball radius (" +
-         g(r.radius) + " m) apart " + when(r.part_radius) +
+         format_significant(r.radius) + " m) apart " + when(r.part_radius) +
          ".\n\n![The goal replay on both engines](" + r.plot + ")\n";
   return out;
 }
 
-// The first screen: which mapping, and how close MuJoCo then is, by damping
-// band, with and without friction, each line with the command behind it.
-std::string summary(const ReadmeData& d) {
+// The first screen's recommendation: one mapping to build on, and the one
+// that measures closer when it is another.
+std::string recommendation(const ReadmeData& d) {
   const OverallWinner w = overall_winner(mapping_means(d.kelvin_voigt, d.scenes, d.mappings));
-  const RandomConfig& rc = d.random_config;
-  const std::vector<ZetaBand> bands = random_bands(d.random, rc);
   // One recommendation: a model to build on is calibrated's (it sets only
   // solref, solimp and options); compensated, when it measures closer, is
   // named as the comparison's tool, not as a second recommendation.
@@ -220,18 +228,27 @@ std::string summary(const ReadmeData& d) {
     out +=
         " With MuJoCo's own damping law (Kelvin–Voigt) its geometric-mean error over the "
         "built-in scenes is\n" +
-        g(w.ratio_to_next) + "× below the next best mapping (section 2).";
+        format_significant(w.ratio_to_next) + "× below the next best mapping (section 2).";
   } else {
     out += " For comparing the two engines, `--mapping " + w.mapping +
            "` comes closer: with MuJoCo's own damping law (Kelvin–Voigt) its geometric-mean error "
            "over the built-in scenes is\n" +
-           g(w.ratio_to_next) + "× below the next best mapping (section 2)" +
+           format_significant(w.ratio_to_next) + "× below the next best mapping (section 2)" +
            (w.mapping == "compensated"
                 ? ", but it moves the contact geoms onto a massless body at a long lever "
                   "(docs/mujoco.md): a structure for comparing, not for a model to build on."
                 : ".");
   }
   out += "\n\n";
+  return out;
+}
+
+// How close MuJoCo then is on the random scenes, by damping band and
+// mapping, with the command behind each row.
+std::string closeness_by_band(const ReadmeData& d) {
+  const RandomConfig& rc = d.random_config;
+  const std::vector<ZetaBand> bands = random_bands(d.random, rc);
+  std::string out;
   out += "**How close MuJoCo then is** — " + count_words(rc.count) +
          " random scenes (section 6), Δt = 1e-4, semi-implicit Euler against MuJoCo's Euler;\n"
          "each row of section 6 re-runs with `contact2d compare " +
@@ -249,7 +266,8 @@ std::string summary(const ReadmeData& d) {
     for (size_t m = 0; m < runs.size(); ++m) {
       const ZetaBand& z = by_mapping[m][b];
       add_row(t, {band_name(z), runs[m].first, std::to_string(z.count), std::to_string(z.reached),
-                  g(z.median_pos) + " / " + g(z.max_pos), g(z.max_pos_friction)});
+                  format_significant(z.median_pos) + " / " + format_significant(z.max_pos),
+                  format_significant(z.max_pos_friction)});
     }
   }
   out += to_markdown(t);
@@ -258,7 +276,13 @@ std::string summary(const ReadmeData& d) {
         "\n`compensated` (`--mapping compensated`) removes the calibrated force's O(d) term "
         "(section 6); with friction\nboth keep MuJoCo's cone, whose push on a sliding body no "
         "2.2.2 setting removes.\n";
-  // With friction: the measured parts (analysis::friction_parts), per mapping.
+  return out;
+}
+
+// With friction: the measured parts (analysis::friction_parts), per mapping.
+std::string friction_parts_table(const ReadmeData& d) {
+  const std::vector<std::pair<std::string, const std::vector<RandomCase>*>> runs = random_runs(d);
+  std::string out;
   constexpr double kFrictionGoal = 1e-3;
   out +=
       "\n**With friction** the difference is MuJoCo's friction law. Taken apart on the same "
@@ -269,12 +293,22 @@ std::string summary(const ReadmeData& d) {
               {}};
   for (const auto& run : runs) {
     const FrictionSummary f = friction_summary(*run.second, kFrictionGoal);
-    add_row(parts, {run.first, g(f.median_total),
-                    std::to_string(f.within) + " of " + std::to_string(f.count), g(f.median_shape),
-                    g(f.median_push), g(f.median_rest) + " (largest " + g(f.max_rest) + ")",
+    add_row(parts, {run.first, format_significant(f.median_total),
+                    std::to_string(f.within) + " of " + std::to_string(f.count),
+                    format_significant(f.median_shape), format_significant(f.median_push),
+                    format_significant(f.median_rest) + " (largest " +
+                        format_significant(f.max_rest) + ")",
                     std::to_string(f.rest_within) + " of " + std::to_string(f.count)});
   }
   out += to_markdown(parts);
+  return out;
+}
+
+// The built-in scenes with the Kelvin–Voigt law, and why the engines still
+// differ.
+std::string builtin_verdict(const ReadmeData& d) {
+  const RandomConfig& rc = d.random_config;
+  std::string out;
   double frictionless = 0.0, friction = 0.0;
   double builtin_shape = 0.0, builtin_push = 0.0, builtin_rest = 0.0;
   int frictionless_reached = 0, frictionless_count = 0;
@@ -296,28 +330,36 @@ std::string summary(const ReadmeData& d) {
   out += "\n**The built-in scenes** with the Kelvin–Voigt law (section 3): without friction " +
          std::to_string(frictionless_reached) + " of " + std::to_string(frictionless_count) +
          " cases within " + sci(rc.pos_goal) + " m and " + sci(rc.angle_goal) + " rad (largest " +
-         g(frictionless) + " m), with friction up to " + g(friction) +
+         format_significant(frictionless) + " m), with friction up to " +
+         format_significant(friction) +
          " m apart: `contact2d compare validation/scenes/SCENE.toml --set "
          "contact.damping=kelvin_voigt`\n"
          "(add `--set contact.mu=0 --set contact.mu_roll=0` for the frictionless line); with the "
          "reference running\nMuJoCo's own friction law (`--set contact.friction_law=soft_cone`, "
          "at the model's impratio) they are at most " +
-         g(builtin_rest) +
+         format_significant(builtin_rest) +
          " m apart.\n\n"
          "**Why they still differ**: with friction, MuJoCo's friction law — measured on the "
          "built-in scenes, the cone's\nshape (viscous inside it, sliding and rolling under one "
          "budget) moves a body by up to " +
-         g(builtin_shape) + " m and its push (the damper\nlifting a sliding body) by up to " +
-         g(builtin_push) +
+         format_significant(builtin_shape) +
+         " m and its push (the damper\nlifting a sliding body) by up to " +
+         format_significant(builtin_push) +
          " m, while everything else (under calibrated its O(d) term, section 6; MuJoCo's step) "
          "is at most " +
-         g(builtin_rest) +
+         format_significant(builtin_rest) +
          " m; no setting of\nMuJoCo 2.2.2 removes the push (`friction.md`). Without friction: "
          "bounces of an underdamped body (a\nsmall difference of restitution carried from bounce "
          "to bounce) and, in the shipped scenes, the\ncompression-only damper MuJoCo cannot "
          "represent. `contact2d compare` measures each cause by removing\nit (section 1) and "
          "section 7 explains them.\n\n";
   return out;
+}
+
+// The first screen: which mapping, and how close MuJoCo then is, by damping
+// band, with and without friction, each line with the command behind it.
+std::string summary(const ReadmeData& d) {
+  return recommendation(d) + closeness_by_band(d) + friction_parts_table(d) + builtin_verdict(d);
 }
 
 // Every page `contact2d report` writes beside this one (cmd_report.cpp),
@@ -344,9 +386,8 @@ std::string page_index() {
   return "## The pages of this report\n\n" + to_markdown(t) + "\n";
 }
 
-}  // namespace
-
-std::string readme_page(const ReadmeData& d) {
+// The title, the index of pages and the first screen.
+std::string readme_intro(const ReadmeData& d) {
   std::string out = R"md(# contact2d against MuJoCo 2.2.2
 
 Generated by `contact2d report` (`scripts/demo` builds, then runs it): every
@@ -356,7 +397,12 @@ run to run and machine to machine.
 )md";
   out += page_index();
   out += summary(d);
-  out += R"md(## How to read this page
+  return out;
+}
+
+// How errors are taken and what each mapping sets.
+std::string how_to_read_section() {
+  std::string out = R"md(## How to read this page
 
 Errors are taken over the output samples (every `sim.output_dt`, the same
 times for both engines): position error = distance between the two COMs,
@@ -374,7 +420,13 @@ COM. Mappings (`src/mujoco/mapping.hpp` and `docs/mujoco.md` have the derivation
   impedance `solimp="0.0001 0.0001 0.001 0.5 2"`, elliptic cone,
   impratio = 1/(c·Δt·A_t) with A_t = 1/m + r_max²/I, one small sphere per
   2D contact point.
+)md";
+  return out;
+}
 
+// 1. The built-in scenes as shipped, and compare's diagnosis of them.
+std::string shipped_section(const ReadmeData& d) {
+  std::string out = R"md(
 ## 1. The built-in scenes as shipped
 
 The scene files use compression-only damping (the damper acts only while a
@@ -409,7 +461,12 @@ SCENE --video SCENE.gif`): the reference filled (orange), MuJoCo outlined
 (blue), the converged solution as a thin line.
 )md";
   out += animations(d.three_way, d.animation_note);
-  out += R"md(
+  return out;
+}
+
+// 2. The built-in scenes with MuJoCo's damping law.
+std::string kelvin_voigt_section(const ReadmeData& d) {
+  std::string out = R"md(
 ## 2. The built-in scenes with the Kelvin–Voigt law
 
 Same scenes, `--set contact.damping=kelvin_voigt`: the law MuJoCo's soft
@@ -421,7 +478,13 @@ contact has. What remains is the mapping, friction and contact geometry.
   out += winners(d.kelvin_voigt, d);
   out += R"md(
 The generator's default mapping is `calibrated`.
+)md";
+  return out;
+}
 
+// 3. The agreement goal, case by case.
+std::string goal_section(const ReadmeData& d) {
+  std::string out = R"md(
 ## 3. The agreement goal (calibrated, Δt = 1e-4, Kelvin–Voigt, c ≥ 200)
 
 The built-in scenes with `--dt 1e-4 --set contact.damping=kelvin_voigt
@@ -435,7 +498,13 @@ and 3e-3 m (box, T).
 Without friction the goal holds. With friction it holds where the body
 barely slides while loaded; see section 7 for why MuJoCo's friction cannot
 follow the reference's closer.
+)md";
+  return out;
+}
 
+// 4. Corner spheres against box geoms.
+std::string geometry_section(const ReadmeData& d) {
+  std::string out = R"md(
 ## 4. Contact geometry of the box and the T
 
 `--geometry corners` (default): a sphere of radius 1e-9 m at every 2D
@@ -450,7 +519,13 @@ Calibrated, Kelvin–Voigt, c = 200, Δt = 1e-4.
 Both represent the 2D model's contacts; the corner spheres reproduce it one
 contact per point (the T's inner vertices included) and measured closer
 without friction, so they are the default.
+)md";
+  return out;
+}
 
+// 5. Each reference integrator against its MuJoCo counterpart.
+std::string integrator_section(const ReadmeData& d) {
+  std::string out = R"md(
 ## 5. Integrators (calibrated, Kelvin–Voigt, c = 200, Δt = 1e-4, frictionless)
 
 The reference's semi-implicit Euler and RK4 run against MuJoCo's `Euler`
@@ -464,7 +539,13 @@ MuJoCo's `implicit` integrates joint damping and actuator forces
 implicitly, not contact forces, so for these models it is semi-implicit
 Euler, and it differs from the reference's fully implicit Euler by the
 methods' own O(Δt) difference.
+)md";
+  return out;
+}
 
+// 6. The random scenes, by damping ratio.
+std::string random_section(const ReadmeData& d) {
+  std::string out = R"md(
 ## 6. Scenes the mapping was not built on
 
 )md";
@@ -511,7 +592,12 @@ contact geoms on a massless body at a lever, so that term falls by 10⁶
 rounding amplified by the scene). With friction both mappings keep MuJoCo's elliptic cone, whose
 damper pushes a sliding body up (section 7).
 )md";
-  out += R"md(
+  return out;
+}
+
+// 7. The remaining differences, cause by cause.
+std::string differences_section() {
+  std::string out = R"md(
 ## 7. The remaining differences, explained
 
 **Damping law.** The scene files damp only while the point moves into the
@@ -565,7 +651,13 @@ into two contacts; the corner spheres keep one per 2D point. Their radius
 **Cost.** The reference's step is a few dozen floating-point operations per
 contact; `mj_step` runs collision detection, builds the constraint Jacobian
 and solves the constraint problem every step (RK4 four times).
+)md";
+  return out;
+}
 
+// 8. The plots, and the goal replay when it ran.
+std::string plots_section(const ReadmeData& d) {
+  std::string out = R"md(
 ## 8. Plots
 
 x, y, θ of both engines and the errors over time (calibrated): the built-in
@@ -575,6 +667,22 @@ scene as shipped (left) and with the Kelvin–Voigt law (right).
   out += plots(d.scenes, d.law_independent);
   out += "\n";
   if (d.replay.ran) out += replay_section(d.replay);
+  return out;
+}
+
+}  // namespace
+
+std::string readme_page(const ReadmeData& d) {
+  std::string out = readme_intro(d);
+  out += how_to_read_section();
+  out += shipped_section(d);
+  out += kelvin_voigt_section(d);
+  out += goal_section(d);
+  out += geometry_section(d);
+  out += integrator_section(d);
+  out += random_section(d);
+  out += differences_section();
+  out += plots_section(d);
   return out;
 }
 

@@ -11,8 +11,8 @@
 namespace contact2d::report {
 namespace {
 
-std::string csv(double x) { return g(x, 9); }
-std::string opt2(const std::optional<double>& x) { return x ? g(*x, 2) : "–"; }
+std::string csv(double x) { return format_significant(x, 9); }
+std::string opt2(const std::optional<double>& x) { return x ? format_significant(*x, 2) : "–"; }
 
 // The failure without its time ("energy gain at t = 0.31 s" → "energy gain").
 std::string failure_kind(const std::string& failure) {
@@ -48,7 +48,8 @@ void add_summary_rows(Table& t, const StabilityMap& map) {
     }
     const auto m = range_of(measured), q = range_of(ratios);
     auto k_range = [](const std::vector<const StabilityRow*>& rows) {
-      const std::string first = g(rows.front()->k, 6), last = g(rows.back()->k, 6);
+      const std::string first = format_significant(rows.front()->k, 6),
+                        last = format_significant(rows.back()->k, 6);
       return "k = " + first + (first != last ? " … " + last : "");
     };
     std::string outside;
@@ -60,8 +61,8 @@ void add_summary_rows(Table& t, const StabilityMap& map) {
       outside += (outside.empty() ? "" : "; ") + k_range(unstable_at_min) +
                  ": unstable down to dt = " + csv(unstable_at_min.back()->dt_min) + " s";
     }
-    add_row(t, {map.scene, engine, integrator, theory ? g(*theory) : "∞",
-                m ? g(m->lo, 2) + " – " + g(m->hi, 2) : "–",
+    add_row(t, {map.scene, engine, integrator, theory ? format_significant(*theory) : "∞",
+                m ? format_significant(m->lo, 2) + " – " + format_significant(m->hi, 2) : "–",
                 q ? fixed(q->lo, 2) + " – " + fixed(q->hi, 2) : "–",
                 outside.empty() ? "–" : outside, failures.empty() ? "–" : failures});
   }
@@ -89,14 +90,15 @@ std::string mujoco_table(const std::vector<StabilityMap>& maps) {
       const bool at_max = r.verdict == "stable at dt_max";
       const std::string dt = at_max                              ? ">= " + csv(r.dt_stable)
                              : r.verdict == "unstable at dt_min" ? "< " + csv(r.dt_min)
-                                                                 : g(r.dt_stable);
-      const std::string w =
-          std::isnan(r.dt_stable) ? "–" : (at_max ? ">= " : "") + g(r.omega_dt_stable);
-      add_row(t,
-              {map.scene, r.engine, r.integrator, g(r.k, 6), dt, w, r.theory ? g(*r.theory) : "∞",
-               opt2(r.penetration) + " / " + opt2(r.penetration_small_step) + " / " +
-                   opt2(r.reference_penetration) + " m",
-               text.empty() ? "–" : text});
+                                                                 : format_significant(r.dt_stable);
+      const std::string w = std::isnan(r.dt_stable)
+                                ? "–"
+                                : (at_max ? ">= " : "") + format_significant(r.omega_dt_stable);
+      add_row(t, {map.scene, r.engine, r.integrator, format_significant(r.k, 6), dt, w,
+                  r.theory ? format_significant(*r.theory) : "∞",
+                  opt2(r.penetration) + " / " + opt2(r.penetration_small_step) + " / " +
+                      opt2(r.reference_penetration) + " m",
+                  text.empty() ? "–" : text});
     }
   }
   return to_markdown(t);
@@ -106,7 +108,8 @@ std::string mujoco_table(const std::vector<StabilityMap>& maps) {
 std::string bound(const StabilityData& d, const std::string& integrator, int digits) {
   for (const StabilityMap& map : d.reference) {
     for (const StabilityRow& r : map.rows) {
-      if (r.engine == "ref" && r.integrator == integrator && r.theory) return g(*r.theory, digits);
+      if (r.engine == "ref" && r.integrator == integrator && r.theory)
+        return format_significant(*r.theory, digits);
     }
   }
   return "–";
@@ -114,7 +117,7 @@ std::string bound(const StabilityData& d, const std::string& integrator, int dig
 
 std::string measured_range(const StabilityData& d, const std::string& integrator) {
   const auto range = range_of(bracketed_omega_dt(d.reference, "ref", integrator));
-  return range ? range_text(*range, [](double x) { return g(x, 2); }) : "–";
+  return range ? range_text(*range, [](double x) { return format_significant(x, 2); }) : "–";
 }
 
 // "20 N·s/m at every k\n\nHolding c fixed makes ζ = … fall from 0.32 to
@@ -126,8 +129,9 @@ std::string scene_c_text(const StabilityMap& map) {
     if (!last || r.k > last->k) last = &r;
   }
   if (!first) return "c at every k\n\nHolding c fixed makes ζ = c/(2√(k·m)) fall";
-  return g(first->c) + " N·s/m at every k\n\nHolding c fixed makes ζ = c/(2√(k·m)) fall from " +
-         g(first->zeta, 2) + " to " + g(last->zeta, 2);
+  return format_significant(first->c) +
+         " N·s/m at every k\n\nHolding c fixed makes ζ = c/(2√(k·m)) fall from " +
+         format_significant(first->zeta, 2) + " to " + format_significant(last->zeta, 2);
 }
 
 }  // namespace

@@ -14,8 +14,8 @@ namespace {
 
 // A number as the analysis CSV spells it ("%.9g"): tolerances, steps and
 // order ranges on the page are written the way the runs were configured.
-std::string csv(double x) { return g(x, 9); }
-std::string ms(double seconds) { return g(seconds * 1e3); }
+std::string csv(double x) { return format_significant(x, 9); }
+std::string ms(double seconds) { return format_significant(seconds * 1e3); }
 
 const SceneSweep* find_sweep(const SweepData& d, const std::string& name) {
   for (const SceneSweep& s : d.sweeps) {
@@ -39,7 +39,8 @@ std::string reference_table(const SweepData& d, const std::vector<double>& tols)
     std::vector<std::string> row{csv(tol)};
     for (const std::string& s : d.scenes) {
       const StudyRow* r = study_at(find_sweep(d, s), tol);
-      row.push_back(r && r->ok ? g(r->max_pos, 2) + " m, " + ms(r->seconds) + " ms" : "–");
+      row.push_back(r && r->ok ? format_significant(r->max_pos, 2) + " m, " + ms(r->seconds) + " ms"
+                               : "–");
     }
     add_row(t, row);
   }
@@ -69,7 +70,9 @@ std::string error_table(const SceneSweep& s) {
       std::string cell = "–";
       for (const SweepRun& r : s.runs) {
         if (r.integrator == "dopri5_events" || run_key(r) != key || r.dt != dt) continue;
-        cell = r.status == "ok" ? g(r.max_pos, 2) : r.status == "diverged" ? "diverged" : "failed";
+        cell = r.status == "ok"         ? format_significant(r.max_pos, 2)
+               : r.status == "diverged" ? "diverged"
+                                        : "failed";
         if (csv(r.dt) == "0.0001" && r.status == "ok") time = ms(r.seconds);
       }
       row.push_back(cell);
@@ -84,8 +87,8 @@ std::string dopri_line(const SceneSweep& s) {
   std::string out;
   for (const SweepRun& r : s.runs) {
     if (r.integrator != "dopri5_events" || r.status != "ok") continue;
-    out += (out.empty() ? "" : "; ") + std::string("tol ") + csv(r.tol) + ": " + g(r.max_pos, 2) +
-           " m in " + ms(r.seconds) + " ms";
+    out += (out.empty() ? "" : "; ") + std::string("tol ") + csv(r.tol) + ": " +
+           format_significant(r.max_pos, 2) + " m in " + ms(r.seconds) + " ms";
   }
   return out;
 }
@@ -160,14 +163,15 @@ std::string mujoco_floor_table(const SweepData& d) {
       if (r.status != "ok") continue;
       const bool euler = r.integrator == "semi_implicit_euler";
       if (r.engine == "mujoco" && euler && csv(r.dt) == "0.001" && r.self_max_pos)
-        own1 = g(*r.self_max_pos, 2);
+        own1 = format_significant(*r.self_max_pos, 2);
       if (r.engine == "mujoco" && euler && csv(r.dt) == "0.0002" && r.self_max_pos)
-        own4 = g(*r.self_max_pos, 2);
-      if (r.engine == "ref" && euler && csv(r.dt) == "0.0001") ref = g(r.max_pos, 2) + " m";
+        own4 = format_significant(*r.self_max_pos, 2);
+      if (r.engine == "ref" && euler && csv(r.dt) == "0.0001")
+        ref = format_significant(r.max_pos, 2) + " m";
     }
     const SweepRun* floor = mujoco_floor(s);
     add_row(t, {s.name,
-                floor ? g(floor->max_pos, 2) + " m (" + floor->integrator +
+                floor ? format_significant(floor->max_pos, 2) + " m (" + floor->integrator +
                             ", dt = " + csv(floor->dt) + ")"
                       : "–",
                 own1 + " m / " + own4 + " m", ref});
@@ -303,7 +307,7 @@ std::string bouncing_stderr(const SweepData& d) {
   }
   const auto range = range_of(errors);
   if (!range) return "–";
-  auto one = [](double x) { return g(x, 1); };
+  auto one = [](double x) { return format_significant(x, 1); };
   return one(range->lo) == one(range->hi) ? one(range->lo) : one(range->lo) + "…" + one(range->hi);
 }
 
@@ -315,7 +319,7 @@ std::string mujoco_errors_at(const SceneSweep& s, double dt) {
       errors.push_back(r.max_pos);
   }
   const auto range = range_of(errors);
-  return range ? range_text(*range, [](double x) { return g(x, 2); }) : "–";
+  return range ? range_text(*range, [](double x) { return format_significant(x, 2); }) : "–";
 }
 
 // The circle's observed orders: the Euler methods and RK4 (section 3).
@@ -337,9 +341,8 @@ std::string circle_orders(const SweepData& d) {
          "\n  and " + sci(rk4->dt_min) + " s";
 }
 
-}  // namespace
-
-std::string sweep_page(const SweepData& d) {
+// The title, where the numbers come from, and the sweep commands.
+std::string sweep_intro(const SweepData& d) {
   const RunInfo& info = d.info;
   std::string out = R"md(# Error against run time, a converged reference, and observed orders
 
@@ -369,7 +372,13 @@ the contact, and gave the same trajectories as its Euler to every printed
 digit in a trial sweep). Errors are taken
 at the output samples (every 1 ms): position error = distance between the
 COMs, the largest over the run ("max") and at the end.
+)md";
+  return out;
+}
 
+// 1. The converged reference: its method, self-consistency and cost.
+std::string converged_reference_section(const SweepData& d) {
+  std::string out = R"md(
 ## 1. The converged reference
 
 `src/core/dense_reference.{hpp,cpp}`: Dormand–Prince 5(4) with error control
@@ -415,14 +424,14 @@ wall-clock time of one run (best of 3; rtol = atol = tol):
   };
   auto time_of = [](const StudyRow& r) { return ms(r.seconds); };
   auto events_of = [](const StudyRow& r) { return std::to_string(r.events); };
-  auto error_of = [](const StudyRow& r) { return g(r.max_pos); };
+  auto error_of = [](const StudyRow& r) { return format_significant(r.max_pos); };
   std::string amplification;
   for (size_t i = 0; i < d.scenes.size(); ++i) {
     const SceneSweep* s = find_sweep(d, d.scenes[i]);
     amplification += (i == 0                     ? ""
                       : i + 1 == d.scenes.size() ? " and "
                                                  : ", ") +
-                     (s ? g(s->amplification) : std::string("–")) + "×";
+                     (s ? format_significant(s->amplification) : std::string("–")) + "×";
   }
   out += R"md(
 The sweeps measure against the reference at tol = 1e-12, whose own error
@@ -440,7 +449,13 @@ dampers in pairs 2e-5 s apart), which the tighter runs resolve. The scenes
 themselves are well conditioned: a change of 1e-8 m in the initial height
 moves the trajectories by at most )md" +
          amplification + R"md( that.
+)md";
+  return out;
+}
 
+// 2. Error against wall-clock time and Δt, per scene.
+std::string work_precision_section(const SweepData& d) {
+  std::string out = R"md(
 ## 2. Work–precision diagrams
 
 Left: the largest position error against the wall-clock time of the run
@@ -466,7 +481,12 @@ model, so its error against the reference is mostly its own.
 
 )md";
   if (const SceneSweep* kv = find_sweep(d, "point_mass_kv")) out += error_table(*kv);
-  out += R"md(
+  return out;
+}
+
+// 3. The observed orders and why they fall below nominal.
+std::string convergence_order_section(const SweepData& d) {
+  std::string out = R"md(
 ## 3. Observed convergence order
 
 Least-squares slope of log(max position error) against log(Δt) over the runs
@@ -512,7 +532,13 @@ Why the orders fall below nominal:
   use compression-only damping), which no step removes: slopes near 0. Against
   its own finest run MuJoCo converges at about first order, for the same
   reason as the reference (its contacts switch on and off inside a step).
+)md";
+  return out;
+}
 
+// 4. The cheapest run of each kind per accuracy target.
+std::string accuracy_section(const SweepData& d) {
+  std::string out = R"md(
 ## 4. Which integrator and Δt for a given accuracy
 
 The cheapest run (wall clock) of each kind whose largest position error over
@@ -532,7 +558,13 @@ where nothing bounces (the disc) and is the first to go unstable; implicit
 Euler (a Newton solve per step) is the most expensive per digit, and its
 advantage is stability, not accuracy: it is the only method that stays
 stable far beyond ω·Δt ≈ 3 (stability.md).
+)md";
+  return out;
+}
 
+// 5. MuJoCo's floor against the reference model.
+std::string mujoco_floor_section(const SweepData& d) {
+  std::string out = R"md(
 ## 5. MuJoCo against the reference model
 
 )md";
@@ -547,24 +579,30 @@ Kelvin–Voigt-like soft contact, and its friction, see README.md), not a
 numerical error — refining MuJoCo's step only makes it converge to *its*
 model (second column). With the Kelvin–Voigt law and c = 200 (last row) the
 floor drops to )md" +
-         (kv_floor ? g(kv_floor->max_pos, 2) : std::string("–")) +
+         (kv_floor ? format_significant(kv_floor->max_pos, 2) : std::string("–")) +
          R"md( m (its errors at 1e-4 s are )md" +
          (kv ? mujoco_errors_at(*kv, 1e-4) : std::string("–")) + R"md( m), the
 friction difference that README.md explains. So MuJoCo stops being trustworthy as a stand-in for the reference
 model at that floor, whatever its step; as a solver of its own model it
 converges at first order.
+)md";
+  return out;
+}
 
+// 6. The cost of a reference step against mj_step, and its budget.
+std::string step_cost_section(const SweepData& d) {
+  std::string out = R"md(
 ## 6. Cost per step: reference against mj_step
 
 `)md" + d.bench.command +
-         R"md(` (Google Benchmark, one run;
+                    R"md(` (Google Benchmark, one run;
 each benchmark replays its scene from the initial state): the per-step cost
 of the core's step() against mj_step on the generated
 `models/SCENE.calibrated.xml`, with the matching MuJoCo integrator.
 
 ```
 )md" + bench_block(d.bench) +
-         R"md(
+                    R"md(
 ```
 
 The requirement is a reference step at least 100× cheaper than mj_step on
@@ -585,9 +623,9 @@ chain of dependent operations (each step needs the previous state), so it
 costs the latency of that chain, and the last line of the table measures the
 links that libm puts on it, each call feeding the next. For 100× a
 semi-implicit step must fit in 1/100 of mj_step: )md" +
-         per_step_budget(d.bench) + R"md(.
+                    per_step_budget(d.bench) + R"md(.
 )md" + budget_against_floors(d.bench) +
-         R"md(
+                    R"md(
 A step with no contact point at all (call, gravity, state update) already
 takes the "empty step" time; the box and the T add a sincos and, on the
 ground, a tanh per slowly slipping corner; the disc adds a tanh for its slip,
@@ -601,11 +639,31 @@ the reference keeps libm, whose accuracy nobody has to re-validate. SLEEF's
 1-ULP four-wide tanh, the accurate vector alternative, is slower on this
 chain (about twice glibc's latency per call; docs/speed.md), so it is not the
 default either.
+)md";
+  return out;
+}
 
+// The requirements, each met or not.
+std::string requirements_section(const SweepData& d) {
+  std::string out = R"md(
 ## Summary: the requirements
 
 )md";
   out += targets(d);
+  return out;
+}
+
+}  // namespace
+
+std::string sweep_page(const SweepData& d) {
+  std::string out = sweep_intro(d);
+  out += converged_reference_section(d);
+  out += work_precision_section(d);
+  out += convergence_order_section(d);
+  out += accuracy_section(d);
+  out += mujoco_floor_section(d);
+  out += step_cost_section(d);
+  out += requirements_section(d);
   return out;
 }
 

@@ -10,9 +10,9 @@ namespace contact2d::report {
 namespace {
 
 TEST(ReportNumbers, Formatting) {
-  EXPECT_EQ(g(0.000123456), "0.000123");
-  EXPECT_EQ(g(1234567.0), "1.23e+06");
-  EXPECT_EQ(g(std::nan("")), "–");
+  EXPECT_EQ(format_significant(0.000123456), "0.000123");
+  EXPECT_EQ(format_significant(1234567.0), "1.23e+06");
+  EXPECT_EQ(format_significant(std::nan("")), "–");
   EXPECT_EQ(sci(1e-5), "1e-5");
   EXPECT_EQ(sci(3e-3), "3e-3");
   EXPECT_EQ(sci(2.5e-4), "2.5e-4");
@@ -38,7 +38,7 @@ TEST(ReportNumbers, Ranges) {
   EXPECT_EQ(r->lo, 1.5);
   EXPECT_EQ(r->hi, 3);
   EXPECT_FALSE(range_of({std::nan("")}));
-  auto two = [](double x) { return g(x, 2); };
+  auto two = [](double x) { return format_significant(x, 2); };
   EXPECT_EQ(range_text({0.43, 1.2}, two), "0.43–1.2");
   EXPECT_EQ(range_text({7.51, 7.54}, two), "7.5");  // equal as printed: one value
 }
