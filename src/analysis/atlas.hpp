@@ -29,6 +29,12 @@
 //   times.csv    index, CPU seconds of each engine, of the converged solution
 //                and of the point, and the point's wall-clock seconds;
 //   shard.txt    the spec, its digest, the number of points and the shard.
+//
+// The points and shards are analysis/atlas_shard.cpp (with the files of a
+// shard's directory, analysis/atlas_shard.hpp), running them
+// analysis/atlas_run.cpp, the merge, the summary's numbers and the heat maps
+// analysis/atlas_merge.cpp; the summary's Markdown is the report's
+// (report/pages.hpp, atlas_summary_markdown).
 #pragma once
 
 #include <cstdint>
@@ -86,6 +92,8 @@ struct AtlasResult {
   double cpu_seconds = 0.0;
   double wall_seconds = 0.0;
 };
+
+// ------------------------------------------------------------------- run
 
 // Runs one point. Never throws for a point that fails: the result says so.
 AtlasResult run_atlas_point(const AtlasPoint& point, double converged_tol);
@@ -204,10 +212,5 @@ AtlasColourRange atlas_colour_range(const AtlasData& data, const std::string& bo
 // axis with more than 12 distinct values is cut into 8 log-spaced bins.
 void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std::string& out_dir,
                          const std::string& prefix = "heatmap.");
-
-// The Markdown summary: counts, the fraction of points meeting the goals per
-// group, the converged solution's own error against what it measures, the
-// worst points and the heat maps (as images at image_dir + file name).
-std::string atlas_summary_markdown(const AtlasSummary& summary, const std::string& image_dir = "");
 
 }  // namespace contact2d::analysis

@@ -26,7 +26,7 @@
 #include "analysis/engine.hpp"
 #include "analysis/friction_table.hpp"
 #include "cli/common.hpp"
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "io/scene_file.hpp"
 #include "io/scene_writer.hpp"
 #include "report/pages.hpp"

@@ -16,7 +16,8 @@
 #include <utility>
 
 #include "analysis/comparison.hpp"
-#include "analysis/output.hpp"
+#include "analysis/plots.hpp"
+#include "analysis/tables.hpp"
 #include "analysis/stability.hpp"
 #include "analysis/sweep.hpp"
 #include "analysis/trajectory_error.hpp"
@@ -28,7 +29,7 @@
 #include "game/pitch.hpp"
 #include "game/replay.hpp"
 #include "game/session.hpp"
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "io/plot.hpp"
 #include "io/scene_file.hpp"
 #include "mujoco/mjcf.hpp"

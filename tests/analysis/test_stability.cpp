@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "analysis/output.hpp"
+#include "analysis/tables.hpp"
 #include "analysis/stability.hpp"
 #include "io/scene_file.hpp"
 

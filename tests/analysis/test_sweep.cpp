@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "analysis/output.hpp"
+#include "analysis/tables.hpp"
 #include "analysis/sweep.hpp"
 #include "io/scene_file.hpp"
 
