@@ -243,7 +243,7 @@ void write_atlas_data(const AtlasData& data, const std::string& out_dir) {
     csv.commit();
   }
   write_atlas_file((fs::path(out_dir) / "shard.txt").string(),
-             atlas_manifest(data.spec, data.digest, data.points, Shard{}, data.points));
+                   atlas_manifest(data.spec, data.digest, data.points, Shard{}, data.points));
 }
 
 // ---------------------------------------------------------------- summary

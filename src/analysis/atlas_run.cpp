@@ -73,7 +73,8 @@ AtlasResult run_atlas_point(const AtlasPoint& point, double converged_tol) {
     try {
       slot = run_one(*spec, point.scene);
       if (slot->trajectory.divergence) {
-        divergences.push_back(spec->kind + " diverged: " + atlas_one_line(slot->divergence_message));
+        divergences.push_back(spec->kind +
+                              " diverged: " + atlas_one_line(slot->divergence_message));
       }
     } catch (const std::exception& e) {
       errors.push_back(spec->kind + ": " + atlas_one_line(e.what()));
@@ -86,7 +87,8 @@ AtlasResult run_atlas_point(const AtlasPoint& point, double converged_tol) {
   std::optional<DenseTrajectory> coarser;
   if (converged.ok()) coarser = converged_reference(point.scene, 10.0 * converged_tol);
   r.converged_seconds = thread_cpu_seconds() - cpu_converged;
-  if (!converged.ok()) errors.push_back("converged solution: " + atlas_one_line(converged.failure()));
+  if (!converged.ok())
+    errors.push_back("converged solution: " + atlas_one_line(converged.failure()));
   const bool ref_ok = ref && !ref->trajectory.divergence;
   const bool mj_ok = mujoco && !mujoco->trajectory.divergence;
   if (converged.ok()) {

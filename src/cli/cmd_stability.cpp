@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "analysis/plots.hpp"
-#include "analysis/tables.hpp"
 #include "analysis/stability.hpp"
+#include "analysis/tables.hpp"
 #include "cli/common.hpp"
 #include "io/atomic_file.hpp"
 #include "io/scene_file.hpp"

@@ -10,8 +10,8 @@
 #include <mutex>
 
 #include "analysis/plots.hpp"
-#include "analysis/tables.hpp"
 #include "analysis/sweep.hpp"
+#include "analysis/tables.hpp"
 #include "cli/common.hpp"
 #include "io/atomic_file.hpp"
 #include "io/scene_file.hpp"

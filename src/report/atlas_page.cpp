@@ -23,8 +23,8 @@ std::string atlas_summary_markdown(const analysis::AtlasSummary& s, const std::s
   md << "## How often MuJoCo meets the goals\n\n"
      << "A point meets the goal when MuJoCo's largest position error against the converged "
         "solution is at most "
-     << format_number(analysis::kAtlasGoalFrictionless) << " m without friction (μ = μ_roll = 0) or "
-     << format_number(analysis::kAtlasGoalFriction)
+     << format_number(analysis::kAtlasGoalFrictionless)
+     << " m without friction (μ = μ_roll = 0) or " << format_number(analysis::kAtlasGoalFriction)
      << " m with friction; the \"ref ↔ MuJoCo\" columns apply the same goals to the distance "
         "between the engines. A point that diverged or failed does not meet them.\n\n"
      << "| body | mapping | damping | points | diverged, failed | frictionless: MuJoCo ↔ "

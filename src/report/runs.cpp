@@ -17,9 +17,9 @@
 
 #include "analysis/comparison.hpp"
 #include "analysis/plots.hpp"
-#include "analysis/tables.hpp"
 #include "analysis/stability.hpp"
 #include "analysis/sweep.hpp"
+#include "analysis/tables.hpp"
 #include "analysis/trajectory_error.hpp"
 #include "cli/common.hpp"
 #include "core/divergence.hpp"
