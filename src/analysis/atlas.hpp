@@ -194,8 +194,6 @@ struct AtlasSummary {
 
 AtlasSummary summarize_atlas(const AtlasData& data);
 
-// Heat maps of the maximum position distance over k × ζ, MuJoCo ↔ converged
-// and ref ↔ MuJoCo side by side, one PNG per body × mapping × damping law, named
 // The colour scale of a body's heat maps, log10 of the distance (m), whole
 // decades around every ok point's distances of that body (all mappings,
 // laws, with and without friction), so a colour means one error on each.
@@ -204,12 +202,13 @@ struct AtlasColourRange {
 };
 AtlasColourRange atlas_colour_range(const AtlasData& data, const std::string& body);
 
-// PREFIX<body>.<mapping>.<damping>.png in out_dir (gnuplot); sets each
-// group's heatmap: MuJoCo ↔ converged and ref ↔ MuJoCo side by side, the
-// frictionless points (μ = μ_roll = 0) in one row and those with friction
-// in another (a row only where the group has such points), on the body's
-// atlas_colour_range. Cells take the largest distance of their points; an
-// axis with more than 12 distinct values is cut into 8 log-spaced bins.
+// Heat maps of the maximum position distance over k × ζ, one PNG per body ×
+// mapping × damping law, named PREFIX<body>.<mapping>.<damping>.png in
+// out_dir (gnuplot); sets each group's heatmap: MuJoCo ↔ converged and
+// ref ↔ MuJoCo side by side, the frictionless points (μ = μ_roll = 0) in one
+// row and those with friction in another (a row only where the group has
+// such points), on the body's atlas_colour_range. Cells take the largest distance of their points;
+// an axis with more than 12 distinct values is cut into 8 log-spaced bins.
 void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std::string& out_dir,
                          const std::string& prefix = "heatmap.");
 

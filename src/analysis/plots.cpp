@@ -254,7 +254,7 @@ std::vector<StabilitySeries> write_stability_data(std::FILE* f, const StabilityR
 // at its right end with the integrators it is the limit of.
 struct TheoryLines {
   std::vector<size_t> of;          // the series whose limit each line draws
-  std::vector<std::string> label;  // "rk4 = MuJoCo implicit": the integrators it is the limit of
+  std::vector<std::string> label;  // its integrators, "semi_implicit_euler = MuJoCo implicit"
 };
 
 TheoryLines theory_lines(const std::vector<StabilitySeries>& series) {
