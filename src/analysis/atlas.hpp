@@ -29,6 +29,12 @@
 //   times.csv    index, CPU seconds of each engine, of the converged solution
 //                and of the point, and the point's wall-clock seconds;
 //   shard.txt    the spec, its digest, the number of points and the shard.
+//
+// The points and shards are analysis/atlas_shard.cpp (with the files of a
+// shard's directory, analysis/atlas_shard.hpp), running them
+// analysis/atlas_run.cpp, the merge, the summary's numbers and the heat maps
+// analysis/atlas_merge.cpp; the summary's Markdown is the report's
+// (report/pages.hpp, atlas_summary_markdown).
 #pragma once
 
 #include <cstdint>
@@ -86,6 +92,8 @@ struct AtlasResult {
   double cpu_seconds = 0.0;
   double wall_seconds = 0.0;
 };
+
+// ------------------------------------------------------------------- run
 
 // Runs one point. Never throws for a point that fails: the result says so.
 AtlasResult run_atlas_point(const AtlasPoint& point, double converged_tol);
@@ -186,8 +194,6 @@ struct AtlasSummary {
 
 AtlasSummary summarize_atlas(const AtlasData& data);
 
-// Heat maps of the maximum position distance over k × ζ, MuJoCo ↔ converged
-// and ref ↔ MuJoCo side by side, one PNG per body × mapping × damping law, named
 // The colour scale of a body's heat maps, log10 of the distance (m), whole
 // decades around every ok point's distances of that body (all mappings,
 // laws, with and without friction), so a colour means one error on each.
@@ -196,18 +202,14 @@ struct AtlasColourRange {
 };
 AtlasColourRange atlas_colour_range(const AtlasData& data, const std::string& body);
 
-// PREFIX<body>.<mapping>.<damping>.png in out_dir (gnuplot); sets each
-// group's heatmap: MuJoCo ↔ converged and ref ↔ MuJoCo side by side, the
-// frictionless points (μ = μ_roll = 0) in one row and those with friction
-// in another (a row only where the group has such points), on the body's
-// atlas_colour_range. Cells take the largest distance of their points; an
-// axis with more than 12 distinct values is cut into 8 log-spaced bins.
+// Heat maps of the maximum position distance over k × ζ, one PNG per body ×
+// mapping × damping law, named PREFIX<body>.<mapping>.<damping>.png in
+// out_dir (gnuplot); sets each group's heatmap: MuJoCo ↔ converged and
+// ref ↔ MuJoCo side by side, the frictionless points (μ = μ_roll = 0) in one
+// row and those with friction in another (a row only where the group has
+// such points), on the body's atlas_colour_range. Cells take the largest distance of their points;
+// an axis with more than 12 distinct values is cut into 8 log-spaced bins.
 void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std::string& out_dir,
                          const std::string& prefix = "heatmap.");
-
-// The Markdown summary: counts, the fraction of points meeting the goals per
-// group, the converged solution's own error against what it measures, the
-// worst points and the heat maps (as images at image_dir + file name).
-std::string atlas_summary_markdown(const AtlasSummary& summary, const std::string& image_dir = "");
 
 }  // namespace contact2d::analysis

@@ -92,8 +92,11 @@ Scene scene_with_stiffness(const Scene& scene, double k, std::optional<double> z
   return s;
 }
 
-StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
-                              const EngineRunner& runner) {
+namespace {
+
+// Refuses a configuration the search cannot run (std::invalid_argument,
+// naming the option).
+void check_stability_config(const StabilityConfig& config) {
   if (config.ks.empty()) throw std::invalid_argument("--ks: the list is empty");
   if (config.integrators.empty()) throw std::invalid_argument("--integrators: the list is empty");
   if (config.engines.empty()) throw std::invalid_argument("--engines: the list is empty");
@@ -110,16 +113,13 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
   }
   if (!(config.dt_max > 0.0)) throw std::invalid_argument("--dt-max: must be > 0");
   if (!(config.precision > 0.0)) throw std::invalid_argument("precision must be > 0");
+}
 
-  StabilityResult result;
-  result.scene_name = std::string(shape_name(scene.shape));
-  result.duration = scene.sim.duration;
-  result.dt_max = std::min(config.dt_max, scene.sim.duration);
-  result.precision = config.precision;
-  result.zeta = config.zeta;
-  result.threads = config.threads == 0 ? default_threads() : config.threads;
-
-  std::vector<StabilityRow>& rows = result.rows;
+// One row per engine, integrator it offers and k, with its contact's
+// constants, the linear theory's limit and the smallest Δt the search tries.
+std::vector<StabilityRow> stability_rows(const Scene& scene, const StabilityConfig& config,
+                                         double dt_max) {
+  std::vector<StabilityRow> rows;
   for (const std::string& engine : config.engines) {
     for (Integrator integrator : config.integrators) {
       if (!engines::engine_offers(engine, integrator)) continue;
@@ -143,116 +143,107 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
         row.theory =
             stability_limit(mujoco_implicit ? Integrator::SemiImplicitEuler : integrator, cs.zeta);
         const long long max_steps = engine == "ref" ? config.max_steps : config.max_steps_other;
-        row.dt_min = std::min(result.dt_max, scene.sim.duration / static_cast<double>(max_steps));
+        row.dt_min = std::min(dt_max, scene.sim.duration / static_cast<double>(max_steps));
         rows.push_back(row);
       }
     }
   }
+  return rows;
+}
 
-  // Reference penetration per k, from the converged reference.
-  std::vector<double> reference_penetration(config.ks.size(), std::nan(""));
-  const size_t n_ref = config.ks.size();
-  std::mutex progress_mutex;
-  size_t done = 0;
-  const size_t total = n_ref + rows.size();
-  auto report = [&](const std::string& what) {
-    if (!config.progress) return;
-    std::lock_guard<std::mutex> lock(progress_mutex);
-    config.progress(++done, total, what);
+// The converged reference's deepest penetration at stiffness k (NaN when it
+// fails), sampled finely enough for the deepest point of an impact that
+// lasts about π/ω.
+double converged_penetration(const Scene& scene, double k, std::optional<double> zeta) {
+  const Scene s = scene_with_stiffness(scene, k, zeta);
+  const DenseTrajectory ref = converged_reference(s, 1e-9);
+  if (!ref.ok()) return std::nan("");
+  const Model model = make_model(s);
+  const double omega = contact_stiffness(model).omega;
+  return max_penetration(model, ref, std::min(1e-4, omega > 0.0 ? 0.05 / omega : 1e-4));
+}
+
+// The probe series of one row: from 0.9 of the theory's Δt (clamped to
+// [dt_min, dt_max]) up or down by factors of 4 until the verdict changes,
+// then bisection on log Δt to `config.precision`; the deepest penetration at
+// the largest stable Δt, and MuJoCo's at ω·Δt = 0.2 where refsafe softened
+// it. A probe that throws fails the row.
+void search_stable_dt(StabilityRow& row, const Scene& scene, const StabilityConfig& config,
+                      double dt_max, const EngineRunner& runner) {
+  Scene s = scene_with_stiffness(scene, row.k, config.zeta);
+  s.sim.integrator = row.integrator;
+  double penetration_at_stable = std::nan("");
+  bool refsafe_at_stable = false;
+  auto try_dt = [&](double dt) {
+    s.sim.dt = dt;
+    ++row.probes;
+    const Probe p = probe(s, row.engine, runner);
+    if (p.stable) {
+      if (!(dt <= row.dt_stable)) {
+        penetration_at_stable = p.penetration;
+        refsafe_at_stable = p.refsafe;
+      }
+    } else {
+      if (dt < row.dt_unstable) row.failure = p.failure;
+    }
+    return p.stable;
   };
-
-  // Jobs: the converged reference of each k (for its penetration), then one
-  // probe series per row.
-  parallel_for(total, config.threads, [&](size_t index) {
-    if (index < n_ref) {
-      const Scene s = scene_with_stiffness(scene, config.ks[index], config.zeta);
-      const DenseTrajectory ref = converged_reference(s, 1e-9);
-      if (ref.ok()) {
-        // Sampled finely enough for the deepest point of an impact that
-        // lasts about π/ω.
-        const Model model = make_model(s);
-        const double omega = contact_stiffness(model).omega;
-        reference_penetration[index] =
-            max_penetration(model, ref, std::min(1e-4, omega > 0.0 ? 0.05 / omega : 1e-4));
+  try {
+    const double theory_dt = row.omega > 0.0 ? row.theory / row.omega : INFINITY;
+    double dt = std::clamp(std::isfinite(theory_dt) ? 0.9 * theory_dt : dt_max, row.dt_min, dt_max);
+    if (try_dt(dt)) {
+      row.dt_stable = dt;
+      while (!std::isfinite(row.dt_unstable) && row.dt_stable < dt_max) {
+        dt = std::min(4.0 * row.dt_stable, dt_max);
+        if (try_dt(dt))
+          row.dt_stable = dt;
+        else
+          row.dt_unstable = dt;
       }
-      report("reference k=" + format_number("%g", config.ks[index]));
-      return;
+    } else {
+      row.dt_unstable = dt;
+      while (std::isnan(row.dt_stable) && row.dt_unstable > row.dt_min) {
+        dt = std::max(0.25 * row.dt_unstable, row.dt_min);
+        if (try_dt(dt))
+          row.dt_stable = dt;
+        else
+          row.dt_unstable = dt;
+      }
     }
-    StabilityRow& row = rows[index - n_ref];
-    Scene s = scene_with_stiffness(scene, row.k, config.zeta);
-    s.sim.integrator = row.integrator;
-    double penetration_at_stable = std::nan("");
-    bool refsafe_at_stable = false;
-    auto try_dt = [&](double dt) {
-      s.sim.dt = dt;
-      ++row.probes;
-      const Probe p = probe(s, row.engine, runner);
-      if (p.stable) {
-        if (!(dt <= row.dt_stable)) {
-          penetration_at_stable = p.penetration;
-          refsafe_at_stable = p.refsafe;
-        }
-      } else {
-        if (dt < row.dt_unstable) row.failure = p.failure;
+    if (std::isnan(row.dt_stable)) {
+      row.verdict = StabilityVerdict::UnstableAtMin;
+    } else if (!std::isfinite(row.dt_unstable)) {
+      row.verdict = StabilityVerdict::StableAtMax;
+    } else {
+      while (row.dt_unstable / row.dt_stable > 1.0 + config.precision) {
+        dt = std::sqrt(row.dt_stable * row.dt_unstable);
+        if (try_dt(dt))
+          row.dt_stable = dt;
+        else
+          row.dt_unstable = dt;
       }
-      return p.stable;
-    };
-    try {
-      const double theory_dt = row.omega > 0.0 ? row.theory / row.omega : INFINITY;
-      const double dt_max = result.dt_max;
-      double dt =
-          std::clamp(std::isfinite(theory_dt) ? 0.9 * theory_dt : dt_max, row.dt_min, dt_max);
-      if (try_dt(dt)) {
-        row.dt_stable = dt;
-        while (!std::isfinite(row.dt_unstable) && row.dt_stable < dt_max) {
-          dt = std::min(4.0 * row.dt_stable, dt_max);
-          if (try_dt(dt))
-            row.dt_stable = dt;
-          else
-            row.dt_unstable = dt;
-        }
-      } else {
-        row.dt_unstable = dt;
-        while (std::isnan(row.dt_stable) && row.dt_unstable > row.dt_min) {
-          dt = std::max(0.25 * row.dt_unstable, row.dt_min);
-          if (try_dt(dt))
-            row.dt_stable = dt;
-          else
-            row.dt_unstable = dt;
-        }
-      }
-      if (std::isnan(row.dt_stable)) {
-        row.verdict = StabilityVerdict::UnstableAtMin;
-      } else if (!std::isfinite(row.dt_unstable)) {
-        row.verdict = StabilityVerdict::StableAtMax;
-      } else {
-        while (row.dt_unstable / row.dt_stable > 1.0 + config.precision) {
-          dt = std::sqrt(row.dt_stable * row.dt_unstable);
-          if (try_dt(dt))
-            row.dt_stable = dt;
-          else
-            row.dt_unstable = dt;
-        }
-        row.verdict = StabilityVerdict::Bracketed;
-      }
-      row.penetration = penetration_at_stable;
-      row.refsafe_at_stable = refsafe_at_stable;
-
-      // MuJoCo softened by refsafe: one more run at ω·Δt = 0.2, for its
-      // penetration where nothing is softened.
-      if (row.refsafe_at_stable && row.omega > 0.0) {
-        s.sim.dt = std::max(std::min(0.2 / row.omega, row.dt_stable), row.dt_min);
-        const Probe small = probe(s, row.engine, runner);
-        if (small.stable) row.penetration_small_step = small.penetration;
-      }
-    } catch (const std::exception& e) {
-      row.verdict = StabilityVerdict::Failed;
-      row.failure = e.what();
+      row.verdict = StabilityVerdict::Bracketed;
     }
-    report(row.engine + " " + std::string(integrator_name(row.integrator)) +
-           " k=" + format_number("%g", row.k));
-  });
+    row.penetration = penetration_at_stable;
+    row.refsafe_at_stable = refsafe_at_stable;
 
+    // MuJoCo softened by refsafe: one more run at ω·Δt = 0.2, for its
+    // penetration where nothing is softened.
+    if (row.refsafe_at_stable && row.omega > 0.0) {
+      s.sim.dt = std::max(std::min(0.2 / row.omega, row.dt_stable), row.dt_min);
+      const Probe small = probe(s, row.engine, runner);
+      if (small.stable) row.penetration_small_step = small.penetration;
+    }
+  } catch (const std::exception& e) {
+    row.verdict = StabilityVerdict::Failed;
+    row.failure = e.what();
+  }
+}
+
+// Each row's reference penetration (of its k) and its notes: refsafe's
+// softening, and a limit well beyond the linear bound.
+void annotate_stability_rows(std::vector<StabilityRow>& rows, const StabilityConfig& config,
+                             const std::vector<double>& reference_penetration) {
   for (StabilityRow& row : rows) {
     const size_t i = static_cast<size_t>(std::find(config.ks.begin(), config.ks.end(), row.k) -
                                          config.ks.begin());
@@ -273,6 +264,52 @@ StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
       row.note += "stable beyond the linear bound";
     }
   }
+}
+
+}  // namespace
+
+StabilityResult run_stability(const Scene& scene, const StabilityConfig& config,
+                              const EngineRunner& runner) {
+  check_stability_config(config);
+
+  StabilityResult result;
+  result.scene_name = std::string(shape_name(scene.shape));
+  result.duration = scene.sim.duration;
+  result.dt_max = std::min(config.dt_max, scene.sim.duration);
+  result.precision = config.precision;
+  result.zeta = config.zeta;
+  result.threads = config.threads == 0 ? default_threads() : config.threads;
+
+  result.rows = stability_rows(scene, config, result.dt_max);
+  std::vector<StabilityRow>& rows = result.rows;
+
+  // Reference penetration per k, from the converged reference.
+  std::vector<double> reference_penetration(config.ks.size(), std::nan(""));
+  const size_t n_ref = config.ks.size();
+  std::mutex progress_mutex;
+  size_t done = 0;
+  const size_t total = n_ref + rows.size();
+  auto report = [&](const std::string& what) {
+    if (!config.progress) return;
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    config.progress(++done, total, what);
+  };
+
+  // Jobs: the converged reference of each k (for its penetration), then one
+  // probe series per row.
+  parallel_for(total, config.threads, [&](size_t index) {
+    if (index < n_ref) {
+      reference_penetration[index] = converged_penetration(scene, config.ks[index], config.zeta);
+      report("reference k=" + format_number("%g", config.ks[index]));
+      return;
+    }
+    StabilityRow& row = rows[index - n_ref];
+    search_stable_dt(row, scene, config, result.dt_max, runner);
+    report(row.engine + " " + std::string(integrator_name(row.integrator)) +
+           " k=" + format_number("%g", row.k));
+  });
+
+  annotate_stability_rows(rows, config, reference_penetration);
   return result;
 }
 

@@ -149,7 +149,11 @@ std::vector<OrderFit> fit_orders(const Scene& scene, const std::vector<SweepRow>
   return fits;
 }
 
-SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const EngineRunner& runner) {
+namespace {
+
+// Refuses a configuration the sweep cannot run (std::invalid_argument,
+// naming the option).
+void check_sweep_config(const Scene& scene, const SweepConfig& config) {
   if (config.engines.empty()) throw std::invalid_argument("--engines: the list is empty");
   if (config.integrators.empty()) throw std::invalid_argument("--integrators: the list is empty");
   if (config.dts.empty()) throw std::invalid_argument("--dts: the list is empty");
@@ -168,15 +172,12 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
   if (!(config.reference_tol >= 1e-15 && config.reference_tol <= 1e-3)) {
     throw std::invalid_argument("--tol: must be in [1e-15, 1e-3]");
   }
+}
 
-  SweepResult result;
-  result.scene_name = std::string(shape_name(scene.shape));
-  result.duration = scene.sim.duration;
-  result.threads = config.threads == 0 ? default_threads() : config.threads;
-  result.repeats = std::max(1, config.repeats);
-  result.single_run_seconds = config.single_run_seconds;
-
-  std::vector<SweepRow>& rows = result.rows;
+// One row per engine, integrator it offers and Δt (an engine other than
+// ref takes the other_ lists where they are given).
+std::vector<SweepRow> sweep_rows(const SweepConfig& config) {
+  std::vector<SweepRow> rows;
   for (const std::string& engine : config.engines) {
     const std::vector<Integrator>& integrators = (engine != "ref" && config.other_integrators)
                                                      ? *config.other_integrators
@@ -194,16 +195,18 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
       }
     }
   }
-  std::vector<Trajectory> trajectories(rows.size());
+  return rows;
+}
 
-  // Longest first so that the two threads finish together: cost ∝ steps ×
-  // force evaluations per step (an engine other than ref costs ~50× more).
+// The jobs, longest first so that the two threads finish together: cost ∝
+// steps × force evaluations per step (an engine other than ref costs ~50×
+// more).
+std::vector<Job> sweep_jobs(const Scene& scene, const SweepConfig& config,
+                            const std::vector<SweepRow>& rows) {
   std::vector<Job> jobs;
   jobs.push_back({Job::Reference, 0, INFINITY});
   jobs.push_back({Job::LooseReference, 0, INFINITY});
-  result.dense_curve.resize(config.dense_tols.size());
   for (size_t i = 0; i < config.dense_tols.size(); ++i) jobs.push_back({Job::Dense, i, 1e9});
-  std::vector<DenseTrajectory> dense_runs(config.dense_tols.size());
   for (size_t i = 0; i < rows.size(); ++i) {
     const double evals = rows[i].integrator == Integrator::RK4             ? 4.0
                          : rows[i].integrator == Integrator::ImplicitEuler ? 10.0
@@ -213,67 +216,52 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
   }
   std::stable_sort(jobs.begin(), jobs.end(),
                    [](const Job& a, const Job& b) { return a.cost > b.cost; });
+  return jobs;
+}
 
-  TimedReference loose;
-  std::mutex progress_mutex;
-  size_t done = 0;
-  parallel_for(jobs.size(), config.threads, [&](size_t j) {
-    const Job& job = jobs[j];
-    std::string what;
-    if (job.kind == Job::Reference) {
-      result.reference = timed_reference(scene, config.reference_tol);
-      what = "converged reference";
-    } else if (job.kind == Job::LooseReference) {
-      loose = timed_reference(scene, 10.0 * config.reference_tol, 1);
-      what = "reference check";
-    } else if (job.kind == Job::Dense) {
-      TimedReference run = timed_reference(scene, config.dense_tols[job.row]);
-      ToleranceRow& row = result.dense_curve[job.row];
-      row.tol = run.tol;
-      row.seconds = run.seconds;
-      row.stats = run.trajectory.stats();
-      row.failure = run.trajectory.failure();
-      dense_runs[job.row] = std::move(run.trajectory);
-      what = "adaptive tol=" + format_number("%g", config.dense_tols[job.row]);
-    } else {
-      SweepRow& row = rows[job.row];
-      Scene s = scene;
-      s.sim.integrator = row.integrator;
-      s.sim.dt = row.dt;
-      what = row.engine + " " + std::string(integrator_name(row.integrator)) +
-             " dt=" + format_number("%g", row.dt);
-      try {
-        double best = INFINITY;
-        for (int r = 0; r < result.repeats; ++r) {
-          EngineRun run = runner(row.engine, s);
-          best = std::min(best, run.seconds);
-          row.repeats = r + 1;
-          if (r == 0) {
-            trajectories[job.row] = std::move(run.trajectory);
-            row.warnings = std::move(run.warnings);
-            row.divergence = trajectories[job.row].divergence;
-            if (row.divergence) {
-              row.status = RunStatus::Diverged;
-              // A runner of the tests' own may leave the message empty.
-              row.message = run.divergence_message.empty() ? describe(*row.divergence, s)
-                                                           : run.divergence_message;
-              break;
-            }
-          }
-          if (run.seconds > config.single_run_seconds) break;
+// Runs one row (best of `repeats` wall-clock times; the first run's
+// trajectory is kept in `trajectory`). A run that diverges or throws marks
+// the row, never the sweep.
+void run_sweep_row(SweepRow& row, Trajectory& trajectory, const Scene& scene,
+                   const SweepConfig& config, int repeats, const EngineRunner& runner) {
+  Scene s = scene;
+  s.sim.integrator = row.integrator;
+  s.sim.dt = row.dt;
+  try {
+    double best = INFINITY;
+    for (int r = 0; r < repeats; ++r) {
+      EngineRun run = runner(row.engine, s);
+      best = std::min(best, run.seconds);
+      row.repeats = r + 1;
+      if (r == 0) {
+        trajectory = std::move(run.trajectory);
+        row.warnings = std::move(run.warnings);
+        row.divergence = trajectory.divergence;
+        if (row.divergence) {
+          row.status = RunStatus::Diverged;
+          // A runner of the tests' own may leave the message empty.
+          row.message = run.divergence_message.empty() ? describe(*row.divergence, s)
+                                                       : run.divergence_message;
+          break;
         }
-        row.seconds = best;
-      } catch (const std::exception& e) {
-        row.status = RunStatus::Failed;
-        row.message = e.what();
       }
+      if (run.seconds > config.single_run_seconds) break;
     }
-    if (config.progress) {
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      config.progress(++done, jobs.size(), what);
-    }
-  });
+    row.seconds = best;
+  } catch (const std::exception& e) {
+    row.status = RunStatus::Failed;
+    row.message = e.what();
+  }
+}
 
+// The errors of the finished runs: the reference's own (against the run at
+// 10× its tolerance), the adaptive runs', every row's against the reference
+// and against its engine/integrator's finest run; the length scale and the
+// observed orders.
+void measure_sweep(SweepResult& result, const Scene& scene, const TimedReference& loose,
+                   const std::vector<DenseTrajectory>& dense_runs,
+                   const std::vector<Trajectory>& trajectories) {
+  std::vector<SweepRow>& rows = result.rows;
   const DenseTrajectory& reference = result.reference.trajectory;
   if (!reference.ok()) {
     throw std::runtime_error("the converged reference failed: " + reference.failure());
@@ -313,6 +301,61 @@ SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const Engin
         std::max(result.length_scale, (reference.at(t).q.head<2>() - start.q.head<2>()).norm());
   }
   result.orders = fit_orders(scene, rows, result.reference_error, result.length_scale);
+}
+
+}  // namespace
+
+SweepResult run_sweep(const Scene& scene, const SweepConfig& config, const EngineRunner& runner) {
+  check_sweep_config(scene, config);
+
+  SweepResult result;
+  result.scene_name = std::string(shape_name(scene.shape));
+  result.duration = scene.sim.duration;
+  result.threads = config.threads == 0 ? default_threads() : config.threads;
+  result.repeats = std::max(1, config.repeats);
+  result.single_run_seconds = config.single_run_seconds;
+
+  result.rows = sweep_rows(config);
+  std::vector<SweepRow>& rows = result.rows;
+  std::vector<Trajectory> trajectories(rows.size());
+  result.dense_curve.resize(config.dense_tols.size());
+  std::vector<DenseTrajectory> dense_runs(config.dense_tols.size());
+  const std::vector<Job> jobs = sweep_jobs(scene, config, rows);
+
+  TimedReference loose;
+  std::mutex progress_mutex;
+  size_t done = 0;
+  parallel_for(jobs.size(), config.threads, [&](size_t j) {
+    const Job& job = jobs[j];
+    std::string what;
+    if (job.kind == Job::Reference) {
+      result.reference = timed_reference(scene, config.reference_tol);
+      what = "converged reference";
+    } else if (job.kind == Job::LooseReference) {
+      loose = timed_reference(scene, 10.0 * config.reference_tol, 1);
+      what = "reference check";
+    } else if (job.kind == Job::Dense) {
+      TimedReference run = timed_reference(scene, config.dense_tols[job.row]);
+      ToleranceRow& row = result.dense_curve[job.row];
+      row.tol = run.tol;
+      row.seconds = run.seconds;
+      row.stats = run.trajectory.stats();
+      row.failure = run.trajectory.failure();
+      dense_runs[job.row] = std::move(run.trajectory);
+      what = "adaptive tol=" + format_number("%g", config.dense_tols[job.row]);
+    } else {
+      SweepRow& row = rows[job.row];
+      what = row.engine + " " + std::string(integrator_name(row.integrator)) +
+             " dt=" + format_number("%g", row.dt);
+      run_sweep_row(row, trajectories[job.row], scene, config, result.repeats, runner);
+    }
+    if (config.progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      config.progress(++done, jobs.size(), what);
+    }
+  });
+
+  measure_sweep(result, scene, loose, dense_runs, trajectories);
   return result;
 }
 

@@ -11,7 +11,8 @@
 #include "analysis/engine.hpp"
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
+#include "report/pages.hpp"
 
 namespace contact2d::cli {
 namespace {
@@ -64,7 +65,7 @@ int merge(const AtlasOptions& o) {
   const std::string text = "# contact2d atlas\n\nMerged from " + std::to_string(o.dirs.size()) +
                            " director" + (o.dirs.size() == 1 ? "y" : "ies") +
                            " by `contact2d atlas merge`.\n\n" +
-                           analysis::atlas_summary_markdown(summary);
+                           report::atlas_summary_markdown(summary);
   std::fputs(text.c_str(), md.get());
   md.commit();
   std::cout << "atlas merge: " << data.rows.size() << " points from " << o.dirs.size()

@@ -19,7 +19,7 @@
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
 #include "core/integrator_label.hpp"
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "io/json.hpp"
 #include "io/plot.hpp"
 #include "io/table.hpp"

@@ -4,7 +4,7 @@
 
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "mujoco/mjcf.hpp"
 
 namespace contact2d::cli {

@@ -2,9 +2,10 @@
 #include <iostream>
 #include <memory>
 
-#include "analysis/output.hpp"
+#include "analysis/tables.hpp"
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
+#include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 
 namespace contact2d::cli {

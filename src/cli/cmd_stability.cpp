@@ -5,10 +5,11 @@
 #include <iostream>
 #include <memory>
 
-#include "analysis/output.hpp"
+#include "analysis/plots.hpp"
 #include "analysis/stability.hpp"
+#include "analysis/tables.hpp"
 #include "cli/common.hpp"
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d::cli {

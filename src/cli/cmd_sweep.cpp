@@ -9,10 +9,11 @@
 #include <memory>
 #include <mutex>
 
-#include "analysis/output.hpp"
+#include "analysis/plots.hpp"
 #include "analysis/sweep.hpp"
+#include "analysis/tables.hpp"
 #include "cli/common.hpp"
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d::cli {

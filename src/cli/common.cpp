@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <memory>
 
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d::cli {

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "core/input_error.hpp"
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
 
 namespace contact2d::game {
 namespace {

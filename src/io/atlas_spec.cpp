@@ -124,27 +124,13 @@ std::string damping_law_name(DampingLaw law) {
   return law == DampingLaw::Compression ? "compression" : "kelvin_voigt";
 }
 
-AtlasSpec parse_atlas_spec(const std::string& text, const std::string& origin,
-                           const std::string& base_dir) {
-  toml::table root;
-  try {
-    root = toml::parse(text, origin);
-  } catch (const toml::parse_error& e) {
-    const auto& where = e.source().begin;
-    throw InputError(origin + ":" + std::to_string(where.line) + ":" +
-                     std::to_string(where.column) + ": " + std::string(e.description()));
-  }
-  AtlasSpec spec;
-  spec.origin = origin;
-  spec.digest = format_text("%016llx", static_cast<unsigned long long>(fnv1a(text)));
-  for (const auto& [key, node] : root) {
-    const std::string name(key.str());
-    if (name != "atlas" && name != "axes" && name != "initial")
-      fail(origin, "[" + name + "]", "is not a table of an atlas spec (atlas, axes, initial)");
-    if (!node.is_table()) fail(origin, name, "must be a table ([" + name + "])");
-  }
-  const toml::table* atlas = root.get_as<toml::table>("atlas");
-  if (!atlas) fail(origin, "[atlas]", "is required (sample, bodies, mappings, ...)");
+namespace {
+
+// The [atlas] table: sample, bodies, mappings, damping laws, integrator,
+// duration, output_dt, converged_tol and, for a random sample, count and
+// seed.
+void read_atlas_table(AtlasSpec& spec, const toml::table* atlas, const std::string& origin,
+                      const std::string& base_dir) {
   TableReader reader(atlas, "atlas.", origin);
 
   std::string sample = "grid";
@@ -240,7 +226,10 @@ AtlasSpec parse_atlas_spec(const std::string& text, const std::string& origin,
     fail(origin, atlas->get("count") ? "atlas.count" : "atlas.seed",
          "is for sample = \"random\" (a grid takes every value of every list)");
   }
+}
 
+// The [axes] table: every axis a number, a list or (random) { min, max }.
+void read_atlas_axes(AtlasSpec& spec, const toml::table& root, const std::string& origin) {
   const toml::table* axes = root.get_as<toml::table>("axes");
   if (axes) {
     for (const auto& [key, node] : *axes) {
@@ -264,6 +253,33 @@ AtlasSpec parse_atlas_spec(const std::string& text, const std::string& origin,
     if (dt > spec.duration) fail(origin, "axes.dt", "= " + format_number(dt) + " exceeds duration");
   if (spec.dt.log_uniform && spec.dt.max > spec.duration)
     fail(origin, "axes.dt.max", "= " + format_number(spec.dt.max) + " exceeds duration");
+}
+
+}  // namespace
+
+AtlasSpec parse_atlas_spec(const std::string& text, const std::string& origin,
+                           const std::string& base_dir) {
+  toml::table root;
+  try {
+    root = toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    throw InputError(origin + ":" + std::to_string(where.line) + ":" +
+                     std::to_string(where.column) + ": " + std::string(e.description()));
+  }
+  AtlasSpec spec;
+  spec.origin = origin;
+  spec.digest = format_text("%016llx", static_cast<unsigned long long>(fnv1a(text)));
+  for (const auto& [key, node] : root) {
+    const std::string name(key.str());
+    if (name != "atlas" && name != "axes" && name != "initial")
+      fail(origin, "[" + name + "]", "is not a table of an atlas spec (atlas, axes, initial)");
+    if (!node.is_table()) fail(origin, name, "must be a table ([" + name + "])");
+  }
+  const toml::table* atlas = root.get_as<toml::table>("atlas");
+  if (!atlas) fail(origin, "[atlas]", "is required (sample, bodies, mappings, ...)");
+  read_atlas_table(spec, atlas, origin, base_dir);
+  read_atlas_axes(spec, root, origin);
 
   if (const toml::table* initial = root.get_as<toml::table>("initial")) {
     TableReader in(initial, "initial.", origin);

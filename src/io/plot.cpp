@@ -17,7 +17,7 @@
 
 #include "core/format.hpp"
 #include "core/input_error.hpp"
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
 
 namespace contact2d {
 namespace {

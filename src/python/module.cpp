@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "analysis/compare_run.hpp"
-#include "analysis/output.hpp"
+#include "analysis/tables.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/scene.hpp"

@@ -33,4 +33,12 @@ struct AtlasRunInfo {
 };
 std::string atlas_page(const analysis::AtlasSummary& summary, const AtlasRunInfo& info);
 
+// The atlas summary's Markdown, the body of atlas.md and of `contact2d atlas
+// merge`'s summary.md (src/report/atlas_page.cpp): counts, the fraction of
+// points meeting the goals per group, the converged solution's own error
+// against what it measures, the worst points and the heat maps (as images at
+// image_dir + file name).
+std::string atlas_summary_markdown(const analysis::AtlasSummary& summary,
+                                   const std::string& image_dir = "");
+
 }  // namespace contact2d::report

@@ -14,7 +14,7 @@
 #include <iostream>
 #include <thread>
 
-#include "io/csv.hpp"
+#include "io/atomic_file.hpp"
 #include "io/scene_file.hpp"
 #include "io/scene_writer.hpp"
 #include "report/pages.hpp"

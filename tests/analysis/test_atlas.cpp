@@ -278,7 +278,7 @@ TEST_F(AtlasRun, SameRowsWhateverTheShardingAndThreads) {
     EXPECT_FALSE(g.heatmap.empty());
     EXPECT_TRUE(fs::exists(dir_ / "merged" / g.heatmap)) << g.heatmap;
   }
-  const std::string md = atlas_summary_markdown(summary);
+  const std::string md = report::atlas_summary_markdown(summary);
   EXPECT_NE(md.find("| point_mass | calibrated | kelvin_voigt | 8 |"), std::string::npos) << md;
   // The report's page: how it ran, then the same summary.
   const report::AtlasRunInfo info{"tiny.toml", 16, 2, 1.5, 0.01, 100.0};

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "analysis/output.hpp"
 #include "analysis/stability.hpp"
+#include "analysis/tables.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d::analysis {

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "analysis/output.hpp"
 #include "analysis/sweep.hpp"
+#include "analysis/tables.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d::analysis {

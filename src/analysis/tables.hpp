@@ -1,6 +1,7 @@
-// Tables, CSV and gnuplot PNGs of the sweep, the reference study and the
-// stability map. No number is ever printed as "nan": a missing value is "-"
-// in tables and an empty field in CSV.
+// Tables and CSV of the sweep, the reference study and the stability map,
+// and the one-line summary of a simulated run. No number is ever printed as
+// "nan": a missing value is "-" in tables and an empty field in CSV. The
+// plots of the same results are analysis/plots.hpp.
 #pragma once
 
 #include <cstdio>
@@ -20,9 +21,6 @@ void print_sweep(std::ostream& out, const SweepResult& result);
 void print_orders(std::ostream& out, const SweepResult& result);
 void write_sweep_csv(std::FILE* out, const SweepResult& result);
 void write_orders_csv(std::FILE* out, const SweepResult& result);
-// Work–precision diagram (max position error against wall-clock, log–log)
-// beside error against Δt. Throws std::runtime_error when gnuplot fails.
-void plot_sweep(const std::string& png_path, const SweepResult& result);
 
 void print_reference_study(std::ostream& out, const std::string& scene_name,
                            const ReferenceStudy& study);
@@ -31,9 +29,6 @@ void write_reference_study_csv(std::FILE* out, const std::string& scene_name,
 
 void print_stability(std::ostream& out, const StabilityResult& result);
 void write_stability_csv(std::FILE* out, const StabilityResult& result);
-// Largest stable ω·Δt against k per engine/integrator, with the theoretical
-// bounds as lines. Throws std::runtime_error when gnuplot fails.
-void plot_stability(const std::string& png_path, const StabilityResult& result);
 
 // The one-line summary `contact2d simulate` prints of a run: scene,
 // engine, integrator, Δt, duration, wall clock, final state, deepest sampled
