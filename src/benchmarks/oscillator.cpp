@@ -38,4 +38,19 @@ double drop_depth(double mass, double gravity, double stiffness, double height) 
   return (mg + std::sqrt(mg * mg + 2.0 * stiffness * mg * height)) / stiffness;
 }
 
+double bouncing_height(double gravity, double stiffness, double z0, double t) {
+  const double t1 = std::sqrt(2.0 * z0 / gravity);
+  const double v1 = -gravity * t1;
+  const double omega = std::sqrt(stiffness);
+  const double a = gravity / stiffness, b = v1 / omega;
+  const double phi = std::atan2(b, a);
+  const double tc = (2.0 * M_PI + 2.0 * phi) / omega;
+  double s = std::fmod(t, 2.0 * t1 + tc);  // time since the last apex
+  if (s <= t1) return z0 - 0.5 * gravity * s * s;
+  s -= t1;
+  if (s <= tc) return -a + a * std::cos(omega * s) + b * std::sin(omega * s);
+  s -= tc;  // rising flight from the ground at +|v1|
+  return -v1 * s - 0.5 * gravity * s * s;
+}
+
 }  // namespace contact2d::benchmarks

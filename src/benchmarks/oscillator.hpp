@@ -42,4 +42,14 @@ double fall_time(double gravity, double z, double w);
 // an upper bound on the depth when a damper takes energy away.
 double drop_depth(double mass, double gravity, double stiffness, double height);
 
+// The height z (m) at the time t (s) of a point dropped from rest at the
+// apex z0 > 0 onto an undamped spring (k per unit mass, 1/s²) under gravity,
+// bouncing for ever: flight for t1 = √(2·z0/g) down to z = 0 at
+// v1 = −g·t1; in contact, about z_eq = −g/k with ω = √k,
+//   z − z_eq = A·cos ωτ + B·sin ωτ,  A = g/k,  B = v1/ω,
+// = R·cos(ωτ − φ) with φ = atan2(B, A) ∈ (−π/2, 0): back at z = 0 when
+// ωτ_c = 2π + 2φ, with −v1; then the rising flight z = −v1·s − g·s²/2.
+// No energy is lost, so the motion repeats with the period 2·t1 + τ_c.
+double bouncing_height(double gravity, double stiffness, double z0, double t);
+
 }  // namespace contact2d::benchmarks

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "analysis/comparison.hpp"
+#include "benchmarks/oscillator.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d {
@@ -13,15 +14,9 @@ namespace {
 
 // An undamped point mass bouncing on the ground (k = 1e4 N/m, m = 1 kg,
 // c = 0, μ = 0, contact point h = 0.05 m below the COM), dropped from rest at
-// y0 = 0.3 m. In closed form:
-//   flight:  y = y0 − g·t²/2 until the point touches, t1 = √(2(y0 − h)/g),
-//            v1 = −g·t1;
-//   contact: m·y'' = −m·g + k·(h − y), a harmonic oscillator about
-//            y_e = h − m·g/k with ω = √(k/m):
-//            y − y_e = A·cos ωτ + B·sin ωτ,  A = m·g/k,  B = v1/ω,
-//            = R·cos(ωτ − φ), φ = atan2(B, A) ∈ (−π/2, 0); it leaves the
-//            ground when y = h again, at ωτ_c = 2π + 2φ, with −v1;
-//   and the motion repeats with period P = 2·t1 + τ_c (energy is conserved).
+// y0 = 0.3 m: flight, a harmonic contact about y = h − m·g/k, flight again,
+// repeating without loss — benchmarks::bouncing_height (oscillator.hpp) with
+// the apex y0 − h and k/m = 1e4 1/s².
 constexpr double kY0 = 0.3, kH = 0.05, kK = 1e4, kG = 9.81;
 
 Scene bouncing_point() {
@@ -32,21 +27,8 @@ Scene bouncing_point() {
       "bouncing point");
 }
 
-double closed_form_y(double t) {
-  const double t1 = std::sqrt(2.0 * (kY0 - kH) / kG);
-  const double v1 = -kG * t1;
-  const double omega = std::sqrt(kK);
-  const double A = kG / kK, B = v1 / omega;
-  const double phi = std::atan2(B, A);
-  const double tc = (2.0 * M_PI + 2.0 * phi) / omega;
-  const double period = 2.0 * t1 + tc;
-  double s = std::fmod(t, period);  // time since the last apex
-  if (s <= t1) return kY0 - 0.5 * kG * s * s;
-  s -= t1;
-  if (s <= tc) return (kH - kG / kK) + A * std::cos(omega * s) + B * std::sin(omega * s);
-  s -= tc;  // rising flight from the ground at +|v1|
-  return kH - v1 * s - 0.5 * kG * s * s;
-}
+// The body's centre: the contact point's height above the ground plus h.
+double closed_form_y(double t) { return kH + benchmarks::bouncing_height(kG, kK, kY0 - kH, t); }
 
 // The closed form as a sampled trajectory at the run's sample times.
 Trajectory closed_form_like(const Trajectory& run) {

@@ -510,6 +510,35 @@ TEST(Oscillator, DropDepthIsTheUndampedTurningPoint) {
   EXPECT_NEAR(drop_depth(m, kG, k, 0.0), 2.0 * rest_depth(m, kG, k, 1), 1e-18);
 }
 
+TEST(Oscillator, BouncingHeightIsFlightAndSpringInTurn) {
+  // Apex 0.25 m, k = 1e4 1/s²: the phases checked against the flight and
+  // the undamped oscillator above (each tested against an integrated ODE)
+  // and against the energy, which the undamped bounce conserves.
+  const double z0 = 0.25, k = 1e4;
+  const double t1 = fall_time(kG, z0, 0.0);
+  const double v1 = -kG * t1;
+  EXPECT_NEAR(bouncing_height(kG, k, z0, 0.1), damped_oscillator(kG, 0, 0, z0, 0, 0.1).z, 1e-15);
+  EXPECT_NEAR(bouncing_height(kG, k, z0, t1), 0.0, 1e-14);
+  // In contact: the oscillator from (0, v1), 2 ms after touching.
+  EXPECT_NEAR(bouncing_height(kG, k, z0, t1 + 2e-3), damped_oscillator(kG, k, 0, 0, v1, 2e-3).z,
+              1e-14);
+  // The contact ends where the oscillator returns to z = 0 with the speed
+  // −v1 (energy): find that time by bisection on the oscillator itself.
+  double lo = 1e-3, hi = 2.0 * M_PI / std::sqrt(k);
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (damped_oscillator(kG, k, 0, 0, v1, mid).z < 0.0 ? lo : hi) = mid;
+  }
+  EXPECT_NEAR(damped_oscillator(kG, k, 0, 0, v1, lo).w, -v1, 1e-9);
+  const double period = 2.0 * t1 + lo;
+  // Back at the apex after one period, and the same motion again.
+  EXPECT_NEAR(bouncing_height(kG, k, z0, period), z0, 1e-9);
+  EXPECT_NEAR(bouncing_height(kG, k, z0, period + 0.1), bouncing_height(kG, k, z0, 0.1), 1e-9);
+  // Rising: the parabola from (0, −v1), 50 ms after leaving.
+  EXPECT_NEAR(bouncing_height(kG, k, z0, t1 + lo + 0.05),
+              damped_oscillator(kG, 0, 0, 0, -v1, 0.05).z, 1e-9);
+}
+
 // ------------------------------------------------------- soft constraint
 
 TEST(SoftConstraint, RowForceSolvesItsEquation) {
