@@ -105,9 +105,10 @@ std::string friction_split_xml(const Scene& scene, double w, double rho) {
   const double k = scene.contact.k, c = scene.contact.c;
   const RigidBody body = make_body(scene);
   const double r = body_extent(body);
-  const double a_t = body.rotates ? 1.0 / body.mass + r * r / body.inertia : 1.0 / body.mass;
+  const double a_t =
+      shape_features(body.shape).turns ? 1.0 / body.mass + r * r / body.inertia : 1.0 / body.mass;
   double impratio = 1.0 / (w * rho * scene.sim.dt * a_t);
-  if (body.roll_radius > 0.0 && scene.contact.mu_roll > 0.0) {
+  if (shape_features(body.shape).rolls && scene.contact.mu_roll > 0.0) {
     const double ratio = scene.contact.mu / scene.contact.mu_roll;
     impratio = std::min(impratio, body.inertia * ratio * ratio / (w * rho * scene.sim.dt));
   }

@@ -78,7 +78,7 @@ std::string order_note(const Scene& scene, const std::string& engine, Integrator
             format_number("%.3g", p.mu * scene.sim.gravity * p.alpha) +
             " 1/s) and stick–slip transitions need Δt ≪ 1/(μ·g·α) before the asymptotic rate shows";
   }
-  if (scene.shape == Shape::Circle && p.mu_roll > 0.0) {
+  if (shape_features(scene.shape).rolls && p.mu_roll > 0.0) {
     note +=
         "; the regularised sign of rolling resistance, tanh(α·R·ω), turns on sharply as the "
         "disc stops";

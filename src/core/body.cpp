@@ -21,18 +21,30 @@ MassProperties compound_mass_properties(const std::vector<BoxPart>& parts) {
   return props;
 }
 
-RigidBody make_point_mass(double mass, double half_height) {
+namespace {
+
+// A body of `shape` with its feature flags set; the caller adds the data.
+RigidBody shaped_body(Shape shape) {
   RigidBody body;
+  body.shape = shape;
+  body.rotates = shape_features(shape).turns;
+  body.points_rotate = !shape_features(shape).rolls;
+  return body;
+}
+
+}  // namespace
+
+RigidBody make_point_mass(double mass, double half_height) {
+  RigidBody body = shaped_body(Shape::PointMass);
   body.mass = mass;
   body.inertia = 0.0;
-  body.rotates = false;
   body.points = {Vec2(0.0, -half_height)};
   return body;
 }
 
 RigidBody make_compound(const std::vector<BoxPart>& parts) {
   const MassProperties props = compound_mass_properties(parts);
-  RigidBody body;
+  RigidBody body = shaped_body(Shape::TShape);
   body.mass = props.mass;
   body.inertia = props.inertia;
   body.com_offset = props.com;
@@ -49,14 +61,15 @@ RigidBody make_compound(const std::vector<BoxPart>& parts) {
 }
 
 RigidBody make_box(double mass, double width, double height) {
-  return make_compound({BoxPart{width, height, 0.0, 0.0, mass}});
+  RigidBody body = make_compound({BoxPart{width, height, 0.0, 0.0, mass}});
+  body.shape = Shape::Box;
+  return body;
 }
 
 RigidBody make_circle(double mass, double radius) {
-  RigidBody body;
+  RigidBody body = shaped_body(Shape::Circle);
   body.mass = mass;
   body.inertia = 0.5 * mass * radius * radius;
-  body.points_rotate = false;
   body.roll_radius = radius;
   body.points = {Vec2(0.0, -radius)};
   return body;
@@ -70,7 +83,8 @@ double body_extent(const RigidBody& body) {
 
 double min_effective_mass(const RigidBody& body) {
   // A circle's point stays below the centre: the normal has no lever arm.
-  if (!body.rotates || !body.points_rotate || body.inertia <= 0.0) return body.mass;
+  const ShapeFeatures features = shape_features(body.shape);
+  if (!features.turns || features.rolls || body.inertia <= 0.0) return body.mass;
   const double r = body_extent(body);
   return 1.0 / (1.0 / body.mass + r * r / body.inertia);
 }

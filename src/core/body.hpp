@@ -1,7 +1,10 @@
 // Planar rigid body: mass properties and the body-fixed contact points.
 //
 // The four scenes of the course (point mass, box, compound T, rolling circle)
-// are one body type with different data:
+// are one body type with different data, tagged with its Shape; what each
+// shape has (turns, rolls, corners, parts) is `shape_features`
+// (core/shape.hpp), and `rotates`, `points_rotate` are its turns and
+// !rolls, set by the make_* functions:
 //   point mass  rotates = false, one point (0, -h)
 //   box         rotates = true,  four corners
 //   compound    rotates = true,  every vertex of every part, relative to the COM
@@ -19,6 +22,8 @@
 #include <Eigen/Core>
 #include <string>
 #include <vector>
+
+#include "core/shape.hpp"
 
 namespace contact2d {
 
@@ -44,11 +49,12 @@ struct PartOutline {
 };
 
 struct RigidBody {
+  Shape shape = Shape::Box;  // what the body has: shape_features(shape)
   double mass = 1.0;
   double inertia = 0.0;            // about the COM, kg·m² (0 when rotates = false)
   bool rotates = true;             // false: θ and ω stay 0 (point mass)
   bool points_rotate = true;       // false: points keep their world-frame offset (circle)
-  double roll_radius = 0.0;        // > 0: the point is a rolling contact of this radius
+  double roll_radius = 0.0;        // the disc's radius when shape_features(shape).rolls
   std::vector<Vec2> points;        // contact points relative to the COM, body frame
   std::vector<PartOutline> parts;  // convex outlines with edges (box, compound); else empty
   Vec2 com_offset = Vec2::Zero();  // COM in the construction frame (compound only)

@@ -19,12 +19,14 @@ ContactSet::ContactSet(const Model& model) {
 void find_contacts(const Model& model, const Vec3& q, ContactSet& out) {
   const RigidBody& body = model.body;
   const Vec2 p(q.x(), q.y());
-  // One rotation of the body's points: R(θ), or the identity for a circle.
-  // At θ = ±0 (a point mass always, which never turns) cos θ = 1 and
-  // sin θ = θ exactly, so the libm call is skipped with the same bits.
-  const bool turned = body.points_rotate && q.z() != 0.0;
+  // One rotation of the body's points: R(θ), or the identity for a disc,
+  // whose point stays below the centre. At θ = ±0 (a point mass always,
+  // which never turns) cos θ = 1 and sin θ = θ exactly, so the libm call is
+  // skipped with the same bits.
+  const bool disc = shape_features(body.shape).rolls;
+  const bool turned = !disc && q.z() != 0.0;
   const double ct = turned ? std::cos(q.z()) : 1.0;
-  const double st = turned ? std::sin(q.z()) : (body.points_rotate ? q.z() : 0.0);
+  const double st = turned ? std::sin(q.z()) : (disc ? 0.0 : q.z());
   const Vec2* const points = body.points.data();
   const size_t n_points = body.points.size();
   Contact* const first = out.storage_.data();  // room for every contact at once
@@ -42,7 +44,7 @@ void find_contacts(const Model& model, const Vec3& q, ContactSet& out) {
   // Obstacles: a disc meets them with its whole rim, other bodies with their points.
   if (!model.obstacles.empty()) {
     ObstacleContact hit;
-    if (body.roll_radius > 0.0) {
+    if (disc) {
       for (size_t j = 0; j < model.obstacles.size(); ++j) {
         if (disc_contact(model.obstacles[j], p, body.roll_radius, hit))
           *next++ = {hit.depth, hit.normal.x(), hit.normal.y(),

@@ -36,6 +36,72 @@ void add_cone(const Contact& c, const ContactParams& law, bool on_ground, double
   torque += rx * total.y() - ry * total.x() + f.roll;
 }
 
+// The derivatives of one tanh-law contact's (f_x, f_y, τ) with respect to
+// (x, y, θ, vx, vy, ω), added to the rows of `jac` (add_contacts with a
+// Jacobian). `f_n` is its normal force, `s` = tanh(α·v_t), `s_roll` the
+// rolling tanh when `rolls`, (f_x, f_y) its force.
+void add_contact_jacobian(const Contact& c, const ContactParams& law, bool on_ground,
+                          const ShapeFeatures& features, const Vec3& v, double f_n, double s,
+                          bool rolls, double s_roll, double radius, double f_x, double f_y,
+                          double (*jac)[6]) {
+  const double omega = features.turns ? v.z() : 0.0;
+  // Derivatives in (x, y, θ, vx, vy, ω), written out entry by entry
+  // (most are zero). The lever arm turns with θ when the points
+  // rotate: ∂r/∂θ = (rtx, rty) = (−r_y, r_x); the contact point
+  // c = p + r moves with ∂c/∂q = [I | ∂r/∂θ]; v_c = v + ω·(−r_y, r_x);
+  // the depth along a fixed normal is d = −n·c + const.
+  const double nx = c.nx, ny = c.ny, tx = ny, ty = -nx;
+  const double rtx = !features.rolls ? -c.ry : 0.0;
+  const double rty = !features.rolls ? c.rx : 0.0;
+  const double wf = features.turns ? 1.0 : 0.0;
+  const double dd_t = -(nx * rtx + ny * rty);
+  const double dvn_t = omega * (ny * rtx - nx * rty);
+  const double dvn_w = wf * (ny * c.rx - nx * c.ry);
+  const double dvt_t = omega * (ty * rtx - tx * rty);
+  const double dvt_w = wf * (ty * c.rx - tx * c.ry);
+  // The branch of the normal law: Fn = k_b·d − c_b·v_n + const.
+  const double v_n = (v.x() - omega * c.ry) * nx + (v.y() + omega * c.rx) * ny;
+  double k_b = 0.0, c_b = 0.0;
+  if (c.depth > 0.0) {
+    if (law.damping == DampingLaw::Compression) {
+      k_b = law.k;
+      c_b = v_n < 0.0 ? law.c : 0.0;
+    } else if (law.k * c.depth - law.c * v_n > 0.0) {
+      k_b = law.k;
+      c_b = law.c;
+    }
+  }
+  const double dfn[6] = {-k_b * nx, -k_b * ny, k_b * dd_t - c_b * dvn_t,
+                         -c_b * nx, -c_b * ny, -c_b * dvn_w};
+  const double dvt[6] = {0.0, 0.0, dvt_t, tx, ty, dvt_w};
+  // Ft = −μ·Fn·s, s = tanh(α·v_t), s′ = α·(1 − s²).
+  const double slope = f_n * law.alpha * (1.0 - s * s);
+  const double roll_fn = rolls ? law.mu_roll * s_roll : 0.0;
+  if (on_ground) {
+    // n = (0, 1), t = (1, 0): ∂f_x = ∂F_t, ∂f_y = ∂F_n, and x never
+    // enters (column 0 only ever receives zeros). The general loop's
+    // products with 0 and 1 left out: the same sums, bit for bit (a
+    // ±0 term added to these +0-started sums leaves them unchanged).
+    for (int j = 1; j < 6; ++j) {
+      const double dft = -law.mu * (s * dfn[j] + slope * dvt[j]);
+      jac[0][j] += dft;
+      jac[1][j] += dfn[j];
+      jac[2][j] += c.rx * dfn[j] - c.ry * dft - roll_fn * dfn[j];
+    }
+  } else {
+    for (int j = 0; j < 6; ++j) {
+      const double dft = -law.mu * (s * dfn[j] + slope * dvt[j]);
+      const double dfx = nx * dfn[j] + tx * dft;
+      const double dfy = ny * dfn[j] + ty * dft;
+      jac[0][j] += dfx;
+      jac[1][j] += dfy;
+      jac[2][j] += c.rx * dfy - c.ry * dfx - roll_fn * dfn[j];
+    }
+  }
+  jac[2][2] += rtx * f_y - rty * f_x;
+  if (rolls) jac[2][5] -= law.mu_roll * f_n * law.alpha * radius * (1.0 - s_roll * s_roll);
+}
+
 // The contact forces and torques of contacts [first, last) of `contacts`
 // added to `force` and `torque`, in the order of the list — the order and
 // the arithmetic of every sum are those of the one-contact-at-a-time loop
@@ -53,10 +119,9 @@ void add_cone(const Contact& c, const ContactParams& law, bool on_ground, double
 template <bool kJacobian>
 void add_contacts(const Model& model, const ContactSet& contacts, size_t first, size_t last,
                   const Vec3& v, Vec2& force, double& torque, double (*jac)[6]) {
-  const RigidBody& body = model.body;
-  const bool rotates = body.rotates;
-  const double omega = rotates ? v.z() : 0.0;
-  const double radius = body.roll_radius;
+  const ShapeFeatures features = shape_features(model.body.shape);
+  const double omega = features.turns ? v.z() : 0.0;
+  const double radius = model.body.roll_radius;
   const size_t ground = contacts.ground_count();
   const Contact* const list = contacts.begin();
   double fn[kBatch];
@@ -82,7 +147,7 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
     }
     // … and the rolling arguments (a rolling body with μ_roll > 0 only).
     const size_t n_friction = n_args;
-    if (radius > 0.0) {
+    if (features.rolls) {
       for (size_t i = from; i < to; ++i) {
         const ContactParams& law = i < ground ? model.contact : model.law(list[i]);
         if (law.mu_roll > 0.0) arg[n_args++] = law.alpha * radius * v.z();
@@ -95,7 +160,7 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
       const Contact& c = list[i];
       const ContactParams& law = i < ground ? model.contact : model.law(c);
       if (law.friction != FrictionLaw::Tanh) {
-        const bool rolls = radius > 0.0 && law.mu_roll > 0.0;
+        const bool rolls = features.rolls && law.mu_roll > 0.0;
         if (rolls) ++rolling;  // its tanh argument was computed and is not used
         add_cone(c, law, i < ground, fn[i - from], v, omega, rolls, force, torque);
         continue;
@@ -104,7 +169,7 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
       const double s = arg[i - from];
       const double ft = -law.mu * f_n * s;
       double roll = 0.0, s_roll = 0.0;
-      const bool rolls = radius > 0.0 && law.mu_roll > 0.0;
+      const bool rolls = features.rolls && law.mu_roll > 0.0;
       if (rolls) {
         s_roll = arg[rolling++];
         roll = -law.mu_roll * f_n * s_roll;
@@ -125,68 +190,16 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
         torque += c.rx * f.y() - c.ry * f.x() + roll;
       }
       if constexpr (kJacobian) {
-        // Derivatives in (x, y, θ, vx, vy, ω), written out entry by entry
-        // (most are zero). The lever arm turns with θ when the points
-        // rotate: ∂r/∂θ = (rtx, rty) = (−r_y, r_x); the contact point
-        // c = p + r moves with ∂c/∂q = [I | ∂r/∂θ]; v_c = v + ω·(−r_y, r_x);
-        // the depth along a fixed normal is d = −n·c + const.
-        const double nx = c.nx, ny = c.ny, tx = ny, ty = -nx;
-        const double rtx = body.points_rotate ? -c.ry : 0.0;
-        const double rty = body.points_rotate ? c.rx : 0.0;
-        const double wf = rotates ? 1.0 : 0.0;
-        const double dd_t = -(nx * rtx + ny * rty);
-        const double dvn_t = omega * (ny * rtx - nx * rty);
-        const double dvn_w = wf * (ny * c.rx - nx * c.ry);
-        const double dvt_t = omega * (ty * rtx - tx * rty);
-        const double dvt_w = wf * (ty * c.rx - tx * c.ry);
-        // The branch of the normal law: Fn = k_b·d − c_b·v_n + const.
-        const double v_n = (v.x() - omega * c.ry) * nx + (v.y() + omega * c.rx) * ny;
-        double k_b = 0.0, c_b = 0.0;
-        if (c.depth > 0.0) {
-          if (law.damping == DampingLaw::Compression) {
-            k_b = law.k;
-            c_b = v_n < 0.0 ? law.c : 0.0;
-          } else if (law.k * c.depth - law.c * v_n > 0.0) {
-            k_b = law.k;
-            c_b = law.c;
-          }
-        }
-        const double dfn[6] = {-k_b * nx, -k_b * ny, k_b * dd_t - c_b * dvn_t,
-                               -c_b * nx, -c_b * ny, -c_b * dvn_w};
-        const double dvt[6] = {0.0, 0.0, dvt_t, tx, ty, dvt_w};
-        // Ft = −μ·Fn·s, s = tanh(α·v_t), s′ = α·(1 − s²).
-        const double slope = f_n * law.alpha * (1.0 - s * s);
-        const double roll_fn = rolls ? law.mu_roll * s_roll : 0.0;
-        if (i < ground) {
-          // n = (0, 1), t = (1, 0): ∂f_x = ∂F_t, ∂f_y = ∂F_n, and x never
-          // enters (column 0 only ever receives zeros). The general loop's
-          // products with 0 and 1 left out: the same sums, bit for bit (a
-          // ±0 term added to these +0-started sums leaves them unchanged).
-          for (int j = 1; j < 6; ++j) {
-            const double dft = -law.mu * (s * dfn[j] + slope * dvt[j]);
-            jac[0][j] += dft;
-            jac[1][j] += dfn[j];
-            jac[2][j] += c.rx * dfn[j] - c.ry * dft - roll_fn * dfn[j];
-          }
-        } else {
-          for (int j = 0; j < 6; ++j) {
-            const double dft = -law.mu * (s * dfn[j] + slope * dvt[j]);
-            const double dfx = nx * dfn[j] + tx * dft;
-            const double dfy = ny * dfn[j] + ty * dft;
-            jac[0][j] += dfx;
-            jac[1][j] += dfy;
-            jac[2][j] += c.rx * dfy - c.ry * dfx - roll_fn * dfn[j];
-          }
-        }
-        jac[2][2] += rtx * f_y - rty * f_x;
-        if (rolls) jac[2][5] -= law.mu_roll * f_n * law.alpha * radius * (1.0 - s_roll * s_roll);
+        add_contact_jacobian(c, law, i < ground, features, v, f_n, s, rolls, s_roll, radius, f_x,
+                             f_y, jac);
       }
     }
   }
 }
 
 Vec3 to_acceleration(const RigidBody& body, const Vec2& force, double torque) {
-  const double alpha = (body.rotates && body.inertia > 0.0) ? torque / body.inertia : 0.0;
+  const bool turns = shape_features(body.shape).turns;
+  const double alpha = (turns && body.inertia > 0.0) ? torque / body.inertia : 0.0;
   return {force.x() / body.mass, force.y() / body.mass, alpha};
 }
 
@@ -235,7 +248,8 @@ Vec3 acceleration_jacobian(const Model& model, const ContactSet& contacts, const
   add_contacts<true>(model, contacts, 0, contacts.size(), v, force, torque, d);
   Vec3 a = to_acceleration(body, force, torque);
   // (F, τ) → a = (F/m, τ/I): the same scaling of the derivatives.
-  const double inv_i = (body.rotates && body.inertia > 0.0) ? 1.0 / body.inertia : 0.0;
+  const bool turns = shape_features(body.shape).turns;
+  const double inv_i = (turns && body.inertia > 0.0) ? 1.0 / body.inertia : 0.0;
   const double scale[3] = {1.0 / body.mass, 1.0 / body.mass, inv_i};
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {

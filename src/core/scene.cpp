@@ -4,23 +4,6 @@
 
 namespace contact2d {
 
-std::string_view shape_name(Shape shape) {
-  switch (shape) {
-    case Shape::PointMass: return "point_mass";
-    case Shape::Box: return "box";
-    case Shape::TShape: return "tshape";
-    case Shape::Circle: return "circle";
-  }
-  return "?";
-}
-
-std::optional<Shape> parse_shape(std::string_view name) {
-  for (Shape shape : {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle}) {
-    if (shape_name(shape) == name) return shape;
-  }
-  return std::nullopt;
-}
-
 std::vector<BoxPart> default_tshape_parts() {
   return {BoxPart{0.6, 0.1, 0.0, 0.25, 0.6}, BoxPart{0.1, 0.4, 0.0, 0.0, 0.4}};
 }
@@ -29,9 +12,11 @@ Scene default_scene(Shape shape) {
   Scene scene;
   scene.shape = shape;
   scene.initial.q = Vec3(0.0, 1.0, 0.0);
-  if (shape == Shape::TShape) scene.parts = default_tshape_parts();
-  if (shape == Shape::Circle) {
-    scene.initial.q = Vec3(0.0, scene.radius, 0.0);
+  switch (shape) {
+    case Shape::PointMass:
+    case Shape::Box: break;
+    case Shape::TShape: scene.parts = default_tshape_parts(); break;
+    case Shape::Circle: scene.initial.q = Vec3(0.0, scene.radius, 0.0); break;
   }
   return scene;
 }
@@ -135,7 +120,7 @@ std::optional<ValidationError> validate(const Scene& s) {
               "must be finite, |vy| <= 1e6 m/s"),
       require(bounded(s.initial.v.z(), 1e6), s.initial.v.z(), "initial.omega",
               "must be finite, |omega| <= 1e6 rad/s"),
-      require(s.shape != Shape::PointMass || (s.initial.q.z() == 0.0 && s.initial.v.z() == 0.0),
+      require(shape_features(s.shape).turns || (s.initial.q.z() == 0.0 && s.initial.v.z() == 0.0),
               s.initial.q.z(), "initial.theta",
               "must be 0 with omega = 0 for a point_mass (it does not rotate)"),
       require(positive(s.sim.duration) && s.sim.duration <= 1e5, s.sim.duration, "sim.duration",
@@ -151,7 +136,7 @@ std::optional<ValidationError> validate(const Scene& s) {
   for (const auto& check : checks) {
     if (check) return check;
   }
-  if (s.shape == Shape::TShape) {
+  if (shape_features(s.shape).compound) {
     if (s.parts.empty()) return ValidationError{"body.parts", "must list at least one part"};
     // MuJoCo 2.2's mjData holds dense njmax × njmax matrices (efc_AR), and
     // the generated model's njmax grows with the 4 corners of every part

@@ -9,13 +9,9 @@
 
 #include "core/dynamics.hpp"
 #include "core/integrators.hpp"
+#include "core/shape.hpp"
 
 namespace contact2d {
-
-enum class Shape { PointMass, Box, TShape, Circle };
-
-std::string_view shape_name(Shape shape);  // "point_mass", "box", "tshape", "circle"
-std::optional<Shape> parse_shape(std::string_view name);
 
 struct SimParams {
   double dt = 1e-4;

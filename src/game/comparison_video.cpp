@@ -82,7 +82,7 @@ std::string distance_text(double d) {
 
 // The body at state s as polygons (box, T: one per part) in world frame.
 std::vector<std::vector<Vec2>> body_polygons(const RigidBody& body, const State& s) {
-  const double th = body.rotates ? s.q.z() : 0.0;
+  const double th = shape_features(body.shape).turns ? s.q.z() : 0.0;
   const double c = std::cos(th), sn = std::sin(th);
   const Vec2 p(s.q.x(), s.q.y());
   const auto world = [&](const Vec2& r) {
@@ -100,9 +100,13 @@ std::vector<std::vector<Vec2>> body_polygons(const RigidBody& body, const State&
 
 // Radius of a body drawn as a disc (circle, point mass), 0 for polygons.
 double disc_radius(const RigidBody& body, const Scene& scene) {
-  if (!body.parts.empty()) return 0.0;
-  if (body.roll_radius > 0.0) return body.roll_radius;
-  return std::max(scene.half_height, 1e-3);
+  switch (body.shape) {
+    case Shape::Circle: return body.roll_radius;
+    case Shape::PointMass: return std::max(scene.half_height, 1e-3);
+    case Shape::Box:
+    case Shape::TShape: break;
+  }
+  return 0.0;
 }
 
 enum class Style { Filled, Outlined, Thin };
@@ -125,7 +129,7 @@ void draw_body(const RigidBody& body, const Scene& scene, const State& s, Style 
       draw::ring(centre.x(), centre.y(), r, width, colour, 48);
     }
     // A spoke shows the rotation (a point mass does not rotate: none).
-    if (body.rotates) {
+    if (shape_features(body.shape).turns) {
       const Vec2 u(std::cos(s.q.z()), std::sin(s.q.z()));
       draw::thick_line(centre, centre + r * u, std::max(width, 1.5 * px),
                        style == Style::Filled ? kReferenceEdge : colour);

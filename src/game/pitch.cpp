@@ -129,7 +129,7 @@ Pitch parse_pitch(const std::string& toml_text, const std::string& origin) {
   Pitch pitch;
   pitch.scene = parse_scene(
       toml_text, origin);  // the physics, [[obstacle]] included; checks [game] is a table
-  if (pitch.scene.shape != Shape::Circle) {
+  if (!shape_features(pitch.scene.shape).rolls) {  // the ball
     throw InputError(origin + ": scene = \"" + std::string(shape_name(pitch.scene.shape)) +
                      "\" cannot be played: the game needs scene = \"circle\" (the ball)");
   }

@@ -181,6 +181,86 @@ std::string engine_label(std::string_view name) {
   return out;
 }
 
+// The messages and banners in the middle of the screen: an ignored kick,
+// the round's result, the pause and the countdown before the first pass.
+void draw_banners(const Game& game, const Overlay& overlay, int width, int height) {
+  const Rules& r = game.pitch().rules;
+  // A kick key that did nothing, for a second: why.
+  if (game.ignored_kick() != IgnoredKick::None &&
+      static_cast<double>(game.steps_since_ignored_kick()) * game.dt() < 1.0) {
+    const std::string what = game.ignored_kick() == IgnoredKick::RoundOver
+                                 ? fmt("KICK IGNORED: THE ROUND IS OVER, NEXT PASS IN %.1f s",
+                                       static_cast<double>(game.steps_to_next_pass()) * game.dt())
+                                 : std::string("KICK IGNORED: THE LAST KICK IS STILL ACTING");
+    const double w = text_width(what, 2.0);
+    rect(0.5 * (width - w) - 10, 0.38 * height + 70, 0.5 * (width + w) + 10, 0.38 * height + 98,
+         kPanel);
+    text(0.5 * (width - w), 0.38 * height + 76, what, 2.0, kNoGoal);
+  }
+
+  // Result of the round.
+  if (game.phase() == Phase::Over) {
+    const Outcome outcome = game.current_round().outcome;
+    const std::string what = outcome_text(outcome, r.min_kick_distance);
+    const double scale = outcome == Outcome::Goal ? 6.0 : 2.5;
+    const double w = text_width(what, scale);
+    rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20,
+         0.38 * height + 9 * scale, kPanel);
+    text(0.5 * (width - w), 0.38 * height, what, scale, outcome == Outcome::Goal ? kGoal : kNoGoal);
+  }
+  if (overlay.paused) {
+    const double w = text_width("PAUSED", 4.0);
+    text(0.5 * (width - w), 0.25 * height, "PAUSED", 4.0, kText);
+  }
+  // Before the first pass: the countdown.
+  if (overlay.get_ready > 0.0) {
+    const std::string what = fmt("GET READY: THE PASS COMES IN %.1f s", overlay.get_ready);
+    const double w = text_width(what, 2.5);
+    rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20,
+         0.38 * height + 9 * 2.5, kPanel);
+    text(0.5 * (width - w), 0.38 * height, what, 2.5, kText);
+  }
+}
+
+// The help panel: the rules and the keys.
+void draw_help(int width, int height) {
+  const char* lines[] = {
+      "CONTACT2D PLAY - score from at least 1 m",
+      "",
+      "A teammate passes: the ball rolls in towards the goal.",
+      "Kick it into the goal. A kick counts only if the ball",
+      "is at least 1 m from the goal line (the yellow line).",
+      "The whole ball must cross the line under the crossbar,",
+      "and the last touch must be a counted kick.",
+      "The crossbar, the roof and the back of the goal are solid.",
+      "",
+      "ARROWS        push the ball (a force)",
+      "K / ENTER     kick towards the goal",
+      "W / S         raise / lower the kick angle",
+      "SPACE         pause (this help pauses too)",
+      "BACKSPACE     next pass",
+      "F1 / H        this help",
+      "ESC           quit",
+  };
+  double widest = 0.0;
+  for (const char* line : lines) widest = std::max(widest, text_width(line, 2.0));
+  const double x0 = std::max(16.0, 0.5 * (width - widest)), y0 = 120;
+  // The panel is a scissored clear (the world is already drawn and the HUD
+  // not yet): llvmpipe clears far faster than it shades a large quad.
+  const int top = static_cast<int>(y0 - 16), bottom = static_cast<int>(y0 + 16 * 22 + 8);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(static_cast<int>(x0 - 16), height - bottom, static_cast<int>(widest + 32),
+            bottom - top);
+  glClearColor(0.06f, 0.08f, 0.11f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glDisable(GL_SCISSOR_TEST);
+  double y = y0;
+  for (const char* line : lines) {
+    text(x0, y, line, 2.0, kText);
+    y += 22;
+  }
+}
+
 void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width, int height) {
   const Pitch& pitch = game.pitch();
   const Rules& r = pitch.rules;
@@ -225,83 +305,12 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
     }
   }
 
-  // The help overlay is modal: the messages and banners below would show
-  // through it (the HUD's text is drawn after its panel is cleared).
-  if (!overlay.help) {
-    // A kick key that did nothing, for a second: why.
-    if (game.ignored_kick() != IgnoredKick::None &&
-        static_cast<double>(game.steps_since_ignored_kick()) * game.dt() < 1.0) {
-      const std::string what = game.ignored_kick() == IgnoredKick::RoundOver
-                                   ? fmt("KICK IGNORED: THE ROUND IS OVER, NEXT PASS IN %.1f s",
-                                         static_cast<double>(game.steps_to_next_pass()) * game.dt())
-                                   : std::string("KICK IGNORED: THE LAST KICK IS STILL ACTING");
-      const double w = text_width(what, 2.0);
-      rect(0.5 * (width - w) - 10, 0.38 * height + 70, 0.5 * (width + w) + 10, 0.38 * height + 98,
-           kPanel);
-      text(0.5 * (width - w), 0.38 * height + 76, what, 2.0, kNoGoal);
-    }
-
-    // Result of the round.
-    if (game.phase() == Phase::Over) {
-      const Outcome outcome = game.current_round().outcome;
-      const std::string what = outcome_text(outcome, r.min_kick_distance);
-      const double scale = outcome == Outcome::Goal ? 6.0 : 2.5;
-      const double w = text_width(what, scale);
-      rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20,
-           0.38 * height + 9 * scale, kPanel);
-      text(0.5 * (width - w), 0.38 * height, what, scale,
-           outcome == Outcome::Goal ? kGoal : kNoGoal);
-    }
-    if (overlay.paused) {
-      const double w = text_width("PAUSED", 4.0);
-      text(0.5 * (width - w), 0.25 * height, "PAUSED", 4.0, kText);
-    }
-    // Before the first pass: the countdown.
-    if (overlay.get_ready > 0.0) {
-      const std::string what = fmt("GET READY: THE PASS COMES IN %.1f s", overlay.get_ready);
-      const double w = text_width(what, 2.5);
-      rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20,
-           0.38 * height + 9 * 2.5, kPanel);
-      text(0.5 * (width - w), 0.38 * height, what, 2.5, kText);
-    }
-  }
-
+  // The help overlay is modal: the banners would show through it (the HUD's
+  // text is drawn after its panel is cleared).
   if (overlay.help) {
-    const char* lines[] = {
-        "CONTACT2D PLAY - score from at least 1 m",
-        "",
-        "A teammate passes: the ball rolls in towards the goal.",
-        "Kick it into the goal. A kick counts only if the ball",
-        "is at least 1 m from the goal line (the yellow line).",
-        "The whole ball must cross the line under the crossbar,",
-        "and the last touch must be a counted kick.",
-        "The crossbar, the roof and the back of the goal are solid.",
-        "",
-        "ARROWS        push the ball (a force)",
-        "K / ENTER     kick towards the goal",
-        "W / S         raise / lower the kick angle",
-        "SPACE         pause (this help pauses too)",
-        "BACKSPACE     next pass",
-        "F1 / H        this help",
-        "ESC           quit",
-    };
-    double widest = 0.0;
-    for (const char* line : lines) widest = std::max(widest, text_width(line, 2.0));
-    const double x0 = std::max(16.0, 0.5 * (width - widest)), y0 = 120;
-    // The panel is a scissored clear (the world is already drawn and the HUD
-    // not yet): llvmpipe clears far faster than it shades a large quad.
-    const int top = static_cast<int>(y0 - 16), bottom = static_cast<int>(y0 + 16 * 22 + 8);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(static_cast<int>(x0 - 16), height - bottom, static_cast<int>(widest + 32),
-              bottom - top);
-    glClearColor(0.06f, 0.08f, 0.11f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
-    glDisable(GL_SCISSOR_TEST);
-    double y = y0;
-    for (const char* line : lines) {
-      text(x0, y, line, 2.0, kText);
-      y += 22;
-    }
+    draw_help(width, height);
+  } else {
+    draw_banners(game, overlay, width, height);
   }
 }
 

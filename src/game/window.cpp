@@ -65,6 +65,54 @@ struct GlfwSession {
   ~GlfwSession() { glfwTerminate(); }
 };
 
+// The UI keys of one frame's queued events (quit, pause, help) and the game
+// keys handed to the feed (none before the first pass); true: quit.
+bool handle_keys(KeyQueue& queue, InputFeed& feed, Overlay& overlay) {
+  bool quit = false;
+  for (const auto& [key, action] : queue.events) {
+    if (action == GLFW_PRESS) {
+      if (key == GLFW_KEY_ESCAPE) quit = true;
+      if (key == GLFW_KEY_SPACE) overlay.paused = !overlay.paused;
+      if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) overlay.help = !overlay.help;
+    }
+    const auto k = game_key(key);
+    if (!k || overlay.get_ready > 0.0) continue;  // before the first pass: no game keys
+    const bool angle = *k == Key::AngleUp || *k == Key::AngleDown;
+    if (action == GLFW_PRESS || (action == GLFW_REPEAT && angle)) feed.live(*k, true);
+    if (action == GLFW_RELEASE) feed.live(*k, false);
+  }
+  queue.events.clear();
+  return quit;
+}
+
+// Steps the game through the frame's `accumulator` of simulated time, for
+// at most `physics_budget` seconds of wall clock (0: no limit; what is left
+// is then dropped). True: a replay is over and the window closes.
+bool step_physics(Game& game, InputFeed& feed, double physics_budget, double& accumulator) {
+  const double dt = game.dt();
+  const auto physics_start = std::chrono::steady_clock::now();
+  long long stepped = 0;
+  while (accumulator >= dt) {
+    feed.apply_due();
+    // A replay ends once its last round has been decided and its result
+    // shown for result_time (just before the next pass would start).
+    if (feed.replaying() && session_over(game, feed) &&
+        (game.divergence() || game.steps_since_end() + 1 >= game.result_steps())) {
+      return true;
+    }
+    if (game.divergence()) break;
+    game.step();
+    accumulator -= dt;
+    if (physics_budget > 0.0 && ++stepped % 16 == 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - physics_start).count() >
+            physics_budget) {
+      accumulator = 0.0;  // what is left of this frame's time is not simulated
+      break;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
@@ -110,19 +158,7 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
 
   while (!quit && !glfwWindowShouldClose(window)) {
     glfwPollEvents();
-    for (const auto& [key, action] : queue.events) {
-      if (action == GLFW_PRESS) {
-        if (key == GLFW_KEY_ESCAPE) quit = true;
-        if (key == GLFW_KEY_SPACE) overlay.paused = !overlay.paused;
-        if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) overlay.help = !overlay.help;
-      }
-      const auto k = game_key(key);
-      if (!k || overlay.get_ready > 0.0) continue;  // before the first pass: no game keys
-      const bool angle = *k == Key::AngleUp || *k == Key::AngleDown;
-      if (action == GLFW_PRESS || (action == GLFW_REPEAT && angle)) feed.live(*k, true);
-      if (action == GLFW_RELEASE) feed.live(*k, false);
-    }
-    queue.events.clear();
+    if (handle_keys(queue, feed, overlay)) quit = true;
 
     const double now = glfwGetTime();
     // Recording: exactly one video frame of simulated time per frame.
@@ -141,27 +177,7 @@ WindowStats run_window(Game& game, InputFeed& feed, const WindowOptions& o) {
       // time (MuJoCo at the pitch's Δt = 1e-5 s): the game then runs in slow
       // motion and the HUD says how slow. A recording steps every frame's
       // simulated time whatever it costs.
-      const auto physics_start = std::chrono::steady_clock::now();
-      long long stepped = 0;
-      while (accumulator >= dt) {
-        feed.apply_due();
-        // A replay ends once its last round has been decided and its result
-        // shown for result_time (just before the next pass would start).
-        if (feed.replaying() && session_over(game, feed) &&
-            (game.divergence() || game.steps_since_end() + 1 >= game.result_steps())) {
-          quit = true;
-          break;
-        }
-        if (game.divergence()) break;
-        game.step();
-        accumulator -= dt;
-        if (!video && o.physics_budget > 0.0 && ++stepped % 16 == 0 &&
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - physics_start)
-                    .count() > o.physics_budget) {
-          accumulator = 0.0;  // what is left of this frame's time is not simulated
-          break;
-        }
-      }
+      if (step_physics(game, feed, video ? 0.0 : o.physics_budget, accumulator)) quit = true;
       sim_advanced += static_cast<double>(game.steps() - steps_before) * dt;
       steps_before = game.steps();
       wall_advanced += std::min(frame_time, 0.25);

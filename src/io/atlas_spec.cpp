@@ -296,7 +296,7 @@ AtlasSpec parse_atlas_spec(const std::string& text, const std::string& origin,
     }
     in.reject_unknown("x, y, theta, vx, vy, omega");
     for (AtlasBody& b : spec.bodies) {
-      const bool turns = b.scene.shape != Shape::PointMass;
+      const bool turns = shape_features(b.scene.shape).turns;
       Vec3& q = b.scene.initial.q;
       Vec3& v = b.scene.initial.v;
       if (given[0]) q.x() = values[0];

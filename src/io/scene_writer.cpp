@@ -6,12 +6,6 @@
 #include "core/format.hpp"
 
 namespace contact2d {
-namespace {
-
-std::string n(double v) { return format_shortest(v); }
-
-}  // namespace
-
 std::string scene_to_toml(const Scene& s, const std::string& comment) {
   std::ostringstream o;
   if (!comment.empty()) {
@@ -21,48 +15,58 @@ std::string scene_to_toml(const Scene& s, const std::string& comment) {
   o << "scene = \"" << shape_name(s.shape) << "\"\n\n[body]\n";
   switch (s.shape) {
     case Shape::PointMass:
-      o << "mass = " << n(s.mass) << "\nhalf_height = " << n(s.half_height) << "\n";
+      o << "mass = " << format_shortest(s.mass)
+        << "\nhalf_height = " << format_shortest(s.half_height) << "\n";
       break;
     case Shape::Box:
-      o << "mass = " << n(s.mass) << "\nwidth = " << n(s.width) << "\nheight = " << n(s.height)
+      o << "mass = " << format_shortest(s.mass) << "\nwidth = " << format_shortest(s.width)
+        << "\nheight = " << format_shortest(s.height) << "\n";
+      break;
+    case Shape::Circle:
+      o << "mass = " << format_shortest(s.mass) << "\nradius = " << format_shortest(s.radius)
         << "\n";
       break;
-    case Shape::Circle: o << "mass = " << n(s.mass) << "\nradius = " << n(s.radius) << "\n"; break;
     case Shape::TShape: {
       const std::vector<BoxPart> parts = s.parts.empty() ? default_tshape_parts() : s.parts;
       o << "parts = [\n";
       for (const BoxPart& p : parts)
-        o << "  { width = " << n(p.width) << ", height = " << n(p.height)
-          << ", mass = " << n(p.mass) << ", x = " << n(p.x) << ", y = " << n(p.y) << " },\n";
+        o << "  { width = " << format_shortest(p.width)
+          << ", height = " << format_shortest(p.height) << ", mass = " << format_shortest(p.mass)
+          << ", x = " << format_shortest(p.x) << ", y = " << format_shortest(p.y) << " },\n";
       o << "]\n";
       break;
     }
   }
   const ContactParams& c = s.contact;
-  o << "\n[contact]\nk = " << n(c.k) << "\nc = " << n(c.c) << "\nmu = " << n(c.mu)
-    << "\nalpha = " << n(c.alpha) << "\nmu_roll = " << n(c.mu_roll)
-    << "\nmu_torsion = " << n(c.mu_torsion) << "\ndamping = \""
+  o << "\n[contact]\nk = " << format_shortest(c.k) << "\nc = " << format_shortest(c.c)
+    << "\nmu = " << format_shortest(c.mu) << "\nalpha = " << format_shortest(c.alpha)
+    << "\nmu_roll = " << format_shortest(c.mu_roll)
+    << "\nmu_torsion = " << format_shortest(c.mu_torsion) << "\ndamping = \""
     << (c.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") << "\"\n";
   if (c.friction != FrictionLaw::Tanh)
     o << "friction_law = \"" << friction_law_name(c.friction)
-      << "\"\ncone_ratio = " << n(c.cone_ratio) << "\n";
+      << "\"\ncone_ratio = " << format_shortest(c.cone_ratio) << "\n";
   const State& x = s.initial;
-  o << "\n[initial]\nx = " << n(x.q.x()) << "\ny = " << n(x.q.y());
-  if (s.shape != Shape::PointMass) o << "\ntheta = " << n(x.q.z());
-  o << "\nvx = " << n(x.v.x()) << "\nvy = " << n(x.v.y());
-  if (s.shape != Shape::PointMass) o << "\nomega = " << n(x.v.z());
-  o << "\n\n[sim]\ndt = " << n(s.sim.dt) << "\nduration = " << n(s.sim.duration)
-    << "\noutput_dt = " << n(s.sim.output_dt) << "\nintegrator = \""
-    << integrator_name(s.sim.integrator) << "\"\ngravity = " << n(s.sim.gravity) << "\n";
+  o << "\n[initial]\nx = " << format_shortest(x.q.x()) << "\ny = " << format_shortest(x.q.y());
+  if (shape_features(s.shape).turns) o << "\ntheta = " << format_shortest(x.q.z());
+  o << "\nvx = " << format_shortest(x.v.x()) << "\nvy = " << format_shortest(x.v.y());
+  if (shape_features(s.shape).turns) o << "\nomega = " << format_shortest(x.v.z());
+  o << "\n\n[sim]\ndt = " << format_shortest(s.sim.dt)
+    << "\nduration = " << format_shortest(s.sim.duration)
+    << "\noutput_dt = " << format_shortest(s.sim.output_dt) << "\nintegrator = \""
+    << integrator_name(s.sim.integrator) << "\"\ngravity = " << format_shortest(s.sim.gravity)
+    << "\n";
   for (const Obstacle& ob : s.obstacles) {
     o << "\n[[obstacle]]\n";
     if (ob.shape == ObstacleShape::Box) {
-      o << "type = \"box\"\nx = " << n(0.5 * (ob.a.x() + ob.b.x()))
-        << "\ny = " << n(0.5 * (ob.a.y() + ob.b.y())) << "\nwidth = " << n(ob.b.x() - ob.a.x())
-        << "\nheight = " << n(ob.b.y() - ob.a.y()) << "\n";
+      o << "type = \"box\"\nx = " << format_shortest(0.5 * (ob.a.x() + ob.b.x()))
+        << "\ny = " << format_shortest(0.5 * (ob.a.y() + ob.b.y()))
+        << "\nwidth = " << format_shortest(ob.b.x() - ob.a.x())
+        << "\nheight = " << format_shortest(ob.b.y() - ob.a.y()) << "\n";
     } else {
-      o << "type = \"segment\"\nx1 = " << n(ob.a.x()) << "\ny1 = " << n(ob.a.y())
-        << "\nx2 = " << n(ob.b.x()) << "\ny2 = " << n(ob.b.y()) << "\nradius = " << n(ob.radius)
+      o << "type = \"segment\"\nx1 = " << format_shortest(ob.a.x())
+        << "\ny1 = " << format_shortest(ob.a.y()) << "\nx2 = " << format_shortest(ob.b.x())
+        << "\ny2 = " << format_shortest(ob.b.y()) << "\nradius = " << format_shortest(ob.radius)
         << "\n";
     }
   }

@@ -32,7 +32,7 @@ void require_spring_and_damper(const ContactParams& contact, Mapping mapping) {
 // (tangentially): 1/m + r²/I with r the farthest contact point from the COM
 // (for the circle the point below the centre, r = R). 1/m without rotation.
 double max_tangential_inverse_mass(const RigidBody& body) {
-  if (!body.rotates || body.inertia <= 0.0) return 1.0 / body.mass;
+  if (!shape_features(body.shape).turns || body.inertia <= 0.0) return 1.0 / body.mass;
   const double r = body_extent(body);
   return 1.0 / body.mass + r * r / body.inertia;
 }
@@ -48,7 +48,7 @@ double max_tangential_inverse_mass(const RigidBody& body) {
 // with no friction rows at all, and does not write impratio.
 double calibrated_impratio(const ContactParams& p, const RigidBody& body, double dt,
                            double largest_c) {
-  const bool rolls = body.roll_radius > 0.0 && p.mu_roll > 0.0;
+  const bool rolls = shape_features(body.shape).rolls && p.mu_roll > 0.0;
   if (!(p.c > 0.0)) return 1.0;  // no damper: MuJoCo's friction has no velocity term at all
   if (p.mu <= 0.0 && !rolls) return kMinImpratio;
   // impratio is one value for every contact: the bound of the stiffest damper.
@@ -98,7 +98,7 @@ std::optional<Geometry> parse_geometry(std::string_view name) {
 }
 
 int contacts_per_point(Shape shape, Geometry geometry) {
-  const bool boxes = shape == Shape::Box || shape == Shape::TShape;
+  const bool boxes = shape_features(shape).corners;
   return boxes && geometry == Geometry::BoxGeoms ? 2 : 1;
 }
 

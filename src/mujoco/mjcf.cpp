@@ -61,8 +61,13 @@ struct Layout {
 };
 
 std::vector<BoxPart> parts_of(const Scene& scene) {
-  if (scene.shape == Shape::Box) return {BoxPart{scene.width, scene.height, 0.0, 0.0, scene.mass}};
-  return scene.parts.empty() ? default_tshape_parts() : scene.parts;
+  switch (scene.shape) {
+    case Shape::Box: return {BoxPart{scene.width, scene.height, 0.0, 0.0, scene.mass}};
+    case Shape::TShape: return scene.parts.empty() ? default_tshape_parts() : scene.parts;
+    case Shape::PointMass:
+    case Shape::Circle: break;  // no rectangular outline
+  }
+  return {};
 }
 
 // MuJoCo rejects a moving body with a principal inertia below mjMINVAL or with
@@ -215,8 +220,8 @@ int condim_of(const Scene& scene, const MjcfOptions& options) {
 // roll steadily: it slides) or no rolling: μ_roll as it is.
 double cone_mu_roll(const Scene& scene, const SolverSettings& s) {
   const ContactParams& p = scene.contact;
-  if (s.mapping != Mapping::Compensated || scene.shape != Shape::Circle || !(p.mu_roll > 0.0) ||
-      !(p.mu > 0.0))
+  if (s.mapping != Mapping::Compensated || !shape_features(scene.shape).rolls ||
+      !(p.mu_roll > 0.0) || !(p.mu > 0.0))
     return p.mu_roll;
   const RigidBody body = make_body(scene);
   const double r = body.roll_radius;
@@ -242,18 +247,18 @@ std::string inertia_formula(Shape shape) {
 
 std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condim,
                           double model_dt) {
-  auto f = [](double v) { return format_exact(v); };
   const std::string in = "    ";
   std::string text = "  mapping " + std::string(mapping_name(s.mapping)) + ":\n";
   if (s.mapping == Mapping::Seed || s.mapping == Mapping::Exact) {
     text += in + (s.mapping == Mapping::Seed ? "timeconst = sqrt(m/k) = " : "timeconst = 2m/c = ") +
-            f(s.solref[0]) + " s, dampratio = c/(2 sqrt(m k)) = " + f(s.solref[1]) +
+            format_exact(s.solref[0]) +
+            " s, dampratio = c/(2 sqrt(m k)) = " + format_exact(s.solref[1]) +
             (s.mapping == Mapping::Seed
                  ? " (MuJoCo's spring (k/m)/dampratio^2 and damper (c/m)/dampratio: k/m, c/m "
                    "only at dampratio 1)\n"
                  : " (MuJoCo's spring k/m, damper c/m: the direct form -k/m, -c/m)\n");
     const double used = std::max(s.solref[0], 2.0 * scene.sim.dt);
-    text += in + "MuJoCo uses timeconst max(timeconst, 2 Δt) = " + f(used) +
+    text += in + "MuJoCo uses timeconst max(timeconst, 2 Δt) = " + format_exact(used) +
             " s (refsafe; depends on Δt" +
             (s.refsafe_clamped ? ": here raised to 2 Δt, a softer contact than k)\n"
                                : ", here unchanged)\n");
@@ -265,41 +270,44 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
   const RigidBody body = make_body(scene);
   const ContactParams& p = scene.contact;
   if (s.mapping == Mapping::Compensated) {
-    text += in + "L = " + f(s.lever) +
+    text += in + "L = " + format_exact(s.lever) +
             " m, the lever of the massless body \"contacts\" that carries the contact geoms: "
             "sqrt(I (3 G A_max - 2/m)) with G = " +
-            f(kCompensatingGain) + ", A_max = 1/m + r^2/I the largest inverse mass of a contact" +
-            (scene.shape == Shape::PointMass ? " (I about the hinge \"spin\", MuJoCo z)" : "") +
+            format_exact(kCompensatingGain) +
+            ", A_max = 1/m + r^2/I the largest inverse mass of a contact" +
+            (!shape_features(scene.shape).turns ? " (I about the hinge \"spin\", MuJoCo z)" : "") +
             "\n";
-    text += in + "A = body_invweight0 of \"contacts\" = " + f(s.inv_mass) +
+    text += in + "A = body_invweight0 of \"contacts\" = " + format_exact(s.inv_mass) +
             " 1/kg, read from the compiled model ((2/m + L^2/I)/3 = G A_max)\n";
     text += in + "n = " + std::to_string(s.split) +
             " (MuJoCo contacts per 2D contact point: 1 for a sphere, 2 for a box geom's edge)\n";
     text += in +
             "D = d/m + (1 - d) A with d = 1e-4 (MuJoCo's divisor for a contact of inverse "
             "mass 1/m)\n";
-    text += in + "solref = (-k D/n, -c D/n) = (" + f(s.solref[0]) + ", " + f(s.solref[1]) +
-            ") (direct form)\n";
+    text += in + "solref = (-k D/n, -c D/n) = (" + format_exact(s.solref[0]) + ", " +
+            format_exact(s.solref[1]) + ") (direct form)\n";
     if (cone_mu_roll(scene, s) != scene.contact.mu_roll) {
-      text += in + "friction mu_roll' = mu_roll/sqrt(1 - q^2) = " + f(cone_mu_roll(scene, s)) +
+      text += in + "friction mu_roll' = mu_roll/sqrt(1 - q^2) = " +
+              format_exact(cone_mu_roll(scene, s)) +
               " m, q = kappa mu_roll/(mu R), kappa = m R^2/(I + m R^2) (the elliptic cone's "
               "shared budget gives a steadily rolling disc mu_roll F_n back)\n";
     }
   } else {
-    text += in + "A = body_invweight0 = " + f(s.inv_mass) +
+    text += in + "A = body_invweight0 = " + format_exact(s.inv_mass) +
             " 1/kg, read from the compiled model (MuJoCo's mean over the three translation axes "
             "of the body's inverse mass: 2/(3m) for slides along x and z)\n";
     text += in + "n = " + std::to_string(s.split) +
             " (MuJoCo contacts per 2D contact point: 1 for a sphere, 2 for a box geom's edge)\n";
-    text += in + "solref = (-k A/n, -c A/n) = (" + f(s.solref[0]) + ", " + f(s.solref[1]) +
-            ") (direct form)\n";
+    text += in + "solref = (-k A/n, -c A/n) = (" + format_exact(s.solref[0]) + ", " +
+            format_exact(s.solref[1]) + ") (direct form)\n";
   }
   text += in + "solimp = " + join(s.solimp) + " (flat minimal impedance d = 1e-4); cone elliptic\n";
   if (condim == 1) {
     text += in + "impratio: not written (condim 1 has no friction rows; MuJoCo's default 1)\n";
     return text;
   }
-  const bool rolls = body.roll_radius > 0.0 && p.mu_roll > 0.0;
+  const bool turns = shape_features(body.shape).turns;
+  const bool rolls = shape_features(body.shape).rolls && p.mu_roll > 0.0;
   if (!(p.c > 0.0)) {
     text += in + "impratio: not written (c = 0: MuJoCo's friction has no velocity term)\n";
     return text;
@@ -310,27 +318,29 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
             "switches off the 1e-5 friction MuJoCo keeps)\n";
     return text;
   }
-  if (body.rotates) {
-    text += in + "r = " + f(body_extent(body)) + " m, the farthest contact point from the COM\n";
+  if (turns) {
+    text += in + "r = " + format_exact(body_extent(body)) +
+            " m, the farthest contact point from the COM\n";
     text += in + "A_t = 1/m + r^2/I = ";
   } else {
     text += in + "A_t = 1/m = ";
   }
   const double r = body_extent(body);
-  const double a_t = body.rotates ? 1.0 / body.mass + r * r / body.inertia : 1.0 / body.mass;
-  text += f(a_t) + " 1/kg, the largest tangential inverse mass of a contact point\n";
-  text += in +
-          (rolls ? "impratio = min(1/(c Δt A_t), I (max(mu, 1e-5)/mu_roll)^2/(c Δt)) = "
-                 : "impratio = 1/(c Δt A_t) = ") +
-          f(s.impratio) +
-          (largest_damping(scene) != p.c
-               ? " with c = " + f(largest_damping(scene)) +
-                     " N s/m, the largest of the ground's and the obstacles' c"
-               : std::string()) +
-          (model_dt > 0.0 ? " with Δt = " + f(model_dt) + " (--model-dt), not the timestep"
-                          : std::string()) +
-          " (depends on Δt; kept within [1e-15, 1e10]: the largest value at which MuJoCo's "
-          "viscous friction does not reverse a slip within one step)\n";
+  const double a_t = turns ? 1.0 / body.mass + r * r / body.inertia : 1.0 / body.mass;
+  text += format_exact(a_t) + " 1/kg, the largest tangential inverse mass of a contact point\n";
+  text +=
+      in +
+      (rolls ? "impratio = min(1/(c Δt A_t), I (max(mu, 1e-5)/mu_roll)^2/(c Δt)) = "
+             : "impratio = 1/(c Δt A_t) = ") +
+      format_exact(s.impratio) +
+      (largest_damping(scene) != p.c
+           ? " with c = " + format_exact(largest_damping(scene)) +
+                 " N s/m, the largest of the ground's and the obstacles' c"
+           : std::string()) +
+      (model_dt > 0.0 ? " with Δt = " + format_exact(model_dt) + " (--model-dt), not the timestep"
+                      : std::string()) +
+      " (depends on Δt; kept within [1e-15, 1e10]: the largest value at which MuJoCo's "
+      "viscous friction does not reverse a slip within one step)\n";
   return text;
 }
 
@@ -368,12 +378,11 @@ double obstacle_half_depth(const Scene& scene) {
 
 std::string obstacle_lines(const Scene& scene, const SolverSettings& s) {
   if (scene.obstacles.empty()) return "";
-  auto f = [](double v) { return format_exact(v); };
   std::string text =
       "  obstacles: geom obstacle<i> in the world body, contype = conaffinity = 0, touched only "
       "through one <contact><pair> with each contact geom of the body, which sets the pair's "
       "values exactly (no mixing); a box is a box geom of half-size (w/2, " +
-      f(obstacle_half_depth(scene)) +
+      format_exact(obstacle_half_depth(scene)) +
       ", h/2) at (x, 0, y), a segment a capsule from (x1, 0, y1) to (x2, 0, y2) of its radius (a "
       "sphere when the ends coincide); each law is the scene's contact with the obstacle's own "
       "keys, mapped as above with the same A and n\n";
@@ -382,11 +391,12 @@ std::string obstacle_lines(const Scene& scene, const SolverSettings& s) {
     const ObstacleContactSettings os = obstacle_settings(scene, o, s);
     const ContactParams& p = os.law;
     text += "    obstacle" + std::to_string(i) + " (" + std::string(obstacle_shape_name(o.shape)) +
-            (o.contact.any() ? ", own law" : ", the scene's law") + "): k " + f(p.k) + " N/m, c " +
-            f(p.c) + " N s/m, damping " +
+            (o.contact.any() ? ", own law" : ", the scene's law") + "): k " + format_exact(p.k) +
+            " N/m, c " + format_exact(p.c) + " N s/m, damping " +
             (p.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") + ", mu " +
-            f(p.mu) + ", mu_roll " + f(p.mu_roll) + " m, mu_torsion " + f(p.mu_torsion) +
-            "; solref = (" + f(os.solref[0]) + ", " + f(os.solref[1]) + ")" +
+            format_exact(p.mu) + ", mu_roll " + format_exact(p.mu_roll) + " m, mu_torsion " +
+            format_exact(p.mu_torsion) + "; solref = (" + format_exact(os.solref[0]) + ", " +
+            format_exact(os.solref[1]) + ")" +
             (s.mapping == Mapping::Calibrated    ? " = (-k A/n, -c A/n)"
              : s.mapping == Mapping::Compensated ? " = (-k D/n, -c D/n)"
                                                  : "") +
@@ -400,7 +410,6 @@ std::string header(const Scene& scene, const MjcfOptions& options, const SolverS
                    const Layout& l) {
   const ContactParams& p = scene.contact;
   const State& x0 = scene.initial;
-  auto f = [](double v) { return format_exact(v); };
   const int condim = condim_of(scene, options);
   std::string text =
       "\n  contact2d MJCF, generated by `contact2d generate`: regenerate it, do not edit it.\n";
@@ -408,23 +417,26 @@ std::string header(const Scene& scene, const MjcfOptions& options, const SolverS
           (options.source.empty() ? std::string("(none)") : options.source + " (as given)") +
           ", shape " + std::string(shape_name(scene.shape)) + ", geometry " +
           std::string(geometry_name(options.geometry)) + "\n";
-  text += "  contact: k " + f(p.k) + " N/m, c " + f(p.c) + " N s/m, damping " +
+  text += "  contact: k " + format_exact(p.k) + " N/m, c " + format_exact(p.c) +
+          " N s/m, damping " +
           (p.damping == DampingLaw::Compression ? "compression (MuJoCo's damper is Kelvin-Voigt)"
                                                 : "kelvin_voigt") +
-          ", mu " + f(p.mu) + ", alpha " + f(p.alpha) + " s/m, mu_roll " + f(p.mu_roll) +
-          " m, mu_torsion " + f(p.mu_torsion) + "\n";
-  text += "  sim: dt " + f(scene.sim.dt) + " s (the timestep), duration " + f(scene.sim.duration) +
-          " s, integrator " + std::string(integrator_name(scene.sim.integrator)) + " (MuJoCo " +
-          mujoco_integrator(scene.sim.integrator) + "), gravity " + f(scene.sim.gravity) +
-          " m/s^2\n";
-  text += "  body: m " + f(l.mass) + " kg";
+          ", mu " + format_exact(p.mu) + ", alpha " + format_exact(p.alpha) + " s/m, mu_roll " +
+          format_exact(p.mu_roll) + " m, mu_torsion " + format_exact(p.mu_torsion) + "\n";
+  text += "  sim: dt " + format_exact(scene.sim.dt) + " s (the timestep), duration " +
+          format_exact(scene.sim.duration) + " s, integrator " +
+          std::string(integrator_name(scene.sim.integrator)) + " (MuJoCo " +
+          mujoco_integrator(scene.sim.integrator) + "), gravity " +
+          format_exact(scene.sim.gravity) + " m/s^2\n";
+  text += "  body: m " + format_exact(l.mass) + " kg";
   if (l.hinge) {
-    text +=
-        ", " + inertia_formula(scene.shape) + " = " + f(l.inertia[1]) + " kg m^2 (about the hinge)";
+    text += ", " + inertia_formula(scene.shape) + " = " + format_exact(l.inertia[1]) +
+            " kg m^2 (about the hinge)";
   }
   text += "\n";
-  text += "  initial: x " + f(x0.q.x()) + ", y " + f(x0.q.y()) + ", theta " + f(x0.q.z()) +
-          ", vx " + f(x0.v.x()) + ", vy " + f(x0.v.y()) + ", omega " + f(x0.v.z()) + "\n";
+  text += "  initial: x " + format_exact(x0.q.x()) + ", y " + format_exact(x0.q.y()) + ", theta " +
+          format_exact(x0.q.z()) + ", vx " + format_exact(x0.v.x()) + ", vy " +
+          format_exact(x0.v.y()) + ", omega " + format_exact(x0.v.z()) + "\n";
   if (l.hinge) {
     text +=
         "  pose: body pos (x, 0, y); unless theta = 0, body axisangle (0, -1, 0, theta), hinge "

@@ -78,6 +78,9 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
   contact.mu = in.keep_friction ? 0.0 : in.mu;
   contact.mu_roll = in.keep_friction ? 0.0 : in.mu_roll;
   RigidBody body;
+  // One contact at the lever: a disc of that radius when it rolls, else a
+  // turning body when it has an inertia, else a point mass.
+  body.shape = in.mu_roll > 0.0 ? Shape::Circle : in.inertia > 0.0 ? Shape::Box : Shape::PointMass;
   body.mass = in.mass;
   body.inertia = in.inertia;
   body.rotates = in.inertia > 0.0;

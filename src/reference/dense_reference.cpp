@@ -74,8 +74,11 @@ class System {
   void rhs(const Vec6& y, Vec6& dy) const {
     const RigidBody& body = model_.body;
     const ContactParams& law = model_.contact;
+    const ShapeFeatures features = shape_features(body.shape);
+    // A disc's point stays below the centre; a rolling law adds resistance.
+    const bool rolls = features.rolls && law.mu_roll > 0.0;
     double cos_t = 1.0, sin_t = 0.0;
-    if (body.points_rotate) {
+    if (!features.rolls) {
       cos_t = std::cos(y[2]);
       sin_t = std::sin(y[2]);
     }
@@ -94,7 +97,6 @@ class System {
         // itself, continuously (its kinks are not located, see
         // point_functions).
         const double ry_mid = ry + 0.5 * depth;
-        const bool rolls = body.roll_radius > 0.0 && law.mu_roll > 0.0;
         const ConeForce f = soft_cone_force(law, normal_aim(law, depth, y[4] + y[5] * rx),
                                             y[3] - y[5] * ry_mid, rolls ? y[5] : 0.0);
         fx += f.ft;
@@ -111,7 +113,6 @@ class System {
         fn = active_[i] ? fn - law.c * vcy : 0.0;
       }
       if (law.friction == FrictionLaw::ViscousCone) {
-        const bool rolls = body.roll_radius > 0.0 && law.mu_roll > 0.0;
         const ConeForce f = viscous_cone_force(law, fn, vcx, rolls ? y[5] : 0.0);
         fx += f.ft;
         fy += fn;
@@ -121,12 +122,13 @@ class System {
       const double ft = friction_force(law, fn, vcx);
       fx += ft;
       fy += fn;
-      torque += rx * fn - ry * ft + rolling_torque(law, fn, body.roll_radius, y[5]);
+      torque += rx * fn - ry * ft +
+                (features.rolls ? rolling_torque(law, fn, body.roll_radius, y[5]) : 0.0);
     }
     dy.head<3>() = y.tail<3>();
     dy[3] = fx / body.mass;
     dy[4] = fy / body.mass;
-    dy[5] = (body.rotates && body.inertia > 0.0) ? torque / body.inertia : 0.0;
+    dy[5] = (features.turns && body.inertia > 0.0) ? torque / body.inertia : 0.0;
   }
 
   // Switching functions of point i (positive = on) and their time rates
@@ -139,8 +141,10 @@ class System {
     const RigidBody& body = model_.body;
     const ContactParams& law = model_.contact;
     const Vec2& local = body.points[i];
+    // A disc's point stays below the centre; every other body's turns with θ.
+    const bool points_turn = !shape_features(body.shape).rolls;
     double rx = local.x(), ry = local.y();
-    if (body.points_rotate) {
+    if (points_turn) {
       const double cos_t = std::cos(y[2]), sin_t = std::sin(y[2]);
       rx = cos_t * local.x() - sin_t * local.y();
       ry = sin_t * local.x() + cos_t * local.y();
@@ -156,7 +160,7 @@ class System {
     if (law.friction == FrictionLaw::SoftCone) g_active = 1.0;
     if (!ydot) return;
     const Vec6& yd = *ydot;
-    const double spin = body.points_rotate ? yd[2] : 0.0;  // dθ/dt moving the point
+    const double spin = points_turn ? yd[2] : 0.0;  // dθ/dt moving the point
     const double cy_rate = yd[1] + spin * rx;
     const double vcy_rate = yd[4] + yd[5] * rx - y[5] * spin * ry;
     rate_contact = -cy_rate;
@@ -399,6 +403,39 @@ std::string chatter_message(const Model& model, double t, size_t j) {
          " is on the wrong side in both modes (chattering) and no shorter step resolves it";
 }
 
+// Flips the mode bits at an event located on function `located` at time t
+// (state y); every flip is recorded as one event. `flips` is scratch of one
+// entry per function.
+void flip_modes(System& sys, size_t located, bool at_start, const Vec6& y, double t,
+                std::vector<unsigned char>& flips, std::vector<double>& event_times,
+                DenseStats& stats) {
+  // Which functions flip, judged under the old mode: the located one, and
+  // any other that is past its surface at the new state (simultaneous
+  // crossings, e.g. a box landing flat on two corners).
+  const size_t n = sys.points();
+  for (size_t j = 0; j < sys.functions(); ++j) {
+    flips[j] = sys.monitored(j) &&
+               (j == located || (!at_start && sys.signed_value(j, y, nullptr, nullptr) < 0.0));
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (flips[i]) {
+      // Entering contact: the damper's side is read from the state (its
+      // function is continuous through the entry); leaving: irrelevant.
+      const bool on = !sys.contact(i);
+      sys.set_contact(i, on);
+      double gc, ga, rc, ra;
+      sys.point_functions(i, y, nullptr, gc, ga, rc, ra);
+      sys.set_active(i, on && ga > 0.0);
+    } else if (flips[n + i]) {
+      sys.set_active(i, !sys.active(i));
+    } else {
+      continue;
+    }
+    event_times.push_back(t);
+    ++stats.events;
+  }
+}
+
 }  // namespace
 
 State DenseTrajectory::at(double t) const {
@@ -520,32 +557,7 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
     } else {
       ++zero_length_flips;
     }
-    // Which functions flip, judged under the old mode: the located one, and
-    // any other that is past its surface at the new state (simultaneous
-    // crossings, e.g. a box landing flat on two corners).
-    const size_t n = sys.points();
-    for (size_t j = 0; j < sys.functions(); ++j) {
-      flips[j] =
-          sys.monitored(j) &&
-          (j == event->function || (!at_start && sys.signed_value(j, y, nullptr, nullptr) < 0.0));
-    }
-    for (size_t i = 0; i < n; ++i) {
-      if (flips[i]) {
-        // Entering contact: the damper's side is read from the state (its
-        // function is continuous through the entry); leaving: irrelevant.
-        const bool on = !sys.contact(i);
-        sys.set_contact(i, on);
-        double gc, ga, rc, ra;
-        sys.point_functions(i, y, nullptr, gc, ga, rc, ra);
-        sys.set_active(i, on && ga > 0.0);
-      } else if (flips[n + i]) {
-        sys.set_active(i, !sys.active(i));
-      } else {
-        continue;
-      }
-      out.event_times_.push_back(t);
-      ++stats.events;
-    }
+    flip_modes(sys, event->function, at_start, y, t, flips, out.event_times_, stats);
     sys.rhs(y, f);
     ++stats.evaluations;
     if (!at_start) h = h_next;
@@ -558,7 +570,7 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
 DenseTrajectory converged_reference(const Scene& scene, double tol) {
   const Model model = make_model(scene);
   State s0 = scene.initial;
-  if (scene.shape == Shape::PointMass) {
+  if (!shape_features(scene.shape).turns) {
     s0.q.z() = 0.0;
     s0.v.z() = 0.0;
   }

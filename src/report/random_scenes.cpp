@@ -22,34 +22,18 @@ double rounded(double x, int digits) {
   return std::strtod(format_number(x, digits).c_str(), nullptr);
 }
 
-}  // namespace
-
-std::vector<RandomScene> draw_random_scenes(std::uint64_t seed, int count) {
-  const Shape shapes[] = {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle};
-  std::uint64_t state = seed;
+// The shape's own dimensions of `s`, drawn from `state`; returns the body's
+// mass: `m`, or a compound's sum of its parts' masses.
+double draw_body(std::uint64_t& state, double m, Scene& s) {
   auto u = [&state] { return next_uniform(state); };
-  // ζ stratified: scene i lies in slice slots[i] of `count` equal slices of
-  // log ζ over [kMinZeta, kMaxZeta] (a seeded Fisher–Yates shuffle), at a
-  // uniform place inside it; so each scene's ζ is log-uniform and the scenes
-  // cover the range evenly.
-  std::vector<int> slots(static_cast<size_t>(std::max(count, 0)));
-  std::iota(slots.begin(), slots.end(), 0);
-  for (int i = count - 1; i > 0; --i) std::swap(slots[i], slots[static_cast<int>(u() * (i + 1))]);
-  std::vector<RandomScene> out;
-  for (int i = 0; i < count; ++i) {
-    const Shape shape = shapes[i % 4];
-    Scene s = default_scene(shape);
-    double m = std::pow(10.0, u() * 2 - 1);
-    const double k = std::pow(10.0, 3 + u() * 2.5);
-    const double zeta = kMinZeta * std::pow(kMaxZeta / kMinZeta, (slots[i] + u()) / count);
-    m = rounded(m, 6);
-    if (shape == Shape::PointMass) s.half_height = rounded(u() * 0.2, 4);
-    if (shape == Shape::Box) {
+  switch (s.shape) {
+    case Shape::PointMass: s.half_height = rounded(u() * 0.2, 4); break;
+    case Shape::Box:
       s.width = rounded(0.05 + u(), 4);
       s.height = rounded(0.05 + u(), 4);
-    }
-    if (shape == Shape::Circle) s.radius = rounded(0.02 + u() * 0.5, 4);
-    if (shape == Shape::TShape) {
+      break;
+    case Shape::Circle: s.radius = rounded(0.02 + u() * 0.5, 4); break;
+    case Shape::TShape: {
       s.parts.clear();
       const int n = 1 + static_cast<int>(u() * 3);
       double total = 0.0;
@@ -63,15 +47,40 @@ std::vector<RandomScene> draw_random_scenes(std::uint64_t seed, int count) {
         total += part.mass;
         s.parts.push_back(part);
       }
-      m = total;
+      return total;
     }
-    if (shape != Shape::TShape) s.mass = m;  // a T's mass comes from its parts
+  }
+  if (!shape_features(s.shape).compound) s.mass = m;  // a compound's mass comes from its parts
+  return m;
+}
+
+}  // namespace
+
+std::vector<RandomScene> draw_random_scenes(std::uint64_t seed, int count) {
+  std::uint64_t state = seed;
+  auto u = [&state] { return next_uniform(state); };
+  // ζ stratified: scene i lies in slice slots[i] of `count` equal slices of
+  // log ζ over [kMinZeta, kMaxZeta] (a seeded Fisher–Yates shuffle), at a
+  // uniform place inside it; so each scene's ζ is log-uniform and the scenes
+  // cover the range evenly.
+  std::vector<int> slots(static_cast<size_t>(std::max(count, 0)));
+  std::iota(slots.begin(), slots.end(), 0);
+  for (int i = count - 1; i > 0; --i) std::swap(slots[i], slots[static_cast<int>(u() * (i + 1))]);
+  std::vector<RandomScene> out;
+  for (int i = 0; i < count; ++i) {
+    const Shape shape = kAllShapes[static_cast<size_t>(i) % kAllShapes.size()];
+    Scene s = default_scene(shape);
+    double m = std::pow(10.0, u() * 2 - 1);
+    const double k = std::pow(10.0, 3 + u() * 2.5);
+    const double zeta = kMinZeta * std::pow(kMaxZeta / kMinZeta, (slots[i] + u()) / count);
+    m = rounded(m, 6);
+    m = draw_body(state, m, s);
     s.contact.k = rounded(k, 6);
     s.contact.c = rounded(2 * zeta * std::sqrt(s.contact.k * m), 6);
     s.contact.mu = rounded(0.1 + u() * 0.9, 3);
     s.contact.alpha = 100;
     s.contact.damping = DampingLaw::KelvinVoigt;
-    const double spin = shape == Shape::PointMass ? 0.0 : 1.0;
+    const double spin = shape_features(shape).turns ? 1.0 : 0.0;
     s.initial.q = Vec3(0.0, rounded(0.6 + u() * 0.9, 4), rounded(spin * (u() * 1.2 - 0.6), 4));
     s.initial.v = Vec3(rounded(u() * 3 - 1.5, 4), 0.0, rounded(spin * (u() * 6 - 3), 4));
     s.sim.dt = 1e-4;
