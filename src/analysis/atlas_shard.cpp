@@ -11,6 +11,7 @@
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/rng.hpp"
+#include "core/shape.hpp"
 
 namespace contact2d::analysis {
 namespace {
@@ -18,14 +19,14 @@ namespace {
 namespace fs = std::filesystem;
 
 double total_mass(const Scene& s) {
-  if (s.shape != Shape::TShape) return s.mass;
+  if (!shape_features(s.shape).compound) return s.mass;
   double m = 0.0;
   for (const BoxPart& p : (s.parts.empty() ? default_tshape_parts() : s.parts)) m += p.mass;
   return m;
 }
 
 void set_total_mass(Scene& s, double m) {
-  if (s.shape != Shape::TShape) {
+  if (!shape_features(s.shape).compound) {
     s.mass = m;
     return;
   }

@@ -4,7 +4,7 @@ namespace contact2d {
 
 State initial_state(const Scene& scene) {
   State s = scene.initial;
-  if (scene.shape == Shape::PointMass) {
+  if (!shape_features(scene.shape).turns) {  // θ is no degree of freedom
     s.q.z() = 0.0;
     s.v.z() = 0.0;
   }

@@ -11,8 +11,6 @@
 namespace contact2d::mujoco {
 namespace {
 
-std::string g3(double v) { return format_text("%.3g", v); }
-
 // MuJoCo's integrators on a contact: Euler and implicit both update the
 // velocity first with the explicit contact force (semi-implicit Euler);
 // RK4 is RK4.
@@ -60,11 +58,14 @@ std::string describe_mujoco_divergence(const Divergence& d, const Scene& scene,
                         ", timestep = " + format_text("%g", dt) + ", " +
                         std::string(mapping_name(settings.mapping)) + " mapping): " + event + ". ";
   const MujocoContactRegime r = mujoco_contact_regime(scene, settings, inv_weight);
-  message += "Its contact: solref = (" + g3(settings.solref[0]) + ", " + g3(settings.solref[1]) +
-             "), impedance d = " + g3(r.impedance) + ", impratio = " + g3(settings.impratio) +
-             "; MuJoCo's soft constraint makes it an oscillator with ω = " + g3(r.omega) +
-             " rad/s, ζ = " + g3(r.zeta) + " (contact inverse mass A = " + g3(r.inv_mass) +
-             " 1/kg, body_invweight0 = " + g3(r.inv_weight) + " 1/kg). ";
+  message +=
+      "Its contact: solref = (" + format_number(settings.solref[0], 3) + ", " +
+      format_number(settings.solref[1], 3) + "), impedance d = " + format_number(r.impedance, 3) +
+      ", impratio = " + format_number(settings.impratio, 3) +
+      "; MuJoCo's soft constraint makes it an oscillator with ω = " + format_number(r.omega, 3) +
+      " rad/s, ζ = " + format_number(r.zeta, 3) +
+      " (contact inverse mass A = " + format_number(r.inv_mass, 3) +
+      " 1/kg, body_invweight0 = " + format_number(r.inv_weight, 3) + " 1/kg). ";
   if (settings.refsafe_clamped)
     message +=
         "MuJoCo's refsafe raised the solref timeconst to 2·timestep, a softer contact "
@@ -78,16 +79,19 @@ std::string describe_mujoco_divergence(const Divergence& d, const Scene& scene,
                                  : "MuJoCo's " + mj_integrator;
   const double friction_dt = r.friction_rate * dt;
   if (omega_dt > limit) {
-    message += "Likely cause: ω·Δt = " + g3(omega_dt) + " exceeds the limit " + g3(limit) + " of " +
-               scheme + ". Try --dt " + format_text("%.2g", 0.5 * limit / r.omega);
+    message += "Likely cause: ω·Δt = " + format_number(omega_dt, 3) + " exceeds the limit " +
+               format_number(limit, 3) + " of " + scheme + ". Try --dt " +
+               format_text("%.2g", 0.5 * limit / r.omega);
     if (integrator != Integrator::RK4 && omega_dt < rk4_limit)
-      message += ", or --integrator rk4 (MuJoCo's RK4: limit " + g3(rk4_limit) + ")";
+      message += ", or --integrator rk4 (MuJoCo's RK4: limit " + format_number(rk4_limit, 3) + ")";
     message += ".";
   } else if (friction_dt > 1.0) {
     message += "Likely cause: the friction rows' viscous slope impratio·B gives Δt·rate = " +
-               g3(friction_dt) + " > 1 (the slip reverses within one step). Try a smaller --dt.";
+               format_number(friction_dt, 3) +
+               " > 1 (the slip reverses within one step). Try a smaller --dt.";
   } else {
-    message += "ω·Δt = " + g3(omega_dt) + " is within the limit " + g3(limit) + " of " + scheme +
+    message += "ω·Δt = " + format_number(omega_dt, 3) + " is within the limit " +
+               format_number(limit, 3) + " of " + scheme +
                " for one contact; several contacts at once or a fast impact stiffen it. Try a "
                "smaller --dt" +
                (integrator != Integrator::RK4 ? std::string(" or --integrator rk4") : "") + ".";

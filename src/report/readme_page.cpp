@@ -362,7 +362,7 @@ std::string summary(const ReadmeData& d) {
   return recommendation(d) + closeness_by_band(d) + friction_parts_table(d) + builtin_verdict(d);
 }
 
-// Every page `contact2d report` writes beside this one (cmd_report.cpp),
+// Every page `contact2d report` writes beside this one (report/plan.cpp: page_names()),
 // linked from the top of the front page.
 std::string page_index() {
   Table t{{"page", "what is in it"}, {}};
