@@ -4,21 +4,62 @@
 
 #include "core/input_error.hpp"
 #ifdef CONTACT2D_WITH_MUJOCO
+#include "mujoco/engine.hpp"
 #include "mujoco/stepper.hpp"
 #endif
 
 namespace contact2d::engines {
 namespace {
 
-#ifdef CONTACT2D_WITH_MUJOCO
-mujoco::MjcfOptions mjcf_options(const EngineSpec& spec) {
-  mujoco::MjcfOptions options = mujoco::mjcf_options(spec.mapping, spec.geometry, spec.source);
-  options.model_dt = spec.model_dt;
-  return options;
+std::unique_ptr<Stepper> make_reference(const EngineSpec& /*spec*/, const Scene& scene) {
+  return std::make_unique<ReferenceStepper>(scene);
 }
+
+// The reference solver with the scene's integrator: every integrator, no options.
+const EngineInfo kReference{"ref", "the reference", make_reference};
+
+#ifndef CONTACT2D_WITH_MUJOCO
+// Known by name so that asking for it says it was not built in.
+const EngineInfo kMujocoAbsent{"mujoco", "MuJoCo"};
 #endif
 
+// "ref or mujoco", "ref, mujoco or coulomb".
+std::string kinds_in_prose() {
+  const std::vector<const EngineInfo*>& list = engine_list();
+  std::string out;
+  for (size_t i = 0; i < list.size(); ++i) {
+    if (i > 0) out += i + 1 == list.size() ? " or " : ", ";
+    out += list[i]->kind;
+  }
+  return out;
+}
+
 }  // namespace
+
+const std::vector<const EngineInfo*>& engine_list() {
+  static const std::vector<const EngineInfo*> list{
+      &kReference,
+#ifdef CONTACT2D_WITH_MUJOCO
+      &mujoco::engine_info(),
+#else
+      &kMujocoAbsent,
+#endif
+  };
+  return list;
+}
+
+const EngineInfo* find_engine(std::string_view name) {
+  const std::string_view kind = name.substr(0, name.find(':'));
+  for (const EngineInfo* info : engine_list())
+    if (info->kind == kind) return info;
+  return nullptr;
+}
+
+std::vector<std::string> engine_kinds() {
+  std::vector<std::string> kinds;
+  for (const EngineInfo* info : engine_list()) kinds.emplace_back(info->kind);
+  return kinds;
+}
 
 std::string EngineSpec::name() const {
   std::string out = kind;
@@ -36,12 +77,13 @@ bool mujoco_available() {
 }
 
 std::vector<std::string> engine_names() {
-  std::vector<std::string> names{"ref"};
-#ifdef CONTACT2D_WITH_MUJOCO
-  names.emplace_back("mujoco");
-  for (mujoco::Mapping m : mujoco::kAllMappings)
-    names.push_back("mujoco:" + std::string(mujoco::mapping_name(m)));
-#endif
+  std::vector<std::string> names;
+  for (const EngineInfo* info : engine_list()) {
+    if (info->make == nullptr) continue;
+    names.emplace_back(info->kind);
+    if (info->variants != nullptr)
+      for (std::string& variant : info->variants()) names.push_back(std::move(variant));
+  }
   return names;
 }
 
@@ -49,35 +91,25 @@ EngineSpec parse_engine(const std::string& name, const std::string& option) {
   EngineSpec spec;
   const size_t colon = name.find(':');
   spec.kind = name.substr(0, colon);
-  if (spec.kind == "ref" && colon == std::string::npos) return spec;
-  if (spec.kind != "mujoco")
-    throw InputError(option + " " + name + ": unknown engine (use ref or mujoco)");
-  if (!mujoco_available()) {
-    throw InputError(option + " " + name +
-                     ": not available (contact2d was built without MuJoCo; use ref)");
+  const EngineInfo* info = find_engine(spec.kind);
+  const std::string unknown =
+      option + " " + name + ": unknown engine (use " + kinds_in_prose() + ")";
+  if (info == nullptr) throw InputError(unknown);
+  if (info->make == nullptr) {
+    throw InputError(option + " " + name + ": not available (contact2d was built without " +
+                     std::string(info->title) + "; use " + std::string(kReference.kind) + ")");
   }
-  if (colon == std::string::npos) return spec;
-  const std::string rest = name.substr(colon + 1);
-  const size_t second = rest.find(':');
-  spec.mapping = rest.substr(0, second);
-  if (second != std::string::npos) spec.geometry = rest.substr(second + 1);
-#ifdef CONTACT2D_WITH_MUJOCO
-  if (!spec.mapping.empty() && !mujoco::parse_mapping(spec.mapping))
-    throw InputError(option + " " + name +
-                     ": unknown mapping (seed, exact, calibrated, compensated)");
-  if (!spec.geometry.empty() && !mujoco::parse_geometry(spec.geometry))
-    throw InputError(option + " " + name + ": unknown geometry (corners, boxes)");
-#endif
+  if (colon != std::string::npos && info->parse_options == nullptr) throw InputError(unknown);
+  if (colon != std::string::npos)
+    info->parse_options(name.substr(colon + 1), option + " " + name, spec);
   return spec;
 }
 
 std::unique_ptr<Stepper> make_stepper(const EngineSpec& spec, const Scene& scene) {
-  if (spec.kind == "ref") return std::make_unique<ReferenceStepper>(scene);
-#ifdef CONTACT2D_WITH_MUJOCO
-  if (spec.kind == "mujoco")
-    return std::make_unique<mujoco::MujocoStepper>(scene, mjcf_options(spec));
-#endif
-  throw InputError("engine " + spec.name() + " is not available");
+  const EngineInfo* info = find_engine(spec.kind);
+  if (info == nullptr || info->make == nullptr)
+    throw InputError("engine " + spec.name() + " is not available");
+  return info->make(spec, scene);
 }
 
 EngineRun run_engine(const EngineSpec& spec, const Scene& scene) {
@@ -107,7 +139,23 @@ EngineRun run_engine(const std::string& name, const Scene& scene) {
 }
 
 bool engine_offers(const std::string& name, Integrator integrator) {
-  return name == "ref" || integrator != Integrator::ExplicitEuler;
+  const EngineInfo* info = find_engine(name);
+  return info == nullptr || info->offers == nullptr || info->offers(integrator);
+}
+
+std::string integrator_label(const std::string& engine, Integrator integrator) {
+  std::string label(integrator_name(integrator));
+  const EngineInfo* info = find_engine(engine);
+  if (info == nullptr || info->integrator_title == nullptr) return label;
+  const std::string_view own = info->integrator_title(integrator);
+  if (!own.empty()) label += " (" + std::string(info->title) + " " + std::string(own) + ")";
+  return label;
+}
+
+Integrator contact_integrator(const std::string& engine, Integrator integrator) {
+  const EngineInfo* info = find_engine(engine);
+  if (info == nullptr || info->contact_integrator == nullptr) return integrator;
+  return info->contact_integrator(integrator);
 }
 
 }  // namespace contact2d::engines
