@@ -1,11 +1,11 @@
 #include "engines/engines.hpp"
 
 #include <chrono>
+#include <utility>
 
 #include "core/input_error.hpp"
 #ifdef CONTACT2D_WITH_MUJOCO
 #include "mujoco/engine.hpp"
-#include "mujoco/stepper.hpp"
 #endif
 
 namespace contact2d::engines {
@@ -105,6 +105,17 @@ EngineSpec parse_engine(const std::string& name, const std::string& option) {
   return spec;
 }
 
+EngineSpec mujoco_spec(const std::string& mapping, const std::string& geometry, double model_dt,
+                       const std::string& source) {
+  EngineSpec spec;
+  spec.kind = "mujoco";
+  spec.mapping = mapping;
+  spec.geometry = geometry;
+  spec.source = source;
+  spec.model_dt = model_dt;
+  return spec;
+}
+
 std::unique_ptr<Stepper> make_stepper(const EngineSpec& spec, const Scene& scene) {
   const EngineInfo* info = find_engine(spec.kind);
   if (info == nullptr || info->make == nullptr)
@@ -122,15 +133,12 @@ EngineRun run_engine(const EngineSpec& spec, const Scene& scene) {
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (run.trajectory.divergence)
     run.divergence_message = stepper->explain(*run.trajectory.divergence, scene);
-#ifdef CONTACT2D_WITH_MUJOCO
-  if (const auto* mj = dynamic_cast<const mujoco::MujocoStepper*>(stepper.get())) {
-    run.warnings = mj->warnings();
-    run.solref = mj->settings().solref;
-    run.impratio = mj->settings().impratio;
-    run.mu_roll = mujoco::cone_mu_roll(scene, mj->settings());
-    if (mj->settings().refsafe_clamped) run.notes.emplace_back("refsafe");
-  }
-#endif
+  RunFacts facts = stepper->facts(scene);
+  run.warnings = std::move(facts.warnings);
+  run.notes = std::move(facts.notes);
+  run.solref = {facts.value("solref[0]"), facts.value("solref[1]")};
+  run.impratio = facts.value("impratio");
+  run.mu_roll = facts.value("mu_roll");
   return run;
 }
 

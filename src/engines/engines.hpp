@@ -49,7 +49,9 @@ struct EngineRun {
   // Facts about the run that are not failures, e.g. "refsafe" when MuJoCo
   // raised a standard-form timeconst to 2·Δt (a softer contact than asked).
   std::vector<std::string> notes;
-  // MuJoCo: solref and impratio of the generated model; NaN for the reference.
+  // The model values of Stepper::facts the outputs print, NaN when the
+  // engine gives none (the reference). MuJoCo: solref and impratio of the
+  // generated model.
   std::array<double, 2> solref{std::numeric_limits<double>::quiet_NaN(),
                                std::numeric_limits<double>::quiet_NaN()};
   double impratio = std::numeric_limits<double>::quiet_NaN();
@@ -57,6 +59,12 @@ struct EngineRun {
   // μ_roll' for a disc); NaN for the reference.
   double mu_roll = std::numeric_limits<double>::quiet_NaN();
 };
+
+// MuJoCo as simulate's and compare's --mapping, --geometry and --model-dt
+// (Python: mapping, geometry, model_dt) give it; empty or 0: the defaults.
+// `source` is the scene file.
+EngineSpec mujoco_spec(const std::string& mapping, const std::string& geometry, double model_dt,
+                       const std::string& source);
 
 // A stepper at the scene's initial state. Throws InputError when the engine
 // cannot run the scene (MuJoCo: a model it cannot load, explicit Euler).
