@@ -20,7 +20,8 @@ const EngineInfo kReference{"ref", "the reference", make_reference};
 
 #ifndef CONTACT2D_WITH_MUJOCO
 // Known by name so that asking for it says it was not built in.
-const EngineInfo kMujocoAbsent{"mujoco", "MuJoCo"};
+const EngineInfo kMujocoAbsent{"mujoco", "MuJoCo", nullptr,
+                               [](Integrator i) { return i != Integrator::ExplicitEuler; }};
 #endif
 
 // "ref or mujoco", "ref, mujoco or coulomb".
@@ -147,8 +148,15 @@ EngineRun run_engine(const std::string& name, const Scene& scene) {
 }
 
 bool engine_offers(const std::string& name, Integrator integrator) {
-  const EngineInfo* info = find_engine(name);
-  return info == nullptr || info->offers == nullptr || info->offers(integrator);
+  auto offers = [integrator](const EngineInfo* info) {
+    return info->offers == nullptr || info->offers(integrator);
+  };
+  if (const EngineInfo* info = find_engine(name)) return offers(info);
+  // A name the registry does not know (a caller's own runner): only what
+  // every engine offers.
+  for (const EngineInfo* info : engine_list())
+    if (!offers(info)) return false;
+  return true;
 }
 
 std::string integrator_label(const std::string& engine, Integrator integrator) {

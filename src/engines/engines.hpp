@@ -86,6 +86,7 @@ const EngineInfo* find_engine(std::string_view name);
 std::vector<std::string> engine_kinds();
 
 // Whether an engine offers the integrator: MuJoCo 2.2 has no explicit Euler.
+// A name the registry does not know offers what every engine offers.
 bool engine_offers(const std::string& name, Integrator integrator);
 
 // One set of integrator names across engines: every option value and every
