@@ -1,9 +1,10 @@
 // What the registry (engines/engines.hpp) knows of one engine, as data: its
 // name, its title, the integrators it offers and its own names for them,
 // the options its name may carry, and how to make its Stepper. Each engine
-// describes itself in its own folder (mujoco/engine.hpp) or beside its
-// stepper; the registry is the list of these descriptors, so nothing outside
-// an engine's folder and the registry needs to know which engines exist.
+// describes itself in its own folder (mujoco/engine.hpp); the reference,
+// whose stepper is the core's, is described in the registry. The registry
+// is the list of these descriptors, so nothing outside an engine's folder
+// and the registry needs to know which engines exist.
 #pragma once
 
 #include <memory>
