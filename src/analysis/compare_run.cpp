@@ -2,7 +2,6 @@
 
 #include <sstream>
 
-#include "core/integrator_label.hpp"
 #include "io/json.hpp"
 
 namespace contact2d::analysis {

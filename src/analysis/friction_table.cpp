@@ -13,6 +13,7 @@
 #include "analysis/trajectory_error.hpp"
 #include "core/body.hpp"
 #include "core/run.hpp"
+#include "engines/engines.hpp"
 #include "io/scene_file.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/stepper.hpp"
@@ -41,6 +42,11 @@ FrictionOutcome outcome(const Trajectory& reference, const Trajectory& mj) {
   for (size_t i = 0; i < n; ++i)
     out.hop = std::max(out.hop, mj.samples[i].state.q.y() - reference.samples[i].state.q.y());
   return out;
+}
+
+// MuJoCo with a mapping, from the registry.
+engines::EngineSpec mujoco_engine(mujoco::Mapping mapping) {
+  return engines::parse_engine("mujoco:" + std::string(mujoco::mapping_name(mapping)));
 }
 
 FrictionOutcome measure(const Scene& scene, const Trajectory& reference, const std::string& xml) {
@@ -239,10 +245,7 @@ FrictionParts friction_parts(const Scene& scene, const std::string& mapping) {
   FrictionParts p;
   const std::optional<mujoco::Mapping> m = mujoco::parse_mapping(mapping);
   if (!m) throw std::invalid_argument("friction_parts: no mapping " + mapping);
-  mujoco::MjcfOptions options;
-  options.mapping = *m;
-  mujoco::MujocoStepper stepper(scene, mujoco::generate_mjcf(scene, options).xml, "friction parts");
-  const Trajectory mj = simulate(stepper, scene.sim);
+  const Trajectory mj = simulate(*engines::make_stepper(mujoco_engine(*m), scene), scene.sim);
   const Trajectory reference = simulate(scene);
   const Trajectory shape = simulate(conformance_scene(scene, FrictionLaw::ViscousCone, mapping));
   const Trajectory soft = simulate(conformance_scene(scene, FrictionLaw::SoftCone, mapping));
@@ -263,11 +266,7 @@ FrictionRow friction_row(const FrictionScene& s) {
   FrictionRow row{s.name, s.what, {}, {}, {}, 0.0, 0.0, 0.0, 0.0, {}};
   Trajectory compensated;
   for (mujoco::Mapping m : {mujoco::Mapping::Calibrated, mujoco::Mapping::Compensated}) {
-    mujoco::MjcfOptions options;
-    options.mapping = m;
-    mujoco::MujocoStepper stepper(s.scene, mujoco::generate_mjcf(s.scene, options).xml,
-                                  "friction scene");
-    Trajectory mj = simulate(stepper, s.scene.sim);
+    Trajectory mj = simulate(*engines::make_stepper(mujoco_engine(m), s.scene), s.scene.sim);
     const FrictionOutcome o = outcome(reference, mj);
     (m == mujoco::Mapping::Calibrated ? row.calibrated : row.compensated) = o;
     if (m == mujoco::Mapping::Compensated) compensated = std::move(mj);

@@ -10,7 +10,7 @@
 
 #include "analysis/tables.hpp"
 #include "core/format.hpp"
-#include "core/integrator_label.hpp"
+#include "engines/engines.hpp"
 #include "io/atomic_file.hpp"
 #include "io/plot.hpp"
 
@@ -20,7 +20,7 @@ namespace {
 // "ref: rk4", "mujoco:seed: semi_implicit_euler (MuJoCo Euler)": the
 // engine and integrator as --engines and --integrators name them.
 std::string series_title(const std::string& engine, Integrator integrator) {
-  return engine + ": " + integrator_label(integrator, is_mujoco_engine(engine));
+  return engine + ": " + engines::integrator_label(engine, integrator);
 }
 
 // How a series of an engine is drawn: the reference solid with small
@@ -213,7 +213,7 @@ std::vector<StabilitySeries> write_stability_data(std::FILE* f, const StabilityR
     const size_t engine = engine_index(engines, key.first);
     c.style = engine_style(engine);
     c.point_type = point_type(key.first, key.second);
-    c.mujoco_implicit = is_mujoco_engine(key.first) && key.second == Integrator::ImplicitEuler;
+    c.mujoco_implicit = engines::contact_integrator(key.first, key.second) != key.second;
     for (const StabilityRow& row : r.rows) {
       if (row.engine != key.first || row.integrator != key.second) continue;
       const bool bracketed = row.verdict == StabilityVerdict::Bracketed;

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "analysis/reference.hpp"
-#include "core/integrator_label.hpp"
+#include "engines/engines.hpp"
 #include "reference/dense_reference.hpp"
 
 namespace contact2d::analysis {
@@ -138,8 +138,7 @@ std::vector<StabilityRow> stability_rows(const Scene& scene, const StabilityConf
         // implicitly but contact forces explicitly: for a contact it is
         // semi-implicit Euler, with that limit (not the reference's
         // unconditionally stable implicit Euler).
-        const bool mujoco_implicit =
-            is_mujoco_engine(engine) && integrator == Integrator::ImplicitEuler;
+        const bool mujoco_implicit = engines::contact_integrator(engine, integrator) != integrator;
         row.theory =
             stability_limit(mujoco_implicit ? Integrator::SemiImplicitEuler : integrator, cs.zeta);
         const long long max_steps = engine == "ref" ? config.max_steps : config.max_steps_other;

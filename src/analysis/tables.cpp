@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/format.hpp"
-#include "core/integrator_label.hpp"
+#include "engines/engines.hpp"
 #include "io/table.hpp"
 
 namespace contact2d::analysis {
@@ -61,7 +61,7 @@ void print_sweep(std::ostream& out, const SweepResult& r) {
              {}};
   for (const SweepRow& row : r.rows) {
     const std::string engine = row.engine,
-                      integrator = integrator_label(row.integrator, is_mujoco_engine(row.engine)),
+                      integrator = engines::integrator_label(row.engine, row.integrator),
                       dt = number(row.dt, 3);
     if (row.status == RunStatus::Ok) {
       add_row(runs, {engine, integrator, dt, number(row.error.max_pos), number(row.error.end_pos),
@@ -107,8 +107,8 @@ void print_orders(std::ostream& out, const SweepResult& r) {
       << number(r.length_scale, 3) << " m (body size or largest COM displacement)\n";
   Table orders{{"engine", "integrator", "against", "nominal", "observed", "dt range", "note"}, {}};
   for (const OrderFit& f : r.orders) {
-    add_row(orders, {f.engine, integrator_label(f.integrator, is_mujoco_engine(f.engine)),
-                     f.against, number(f.nominal, 2),
+    add_row(orders, {f.engine, engines::integrator_label(f.engine, f.integrator), f.against,
+                     number(f.nominal, 2),
                      f.order ? number(*f.order, 2) + " ± " + number(f.order_stderr, 1) : "-",
                      f.order ? number(f.dt_min, 2) + ".." + number(f.dt_max, 2) + " (" +
                                    std::to_string(f.points) + ")"
@@ -234,8 +234,8 @@ void print_stability(std::ostream& out, const StabilityResult& r) {
     if (!row.note.empty()) tail += (tail.empty() ? "" : "; ") + row.note;
     add_row(
         t,
-        {row.engine, integrator_label(row.integrator, is_mujoco_engine(row.engine)),
-         number(row.k, 2), number(row.zeta, 3), number(row.omega, 4), stable,
+        {row.engine, engines::integrator_label(row.engine, row.integrator), number(row.k, 2),
+         number(row.zeta, 3), number(row.omega, 4), stable,
          std::isnan(row.dt_stable)
              ? "-"
              : (row.verdict == StabilityVerdict::StableAtMax ? ">=" : "") + number(observed, 3),
@@ -309,7 +309,7 @@ std::string run_summary(const Scene& scene, const std::string& engine, const Eng
   const State& first = samples.front().state;
   const State& last = samples.back().state;
   return std::string(shape_name(scene.shape)) + " [" + engine + ", " +
-         integrator_label(scene.sim.integrator, is_mujoco_engine(engine)) +
+         engines::integrator_label(engine, scene.sim.integrator) +
          ", dt = " + format_number(scene.sim.dt) + " s, " + format_number(scene.sim.duration) +
          " s in " + format_duration(run.seconds) + "]: final x = " + format_number(last.q.x()) +
          " m, y = " + format_number(last.q.y()) + " m, theta = " + format_number(last.q.z()) +

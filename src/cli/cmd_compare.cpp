@@ -18,8 +18,9 @@
 #include "analysis/trajectory_error.hpp"
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
-#include "core/integrator_label.hpp"
+#include "engines/engines.hpp"
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
 #include "io/json.hpp"
 #include "io/plot.hpp"
 #include "io/table.hpp"
@@ -82,7 +83,7 @@ void print_table(const Comparison& c) {
   const Energies em = energies(c.scene, c.mujoco.trajectory);
   const analysis::ConvergedSolution& conv = c.three.converged;
   std::cout << shape_name(c.scene.shape) << ": ref vs MuJoCo, "
-            << integrator_label(c.scene.sim.integrator, true) << ", mapping "
+            << engines::integrator_label("mujoco", c.scene.sim.integrator) << ", mapping "
             << mj::mapping_name(c.mjcf.mapping) << ", geometry "
             << mj::geometry_name(c.mjcf.geometry) << ", "
             << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt")
@@ -229,8 +230,9 @@ int compare(const CompareOptions& options) {
   if (!options.plot.empty()) {
     const std::string title =
         std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo, " +
-        integrator_label(c.scene.sim.integrator, true) + ", Δt = " + format_number(c.scene.sim.dt) +
-        " s, " + std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping, " +
+        engines::integrator_label("mujoco", c.scene.sim.integrator) +
+        ", Δt = " + format_number(c.scene.sim.dt) + " s, " +
+        std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping, " +
         (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
         " damping";
     plot_comparison(options.plot, title, c.ref.trajectory, c.mujoco.trajectory);
@@ -243,7 +245,7 @@ int compare(const CompareOptions& options) {
     in.mujoco = &c.mujoco.trajectory;
     in.converged = c.three.converged.available ? &c.three.converged.trajectory : nullptr;
     in.title = std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo, " +
-               integrator_label(c.scene.sim.integrator, true) + ", " +
+               engines::integrator_label("mujoco", c.scene.sim.integrator) + ", " +
                std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping";
     in.reference_label = "ref";
     game::write_comparison_video(options.video, in);

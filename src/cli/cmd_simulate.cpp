@@ -1,6 +1,8 @@
 // contact2d simulate SCENE --engine ref|mujoco [--csv FILE] [overrides]
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "analysis/tables.hpp"
 #include "cli/common.hpp"
@@ -60,9 +62,12 @@ Command add_simulate(CLI::App& app) {
   CLI::App* cmd =
       app.add_subcommand("simulate", "Run one engine on a scene and write its trajectory");
   options->scene.add_to(*cmd);
-  cmd->add_option("--engine", options->engine, "ref | mujoco")
+  const std::vector<std::string> kinds = engines::engine_kinds();
+  std::string kinds_text;
+  for (const std::string& kind : kinds) kinds_text += (kinds_text.empty() ? "" : " | ") + kind;
+  cmd->add_option("--engine", options->engine, kinds_text)
       ->type_name("ENGINE")
-      ->check(CLI::IsMember({"ref", "mujoco"}));
+      ->check(CLI::IsMember(kinds));
   options->outputs.file(*cmd, "--csv", options->csv,
                         "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file", "FILE.csv");
   add_allow_nonphysical(*cmd, options->allow_nonphysical);

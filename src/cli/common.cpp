@@ -142,13 +142,7 @@ void MujocoOptions::add_to(CLI::App& cmd) {
 }
 
 engines::EngineSpec MujocoOptions::spec(const std::string& source) const {
-  engines::EngineSpec spec;
-  spec.kind = "mujoco";
-  spec.mapping = mapping;
-  spec.geometry = geometry;
-  spec.source = source;
-  spec.model_dt = model_dt;
-  return spec;
+  return engines::mujoco_spec(mapping, geometry, model_dt, source);
 }
 
 std::function<void(size_t, size_t, const std::string&)> progress_reporter(const std::string& label,

@@ -1,6 +1,14 @@
 #include "core/stepper.hpp"
 
+#include <limits>
+
 namespace contact2d {
+
+double RunFacts::value(const std::string& name) const {
+  for (const auto& [key, v] : values)
+    if (key == name) return v;
+  return std::numeric_limits<double>::quiet_NaN();
+}
 
 State initial_state(const Scene& scene) {
   State s = scene.initial;

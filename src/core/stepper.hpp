@@ -12,12 +12,26 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/divergence.hpp"
 #include "core/integrators.hpp"
 #include "core/scene.hpp"
 
 namespace contact2d {
+
+// What an engine reports about a run beyond its trajectory, as plain data
+// the run loop passes on without knowing the engine: its warnings, facts
+// that are not failures (notes, e.g. "refsafe"), and named values of the
+// model it ran (MuJoCo: "solref[0]", "solref[1]", "impratio", "mu_roll").
+struct RunFacts {
+  std::vector<std::string> warnings;
+  std::vector<std::string> notes;
+  std::vector<std::pair<std::string, double>> values;
+
+  double value(const std::string& name) const;  // NaN when it is not given
+};
 
 class Stepper {
  public:
@@ -37,6 +51,8 @@ class Stepper {
   virtual std::string explain(const Divergence& d, const Scene& scene) const {
     return contact2d::describe(d, scene);
   }
+  // What it has to say about the run so far; nothing by default.
+  virtual RunFacts facts(const Scene& /*scene*/) const { return {}; }
 };
 
 // The reference solver: core step() with the scene's integrator and Δt.

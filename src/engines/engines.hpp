@@ -1,8 +1,10 @@
 // The engine registry: the one place that turns an engine's name into a
 // Stepper (core/stepper.hpp) and runs it through the one run loop
 // (core/run.hpp) into one result type. Every command, the analysis, the
-// report and the game get their engines here; it is the only code outside
-// CMake that knows whether MuJoCo was built in.
+// report and the game get their engines here. The registry is a list of
+// descriptors (engines/engine_info.hpp), one line per engine; it is the only
+// code outside CMake and the engines' own folders that knows which engines
+// exist and whether MuJoCo was built in.
 //
 //   ref                        the reference solver with the scene's integrator
 //   mujoco                     MuJoCo, default mapping (calibrated) and geometry (corners)
@@ -15,23 +17,13 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/run.hpp"
+#include "engines/engine_info.hpp"
 
 namespace contact2d::engines {
-
-struct EngineSpec {
-  std::string kind = "ref";  // "ref" or "mujoco"
-  std::string mapping;       // MuJoCo: empty = the default mapping
-  std::string geometry;      // MuJoCo: empty = the default geometry
-  std::string source;        // the scene file, named in a generated model's header
-  // MuJoCo: the Δt its model's Δt-dependent values are computed for (0: the
-  // scene's timestep; mujoco/mjcf.hpp MjcfOptions::model_dt).
-  double model_dt = 0.0;
-
-  std::string name() const;  // back to "mujoco:exact" etc.
-};
 
 // Parses a name of the table above. `option` names where it came from in
 // the error ("--engine", "--engines"). Throws InputError for an unknown
@@ -57,7 +49,9 @@ struct EngineRun {
   // Facts about the run that are not failures, e.g. "refsafe" when MuJoCo
   // raised a standard-form timeconst to 2·Δt (a softer contact than asked).
   std::vector<std::string> notes;
-  // MuJoCo: solref and impratio of the generated model; NaN for the reference.
+  // The model values of Stepper::facts the outputs print, NaN when the
+  // engine gives none (the reference). MuJoCo: solref and impratio of the
+  // generated model.
   std::array<double, 2> solref{std::numeric_limits<double>::quiet_NaN(),
                                std::numeric_limits<double>::quiet_NaN()};
   double impratio = std::numeric_limits<double>::quiet_NaN();
@@ -65,6 +59,12 @@ struct EngineRun {
   // μ_roll' for a disc); NaN for the reference.
   double mu_roll = std::numeric_limits<double>::quiet_NaN();
 };
+
+// MuJoCo as simulate's and compare's --mapping, --geometry and --model-dt
+// (Python: mapping, geometry, model_dt) give it; empty or 0: the defaults.
+// `source` is the scene file.
+EngineSpec mujoco_spec(const std::string& mapping, const std::string& geometry, double model_dt,
+                       const std::string& source);
 
 // A stepper at the scene's initial state. Throws InputError when the engine
 // cannot run the scene (MuJoCo: a model it cannot load, explicit Euler).
@@ -74,7 +74,30 @@ std::unique_ptr<Stepper> make_stepper(const EngineSpec& spec, const Scene& scene
 EngineRun run_engine(const EngineSpec& spec, const Scene& scene);
 EngineRun run_engine(const std::string& name, const Scene& scene);
 
+// The registry: every engine, built in or not, in the order of the lists
+// (engine_names, the help's "ref | mujoco").
+const std::vector<const EngineInfo*>& engine_list();
+
+// The descriptor of an engine name ("mujoco:seed": MuJoCo's); nullptr for
+// an unknown one.
+const EngineInfo* find_engine(std::string_view name);
+
+// Every engine's kind, built in or not: the values of simulate's --engine.
+std::vector<std::string> engine_kinds();
+
 // Whether an engine offers the integrator: MuJoCo 2.2 has no explicit Euler.
+// A name the registry does not know offers what every engine offers.
 bool engine_offers(const std::string& name, Integrator integrator);
+
+// One set of integrator names across engines: every option value and every
+// label uses the scene's names (integrator_name: "semi_implicit_euler", …);
+// where an engine has its own name for it, that follows in parentheses with
+// the engine's title: "rk4" for the reference, "rk4 (MuJoCo RK4)" for MuJoCo.
+std::string integrator_label(const std::string& engine, Integrator integrator);
+
+// The integrator the engine's contact forces are integrated with when it
+// runs `integrator` (the stability limit that applies): the same one, but
+// semi-implicit Euler for MuJoCo's implicit.
+Integrator contact_integrator(const std::string& engine, Integrator integrator);
 
 }  // namespace contact2d::engines

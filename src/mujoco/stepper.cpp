@@ -92,4 +92,15 @@ std::vector<std::string> MujocoStepper::warnings() const {
   return out;
 }
 
+RunFacts MujocoStepper::facts(const Scene& scene) const {
+  RunFacts f;
+  f.warnings = warnings();
+  if (settings_.refsafe_clamped) f.notes.emplace_back("refsafe");
+  f.values = {{"solref[0]", settings_.solref[0]},
+              {"solref[1]", settings_.solref[1]},
+              {"impratio", settings_.impratio},
+              {"mu_roll", cone_mu_roll(scene, settings_)}};
+  return f;
+}
+
 }  // namespace contact2d::mujoco

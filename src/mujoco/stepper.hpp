@@ -39,6 +39,9 @@ class MujocoStepper final : public Stepper {
   std::string describe() const override;
   // MuJoCo's terms (mujoco/divergence.hpp).
   std::string explain(const Divergence& d, const Scene& scene) const override;
+  // warnings(); "refsafe" when the timeconst was raised; solref, impratio
+  // and the rolling coefficient the model writes (cone_mu_roll).
+  RunFacts facts(const Scene& scene) const override;
 
   const SolverSettings& settings() const { return settings_; }
   // MuJoCo's text warnings so far, then its non-zero warning counters.

@@ -114,19 +114,6 @@ Scene checked_scene(const py::object& object, const std::optional<std::string>& 
   return scene;
 }
 
-// The MuJoCo engine of simulate and compare: "mujoco" with its mapping,
-// geometry and model Δt, as --mapping, --geometry, --model-dt give them.
-engines::EngineSpec mujoco_spec(const std::string& mapping, const std::string& geometry,
-                                double model_dt, const std::string& source) {
-  engines::EngineSpec spec;
-  spec.kind = "mujoco";
-  spec.mapping = mapping;
-  spec.geometry = geometry;
-  spec.source = source;
-  spec.model_dt = model_dt;
-  return spec;
-}
-
 py::array_t<double> trajectory_array(const Trajectory& t) {
   py::array_t<double> a({static_cast<py::ssize_t>(t.samples.size()), py::ssize_t{7}});
   auto m = a.mutable_unchecked<2>();
@@ -166,7 +153,7 @@ py::dict py_simulate(const py::object& scene_object, const std::string& engine,
   const std::string source = source_of(scene_object);
   engines::EngineSpec spec;
   if (engine == "mujoco") {
-    spec = mujoco_spec(mapping, geometry, model_dt, source);
+    spec = engines::mujoco_spec(mapping, geometry, model_dt, source);
   } else {
     spec = engines::parse_engine(engine, "engine");
     if (!mapping.empty() || !geometry.empty() || model_dt != 0.0)
@@ -206,7 +193,7 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
                      " is out of range: must be in [1e-14, 1e-6]");
   analysis::Comparison c =
       analysis::prepare_comparison(checked_scene(scene_object, integrator, dt, duration),
-                                   mujoco_spec(mapping, geometry, model_dt, source));
+                                   engines::mujoco_spec(mapping, geometry, model_dt, source));
   std::vector<std::string> warnings;
   {
     py::gil_scoped_release release;
@@ -309,10 +296,8 @@ py::object load(const std::string& path, const std::vector<std::string>& sets) {
   return object;
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_contact2d, m) {
-  m.doc() = "contact2d's libraries (the Python half: contact2d/__init__.py, docs/python.md)";
+// Python exceptions for the program's errors (the header says which).
+void bind_exceptions() {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -324,7 +309,10 @@ PYBIND11_MODULE(_contact2d, m) {
       PyErr_SetString(PyExc_RuntimeError, e.what());
     }
   });
+}
 
+// The parts of a scene: BoxPart, Contact, State and Sim.
+void bind_scene_parts(py::module_& m) {
   py::class_<BoxPart>(m, "BoxPart", "One rectangle of a tshape's body (body.parts)")
       .def(py::init([](double width, double height, double x, double y, double mass) {
              return BoxPart{width, height, x, y, mass};
@@ -375,7 +363,9 @@ PYBIND11_MODULE(_contact2d, m) {
           [](SimParams& s, const std::string& name) {
             s.integrator = parse_integrator_or_throw(name);
           });
+}
 
+void bind_scene(py::module_& m) {
   py::class_<Scene>(m, "Scene", py::dynamic_attr(), "A scene: body, contact, initial state, sim")
       .def(py::init(
                [](const std::string& shape) { return default_scene(parse_shape_or_throw(shape)); }),
@@ -404,7 +394,10 @@ PYBIND11_MODULE(_contact2d, m) {
         return "<contact2d.Scene " + std::string(shape_name(s.shape)) +
                (source.empty() ? std::string() : " from " + source) + ">";
       });
+}
 
+// The commands, run by the Python half.
+void bind_commands(py::module_& m) {
   m.def("_simulate", &py_simulate);
   m.def("_compare", &py_compare);
   m.def("_generate", &py_generate);
@@ -437,4 +430,14 @@ PYBIND11_MODULE(_contact2d, m) {
         return py_solref(r);
       });
   m.attr("mujoco_available") = engines::mujoco_available();
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_contact2d, m) {
+  m.doc() = "contact2d's libraries (the Python half: contact2d/__init__.py, docs/python.md)";
+  bind_exceptions();
+  bind_scene_parts(m);
+  bind_scene(m);
+  bind_commands(m);
 }

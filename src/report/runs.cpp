@@ -25,7 +25,6 @@
 #include "core/divergence.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
-#include "core/integrator_label.hpp"
 #include "engines/engines.hpp"
 #include "game/pitch.hpp"
 #include "game/replay.hpp"
@@ -95,8 +94,9 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
   if (!plot_png.empty()) {
     const std::string title =
         std::string(shape_name(scene.shape)) + ": ref vs MuJoCo, " +
-        integrator_label(scene.sim.integrator, true) + ", Δt = " + format_number(scene.sim.dt) +
-        " s, " + std::string(mj::mapping_name(options.mapping)) + " mapping, " +
+        engines::integrator_label("mujoco", scene.sim.integrator) +
+        ", Δt = " + format_number(scene.sim.dt) + " s, " +
+        std::string(mj::mapping_name(options.mapping)) + " mapping, " +
         (scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
         " damping";
     plot_comparison(plot_png, title, ref.trajectory, mujoco.trajectory);
@@ -145,7 +145,7 @@ ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
       in.mujoco = &mujoco.trajectory;
       in.converged = three.converged.available ? &three.converged.trajectory : nullptr;
       in.title = c.scene + " (" + law + "): ref vs MuJoCo, " +
-                 integrator_label(scene.sim.integrator, true) + ", calibrated";
+                 engines::integrator_label("mujoco", scene.sim.integrator) + ", calibrated";
       in.reference_label = "ref";
       game::write_comparison_video(video, in, 20, 640, 360);
       c.animation = std::filesystem::path(video).filename().string();

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "core/format.hpp"
-#include "core/integrator_label.hpp"
 
 namespace contact2d {
 namespace {
@@ -22,17 +21,6 @@ TEST(FormatDuration, PicksTheUnitBySize) {
   EXPECT_EQ(format_duration(3725.0), "1 h 02 min");
   EXPECT_EQ(format_duration(-1.0), "-");
   EXPECT_EQ(format_duration(std::nan("")), "-");
-}
-
-TEST(IntegratorLabel, SceneNamesWithMujocosOwnInParentheses) {
-  EXPECT_EQ(integrator_label(Integrator::SemiImplicitEuler, false), "semi_implicit_euler");
-  EXPECT_EQ(integrator_label(Integrator::SemiImplicitEuler, true),
-            "semi_implicit_euler (MuJoCo Euler)");
-  EXPECT_EQ(integrator_label(Integrator::ImplicitEuler, true), "implicit_euler (MuJoCo implicit)");
-  EXPECT_EQ(integrator_label(Integrator::RK4, true), "rk4 (MuJoCo RK4)");
-  EXPECT_EQ(integrator_label(Integrator::ExplicitEuler, true), "explicit_euler");  // none in 2.2
-  EXPECT_TRUE(is_mujoco_engine("mujoco:seed"));
-  EXPECT_FALSE(is_mujoco_engine("ref"));
 }
 
 }  // namespace

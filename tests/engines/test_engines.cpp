@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/input_error.hpp"
 #include "engines/engines.hpp"
@@ -95,7 +96,33 @@ TEST(Registry, ExplicitEulerIsNotOfferedByMujoco) {
   EXPECT_FALSE(engines::engine_offers("mujoco", Integrator::ExplicitEuler));
   EXPECT_TRUE(engines::engine_offers("mujoco", Integrator::RK4));
 }
+
+TEST(IntegratorLabel, SceneNamesWithTheEnginesOwnInParentheses) {
+  EXPECT_EQ(engines::integrator_label("ref", Integrator::SemiImplicitEuler), "semi_implicit_euler");
+  EXPECT_EQ(engines::integrator_label("mujoco", Integrator::SemiImplicitEuler),
+            "semi_implicit_euler (MuJoCo Euler)");
+  EXPECT_EQ(engines::integrator_label("mujoco:seed", Integrator::ImplicitEuler),
+            "implicit_euler (MuJoCo implicit)");
+  EXPECT_EQ(engines::integrator_label("mujoco", Integrator::RK4), "rk4 (MuJoCo RK4)");
+  EXPECT_EQ(engines::integrator_label("mujoco", Integrator::ExplicitEuler),
+            "explicit_euler");  // none in 2.2
+}
+
+// MuJoCo's implicit integrates contact forces explicitly.
+TEST(Registry, ContactIntegrator) {
+  EXPECT_EQ(engines::contact_integrator("mujoco", Integrator::ImplicitEuler),
+            Integrator::SemiImplicitEuler);
+  EXPECT_EQ(engines::contact_integrator("mujoco", Integrator::RK4), Integrator::RK4);
+  EXPECT_EQ(engines::contact_integrator("ref", Integrator::ImplicitEuler),
+            Integrator::ImplicitEuler);
+}
 #endif
+
+TEST(Registry, EveryEngineIsListedByKind) {
+  EXPECT_EQ(engines::engine_kinds(), (std::vector<std::string>{"ref", "mujoco"}));
+  EXPECT_EQ(error_of("nope"), "--engines nope: unknown engine (use ref or mujoco)");
+  EXPECT_EQ(error_of("ref:x"), "--engines ref:x: unknown engine (use ref or mujoco)");
+}
 
 }  // namespace
 }  // namespace contact2d
