@@ -2,7 +2,7 @@
 // Stepper (core/stepper.hpp) and runs it through the one run loop
 // (core/run.hpp) into one result type. Every command, the analysis, the
 // report and the game get their engines here. The registry is a list of
-// descriptors (engines/engine_info.hpp), one line per engine; it is the only
+// descriptors (core/engine_info.hpp), one line per engine; it is the only
 // code outside CMake and the engines' own folders that knows which engines
 // exist and whether MuJoCo was built in.
 //
@@ -20,8 +20,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/engine_info.hpp"
 #include "core/run.hpp"
-#include "engines/engine_info.hpp"
 
 namespace contact2d::engines {
 

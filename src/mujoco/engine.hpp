@@ -4,7 +4,7 @@
 // lists engine_info() and knows nothing else of MuJoCo.
 #pragma once
 
-#include "engines/engine_info.hpp"
+#include "core/engine_info.hpp"
 
 namespace contact2d::mujoco {
 

@@ -5,6 +5,8 @@
 // whose stepper is the core's, is described in the registry. The registry
 // is the list of these descriptors, so nothing outside an engine's folder
 // and the registry needs to know which engines exist.
+// It is a core type because every engine's folder, below the registry in
+// the layers (docs/architecture.md), fills one.
 #pragma once
 
 #include <memory>
