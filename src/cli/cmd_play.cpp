@@ -143,10 +143,8 @@ Command add_play(CLI::App& app) {
          "Pitch file: any circle scene; its [game] table names the crossbar and the rules, without "
          "one it plays on the built-in goal (default: the built-in pitch)")
       ->type_name("PITCH.toml");
-  cmd->add_option("--engine", o->engine,
-                  "ref | mujoco: the physics (same keys, replays and recording on both)")
-      ->type_name("ENGINE")
-      ->check(CLI::IsMember({"ref", "mujoco"}));
+  add_engine_kind_option(*cmd, o->engine,
+                         ": the physics (same keys, replays and recording on both)");
   cmd->add_option("--seed", o->seed,
                   "Seed of the passes (default: random; the JSON and the replay say which)")
       ->type_name("N");

@@ -62,12 +62,7 @@ Command add_simulate(CLI::App& app) {
   CLI::App* cmd =
       app.add_subcommand("simulate", "Run one engine on a scene and write its trajectory");
   options->scene.add_to(*cmd);
-  const std::vector<std::string> kinds = engines::engine_kinds();
-  std::string kinds_text;
-  for (const std::string& kind : kinds) kinds_text += (kinds_text.empty() ? "" : " | ") + kind;
-  cmd->add_option("--engine", options->engine, kinds_text)
-      ->type_name("ENGINE")
-      ->check(CLI::IsMember(kinds));
+  add_engine_kind_option(*cmd, options->engine, "");
   options->outputs.file(*cmd, "--csv", options->csv,
                         "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file", "FILE.csv");
   add_allow_nonphysical(*cmd, options->allow_nonphysical);

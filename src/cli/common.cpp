@@ -141,6 +141,15 @@ void MujocoOptions::add_to(CLI::App& cmd) {
       ->check(number_in(0.0, 1.0, true, "(0, 1] s"));
 }
 
+CLI::Option* add_engine_kind_option(CLI::App& cmd, std::string& engine, const std::string& help) {
+  const std::vector<std::string> kinds = engines::engine_kinds();
+  std::string text;
+  for (const std::string& kind : kinds) text += (text.empty() ? "" : " | ") + kind;
+  return cmd.add_option("--engine", engine, text + help)
+      ->type_name("ENGINE")
+      ->check(CLI::IsMember(kinds));
+}
+
 engines::EngineSpec MujocoOptions::spec(const std::string& source) const {
   return engines::mujoco_spec(mapping, geometry, model_dt, source);
 }

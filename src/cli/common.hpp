@@ -108,6 +108,10 @@ struct MujocoOptions {
   engines::EngineSpec spec(const std::string& source) const;
 };
 
+// --engine NAME of one engine kind from the registry (engines::engine_kinds):
+// the choices checked and listed in the help as "ref | mujoco" before `help`.
+CLI::Option* add_engine_kind_option(CLI::App& cmd, std::string& engine, const std::string& help);
+
 // A subcommand: adds itself to the app and returns the action to run if it
 // was chosen. The action returns the exit status.
 using Action = std::function<int()>;
