@@ -1,46 +1,119 @@
 #include "analysis/compare_run.hpp"
 
+#include <algorithm>
 #include <sstream>
 
+#include "core/input_error.hpp"
 #include "io/json.hpp"
 
 namespace contact2d::analysis {
 
-namespace mj = contact2d::mujoco;
+namespace {
 
-Comparison prepare_comparison(const Scene& scene, const engines::EngineSpec& spec) {
+// Labels and keys: the engine's title and kind, or its full name where two
+// runs would share one.
+void name_runs(std::vector<ComparedRun>& runs) {
+  auto shared = [&runs](auto field, const ComparedRun& r) {
+    return std::count_if(runs.begin(), runs.end(),
+                         [&](const ComparedRun& o) { return field(o) == field(r); }) > 1;
+  };
+  auto title = [](const ComparedRun& r) {
+    const engines::EngineInfo* info = engines::find_engine(r.spec.kind);
+    return info != nullptr ? std::string(info->title) : r.spec.kind;
+  };
+  auto kind = [](const ComparedRun& r) { return r.spec.kind; };
+  for (ComparedRun& r : runs) {
+    r.label = shared(title, r) ? r.spec.name() : title(r);
+    r.key = shared(kind, r) ? r.spec.name() : r.spec.kind;
+    std::replace(r.key.begin(), r.key.end(), ':', '_');
+  }
+}
+
+}  // namespace
+
+std::vector<engines::EngineSpec> comparison_engines(
+    const std::vector<std::string>& names, const engines::OptionValues& given, double model_dt,
+    const std::string& source, const std::function<std::string(std::string_view)>& spelled) {
+  std::vector<engines::EngineSpec> specs{engines::parse_engine("ref")};
+  if (!names.empty()) {
+    for (const auto& [name, value] : given)
+      if (!value.empty())
+        throw InputError(spelled(name) + " " + value + ": with " + spelled("engines") +
+                         " an engine's options are part of its name (KIND:VALUE:VALUE)");
+    for (const std::string& name : names) {
+      engines::EngineSpec spec = engines::parse_engine(name, spelled("engines"));
+      spec.source = source;
+      if (!engines::find_engine(spec.kind)->model_dt_help.empty()) spec.model_dt = model_dt;
+      specs.push_back(spec);
+    }
+    return specs;
+  }
+  const engines::EngineInfo* reference = engines::find_engine("ref");
+  for (const engines::EngineInfo* info : engines::engine_list()) {
+    if (info->make == nullptr || info == reference) continue;
+    engines::OptionValues own;
+    for (const engines::EngineOption& option : info->options)
+      for (const auto& [name, value] : given)
+        if (name == option.name) own.emplace_back(name, value);
+    specs.push_back(engines::engine_with_options(std::string(info->kind), own,
+                                                 info->model_dt_help.empty() ? 0.0 : model_dt,
+                                                 source, spelled));
+  }
+  return specs;
+}
+
+Comparison prepare_comparison(const Scene& scene, const std::vector<engines::EngineSpec>& specs) {
+  if (specs.size() < 2)
+    throw InputError("compare: at least two engines are needed, " + std::to_string(specs.size()) +
+                     " given");
   Comparison c;
   c.scene = scene;
-  c.spec = spec;
-  c.mjcf = mj::mjcf_options(spec.mapping, spec.geometry, spec.source);
-  c.mjcf.model_dt = spec.model_dt;
-  mj::mujoco_integrator(c.scene.sim.integrator);  // explicit Euler: fail before any work
+  for (const engines::EngineSpec& spec : specs) {
+    engines::check_runs(spec, c.scene);  // explicit Euler on MuJoCo: fail before any work
+    c.runs.push_back({spec, {}, {}, {}, {}, {}});
+  }
+  name_runs(c.runs);
   return c;
 }
 
 void run_engines(Comparison& c) {
-  c.mujoco = engines::run_engine(c.spec, c.scene);
-  c.ref = engines::run_engine(engines::parse_engine("ref"), c.scene);
+  for (size_t i = 1; i < c.runs.size(); ++i)
+    c.runs[i].run = engines::run_engine(c.runs[i].spec, c.scene);
+  c.runs[0].run = engines::run_engine(c.runs[0].spec, c.scene);
 }
 
 std::vector<RunProblem> run_problems(const Comparison& c) {
-  const std::pair<const char*, const engines::EngineRun*> runs[] = {{"ref", &c.ref},
-                                                                    {"MuJoCo", &c.mujoco}};
   std::vector<RunProblem> problems;
-  for (const auto& [name, run] : runs)
-    if (run->trajectory.divergence) problems.push_back({name, true, run->divergence_message});
+  for (const ComparedRun& r : c.runs)
+    if (r.run.trajectory.divergence) problems.push_back({r.label, true, r.run.divergence_message});
   if (!problems.empty()) return problems;
-  for (const auto& [name, run] : runs) {
-    std::string reason = nonphysical(run->trajectory, c.scene);
-    if (!reason.empty()) problems.push_back({name, false, std::move(reason)});
+  for (const ComparedRun& r : c.runs) {
+    std::string reason = nonphysical(r.run.trajectory, c.scene);
+    if (!reason.empty()) problems.push_back({r.label, false, std::move(reason)});
   }
   return problems;
 }
 
 void measure(Comparison& c, double converged_tol, bool diagnosis) {
-  c.three = three_way(c.scene, c.ref.trajectory, c.mujoco.trajectory, converged_tol);
-  c.errors = c.three.ref_vs_mujoco;
-  if (diagnosis) c.diagnosis = diagnose(c.scene, c.spec, c.ref, c.mujoco, c.three);
+  c.converged = converged_solution(c.scene, converged_tol);
+  const Trajectory& first = c.runs[0].run.trajectory;
+  for (size_t i = 0; i < c.runs.size(); ++i) {
+    ComparedRun& r = c.runs[i];
+    if (c.converged.available)
+      r.vs_converged = error_against(r.run.trajectory, c.converged.trajectory);
+    if (i > 0) r.vs_first = error_between(first, r.run.trajectory);
+  }
+  if (diagnosis)
+    c.diagnosis = diagnose(c.scene, c.runs[1].spec, c.runs[0].run, c.runs[1].run, pair(c, 1));
+}
+
+ThreeWay pair(const Comparison& c, size_t i) {
+  ThreeWay t;
+  t.converged = c.converged;
+  t.ref_vs_converged = c.runs[0].vs_converged;
+  t.mujoco_vs_converged = c.runs[i].vs_converged;
+  t.ref_vs_mujoco = c.runs[i].vs_first;
+  return t;
 }
 
 Energies energies(const Scene& scene, const Trajectory& t) {
@@ -100,20 +173,32 @@ void json_diagnosis(std::ostringstream& o, const Diagnosis& d) {
 
 }  // namespace
 
+// The keys of one run beyond the first: runs[1]'s unprefixed ("mapping",
+// "solref", "mujoco_warnings" — the pair a two-engine comparison has always
+// printed), every later one's prefixed by its key ("mujoco_exact_mapping").
 std::string comparison_json(const Comparison& c, const std::string& scene_label) {
-  const Energies er = energies(c.scene, c.ref.trajectory);
-  const Energies em = energies(c.scene, c.mujoco.trajectory);
-  const TrajectoryError& e = c.errors;
-  const ConvergedSolution& conv = c.three.converged;
+  const std::vector<ComparedRun>& runs = c.runs;
+  const TrajectoryError& e = runs[1].vs_first;
+  const ConvergedSolution& conv = c.converged;
+  auto prefix = [&runs](size_t i) { return i == 1 ? std::string() : runs[i].key + "_"; };
   std::ostringstream o;
   o << "{\"scene\": " << json::string(scene_label) << ", \"shape\": \"" << shape_name(c.scene.shape)
-    << "\""
-    << ", \"mapping\": \"" << mj::mapping_name(c.mjcf.mapping) << "\", \"geometry\": \""
-    << mj::geometry_name(c.mjcf.geometry) << "\", \"damping\": \""
+    << "\"";
+  for (size_t i = 1; i < runs.size(); ++i) {
+    const engines::EngineInfo* info = engines::find_engine(runs[i].spec.kind);
+    for (const engines::EngineOption& option : info->options) {
+      o << ", \"" << prefix(i) << option.name << "\": \""
+        << engines::option_value(runs[i].spec, option.name) << "\"";
+    }
+  }
+  o << ", \"damping\": \""
     << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") << "\""
     << ", \"friction_law\": \"" << friction_law_name(c.scene.contact.friction) << "\""
-    << ", \"integrators\": {\"ref\": \"" << integrator_name(c.scene.sim.integrator)
-    << "\", \"mujoco\": \"" << mj::mujoco_integrator(c.scene.sim.integrator) << "\"}"
+    << ", \"integrators\": {";
+  for (size_t i = 0; i < runs.size(); ++i)
+    o << (i ? ", " : "") << "\"" << runs[i].key << "\": \""
+      << engines::own_integrator_name(runs[i].spec.kind, c.scene.sim.integrator) << "\"";
+  o << "}"
     << ", \"dt\": " << json::number(c.scene.sim.dt, 10)
     << ", \"duration\": " << json::number(c.scene.sim.duration, 10)
     << ", \"samples\": " << e.samples << ", \"max_pos_err\": " << json::number(e.max_pos, 10)
@@ -123,26 +208,35 @@ std::string comparison_json(const Comparison& c, const std::string& scene_label)
     << ", \"max_omega_err\": " << json::number(e.max_omega, 10)
     << ", \"end_pos_err\": " << json::number(e.end_pos, 10)
     << ", \"end_angle_err\": " << json::number(e.end_angle, 10)
-    << ", \"time_of_max_pos_err\": " << json::number(e.time_of_max_pos, 10) << ", \"ref_energy\": ["
-    << json::number(er.initial, 10) << ", " << json::number(er.final, 10) << "]"
-    << ", \"mujoco_energy\": [" << json::number(em.initial, 10) << ", "
-    << json::number(em.final, 10) << "]"
-    << ", \"ref_seconds\": " << json::number(c.ref.seconds, 10)
-    << ", \"mujoco_seconds\": " << json::number(c.mujoco.seconds, 10) << ", \"solref\": ["
-    << json::number(c.mujoco.solref[0], 10) << ", " << json::number(c.mujoco.solref[1], 10) << "]"
-    << ", \"impratio\": " << json::number(c.mujoco.impratio, 10) << ", \"mujoco_warnings\": [";
-  for (size_t i = 0; i < c.mujoco.warnings.size(); ++i)
-    o << (i ? ", " : "") << json::string(c.mujoco.warnings[i]);
-  o << "], \"converged_tol\": " << json::number(conv.tol, 10)
+    << ", \"time_of_max_pos_err\": " << json::number(e.time_of_max_pos, 10);
+  for (const ComparedRun& r : runs) {
+    const Energies en = energies(c.scene, r.run.trajectory);
+    o << ", \"" << r.key << "_energy\": [" << json::number(en.initial, 10) << ", "
+      << json::number(en.final, 10) << "]";
+  }
+  for (const ComparedRun& r : runs)
+    o << ", \"" << r.key << "_seconds\": " << json::number(r.run.seconds, 10);
+  for (size_t i = 1; i < runs.size(); ++i) {
+    const engines::EngineRun& run = runs[i].run;
+    o << ", \"" << prefix(i) << "solref\": [" << json::number(run.solref[0], 10) << ", "
+      << json::number(run.solref[1], 10) << "]"
+      << ", \"" << prefix(i) << "impratio\": " << json::number(run.impratio, 10) << ", \""
+      << runs[i].key << "_warnings\": [";
+    for (size_t w = 0; w < run.warnings.size(); ++w)
+      o << (w ? ", " : "") << json::string(run.warnings[w]);
+    o << "]";
+  }
+  o << ", \"converged_tol\": " << json::number(conv.tol, 10)
     << ", \"converged_available\": " << (conv.available ? "true" : "false")
     << ", \"converged_why_not\": " << (conv.available ? "null" : json::string(conv.why_not))
     << ", \"converged_own_error\": "
     << (conv.available ? json::number(conv.own_error, 10) : std::string("null"))
     << ", \"converged_seconds\": " << json::number(conv.seconds, 10) << ", \"amplification\": "
     << (conv.available ? json::number(conv.amplification, 10) : std::string("null"));
-  json_errors(o, "ref_vs_converged", c.three.ref_vs_converged, conv.available);
-  json_errors(o, "mujoco_vs_converged", c.three.mujoco_vs_converged, conv.available);
-  json_errors(o, "ref_vs_mujoco", c.three.ref_vs_mujoco, true);
+  for (const ComparedRun& r : runs)
+    json_errors(o, r.key + "_vs_converged", r.vs_converged, conv.available);
+  for (size_t i = 1; i < runs.size(); ++i)
+    json_errors(o, runs[0].key + "_vs_" + runs[i].key, runs[i].vs_first, true);
   json_diagnosis(o, c.diagnosis);
   o << "}\n";
   return o.str();

@@ -1,72 +1,99 @@
 // One `contact2d compare` run as a library call, shared by the program and
-// the Python module (src/python): both engines on one scene, the three-way
-// comparison against the converged solution, the diagnosis, and the
-// --json text of the result.
+// the Python module (src/python): the reference and any number of engines
+// on one scene, each measured against the converged solution and against
+// the first run, the diagnosis of the first two, and the --json text of
+// the result.
 //
 // The run is cut where a caller has to act between its stages, so that the
 // program keeps its order of checks and messages (bad input before any
 // work, a divergence before any measurement):
 //
-//   prepare_comparison   the scene and MuJoCo's model options; throws
-//                        InputError for a mapping, geometry or integrator
-//                        MuJoCo cannot run (explicit Euler) — no engine has run
-//   run_engines          MuJoCo, then the reference, each timed
+//   prepare_comparison   the scene and the engines; throws InputError for an
+//                        engine that cannot run the scene (EngineInfo::check:
+//                        MuJoCo has no explicit Euler) — no engine has run
+//   run_engines          every engine after the first, then the first, each timed
 //   run_problems         why the runs cannot be compared: every engine that
 //                        diverged, else every run that is not physics
 //                        (core/run.hpp: nonphysical())
-//   measure              the three distances and, unless skipped, the
-//                        diagnosis (analysis/comparison.hpp)
+//   measure              the distances and, unless skipped, the diagnosis of
+//                        runs[0] ↔ runs[1] (analysis/comparison.hpp)
 //   comparison_json      the one JSON object `compare --json` prints
 //
 // What the run measures and why is in analysis/comparison.hpp; this file
 // only sequences it.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis/comparison.hpp"
 #include "analysis/trajectory_error.hpp"
 #include "core/scene.hpp"
 #include "engines/engines.hpp"
-#include "mujoco/mjcf.hpp"
 
 namespace contact2d::analysis {
 
-struct Comparison {
-  Scene scene;
-  engines::EngineSpec spec;  // the MuJoCo engine
-  mujoco::MjcfOptions mjcf;  // its model options, as the spec names them
-  engines::EngineRun ref;
-  engines::EngineRun mujoco;
-  TrajectoryError errors;  // ref ↔ MuJoCo
-  ThreeWay three;
-  Diagnosis diagnosis;  // ran = false until measure() runs it
+// One engine's run in a comparison.
+struct ComparedRun {
+  engines::EngineSpec spec;
+  // Its name in tables ("ref", "MuJoCo": EngineInfo::title; the full name,
+  // "mujoco:exact", when two runs share a title) and in keys and CSV
+  // columns ("ref", "mujoco"; "mujoco_exact" when two share a kind).
+  std::string label;
+  std::string key;
+  engines::EngineRun run;
+  TrajectoryError vs_converged;  // zero when the converged solution is not available
+  TrajectoryError vs_first;      // runs[0] ↔ this run; zero for runs[0]
 };
 
-// The comparison of `scene` with the MuJoCo engine `spec` (kind "mujoco";
-// its mapping, geometry, model_dt and source as `contact2d compare` takes
-// them). Throws InputError before any work when MuJoCo cannot run it.
-Comparison prepare_comparison(const Scene& scene, const engines::EngineSpec& spec);
+struct Comparison {
+  Scene scene;
+  // runs[0] is the one every other is measured against: `compare` puts the
+  // reference first, then the engines asked for in their order.
+  std::vector<ComparedRun> runs;
+  ConvergedSolution converged;
+  Diagnosis diagnosis;  // of runs[0] ↔ runs[1]; ran = false until measure() runs it
+};
 
-// Runs MuJoCo, then the reference.
+// The engines of `contact2d compare`: the reference first, then `names`
+// (--engines: each name with its options), or when `names` is empty every
+// engine built in but the reference, each with the `given` options it
+// takes (--mapping, --geometry). `model_dt` goes to every engine with
+// Δt-dependent model values; `source` is the scene file; `spelled` says
+// how the caller's user writes an option, for errors. Throws InputError
+// for an unknown engine or option, or `given` options together with names.
+std::vector<engines::EngineSpec> comparison_engines(
+    const std::vector<std::string>& names, const engines::OptionValues& given, double model_dt,
+    const std::string& source, const std::function<std::string(std::string_view)>& spelled);
+
+// The comparison of `scene` on `engines` (at least two; their options and
+// source as `contact2d compare` takes them). Throws InputError before any
+// work when an engine cannot run the scene.
+Comparison prepare_comparison(const Scene& scene, const std::vector<engines::EngineSpec>& engines);
+
+// Runs every engine after the first, in order, then the first.
 void run_engines(Comparison& c);
 
-// A reason the two runs cannot be compared.
+// A reason the runs cannot be compared.
 struct RunProblem {
-  std::string engine;  // "ref" or "MuJoCo"
+  std::string engine;  // ComparedRun::label ("ref", "MuJoCo")
   bool diverged = false;
   // diverged: the engine's divergence message (EngineRun::divergence_message);
   // else why the run is not physics (nonphysical()).
   std::string message;
 };
 // Every engine that diverged; when none did, every run that is not physics;
-// empty when both can be compared.
+// empty when all can be compared.
 std::vector<RunProblem> run_problems(const Comparison& c);
 
-// The three-way comparison at `converged_tol` and, when `diagnosis`, the
-// diagnosis of the difference (re-runs of both engines).
+// The distances at `converged_tol` and, when `diagnosis`, the diagnosis of
+// runs[0] ↔ runs[1] (re-runs of both engines).
 void measure(Comparison& c, double converged_tol, bool diagnosis);
+
+// runs[0] ↔ runs[i] with the converged solution, as the diagnosis takes it.
+ThreeWay pair(const Comparison& c, size_t i);
 
 // The --json object of a measured comparison, newline-terminated; `scene_label`
 // is its "scene" (the scene file as given).

@@ -148,8 +148,8 @@ struct DiagnosisInputs {
   const EngineRun& ref;
   const EngineRun& mujoco_run;
   const ThreeWay& base;
-  std::string mapping;                 // "calibrated" when the spec names none
-  bool friction = false;               // μ > 0 or μ_roll > 0
+  std::string mapping;    // the engine's mapping, given or its fallback; empty: it has none
+  bool friction = false;  // μ > 0 or μ_roll > 0
   bool dt_dependent_impratio = false;  // the mapping's impratio = 1/(c·Δt·A_t)
   double refsafe_dt = kNaN;            // the refsafe re-run's Δt (NaN: none)
 };
@@ -174,7 +174,8 @@ double refsafe_step(double dt, const EngineRun& mujoco_run) {
 DiagnosisInputs diagnosis_inputs(const Scene& scene, const engines::EngineSpec& mujoco,
                                  const EngineRun& ref, const EngineRun& mujoco_run,
                                  const ThreeWay& base) {
-  std::string mapping = mujoco.mapping.empty() ? "calibrated" : mujoco.mapping;
+  // Empty for an engine without a mapping: then no mapping cause.
+  std::string mapping = engines::option_value(mujoco, "mapping");
   const bool friction = scene.contact.mu > 0.0 || scene.contact.mu_roll > 0.0;
   // compensated keeps calibrated's friction rows, impratio included.
   const bool dt_dependent_impratio = mapping == "calibrated" || mapping == "compensated";
@@ -246,9 +247,9 @@ std::vector<Rerun> plan_reruns(const DiagnosisInputs& in) {
   // impedance), calibrated against compensated (the O(d) term of MuJoCo's
   // soft contact, docs/mujoco.md). compensated has no better one to try.
   const std::string better_mapping = in.mapping == "calibrated" ? "compensated" : "calibrated";
-  if (in.mapping != "compensated") {
+  if (!in.mapping.empty() && in.mapping != "compensated") {
     engines::EngineSpec better = in.mujoco;
-    better.mapping = better_mapping;
+    better.set("mapping", better_mapping);
     reruns.push_back(rerun("mapping", scene, false, better.name()));
   }
   // The calibrated impratio = 1/(c·Δt·A_t) follows Δt unless the user held

@@ -1,10 +1,12 @@
-// contact2d compare SCENE [--mapping NAME] [--geometry NAME] [--csv FILE] [--json] [--plot
-// FILE.png] [--video FILE.mp4|.gif] [--converged-tol TOL] [--no-diagnosis] [overrides]
+// contact2d compare SCENE [--engines LIST | --mapping NAME --geometry NAME] [--csv FILE]
+// [--json] [--plot FILE.png] [--video FILE.mp4|.gif] [--converged-tol TOL] [--no-diagnosis]
+// [overrides]
 //
-// Runs the reference solver and MuJoCo on the same scene (same Δt, same
-// sample times), measures both against the converged solution and against
-// each other, and diagnoses their difference by re-running without each
-// suspected cause (analysis/comparison.hpp).
+// Runs the reference solver and every other engine (by default each one
+// built in: MuJoCo) on the same scene (same Δt, same sample times),
+// measures each against the converged solution and against the reference,
+// and diagnoses the difference of the reference and the first engine by
+// re-running without each suspected cause (analysis/comparison.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,7 +26,6 @@
 #include "io/json.hpp"
 #include "io/plot.hpp"
 #include "io/table.hpp"
-#include "mujoco/mjcf.hpp"
 #ifdef CONTACT2D_WITH_WINDOW
 #include "game/comparison_video.hpp"
 #endif
@@ -32,11 +33,10 @@
 namespace contact2d::cli {
 namespace {
 
-namespace mj = contact2d::mujoco;
-
 struct CompareOptions {
   SceneOptions scene;
-  MujocoOptions mujoco;
+  std::vector<std::string> engines;  // --engines; empty: every engine built in but the reference
+  EngineOptions engine_options;      // --mapping, --geometry, --model-dt: the engines' own
   std::string csv;
   std::string plot;
   std::string video;
@@ -78,26 +78,53 @@ std::string wrapped(const std::string& text, const std::string& indent, size_t w
   return out + line + "\n";
 }
 
+using analysis::ComparedRun;
+
+// "mapping calibrated, geometry corners" (`name_first`) or "calibrated
+// mapping" (the first option only): the run's engine options, given or
+// their fallbacks; empty for an engine without options.
+std::string option_text(const ComparedRun& r, bool name_first) {
+  const engines::EngineInfo* info = engines::find_engine(r.spec.kind);
+  std::string out;
+  for (const engines::EngineOption& option : info->options) {
+    const std::string value = engines::option_value(r.spec, option.name);
+    if (!name_first) return value + " " + std::string(option.name);
+    out += (out.empty() ? "" : ", ") + std::string(option.name) + " " + value;
+  }
+  return out;
+}
+
+// "ref vs MuJoCo, semi_implicit_euler (MuJoCo Euler), mapping calibrated,
+// geometry corners"; with more than one engine after the first, each one's
+// integrator and options after its label.
+std::string engines_text(const Comparison& c) {
+  std::string who = c.runs[0].label + " vs ", what;
+  for (size_t i = 1; i < c.runs.size(); ++i) {
+    const ComparedRun& r = c.runs[i];
+    who += (i > 1 ? " and " : "") + r.label;
+    std::string one = engines::integrator_label(r.spec.kind, c.scene.sim.integrator);
+    if (const std::string options = option_text(r, true); !options.empty()) one += ", " + options;
+    what += (i > 1 ? "; " : "") + (c.runs.size() > 2 ? r.label + ": " : "") + one;
+  }
+  return who + ", " + what;
+}
+
 void print_table(const Comparison& c) {
-  const Energies er = energies(c.scene, c.ref.trajectory);
-  const Energies em = energies(c.scene, c.mujoco.trajectory);
-  const analysis::ConvergedSolution& conv = c.three.converged;
-  std::cout << shape_name(c.scene.shape) << ": ref vs MuJoCo, "
-            << engines::integrator_label("mujoco", c.scene.sim.integrator) << ", mapping "
-            << mj::mapping_name(c.mjcf.mapping) << ", geometry "
-            << mj::geometry_name(c.mjcf.geometry) << ", "
+  const analysis::ConvergedSolution& conv = c.converged;
+  std::cout << shape_name(c.scene.shape) << ": " << engines_text(c) << ", "
             << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt")
-            << " damping, dt = " << format_number(c.scene.sim.dt, 4) << " s, " << c.errors.samples
-            << " samples over " << format_number(c.scene.sim.duration, 4) << " s\n";
+            << " damping, dt = " << format_number(c.scene.sim.dt, 4) << " s, "
+            << c.runs[1].vs_first.samples << " samples over "
+            << format_number(c.scene.sim.duration, 4) << " s\n";
   if (c.scene.contact.friction != FrictionLaw::Tanh) {
     // A cone law is a conformance law, not physics; it matches MuJoCo only
     // at MuJoCo's own impratio.
-    const double impratio = c.mujoco.impratio;
+    const double impratio = c.runs[1].run.impratio;
     std::string note = "friction law: " + std::string(friction_law_name(c.scene.contact.friction)) +
                        " (MuJoCo's cone, not physics), cone ratio " +
                        format_shortest(c.scene.contact.cone_ratio, 6);
     if (std::isfinite(impratio) && impratio != c.scene.contact.cone_ratio)
-      note += "; MuJoCo's model has impratio " + format_shortest(impratio, 6) +
+      note += "; " + c.runs[1].label + "'s model has impratio " + format_shortest(impratio, 6) +
               ": --set contact.cone_ratio=" + format_shortest(impratio, 6) +
               " to compare like with like";
     std::cout << wrapped(note, "") << "\n";
@@ -110,17 +137,30 @@ void print_table(const Comparison& c) {
               << ");\nthe scene magnifies a 1e-8 m change of the initial height "
               << format_number(conv.amplification, 3) << "-fold\n\n";
   } else {
-    std::cout << wrapped("converged solution: not available (" + conv.why_not +
-                             "); only ref <-> MuJoCo is measured.",
+    std::string pairs;
+    for (size_t i = 1; i < c.runs.size(); ++i)
+      pairs += (i > 1 ? ", " : "") + c.runs[0].label + " <-> " + c.runs[i].label;
+    std::cout << wrapped("converged solution: not available (" + conv.why_not + "); only " + pairs +
+                             " " + (c.runs.size() > 2 ? "are" : "is") + " measured.",
                          "")
               << "\n";
   }
   Table t;
-  t.columns = {"", "ref <-> converged", "MuJoCo <-> converged", "ref <-> MuJoCo"};
+  t.columns = {"", c.runs[0].label + " <-> converged"};
+  for (size_t i = 1; i < c.runs.size(); ++i) {
+    t.columns.push_back(c.runs[i].label + " <-> converged");
+    t.columns.push_back(c.runs[0].label + " <-> " + c.runs[i].label);
+  }
   auto row = [&](const std::string& name, auto field) {
-    add_row(t, {name, conv.available ? format_number(field(c.three.ref_vs_converged), 4) : "-",
-                conv.available ? format_number(field(c.three.mujoco_vs_converged), 4) : "-",
-                format_number(field(c.three.ref_vs_mujoco), 4)});
+    auto converged = [&](const ComparedRun& r) {
+      return conv.available ? format_number(field(r.vs_converged), 4) : std::string("-");
+    };
+    std::vector<std::string> cells{name, converged(c.runs[0])};
+    for (size_t i = 1; i < c.runs.size(); ++i) {
+      cells.push_back(converged(c.runs[i]));
+      cells.push_back(format_number(field(c.runs[i].vs_first), 4));
+    }
+    add_row(t, cells);
   };
   using E = analysis::TrajectoryError;
   row("max position (m)", [](const E& e) { return e.max_pos; });
@@ -131,18 +171,25 @@ void print_table(const Comparison& c) {
   row("max velocity (m/s)", [](const E& e) { return e.max_vel; });
   row("max omega (rad/s)", [](const E& e) { return e.max_omega; });
   row("time of max position (s)", [](const E& e) { return e.time_of_max_pos; });
-  std::cout << to_text(t) << "\n"
-            << "energy ref     " << format_number(er.initial, 4) << " -> "
-            << format_number(er.final, 4) << " J\n"
-            << "energy MuJoCo  " << format_number(em.initial, 4) << " -> "
-            << format_number(em.final, 4) << " J\n"
-            << "wall clock     ref " << format_number(c.ref.seconds, 4) << " s, MuJoCo "
-            << format_number(c.mujoco.seconds, 4) << " s";
+  std::cout << to_text(t) << "\n";
+  size_t width = 6;  // "energy ref     ": the labels in one column
+  for (const ComparedRun& r : c.runs) width = std::max(width, r.label.size());
+  for (const ComparedRun& r : c.runs) {
+    const Energies en = energies(c.scene, r.run.trajectory);
+    std::cout << "energy " << r.label << std::string(width + 2 - r.label.size(), ' ')
+              << format_number(en.initial, 4) << " -> " << format_number(en.final, 4) << " J\n";
+  }
+  std::cout << "wall clock" << std::string(width - 1, ' ');
+  for (size_t i = 0; i < c.runs.size(); ++i)
+    std::cout << (i ? ", " : "") << c.runs[i].label << " "
+              << format_number(c.runs[i].run.seconds, 4) << " s";
   if (conv.available) std::cout << ", converged " << format_number(conv.seconds, 4) << " s";
   std::cout << "\n";
   const analysis::Diagnosis& d = c.diagnosis;
   if (!d.ran) return;
-  std::cout << "\nDiagnosis (each cause removed alone, both engines re-run):\n"
+  std::cout << "\nDiagnosis"
+            << (c.runs.size() > 2 ? " of " + c.runs[0].label + " <-> " + c.runs[1].label : "")
+            << " (each cause removed alone, both engines re-run):\n"
             << wrapped(d.summary, "  ");
   int n = 0;
   for (const analysis::Finding& finding : d.findings) {
@@ -168,25 +215,29 @@ void print_table(const Comparison& c) {
     std::cout << "\n" << wrapped("Measured and ruled out: " + ruled_out + ".", "  ");
 }
 
+// t, then x_KEY … omega_KEY for every run in order, then the converged
+// solution's when available; one row per sample the runs share.
 void write_csv(AtomicFile& out, const Comparison& c) {
-  const bool conv = c.three.converged.available;
-  std::fprintf(out.get(), "%s%s\n",
-               "t,x_ref,y_ref,theta_ref,vx_ref,vy_ref,omega_ref,"
-               "x_mujoco,y_mujoco,theta_mujoco,vx_mujoco,vy_mujoco,omega_mujoco",
-               conv ? ",x_converged,y_converged,theta_converged,vx_converged,vy_converged,"
-                      "omega_converged"
-                    : "");
-  const auto& a = c.ref.trajectory.samples;
-  const auto& b = c.mujoco.trajectory.samples;
-  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
-    const State& r = a[i].state;
-    const State& m = b[i].state;
-    std::fprintf(out.get(),
-                 "%.10g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g",
-                 a[i].t, r.q.x(), r.q.y(), r.q.z(), r.v.x(), r.v.y(), r.v.z(), m.q.x(), m.q.y(),
-                 m.q.z(), m.v.x(), m.v.y(), m.v.z());
+  const bool conv = c.converged.available;
+  std::string header = "t";
+  for (const ComparedRun& r : c.runs)
+    for (const char* q : {"x", "y", "theta", "vx", "vy", "omega"})
+      header += "," + std::string(q) + "_" + r.key;
+  if (conv)
+    header += ",x_converged,y_converged,theta_converged,vx_converged,vy_converged,omega_converged";
+  std::fprintf(out.get(), "%s\n", header.c_str());
+  size_t rows = c.runs[0].run.trajectory.samples.size();
+  for (const ComparedRun& r : c.runs) rows = std::min(rows, r.run.trajectory.samples.size());
+  const auto& first = c.runs[0].run.trajectory.samples;
+  for (size_t i = 0; i < rows; ++i) {
+    std::fprintf(out.get(), "%.10g", first[i].t);
+    for (const ComparedRun& r : c.runs) {
+      const State& s = r.run.trajectory.samples[i].state;
+      std::fprintf(out.get(), ",%.12g,%.12g,%.12g,%.12g,%.12g,%.12g", s.q.x(), s.q.y(), s.q.z(),
+                   s.v.x(), s.v.y(), s.v.z());
+    }
     if (conv) {
-      const State g = c.three.converged.trajectory.at(a[i].t);
+      const State g = c.converged.trajectory.at(first[i].t);
       std::fprintf(out.get(), ",%.12g,%.12g,%.12g,%.12g,%.12g,%.12g", g.q.x(), g.q.y(), g.q.z(),
                    g.v.x(), g.v.y(), g.v.z());
     }
@@ -196,8 +247,12 @@ void write_csv(AtomicFile& out, const Comparison& c) {
 
 int compare(const CompareOptions& options) {
   options.outputs.check();
-  const engines::EngineSpec spec = options.mujoco.spec(options.scene.path);
-  Comparison c = analysis::prepare_comparison(options.scene.load(), spec);
+  const engines::OptionValues given(options.engine_options.values.begin(),
+                                    options.engine_options.values.end());
+  Comparison c = analysis::prepare_comparison(
+      options.scene.load(),
+      analysis::comparison_engines(options.engines, given, options.engine_options.model_dt,
+                                   options.scene.path, flag_spelling));
   if (!options.video.empty()) {
 #ifdef CONTACT2D_WITH_WINDOW
     game::check_video_path(options.video);
@@ -210,8 +265,9 @@ int compare(const CompareOptions& options) {
   std::unique_ptr<AtomicFile> csv;
   if (!options.csv.empty()) csv = std::make_unique<AtomicFile>(options.csv);
   analysis::run_engines(c);
-  for (const std::string& w : c.mujoco.warnings)
-    std::cerr << "contact2d: MuJoCo warning: " << w << "\n";
+  for (const ComparedRun& r : c.runs)
+    for (const std::string& w : r.run.warnings)
+      std::cerr << "contact2d: " << r.label << " warning: " << w << "\n";
   const std::vector<analysis::RunProblem> problems = analysis::run_problems(c);
   bool stop = false;
   for (const analysis::RunProblem& p : problems) {
@@ -228,26 +284,33 @@ int compare(const CompareOptions& options) {
   analysis::measure(c, options.converged_tol, !options.no_diagnosis);
   if (csv) write_csv(*csv, c);  // committed last: a plot or video that fails leaves no CSV
   if (!options.plot.empty()) {
+    const ComparedRun& a = c.runs[0];
+    const ComparedRun& b = c.runs[1];  // the plot draws the first two
+    const std::string options_first = option_text(b, false);
     const std::string title =
-        std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo, " +
-        engines::integrator_label("mujoco", c.scene.sim.integrator) +
+        std::string(shape_name(c.scene.shape)) + ": " + a.label + " vs " + b.label + ", " +
+        engines::integrator_label(b.spec.kind, c.scene.sim.integrator) +
         ", Δt = " + format_number(c.scene.sim.dt) + " s, " +
-        std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping, " +
+        (options_first.empty() ? "" : options_first + ", ") +
         (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
         " damping";
-    plot_comparison(options.plot, title, c.ref.trajectory, c.mujoco.trajectory);
+    plot_comparison(options.plot, title, a.run.trajectory, b.run.trajectory, a.label, b.label);
   }
 #ifdef CONTACT2D_WITH_WINDOW
   if (!options.video.empty()) {
     game::ComparisonVideoInput in;
     in.scene = &c.scene;
-    in.reference = &c.ref.trajectory;
-    in.mujoco = &c.mujoco.trajectory;
-    in.converged = c.three.converged.available ? &c.three.converged.trajectory : nullptr;
-    in.title = std::string(shape_name(c.scene.shape)) + ": ref vs MuJoCo, " +
-               engines::integrator_label("mujoco", c.scene.sim.integrator) + ", " +
-               std::string(mj::mapping_name(c.mjcf.mapping)) + " mapping";
-    in.reference_label = "ref";
+    const ComparedRun& a = c.runs[0];
+    const ComparedRun& b = c.runs[1];  // the video draws the first two
+    const std::string options_first = option_text(b, false);
+    in.reference = &a.run.trajectory;
+    in.mujoco = &b.run.trajectory;
+    in.converged = c.converged.available ? &c.converged.trajectory : nullptr;
+    in.title = std::string(shape_name(c.scene.shape)) + ": " + a.label + " vs " + b.label + ", " +
+               engines::integrator_label(b.spec.kind, c.scene.sim.integrator) +
+               (options_first.empty() ? "" : ", " + options_first);
+    in.reference_label = a.label;
+    in.mujoco_label = b.label;
     game::write_comparison_video(options.video, in);
   }
 #endif
@@ -267,17 +330,27 @@ Command add_compare(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "compare", "Run the reference solver and MuJoCo on a scene and compare them");
   options->scene.add_to(*cmd);
-  options->mujoco.add_to(*cmd);
+  options->engine_options.add_to(*cmd);
+  cmd->add_option("--engines", options->engines,
+                  "Comma-separated engines to compare with the reference, each measured against "
+                  "it and the converged solution: " +
+                      engines::engine_names_help() +
+                      "; a name carries its options (mujoco:exact:boxes) (default: every engine "
+                      "built in, with --mapping and --geometry)")
+      ->type_name("ENGINE")
+      ->delimiter(',');
   options->outputs.file(*cmd, "--csv", options->csv,
-                        "Write both trajectories side by side to this file", "FILE.csv");
+                        "Write the trajectories side by side to this file", "FILE.csv");
   cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
   options->outputs.file(
       *cmd, "--plot", options->plot,
-      "Draw x, y, theta of both engines and their distance into this PNG (gnuplot)", "FILE.png");
+      "Draw x, y, theta of the reference and the first engine and their distance into this PNG "
+      "(gnuplot)",
+      "FILE.png");
   options->outputs.file(*cmd, "--video", options->video,
-                        "Draw both engines overlaid in real time into this .mp4 or .gif "
-                        "(reference filled, MuJoCo outlined, the converged solution as a thin "
-                        "line)",
+                        "Draw the reference and the first engine overlaid in real time into this "
+                        ".mp4 or .gif (reference filled, the engine outlined, the converged "
+                        "solution as a thin line)",
                         "FILE.mp4|.gif");
   cmd->add_option("--converged-tol", options->converged_tol,
                   "Tolerance of the converged solution (rtol = atol; default 1e-12)")

@@ -12,7 +12,7 @@ namespace {
 
 struct GenerateOptions {
   SceneOptions scene;
-  MujocoOptions mujoco;
+  EngineOptions engine_options;  // MuJoCo's --mapping, --geometry, --model-dt
   std::string output;
   OutputOptions outputs;  // -o
 };
@@ -22,9 +22,10 @@ int generate(const GenerateOptions& options) {
   const Scene scene = options.scene.load();
   std::unique_ptr<AtomicFile> out;
   if (!options.output.empty()) out = std::make_unique<AtomicFile>(options.output);
-  contact2d::mujoco::MjcfOptions mjcf = contact2d::mujoco::mjcf_options(
-      options.mujoco.mapping, options.mujoco.geometry, options.scene.path);
-  mjcf.model_dt = options.mujoco.model_dt;
+  contact2d::mujoco::MjcfOptions mjcf =
+      contact2d::mujoco::mjcf_options(options.engine_options.value("mapping"),
+                                      options.engine_options.value("geometry"), options.scene.path);
+  mjcf.model_dt = options.engine_options.model_dt;
   const auto model = contact2d::mujoco::generate_mjcf(scene, mjcf);
   if (model.settings.refsafe_clamped) {
     std::cerr << "contact2d: note: timeconst " << format_number(model.settings.solref[0])
@@ -45,7 +46,7 @@ Command add_generate(CLI::App& app) {
   auto options = std::make_shared<GenerateOptions>();
   CLI::App* cmd = app.add_subcommand("generate", "Write the MuJoCo MJCF model of a scene");
   options->scene.add_to(*cmd);
-  options->mujoco.add_to(*cmd);
+  options->engine_options.add_to(*cmd);
   options->outputs.file(*cmd, "-o,--output", options->output,
                         "Write the MJCF to this file (default: standard output)", "FILE.xml");
   return {cmd, [options] { return generate(*options); }};

@@ -17,15 +17,14 @@ struct SimulateOptions {
   SceneOptions scene;
   std::string engine = "ref";
   std::string csv;
-  MujocoOptions mujoco;   // --mapping, --geometry (when built with MuJoCo)
-  OutputOptions outputs;  // --csv
+  EngineOptions engine_options;  // --mapping, --geometry, …: the engines' own
+  OutputOptions outputs;         // --csv
   bool allow_nonphysical = false;
 };
 
 engines::EngineRun run_chosen_engine(const SimulateOptions& options, const Scene& scene) {
-  if (options.engine == "mujoco")
-    return engines::run_engine(options.mujoco.spec(options.scene.path), scene);
-  return engines::run_engine(engines::parse_engine(options.engine), scene);
+  return engines::run_engine(options.engine_options.spec(options.engine, options.scene.path),
+                             scene);
 }
 
 int simulate(const SimulateOptions& options) {
@@ -66,7 +65,7 @@ Command add_simulate(CLI::App& app) {
   options->outputs.file(*cmd, "--csv", options->csv,
                         "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file", "FILE.csv");
   add_allow_nonphysical(*cmd, options->allow_nonphysical);
-  if (engines::mujoco_available()) options->mujoco.add_to(*cmd);
+  options->engine_options.add_to(*cmd);
   return {cmd, [options] { return simulate(*options); }};
 }
 

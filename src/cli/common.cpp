@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -123,22 +124,45 @@ CLI::Validator number_in(double lo, double hi, bool lo_open, const std::string& 
       range);
 }
 
-void MujocoOptions::add_to(CLI::App& cmd) {
-  cmd.add_option("--mapping", mapping,
-                 "solref/solimp mapping: seed | exact | calibrated | compensated (default "
-                 "calibrated)")
-      ->type_name("NAME")
-      ->check(CLI::IsMember({"seed", "exact", "calibrated", "compensated"}));
-  cmd.add_option("--geometry", geometry,
-                 "MuJoCo geoms of a box or T: corners (a small sphere per 2D contact point, "
-                 "default) | boxes")
-      ->type_name("NAME")
-      ->check(CLI::IsMember({"corners", "boxes"}));
-  cmd.add_option("--model-dt", model_dt,
-                 "Compute MuJoCo's Δt-dependent values (the calibrated impratio) for this Δt "
-                 "instead of the timestep: holds the model fixed while --dt changes")
-      ->type_name("SECONDS")
-      ->check(number_in(0.0, 1.0, true, "(0, 1] s"));
+void EngineOptions::add_to(CLI::App& cmd) {
+  const engines::EngineInfo* with_model_dt = nullptr;
+  for (const engines::EngineInfo* info : engines::engine_list()) {
+    if (info->make == nullptr) continue;
+    if (with_model_dt == nullptr && !info->model_dt_help.empty()) with_model_dt = info;
+    for (const engines::EngineOption& option : info->options) {
+      const std::string name(option.name);
+      if (values.count(name) > 0) continue;
+      std::vector<std::string> allowed(option.values.begin(), option.values.end());
+      std::string listed;
+      for (const std::string& v : allowed) listed += (listed.empty() ? "" : " | ") + v;
+      cmd.add_option("--" + name, values[name],
+                     std::string(option.what) + ": " + listed + " (default " +
+                         std::string(option.fallback) + ")")
+          ->type_name("NAME")
+          ->check(CLI::IsMember(allowed));
+    }
+  }
+  if (with_model_dt != nullptr) {
+    cmd.add_option("--model-dt", model_dt, std::string(with_model_dt->model_dt_help))
+        ->type_name("SECONDS")
+        ->check(number_in(0.0, 1.0, true, "(0, 1] s"));
+  }
+}
+
+engines::EngineSpec EngineOptions::spec(const std::string& kind, const std::string& source) const {
+  const engines::OptionValues given(values.begin(), values.end());
+  return engines::engine_with_options(kind, given, model_dt, source, flag_spelling);
+}
+
+std::string flag_spelling(std::string_view name) {
+  std::string flag = "--" + std::string(name);
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
+std::string EngineOptions::value(std::string_view name) const {
+  const auto it = values.find(name);
+  return it == values.end() ? std::string() : it->second;
 }
 
 CLI::Option* add_engine_kind_option(CLI::App& cmd, std::string& engine, const std::string& help) {
@@ -148,10 +172,6 @@ CLI::Option* add_engine_kind_option(CLI::App& cmd, std::string& engine, const st
   return cmd.add_option("--engine", engine, text + help)
       ->type_name("ENGINE")
       ->check(CLI::IsMember(kinds));
-}
-
-engines::EngineSpec MujocoOptions::spec(const std::string& source) const {
-  return engines::mujoco_spec(mapping, geometry, model_dt, source);
 }
 
 std::function<void(size_t, size_t, const std::string&)> progress_reporter(const std::string& label,
@@ -214,9 +234,7 @@ void AnalysisOptions::add_to(CLI::App& cmd, const std::string& csv_help,
       ->type_name("NAME")
       ->delimiter(',');
   cmd.add_option("--engines", engines,
-                 "Comma-separated: ref, mujoco, mujoco:MAPPING (seed, exact, calibrated, "
-                 "compensated; mujoco = "
-                 "its default) (default: ref)")
+                 "Comma-separated: " + engines::engine_names_help() + " (default: ref)")
       ->type_name("ENGINE")
       ->delimiter(',')
       ->check(CLI::IsMember(engines::engine_names()));

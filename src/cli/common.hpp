@@ -2,8 +2,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/format.hpp"
@@ -96,16 +99,25 @@ Scene load_scene_with(const std::string& path, const std::vector<std::string>& s
 // written (CLI11's Range prints 1e-15 as 0.000000).
 CLI::Validator number_in(double lo, double hi, bool lo_open, const std::string& range);
 
-// --mapping and --geometry: the MuJoCo model of a scene (simulate, compare).
-// Empty means the generator's default (calibrated, corners).
-struct MujocoOptions {
-  std::string mapping;
-  std::string geometry;
-  double model_dt = 0.0;  // --model-dt; 0: the timestep
+// How the command line spells an option, to start an error: "model_dt" →
+// "--model-dt".
+std::string flag_spelling(std::string_view name);
+
+// The engines' own options, one flag each, made from the registry's data
+// (EngineInfo::options: MuJoCo's --mapping and --geometry) and --model-dt
+// when an engine has Δt-dependent model values; only engines built in
+// offer theirs. An option name two engines share is one flag, checked
+// against the first one's values. Empty means the option's fallback.
+struct EngineOptions {
+  std::map<std::string, std::string, std::less<>> values;  // by option name
+  double model_dt = 0.0;                                   // --model-dt; 0: the timestep
 
   void add_to(CLI::App& cmd);
-  // The MuJoCo engine with these options; `source` is the scene file.
-  engines::EngineSpec spec(const std::string& source) const;
+  // The engine `kind` with these options; `source` is the scene file.
+  // Throws InputError when a flag given is not an option of `kind`.
+  engines::EngineSpec spec(const std::string& kind, const std::string& source) const;
+  // The value given for an option ("" when left out).
+  std::string value(std::string_view name) const;
 };
 
 // --engine NAME of one engine kind from the registry (engines::engine_kinds):

@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/integrators.hpp"
@@ -23,29 +24,49 @@ class Stepper;
 
 namespace contact2d::engines {
 
-// One engine to run: what --engine names, parsed. The option fields are the
-// engine's own (MuJoCo's mapping and geometry, mujoco/engine.hpp); an engine
-// without options leaves them empty.
+// One option an engine's name may carry after its kind, as data: the
+// registry parses "kind:VALUE[:VALUE…]" by position against the engine's
+// options, names them in its errors and lists, and the command line and
+// the Python module offer each one as --NAME / NAME= with these values.
+struct EngineOption {
+  std::string_view name;  // "mapping": the flag --mapping, the key in EngineSpec
+  std::string_view what;  // prose before the values in the help ("solref/solimp mapping")
+  std::vector<std::string_view> values;  // the accepted values, in the order the help lists
+  std::string_view fallback;             // the value an option left out takes
+};
+
+// One engine to run: what --engine names, parsed. `options` are the
+// engine's own (EngineInfo::options) by name; one left out takes its
+// fallback, and an engine without options has none.
 struct EngineSpec {
-  std::string kind = "ref";  // EngineInfo::kind
-  std::string mapping;       // MuJoCo: empty = the default mapping
-  std::string geometry;      // MuJoCo: empty = the default geometry
-  std::string source;        // the scene file, named in a generated model's header
-  // MuJoCo: the Δt its model's Δt-dependent values are computed for (0: the
-  // scene's timestep; mujoco/mjcf.hpp MjcfOptions::model_dt).
+  std::string kind = "ref";                                  // EngineInfo::kind
+  std::vector<std::pair<std::string, std::string>> options;  // (name, value), in the engine's order
+  std::string source;  // the scene file, named in a generated model's header
+  // The Δt the engine's Δt-dependent model values are computed for (0: the
+  // scene's timestep), for an engine whose model depends on Δt
+  // (EngineInfo::model_dt_help non-empty).
   double model_dt = 0.0;
 
+  // The value given for option `name`; empty when it was left out.
+  std::string option(std::string_view name) const;
+  // Gives option `name` the value (empty: leaves it out). The registry
+  // checks names and values where a user gives them (parse_engine,
+  // engine_with_options); code that sets one names an option it knows.
+  void set(std::string_view name, const std::string& value);
   std::string name() const;  // back to "mujoco:exact" etc.
 };
 
 struct EngineInfo {
   std::string_view kind;   // the name before any ':' ("ref", "mujoco")
-  std::string_view title;  // the engine's name in prose ("MuJoCo")
+  std::string_view title;  // the engine's name in tables and prose ("ref", "MuJoCo")
   // How to make its Stepper at the scene's initial state; nullptr when the
   // engine was not built in (parse_engine then says so).
   std::unique_ptr<Stepper> (*make)(const EngineSpec& spec, const Scene& scene) = nullptr;
   // Whether it offers the integrator; nullptr: every one.
   bool (*offers)(Integrator integrator) = nullptr;
+  // Throws InputError, in the engine's own words, when it cannot run the
+  // scene (an integrator it lacks) — before any work; nullptr: it runs any.
+  void (*check)(const Scene& scene) = nullptr;
   // Its own name of the integrator that runs this one, shown after the
   // scene's name ("semi_implicit_euler (MuJoCo Euler)"); nullptr or empty:
   // the scene's name alone.
@@ -53,12 +74,12 @@ struct EngineInfo {
   // The integrator its contact forces are integrated with when it runs this
   // one (the stability limit that applies); nullptr: the same one.
   Integrator (*contact_integrator)(Integrator integrator) = nullptr;
-  // Reads the options after "kind:" into `spec`; `context` ("--engine
-  // mujoco:x") starts any InputError. nullptr: the name takes no options.
-  void (*parse_options)(const std::string& options, const std::string& context,
-                        EngineSpec& spec) = nullptr;
-  // The names with options that engine_names lists after `kind`.
-  std::vector<std::string> (*variants)() = nullptr;
+  // The options its name may carry, in the order "kind:FIRST:SECOND" takes
+  // them; the lists name "kind:VALUE" for every value of the first.
+  std::vector<EngineOption> options{};
+  // Non-empty when its model has values computed for a Δt (EngineSpec::
+  // model_dt): the help of --model-dt, which holds them at another Δt.
+  std::string_view model_dt_help{};
 };
 
 }  // namespace contact2d::engines

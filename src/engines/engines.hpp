@@ -14,10 +14,12 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/engine_info.hpp"
@@ -35,6 +37,9 @@ bool mujoco_available();
 // The names a user can give: ref, and with MuJoCo mujoco and mujoco:MAPPING
 // for every mapping (geometry variants left out of the list).
 std::vector<std::string> engine_names();
+// The same list in prose for a help text: "ref, mujoco, mujoco:MAPPING
+// (seed, exact, calibrated, compensated; mujoco = its default)".
+std::string engine_names_help();
 
 // The result of running one engine on one scene.
 struct EngineRun {
@@ -60,15 +65,28 @@ struct EngineRun {
   double mu_roll = std::numeric_limits<double>::quiet_NaN();
 };
 
-// MuJoCo as simulate's and compare's --mapping, --geometry and --model-dt
-// (Python: mapping, geometry, model_dt) give it; empty or 0: the defaults.
-// `source` is the scene file.
-EngineSpec mujoco_spec(const std::string& mapping, const std::string& geometry, double model_dt,
-                       const std::string& source);
+// An engine with options given one by one (the command line's --mapping,
+// the Python module's mapping=), as (name, value) pairs; an empty value is
+// left out. `spelled("mapping")` is how the caller's user wrote an option
+// ("--mapping", "mapping ="), to start an error. Throws InputError for an
+// unknown engine, an option the engine does not take, a value it does not
+// accept, or a model_dt for an engine without Δt-dependent model values.
+using OptionValues = std::vector<std::pair<std::string, std::string>>;
+EngineSpec engine_with_options(const std::string& kind, const OptionValues& given, double model_dt,
+                               const std::string& source,
+                               const std::function<std::string(std::string_view)>& spelled);
+
+// The value of option `name` of the spec's engine: the one given, else its
+// fallback; empty when the engine has no such option.
+std::string option_value(const EngineSpec& spec, std::string_view name);
 
 // A stepper at the scene's initial state. Throws InputError when the engine
 // cannot run the scene (MuJoCo: a model it cannot load, explicit Euler).
 std::unique_ptr<Stepper> make_stepper(const EngineSpec& spec, const Scene& scene);
+
+// Throws InputError when the engine cannot run the scene (EngineInfo::check),
+// without building anything.
+void check_runs(const EngineSpec& spec, const Scene& scene);
 
 // make_stepper + run loop, timed.
 EngineRun run_engine(const EngineSpec& spec, const Scene& scene);
@@ -94,6 +112,10 @@ bool engine_offers(const std::string& name, Integrator integrator);
 // where an engine has its own name for it, that follows in parentheses with
 // the engine's title: "rk4" for the reference, "rk4 (MuJoCo RK4)" for MuJoCo.
 std::string integrator_label(const std::string& engine, Integrator integrator);
+
+// The engine's own name of the integrator (EngineInfo::integrator_title:
+// "Euler" for MuJoCo's semi-implicit Euler), else the scene's name.
+std::string own_integrator_name(const std::string& engine, Integrator integrator);
 
 // The integrator the engine's contact forces are integrated with when it
 // runs `integrator` (the stability limit that applies): the same one, but

@@ -1,14 +1,15 @@
 // MuJoCo's descriptor for the engine registry (mujoco/engine.hpp).
 #include "mujoco/engine.hpp"
 
-#include "core/input_error.hpp"
+#include "mujoco/mapping.hpp"
+#include "mujoco/mjcf.hpp"
 #include "mujoco/stepper.hpp"
 
 namespace contact2d::mujoco {
 namespace {
 
 std::unique_ptr<Stepper> make_mujoco(const engines::EngineSpec& spec, const Scene& scene) {
-  MjcfOptions options = mjcf_options(spec.mapping, spec.geometry, spec.source);
+  MjcfOptions options = mjcf_options(spec.option("mapping"), spec.option("geometry"), spec.source);
   options.model_dt = spec.model_dt;
   return std::make_unique<MujocoStepper>(scene, options);
 }
@@ -21,23 +22,10 @@ Integrator contact_integrator(Integrator integrator) {
   return integrator == Integrator::ImplicitEuler ? Integrator::SemiImplicitEuler : integrator;
 }
 
-// MAPPING[:GEOMETRY]; an empty MAPPING is the default mapping.
-void parse_options(const std::string& options, const std::string& context,
-                   engines::EngineSpec& spec) {
-  const size_t second = options.find(':');
-  spec.mapping = options.substr(0, second);
-  if (second != std::string::npos) spec.geometry = options.substr(second + 1);
-  if (!spec.mapping.empty() && !parse_mapping(spec.mapping))
-    throw InputError(context + ": unknown mapping (seed, exact, calibrated, compensated)");
-  if (!spec.geometry.empty() && !parse_geometry(spec.geometry))
-    throw InputError(context + ": unknown geometry (corners, boxes)");
-}
-
-// mujoco:MAPPING for every mapping (geometry variants left out).
-std::vector<std::string> variants() {
-  std::vector<std::string> names;
-  for (Mapping m : kAllMappings) names.push_back("mujoco:" + std::string(mapping_name(m)));
-  return names;
+std::vector<std::string_view> mapping_values() {
+  std::vector<std::string_view> values;
+  for (Mapping m : kAllMappings) values.push_back(mapping_name(m));
+  return values;
 }
 
 }  // namespace
@@ -53,9 +41,23 @@ std::string_view integrator_title(Integrator integrator) {
 }
 
 const engines::EngineInfo& engine_info() {
-  static const engines::EngineInfo info{"mujoco",      "MuJoCo",         make_mujoco,
-                                        offers,        integrator_title, contact_integrator,
-                                        parse_options, variants};
+  // mujoco[:MAPPING[:GEOMETRY]], named as mapping.hpp names them.
+  static const engines::EngineInfo info{
+      "mujoco",
+      "MuJoCo",
+      make_mujoco,
+      offers,
+      [](const Scene& scene) { mujoco_integrator(scene.sim.integrator); },
+      integrator_title,
+      contact_integrator,
+      {{"mapping", "solref/solimp mapping", mapping_values(), mapping_name(kDefaultMapping)},
+       {"geometry",
+        "MuJoCo geoms of a box or T (corners: a small sphere per 2D contact point; boxes: a box "
+        "geom per part)",
+        {geometry_name(Geometry::CornerSpheres), geometry_name(Geometry::BoxGeoms)},
+        geometry_name(kDefaultGeometry)}},
+      "Compute MuJoCo's Δt-dependent values (the calibrated impratio) for this Δt instead of the "
+      "timestep: holds the model fixed while --dt changes"};
   return info;
 }
 

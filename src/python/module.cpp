@@ -136,6 +136,9 @@ py::array_t<double> converged_array(const DenseTrajectory& d, const Trajectory& 
   return trajectory_array(t);
 }
 
+// How a Python caller wrote an option, to start an error: "mapping =".
+std::string python_keyword(std::string_view name) { return std::string(name) + " ="; }
+
 // A kept run that is not physics: the program's line, with the keyword
 // that keeps it in Python's terms.
 std::string not_physics(const std::string& source, const std::string& engine,
@@ -151,16 +154,8 @@ py::dict py_simulate(const py::object& scene_object, const std::string& engine,
                      const std::string& geometry, double model_dt, bool allow_nonphysical) {
   const Scene scene = checked_scene(scene_object, integrator, dt, duration);
   const std::string source = source_of(scene_object);
-  engines::EngineSpec spec;
-  if (engine == "mujoco") {
-    spec = engines::mujoco_spec(mapping, geometry, model_dt, source);
-  } else {
-    spec = engines::parse_engine(engine, "engine");
-    if (!mapping.empty() || !geometry.empty() || model_dt != 0.0)
-      throw InputError("engine = " + engine +
-                       ": mapping, geometry and model_dt are options of "
-                       "engine = \"mujoco\"");
-  }
+  const engines::EngineSpec spec = engines::engine_with_options(
+      engine, {{"mapping", mapping}, {"geometry", geometry}}, model_dt, source, python_keyword);
   engines::EngineRun run;
   {
     py::gil_scoped_release release;
@@ -186,20 +181,23 @@ py::dict py_simulate(const py::object& scene_object, const std::string& engine,
 py::dict py_compare(const py::object& scene_object, const std::optional<std::string>& integrator,
                     std::optional<double> dt, std::optional<double> duration,
                     const std::string& mapping, const std::string& geometry, double model_dt,
-                    double converged_tol, bool diagnosis, bool allow_nonphysical) {
+                    const std::vector<std::string>& engine_names, double converged_tol,
+                    bool diagnosis, bool allow_nonphysical) {
   const std::string source = source_of(scene_object);
   if (!(converged_tol >= 1e-14 && converged_tol <= 1e-6))
     throw InputError("converged_tol = " + format_number("%g", converged_tol) +
                      " is out of range: must be in [1e-14, 1e-6]");
-  analysis::Comparison c =
-      analysis::prepare_comparison(checked_scene(scene_object, integrator, dt, duration),
-                                   engines::mujoco_spec(mapping, geometry, model_dt, source));
+  analysis::Comparison c = analysis::prepare_comparison(
+      checked_scene(scene_object, integrator, dt, duration),
+      analysis::comparison_engines(engine_names, {{"mapping", mapping}, {"geometry", geometry}},
+                                   model_dt, source, python_keyword));
   std::vector<std::string> warnings;
   {
     py::gil_scoped_release release;
     analysis::run_engines(c);
   }
-  for (const std::string& w : c.mujoco.warnings) warnings.push_back("MuJoCo warning: " + w);
+  for (const analysis::ComparedRun& r : c.runs)
+    for (const std::string& w : r.run.warnings) warnings.push_back(r.label + " warning: " + w);
   for (const analysis::RunProblem& p : analysis::run_problems(c)) {
     if (p.diverged) throw RunFailed(source + ": " + p.engine + ": " + p.message);
     if (!allow_nonphysical) throw RunFailed(not_physics(source, p.engine, p.message, false));
@@ -211,11 +209,11 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
   }
   py::dict out;
   out["json"] = analysis::comparison_json(c, source);
-  out["ref_trajectory"] = trajectory_array(c.ref.trajectory);
-  out["mujoco_trajectory"] = trajectory_array(c.mujoco.trajectory);
+  for (const analysis::ComparedRun& r : c.runs)
+    out[(r.key + "_trajectory").c_str()] = trajectory_array(r.run.trajectory);
   out["converged_trajectory"] =
-      c.three.converged.available
-          ? py::object(converged_array(c.three.converged.trajectory, c.ref.trajectory))
+      c.converged.available
+          ? py::object(converged_array(c.converged.trajectory, c.runs[0].run.trajectory))
           : py::object(py::none());
   out["warnings"] = warnings;
   return out;

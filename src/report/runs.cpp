@@ -86,8 +86,8 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
   c.mujoco_integrator = mj::mujoco_integrator(scene.sim.integrator);
   engines::EngineSpec spec;
   spec.kind = "mujoco";
-  spec.mapping = mapping;
-  spec.geometry = geometry;
+  spec.set("mapping", mapping);
+  spec.set("geometry", geometry);
   spec.source = source;
   const auto [ref, mujoco] = run_both(spec, scene, source);
   const analysis::TrajectoryError e = analysis::error_between(ref.trajectory, mujoco.trajectory);

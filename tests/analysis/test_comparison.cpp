@@ -118,7 +118,7 @@ TEST(Diagnosis, NamesOnlyTheCauseThatTheReRunsRemove) {
   };
   engines::EngineSpec spec;
   spec.kind = "mujoco";
-  spec.mapping = "calibrated";
+  spec.set("mapping", "calibrated");
   const engines::EngineRun ref = runner("ref", scene);
   const engines::EngineRun kv = runner(spec.name(), scene);
   const analysis::ThreeWay three = analysis::three_way(scene, ref.trajectory, kv.trajectory, 1e-10);

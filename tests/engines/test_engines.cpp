@@ -86,8 +86,8 @@ TEST(Registry, MujocoRunCarriesItsSolverSettings) {
 // A geometry without a mapping names itself so that it parses back.
 TEST(Registry, GeometryAloneRoundTrips) {
   const engines::EngineSpec spec = engines::parse_engine("mujoco::boxes");
-  EXPECT_TRUE(spec.mapping.empty());
-  EXPECT_EQ(spec.geometry, "boxes");
+  EXPECT_TRUE(spec.option("mapping").empty());
+  EXPECT_EQ(spec.option("geometry"), "boxes");
   EXPECT_EQ(spec.name(), "mujoco::boxes");
 }
 

@@ -86,7 +86,7 @@ TEST(SoftCone, TheDiagnosisNamesTheFrictionLaw) {
   ASSERT_EQ(analysis::friction_scenes()[1].name, "box_slide");
   for (const char* mapping : {"calibrated", "compensated"}) {
     engines::EngineSpec spec;
-    spec.mapping = mapping;
+    spec.set("mapping", mapping);
     const analysis::Diagnosis d = test::diagnosed(scene, spec, 1e-10).diagnosis;
     const analysis::Finding* law = test::finding(d, "friction_law");
     ASSERT_NE(law, nullptr) << mapping;

@@ -17,7 +17,7 @@ are issued as Python warnings (``Contact2dNote``).
 import json
 import warnings
 from dataclasses import dataclass, field
-from typing import List, Optional
+from typing import List, Optional, Sequence
 
 import numpy as np
 
@@ -72,17 +72,23 @@ def simulate(scene: Scene, engine: str = "ref", integrator: Optional[str] = None
 def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: float = 0.0,
             integrator: Optional[str] = None, dt: Optional[float] = None,
             duration: Optional[float] = None, converged_tol: float = 1e-12,
-            diagnosis: bool = True, allow_nonphysical: bool = False) -> dict:
-    """Both engines against the converged solution and each other, as
-    ``contact2d compare --json``: that JSON object as a dict, with the
-    trajectories added as arrays ("ref_trajectory", "mujoco_trajectory",
+            diagnosis: bool = True, allow_nonphysical: bool = False,
+            engines: Sequence[str] = ()) -> dict:
+    """The reference and MuJoCo against the converged solution and each
+    other, as ``contact2d compare --json``: that JSON object as a dict, with
+    the trajectories added as arrays ("ref_trajectory", "mujoco_trajectory",
     "converged_trajectory": the converged solution at the reference's sample
-    times, None where it is not available) and "warnings"."""
+    times, None where it is not available) and "warnings". ``engines``, as
+    ``--engines``, compares the reference with each engine of the list
+    (names with their options, "mujoco:exact:boxes"; not together with
+    mapping or geometry): every engine adds its keys and its
+    "KEY_trajectory" ("mujoco_exact_trajectory" when two share a kind)."""
     run = _contact2d._compare(scene, integrator, dt, duration, mapping, geometry, model_dt,
-                              converged_tol, diagnosis, allow_nonphysical)
+                              list(engines), converged_tol, diagnosis, allow_nonphysical)
     result = json.loads(run["json"])
-    for key in ("ref_trajectory", "mujoco_trajectory", "converged_trajectory", "warnings"):
-        result[key] = run[key]
+    for key, value in run.items():
+        if key != "json":
+            result[key] = value
     return result
 
 
