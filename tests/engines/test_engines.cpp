@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/input_error.hpp"
@@ -106,6 +107,76 @@ TEST(IntegratorLabel, SceneNamesWithTheEnginesOwnInParentheses) {
   EXPECT_EQ(engines::integrator_label("mujoco", Integrator::RK4), "rk4 (MuJoCo RK4)");
   EXPECT_EQ(engines::integrator_label("mujoco", Integrator::ExplicitEuler),
             "explicit_euler");  // none in 2.2
+}
+
+// Options are data: every value of every option parses in its place and
+// names itself back, and a value outside the list is an error that lists
+// the values.
+TEST(Registry, OptionsAreDataTheParserFollows) {
+  for (const engines::EngineInfo* info : engines::engine_list()) {
+    if (info->make == nullptr) continue;
+    std::string prefix(info->kind);
+    for (const engines::EngineOption& option : info->options) {
+      std::string listed;
+      for (std::string_view value : option.values) {
+        const engines::EngineSpec spec = engines::parse_engine(prefix + ":" + std::string(value));
+        EXPECT_EQ(spec.option(option.name), value);
+        EXPECT_EQ(spec.name(), prefix + ":" + std::string(value));
+        EXPECT_EQ(engines::option_value(spec, option.name), value);
+        listed += (listed.empty() ? "" : ", ") + std::string(value);
+      }
+      EXPECT_EQ(error_of(prefix + ":nonsense"), "--engines " + prefix +
+                                                    ":nonsense: unknown " +
+                                                    std::string(option.name) + " (" + listed + ")");
+      EXPECT_EQ(engines::option_value(engines::parse_engine(std::string(info->kind)), option.name),
+                option.fallback);
+      prefix += ":";  // the next option comes after an empty one
+    }
+  }
+}
+
+std::string spelled(std::string_view name) { return "--" + std::string(name); }
+
+std::string with_options_error(const std::string& kind, const engines::OptionValues& given,
+                               double model_dt = 0.0) {
+  try {
+    engines::engine_with_options(kind, given, model_dt, "s.toml", spelled);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Registry, OptionsGivenOneByOneAreCheckedAgainstTheEngine) {
+  EXPECT_EQ(with_options_error("ref", {{"mapping", "exact"}}),
+            "--mapping exact: not an option of ref (it takes none)");
+  EXPECT_EQ(with_options_error("mujoco", {{"mapping", "stiff"}}),
+            "--mapping stiff: unknown mapping (seed, exact, calibrated, compensated)");
+  EXPECT_EQ(with_options_error("mujoco", {{"solver", "cg"}}),
+            "--solver cg: not an option of mujoco");
+  EXPECT_EQ(with_options_error("ref", {}, 0.002),
+            "--model_dt 0.002: ref has no Δt-dependent model values");
+  EXPECT_EQ(with_options_error("ref", {{"mapping", ""}}), "");  // empty: left out
+  const engines::EngineSpec spec = engines::engine_with_options(
+      "mujoco", {{"geometry", "boxes"}, {"mapping", ""}}, 0.002, "s.toml", spelled);
+  EXPECT_EQ(spec.name(), "mujoco::boxes");
+  EXPECT_EQ(spec.model_dt, 0.002);
+  EXPECT_EQ(spec.source, "s.toml");
+  EXPECT_EQ(engines::option_value(spec, "mapping"), "calibrated");  // the fallback
+}
+
+TEST(Registry, SetReplacesOrRemovesAnOption) {
+  engines::EngineSpec spec = engines::parse_engine("mujoco:exact:boxes");
+  spec.set("mapping", "seed");
+  EXPECT_EQ(spec.name(), "mujoco:seed:boxes");
+  spec.set("geometry", "");
+  EXPECT_EQ(spec.name(), "mujoco:seed");
+}
+
+TEST(Registry, HelpListsTheNamesFromTheData) {
+  EXPECT_EQ(engines::engine_names_help(),
+            "ref, mujoco, mujoco:MAPPING (seed, exact, calibrated, compensated; mujoco = its "
+            "default)");
 }
 
 // MuJoCo's implicit integrates contact forces explicitly.

@@ -222,6 +222,29 @@ TEST_F(Cli, CompareCsvHasBothTrajectoriesAtTheSameTimes) {
   EXPECT_EQ(rows, 501);  // t = 0 and every 1e-3 s over 0.5 s
 }
 
+// --engines: one column pair per engine in the table, six CSV columns per
+// engine named by its key, and options either in the names or as flags.
+TEST_F(Cli, CompareTakesAListOfEngines) {
+  write("box.toml", kBox);
+  const Result r =
+      run("compare box.toml --engines mujoco:exact,mujoco:calibrated:boxes --csv all.csv "
+          "--no-diagnosis --allow-nonphysical");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* column : {"ref <-> mujoco:exact", "mujoco:exact <-> converged",
+                             "ref <-> mujoco:calibrated:boxes", "energy mujoco:calibrated:boxes"})
+    EXPECT_NE(r.out.find(column), std::string::npos) << column << " in " << r.out;
+  std::istringstream csv(read(dir_ / "all.csv"));
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(std::count(header.begin(), header.end(), ','), 6 * 4);  // t + 3 engines + converged
+  EXPECT_NE(header.find(",x_mujoco_exact,"), std::string::npos) << header;
+  EXPECT_NE(header.find(",omega_mujoco_calibrated_boxes,"), std::string::npos) << header;
+  const Result both = run("compare box.toml --engines mujoco:exact --mapping seed");
+  EXPECT_EQ(both.status, 2);
+  EXPECT_NE(both.err.find("--mapping seed: with --engines"), std::string::npos) << both.err;
+  EXPECT_EQ(leftovers(), std::vector<std::string>{"all.csv"});
+}
+
 TEST_F(Cli, ComparePlotWritesAPng) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "gnuplot (gnuplot-nox) not installed";

@@ -56,6 +56,26 @@ def test_compare_json_and_trajectories(scene, tmp_path):
     assert [",".join(p) for p in zip(*parts)] == rows
 
 
+def test_compare_engines_list(tmp_path):
+    """compare(engines=...) is --engines: the same JSON, every engine's trajectory."""
+    scene = "validation/scenes/box.toml"
+    engines = ["mujoco:exact", "mujoco:calibrated:boxes"]
+    out, _ = run_program("compare", scene, "--json", "--engines", ",".join(engines),
+                         "--duration", "0.5", "--no-diagnosis", "--allow-nonphysical")
+    result = contact2d.compare(contact2d.Scene.load(scene), engines=engines, duration=0.5,
+                               diagnosis=False, allow_nonphysical=True)
+    expected = json.loads(out)
+    timings = TIMINGS + ("mujoco_exact_seconds", "mujoco_calibrated_boxes_seconds")
+    assert ({k: v for k, v in result.items() if not k.endswith("_trajectory")
+             and k != "warnings" and k not in timings}
+            == {k: v for k, v in expected.items() if k not in timings})
+    assert set(expected["integrators"]) == {"ref", "mujoco_exact", "mujoco_calibrated_boxes"}
+    for key in ("ref", "mujoco_exact", "mujoco_calibrated_boxes"):
+        assert result[key + "_trajectory"].shape[1] == 7
+    with pytest.raises(ValueError, match="with engines = an engine's options are part"):
+        contact2d.compare(contact2d.Scene.load(scene), engines=engines, mapping="exact")
+
+
 def test_compare_options(tmp_path):
     scene = "validation/scenes/point_mass.toml"
     args = ["--set", "contact.damping=kelvin_voigt", "--set", "contact.mu=0"]

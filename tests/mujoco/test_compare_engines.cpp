@@ -1,0 +1,163 @@
+// A comparison of N engines (analysis/compare_run.hpp): each run measured
+// against the first and the converged solution exactly as it would be in a
+// comparison of that pair alone, named apart when two share an engine, and
+// the engines chosen from the registry's data.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "analysis/compare_run.hpp"
+#include "core/input_error.hpp"
+#include "mj_test_util.hpp"
+
+namespace contact2d {
+namespace {
+
+// A box landing on a corner with friction (the engines differ by
+// centimetres), short enough for four comparisons.
+const char* kBox = R"(scene = "box"
+[body]
+mass = 1.0
+width = 0.4
+height = 0.2
+[contact]
+k = 1e4
+c = 20
+mu = 0.5
+[initial]
+y = 0.5
+theta = 0.3
+vx = 0.5
+[sim]
+dt = 1e-4
+duration = 0.4
+integrator = "semi_implicit_euler"
+)";
+
+std::string spelled(std::string_view name) { return "--" + std::string(name); }
+
+analysis::Comparison measured(const std::vector<std::string>& names) {
+  const Scene scene = test::scene_from(kBox);
+  analysis::Comparison c = analysis::prepare_comparison(
+      scene, analysis::comparison_engines(names, {}, 0.0, "box.toml", spelled));
+  analysis::run_engines(c);
+  analysis::measure(c, 1e-10, false);
+  return c;
+}
+
+void expect_same(const analysis::TrajectoryError& a, const analysis::TrajectoryError& b,
+                 const std::string& what) {
+  EXPECT_EQ(a.samples, b.samples) << what;
+  EXPECT_EQ(a.max_pos, b.max_pos) << what;
+  EXPECT_EQ(a.rms_pos, b.rms_pos) << what;
+  EXPECT_EQ(a.end_pos, b.end_pos) << what;
+  EXPECT_EQ(a.max_angle, b.max_angle) << what;
+  EXPECT_EQ(a.max_vel, b.max_vel) << what;
+  EXPECT_EQ(a.time_of_max_pos, b.time_of_max_pos) << what;
+}
+
+// Every engine is deterministic and each run is measured on its own, so
+// the distances of a run in a three-engine comparison are, bit for bit,
+// those of its two-engine comparison; a mixed-up index or a run measured
+// against the wrong one would differ by centimetres.
+TEST(CompareEngines, EachRunIsMeasuredAsInItsOwnPair) {
+  const analysis::Comparison three = measured({"mujoco:exact", "mujoco:calibrated:boxes"});
+  ASSERT_EQ(three.runs.size(), 3u);
+  ASSERT_TRUE(three.converged.available);
+  const analysis::Comparison exact = measured({"mujoco:exact"});
+  const analysis::Comparison boxes = measured({"mujoco:calibrated:boxes"});
+  expect_same(three.runs[1].vs_first, exact.runs[1].vs_first, "exact vs ref");
+  expect_same(three.runs[2].vs_first, boxes.runs[1].vs_first, "boxes vs ref");
+  expect_same(three.runs[0].vs_converged, exact.runs[0].vs_converged, "ref vs converged");
+  expect_same(three.runs[1].vs_converged, exact.runs[1].vs_converged, "exact vs converged");
+  expect_same(three.runs[2].vs_converged, boxes.runs[1].vs_converged, "boxes vs converged");
+  // The two MuJoCo models differ from each other, so the test would see a swap.
+  EXPECT_GT(std::abs(three.runs[1].vs_first.max_pos - three.runs[2].vs_first.max_pos), 1e-4);
+  EXPECT_EQ(three.runs[0].vs_first.samples, 0u);  // the first is not measured against itself
+}
+
+TEST(CompareEngines, RunsOfOneEngineAreNamedApart) {
+  const Scene scene = test::scene_from(kBox);
+  const analysis::Comparison two = analysis::prepare_comparison(
+      scene, analysis::comparison_engines({}, {}, 0.0, "box.toml", spelled));
+  ASSERT_EQ(two.runs.size(), 2u);
+  EXPECT_EQ(two.runs[0].label, "ref");
+  EXPECT_EQ(two.runs[0].key, "ref");
+  EXPECT_EQ(two.runs[1].label, "MuJoCo");
+  EXPECT_EQ(two.runs[1].key, "mujoco");
+  const analysis::Comparison three = analysis::prepare_comparison(
+      scene, analysis::comparison_engines({"mujoco:exact", "mujoco::boxes"}, {}, 0.0, "box.toml",
+                                          spelled));
+  EXPECT_EQ(three.runs[1].label, "mujoco:exact");
+  EXPECT_EQ(three.runs[1].key, "mujoco_exact");
+  EXPECT_EQ(three.runs[2].label, "mujoco::boxes");
+  EXPECT_EQ(three.runs[2].key, "mujoco__boxes");
+}
+
+// The JSON of two engines keeps its keys; a third adds the same keys under
+// its own key.
+TEST(CompareEngines, JsonKeysOfAFurtherEngineCarryItsKey) {
+  const analysis::Comparison three = measured({"mujoco:exact", "mujoco:calibrated:boxes"});
+  const std::string json = analysis::comparison_json(three, "box.toml");
+  for (const char* key :
+       {"\"mapping\": \"exact\"", "\"geometry\": \"corners\"",
+        "\"mujoco_calibrated_boxes_mapping\": \"calibrated\"",
+        "\"mujoco_calibrated_boxes_geometry\": \"boxes\"",
+        "\"integrators\": {\"ref\": \"semi_implicit_euler\", \"mujoco_exact\": \"Euler\", "
+        "\"mujoco_calibrated_boxes\": \"Euler\"}",
+        "\"ref_vs_mujoco_exact_max_pos_err\": ", "\"ref_vs_mujoco_calibrated_boxes_max_pos_err\": ",
+        "\"mujoco_calibrated_boxes_vs_converged_max_pos_err\": ",
+        "\"mujoco_calibrated_boxes_solref\": [", "\"mujoco_calibrated_boxes_warnings\": ["})
+    EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
+  const std::string pair = analysis::comparison_json(measured({"mujoco"}), "box.toml");
+  EXPECT_EQ(pair.find("mujoco_calibrated"), std::string::npos) << pair;
+  EXPECT_NE(pair.find("\"ref_vs_mujoco_max_pos_err\": "), std::string::npos) << pair;
+}
+
+TEST(CompareEngines, DefaultIsEveryEngineBuiltInWithTheOptionsItTakes) {
+  const std::vector<engines::EngineSpec> specs =
+      analysis::comparison_engines({}, {{"mapping", "exact"}}, 0.002, "box.toml", spelled);
+  ASSERT_EQ(specs.size(), 2u);
+  EXPECT_EQ(specs[0].name(), "ref");
+  EXPECT_EQ(specs[1].name(), "mujoco:exact");
+  EXPECT_EQ(specs[1].model_dt, 0.002);
+  EXPECT_EQ(specs[1].source, "box.toml");
+}
+
+TEST(CompareEngines, BadChoicesAreOneLineErrors) {
+  auto error = [](const std::vector<std::string>& names, const engines::OptionValues& given) {
+    try {
+      analysis::comparison_engines(names, given, 0.0, "box.toml", spelled);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error({"mujoco"}, {{"mapping", "exact"}}),
+            "--mapping exact: with --engines an engine's options are part of its name "
+            "(KIND:VALUE:VALUE)");
+  EXPECT_EQ(error({"bullet"}, {}), "--engines bullet: unknown engine (use ref or mujoco)");
+  EXPECT_EQ(error({}, {{"mapping", "stiff"}}),
+            "--mapping stiff: unknown mapping (seed, exact, calibrated, compensated)");
+  EXPECT_THROW(analysis::prepare_comparison(test::scene_from(kBox), {engines::parse_engine("ref")}),
+               InputError);
+}
+
+// An engine that cannot run the scene says so before anything runs.
+TEST(CompareEngines, AnIntegratorAnEngineLacksFailsBeforeAnyRun) {
+  Scene scene = test::scene_from(kBox);
+  scene.sim.integrator = Integrator::ExplicitEuler;
+  try {
+    analysis::prepare_comparison(scene,
+                                 analysis::comparison_engines({}, {}, 0.0, "box.toml", spelled));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("explicit_euler has no MuJoCo 2.2 counterpart"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace contact2d
