@@ -108,12 +108,8 @@ void measure(Comparison& c, double converged_tol, bool diagnosis) {
 }
 
 ThreeWay pair(const Comparison& c, size_t i) {
-  ThreeWay t;
-  t.converged = c.converged;
-  t.ref_vs_converged = c.runs[0].vs_converged;
-  t.mujoco_vs_converged = c.runs[i].vs_converged;
-  t.ref_vs_mujoco = c.runs[i].vs_first;
-  return t;
+  // converged, first ↔ converged, this one ↔ converged, first ↔ this one.
+  return ThreeWay{c.converged, c.runs[0].vs_converged, c.runs[i].vs_converged, c.runs[i].vs_first};
 }
 
 Energies energies(const Scene& scene, const Trajectory& t) {

@@ -23,6 +23,17 @@ std::string series_title(const std::string& engine, Integrator integrator) {
   return engine + ": " + engines::integrator_label(engine, integrator);
 }
 
+// The name of a series' stability limit: its integrator's, or where the
+// engine integrates contact forces with another integrator (MuJoCo's
+// implicit: semi-implicit Euler's limit), the engine's title and its own
+// name of the integrator ("MuJoCo implicit").
+std::string theory_name(const std::string& engine, Integrator integrator) {
+  if (engines::contact_integrator(engine, integrator) == integrator)
+    return std::string(integrator_name(integrator));
+  const engines::EngineInfo* info = engines::find_engine(engine);
+  return std::string(info->title) + " " + engines::own_integrator_name(engine, integrator);
+}
+
 // How a series of an engine is drawn: the reference solid with small
 // filled markers; each MuJoCo engine dashed with open markers, each larger
 // than the last, so curves that coincide (MuJoCo's mappings often do) show
@@ -179,7 +190,7 @@ struct StabilitySeries {
   Integrator integrator = Integrator::RK4;
   EngineStyle style{};
   int point_type = 7;
-  bool mujoco_implicit = false;                  // contacts explicit: Euler's limit
+  std::string theory_name;                       // the limit's name (theory_name())
   std::array<bool, 3> has{false, false, false};  // bracketed, lower, upper
   std::vector<double> theory;                    // ω·Δt per k (NaN: none)
   double last_k = 0, last_theory_dt = 0, last_theory = 0;
@@ -213,7 +224,7 @@ std::vector<StabilitySeries> write_stability_data(std::FILE* f, const StabilityR
     const size_t engine = engine_index(engines, key.first);
     c.style = engine_style(engine);
     c.point_type = point_type(key.first, key.second);
-    c.mujoco_implicit = engines::contact_integrator(key.first, key.second) != key.second;
+    c.theory_name = theory_name(key.first, key.second);
     for (const StabilityRow& row : r.rows) {
       if (row.engine != key.first || row.integrator != key.second) continue;
       const bool bracketed = row.verdict == StabilityVerdict::Bracketed;
@@ -263,9 +274,7 @@ TheoryLines theory_lines(const std::vector<StabilitySeries>& series) {
   std::vector<std::string>& theory_label = lines.label;
   for (size_t i = 0; i < series.size(); ++i) {
     if (series[i].last_k <= 0) continue;
-    const std::string name = series[i].mujoco_implicit
-                                 ? std::string("MuJoCo implicit")
-                                 : std::string(integrator_name(series[i].integrator));
+    const std::string& name = series[i].theory_name;
     bool same = false;
     for (size_t n = 0; n < theory_of.size() && !same; ++n) {
       const StabilitySeries& other = series[theory_of[n]];

@@ -134,13 +134,12 @@ std::vector<StabilityRow> stability_rows(const Scene& scene, const StabilityConf
         row.m_eff = cs.m_eff;
         row.omega = cs.omega;
         row.zeta = cs.zeta;
-        // MuJoCo's implicit integrates joint damping and actuators
-        // implicitly but contact forces explicitly: for a contact it is
-        // semi-implicit Euler, with that limit (not the reference's
-        // unconditionally stable implicit Euler).
-        const bool mujoco_implicit = engines::contact_integrator(engine, integrator) != integrator;
-        row.theory =
-            stability_limit(mujoco_implicit ? Integrator::SemiImplicitEuler : integrator, cs.zeta);
+        // The limit of the integrator the engine integrates contact forces
+        // with (engines::contact_integrator): MuJoCo's implicit integrates
+        // them explicitly, so for a contact it is semi-implicit Euler, with
+        // that limit (not the reference's unconditionally stable implicit
+        // Euler).
+        row.theory = stability_limit(engines::contact_integrator(engine, integrator), cs.zeta);
         const long long max_steps = engine == "ref" ? config.max_steps : config.max_steps_other;
         row.dt_min = std::min(dt_max, scene.sim.duration / static_cast<double>(max_steps));
         rows.push_back(row);

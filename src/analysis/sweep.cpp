@@ -53,8 +53,10 @@ std::string order_note(const Scene& scene, const std::string& engine, Integrator
   if (order >= nominal - 0.3) return "";
   const ContactParams& p = scene.contact;
   if (engine != "ref" && against == "reference") {
-    return "levels off at the distance between MuJoCo's contact model and the penalty law, "
-           "which no step removes";
+    const engines::EngineInfo* info = engines::find_engine(engine);
+    return "levels off at the distance between " +
+           (info != nullptr ? std::string(info->title) : engine) +
+           "'s contact model and the penalty law, which no step removes";
   }
   if (engine != "ref") {
     return "its contacts also switch on and off inside a step, which holds every fixed-step "

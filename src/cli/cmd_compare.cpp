@@ -304,13 +304,13 @@ int compare(const CompareOptions& options) {
     const ComparedRun& b = c.runs[1];  // the video draws the first two
     const std::string options_first = option_text(b, false);
     in.reference = &a.run.trajectory;
-    in.mujoco = &b.run.trajectory;
+    in.second = &b.run.trajectory;
     in.converged = c.converged.available ? &c.converged.trajectory : nullptr;
     in.title = std::string(shape_name(c.scene.shape)) + ": " + a.label + " vs " + b.label + ", " +
                engines::integrator_label(b.spec.kind, c.scene.sim.integrator) +
                (options_first.empty() ? "" : ", " + options_first);
     in.reference_label = a.label;
-    in.mujoco_label = b.label;
+    in.second_label = b.label;
     game::write_comparison_video(options.video, in);
   }
 #endif

@@ -25,7 +25,7 @@ constexpr Color rgb(const int (&c)[3]) {
 }
 constexpr Color kReference = rgb(kReferenceRgb);
 constexpr Color kReferenceEdge{0.55f, 0.29f, 0.03f, 1.0f};
-constexpr Color kMujoco = rgb(kMujocoRgb);
+constexpr Color kSecond = rgb(kSecondRgb);
 constexpr Color kConverged = rgb(kConvergedRgb);
 constexpr Color kBackground{0.96f, 0.96f, 0.94f, 1.0f};
 constexpr Color kGround{0.47f, 0.44f, 0.40f, 1.0f};
@@ -36,7 +36,7 @@ constexpr Color kPanel{0.13f, 0.17f, 0.24f, 1.0f};  // the game's HUD panel
 constexpr Color kText{1.0f, 1.0f, 1.0f, 1.0f};
 constexpr Color kWarning{1.0f, 0.55f, 0.45f, 1.0f};
 
-constexpr double kOutlinePx = 4.0;  // MuJoCo's outline; ≥ 4 px keeps whole 2×2 chroma blocks
+constexpr double kOutlinePx = 4.0;  // the second run's outline; ≥ 4 px keeps whole 2×2 chroma blocks
 constexpr double kThinPx = 1.5;     // the converged solution
 constexpr double kMarginPx = 24.0;  // around the fitted trajectories
 
@@ -114,7 +114,7 @@ enum class Style { Filled, Outlined, Thin };
 void draw_body(const RigidBody& body, const Scene& scene, const State& s, Style style, double px) {
   const double r = disc_radius(body, scene);
   const Color& colour = style == Style::Filled     ? kReference
-                        : style == Style::Outlined ? kMujoco
+                        : style == Style::Outlined ? kSecond
                                                    : kConverged;
   const double width = (style == Style::Thin       ? kThinPx
                         : style == Style::Outlined ? kOutlinePx
@@ -174,12 +174,12 @@ Camera fit_camera(const ComparisonVideoInput& in, const RigidBody& body, long lo
       if (t <= in.converged->t_end()) b.add(in.converged->at(t), extent);
     }
   }
-  // MuJoCo's path widens the view by at most the reference's own size
+  // The second run's path widens the view by at most the reference's own size
   // (at least four body sizes) on each side: a run that blows up before
   // its divergence is caught leaves the frame instead of shrinking the
   // bodies to dots (the HUD says where it stopped).
   Bounds m;
-  for (const Sample& s : in.mujoco->samples) m.add(s.state, extent);
+  for (const Sample& s : in.second->samples) m.add(s.state, extent);
   if (b.x0 <= b.x1 && m.x0 <= m.x1) {
     const double reach = std::max({b.x1 - b.x0, b.y1 - b.y0, 4.0 * extent, 0.1});
     b.x0 = std::min(b.x0, std::max(m.x0, b.x0 - reach));
@@ -234,7 +234,7 @@ void draw_world(const ComparisonVideoInput& in, const RigidBody& body, const Cam
       draw::disc(o.b.x(), o.b.y(), 0.5 * w, 0.5 * w, kObstacle, 16);
     }
   }
-  // Reference below, MuJoCo's outline over it, the converged line on top.
+  // Reference below, the second run's outline over it, the converged line on top.
   draw_body(body, *in.scene, ref, Style::Filled, px);
   draw_body(body, *in.scene, mj, Style::Outlined, px);
   if (conv) draw_body(body, *in.scene, *conv, Style::Thin, px);
@@ -257,7 +257,7 @@ void draw_hud(const ComparisonVideoInput& in, double t, double duration, const S
   draw::rect(0, 0, width, kComparisonHudHeight, kPanel);
   fitted_text(10, 8, in.title, width, kText);
   const std::string& r = in.reference_label;
-  const std::string& m = in.mujoco_label;
+  const std::string& m = in.second_label;
   std::string line = format_text("t = %.3f / %.3f s", t, duration) + "   distance " + r + "-" + m +
                      " " + distance_text(com_distance(ref, mj));
   if (conv) {
@@ -276,7 +276,7 @@ void draw_hud(const ComparisonVideoInput& in, double t, double duration, const S
       const double line_width = style == Style::Thin ? kThinPx : kOutlinePx;
       const double e = 0.5 * line_width;
       draw::rect_outline(x + e, y + e, x + w - e, y + h - e, line_width,
-                         style == Style::Thin ? kConverged : kMujoco);
+                         style == Style::Thin ? kConverged : kSecond);
     }
     draw::text(x + w + 8, y + 1, name, 1.5, kText);
     x += w + 8 + draw::text_width(name, 1.5) + 28;
@@ -285,7 +285,7 @@ void draw_hud(const ComparisonVideoInput& in, double t, double duration, const S
   entry(Style::Outlined, m + " (outline)");
   if (in.converged) entry(Style::Thin, "converged (thin line)");
   std::string warning = stopped_text(*in.reference, r, t);
-  if (warning.empty()) warning = stopped_text(*in.mujoco, m, t);
+  if (warning.empty()) warning = stopped_text(*in.second, m, t);
   if (warning.empty() && in.converged && t > in.converged->t_end())
     warning = format_text("CONVERGED ENDS AT %.3f s", in.converged->t_end());
   if (!warning.empty()) draw::text(x, y + 1, warning, 1.5, kWarning);
@@ -294,7 +294,7 @@ void draw_hud(const ComparisonVideoInput& in, double t, double duration, const S
 void draw_comparison_frame(const ComparisonVideoInput& in, const RigidBody& body, const Camera& cam,
                            double t, double duration, int width, int height) {
   const State ref = state_at(*in.reference, t);
-  const State mj = state_at(*in.mujoco, t);
+  const State mj = state_at(*in.second, t);
   State conv_state;
   const State* conv = nullptr;
   if (in.converged && t <= in.converged->t_end()) {
@@ -341,9 +341,9 @@ void check_video_path(const std::string& path) {
 void write_comparison_video(const std::string& path, const ComparisonVideoInput& in, int fps,
                             int width, int height, OffscreenBackend backend) {
   check_video_path(path);
-  if (!in.scene || !in.reference || !in.mujoco)
-    throw InputError("--video " + path + ": needs a scene, a reference and a MuJoCo trajectory");
-  if (in.reference->samples.empty() || in.mujoco->samples.empty())
+  if (!in.scene || !in.reference || !in.second)
+    throw InputError("--video " + path + ": needs a scene, a reference and a second trajectory");
+  if (in.reference->samples.empty() || in.second->samples.empty())
     throw InputError("--video " + path + ": a trajectory has no samples");
   if (fps < 1 || fps > 240)
     throw InputError("--video " + path + ": fps " + std::to_string(fps) + " must be in [1, 240]");

@@ -1,18 +1,19 @@
-// Both engines on screen (`contact2d compare --video FILE`): the bodies of
-// the reference and MuJoCo overlaid in real time, drawn with the game's
+// Two engines on screen (`contact2d compare --video FILE`): the bodies of
+// the reference and a second engine (MuJoCo by default) overlaid in real
+// time, drawn with the game's
 // renderer (game/draw2d.hpp) offscreen (game/offscreen.hpp: EGL surfaceless,
 // else a hidden GLFW window) and piped to ffmpeg
 // (game/video.hpp: "<FILE>.tmp", renamed when complete, removed on Ctrl-C).
 //
 //   reference   filled, orange (kReferenceRgb)
-//   MuJoCo      outlined, blue (kMujocoRgb), 4 px
+//   second      outlined, blue (kSecondRgb), 4 px
 //   converged   a thin dark outline (1.5 px), when given
 //
 // with the ground (and the scene's obstacles), a HUD with the title, the
 // time, the distance between the centres of mass of the bodies shown, and
 // a legend. The camera holds every sample of both trajectories (and the
 // converged solution at the frame times) and the ground in view, at one
-// scale for x and y; MuJoCo's samples widen the reference's view by at most
+// scale for x and y; the second run's samples widen the reference's view by at most
 // its own size on each side (a run blowing up leaves the frame rather than
 // shrinking the bodies to dots).
 //
@@ -41,17 +42,17 @@ namespace contact2d::game {
 struct ComparisonVideoInput {
   const Scene* scene = nullptr;                // shape, geometry, obstacles, sim.duration
   const Trajectory* reference = nullptr;       // drawn filled
-  const Trajectory* mujoco = nullptr;          // drawn outlined
+  const Trajectory* second = nullptr;          // drawn outlined
   const DenseTrajectory* converged = nullptr;  // may be null: a thin outline when present
-  std::string title;  // e.g. "box: ref semi-implicit vs MuJoCo Euler, calibrated"
+  std::string title;  // e.g. "box: ref vs MuJoCo, semi_implicit_euler (MuJoCo Euler), calibrated mapping"
   std::string reference_label = "reference";  // legend and HUD names
-  std::string mujoco_label = "MuJoCo";
+  std::string second_label = "second";
 };
 
 // The body colours (sRGB, 0-255) as drawn; what a decoded frame shows within
 // the encoder's error.
 inline constexpr int kReferenceRgb[3] = {242, 140, 26};
-inline constexpr int kMujocoRgb[3] = {26, 89, 217};
+inline constexpr int kSecondRgb[3] = {26, 89, 217};
 inline constexpr int kConvergedRgb[3] = {20, 20, 20};
 // Height of the HUD band at the top of every frame, pixels; the world is
 // drawn below it.

@@ -22,8 +22,8 @@
 namespace contact2d {
 namespace {
 
-// Columns: t, x, y, θ (ref), x, y, θ (MuJoCo), position distance, angle
-// difference.
+// Columns: t, x, y, θ (first run), x, y, θ (second run), position
+// distance, angle difference.
 void write_data(std::FILE* out, const Trajectory& ref, const Trajectory& mj) {
   const size_t n = std::min(ref.samples.size(), mj.samples.size());
   for (size_t i = 0; i < n; ++i) {
@@ -47,7 +47,7 @@ std::string distance_range(double largest) {
 
 std::string script(const std::string& data, const std::string& png, const std::string& title,
                    const Trajectory& ref, const Trajectory& mj, const std::string& ref_label,
-                   const std::string& mujoco_label) {
+                   const std::string& second_label) {
   const size_t n = std::min(ref.samples.size(), mj.samples.size());
   Extent t, x, y, theta;
   double pos_max = 0.0, angle_max = 0.0;
@@ -81,8 +81,8 @@ std::string script(const std::string& data, const std::string& png, const std::s
       << "set ylabel '" << label << "'\n"
       << gnuplot_range("y", e.lo, e.hi, false) << "plot " << d << " using 1:" << ref_col
       << " with lines lw 2 lc " << kColourRef << " title '" << gnuplot_text(ref_label) << "', " << d
-      << " using 1:" << mj_col << " with lines lw 2 dt 2 lc " << kColourMujoco << " title '"
-      << gnuplot_text(mujoco_label) << "'\n";
+      << " using 1:" << mj_col << " with lines lw 2 dt 2 lc " << kColourSecond << " title '"
+      << gnuplot_text(second_label) << "'\n";
   };
   panel(0, "x (m)", 2, 5, x);
   panel(1, "y (m)", 3, 6, y);
@@ -91,9 +91,9 @@ std::string script(const std::string& data, const std::string& png, const std::s
   const int bottom = turns ? 2 : 1;
   const double wb = 1.0 / bottom;
   s << "unset key\nset logscale y\nset format y '10^{%L}'\nset datafile missing '?'\n";
-  auto distance = [&](int i, const char* label, int col, double largest) {
+  auto distance = [&](int i, const std::string& label, int col, double largest) {
     s << "set size " << wb << ",0.46\nset origin " << i * wb << ",0.0\n"
-      << "set ylabel '" << label << "'\n"
+      << "set ylabel '" << gnuplot_text(label) << "'\n"
       << distance_range(largest);
     if (!(largest > 1e-290)) {
       s << "set label 1 'identical: the distance is 0 at every sample' at graph 0.5,0.5 center\n"
@@ -102,8 +102,9 @@ std::string script(const std::string& data, const std::string& png, const std::s
     }
     s << "plot " << d << " using 1:" << col << " with lines lw 2 lc 'black' notitle\n";
   };
-  distance(0, "position distance ref ↔ MuJoCo (m)", 8, pos_max);
-  if (turns) distance(1, "angle difference ref ↔ MuJoCo (rad)", 9, angle_max);
+  const std::string pair = ref_label + " ↔ " + second_label;
+  distance(0, "position distance " + pair + " (m)", 8, pos_max);
+  if (turns) distance(1, "angle difference " + pair + " (rad)", 9, angle_max);
   s << "unset multiplot\n";
   return s.str();
 }
@@ -118,15 +119,15 @@ void require_quotable(const std::string& text, const std::string& what) {
 }  // namespace
 
 void plot_comparison(const std::string& png_path, const std::string& title, const Trajectory& ref,
-                     const Trajectory& mujoco, const std::string& ref_label,
-                     const std::string& mujoco_label) {
+                     const Trajectory& second, const std::string& ref_label,
+                     const std::string& second_label) {
   require_quotable(png_path, "--plot");
   AtomicFile png(png_path);             // gnuplot writes here; renamed on success
   AtomicFile data(png_path + ".data");  // never committed: removed on return
-  write_data(data.get(), ref, mujoco);
+  write_data(data.get(), ref, second);
   if (std::fflush(data.get()) != 0) throw InputError(data.temp_path() + ": cannot write plot data");
   run_gnuplot(
-      script(data.temp_path(), png.temp_path(), title, ref, mujoco, ref_label, mujoco_label),
+      script(data.temp_path(), png.temp_path(), title, ref, second, ref_label, second_label),
       png_path);
   png.commit();
 }

@@ -76,16 +76,16 @@ std::string log_axis_value(double value);
 // green, RK4 reddish purple (Rec. 601 grey levels 0.47, 0.34, 0.42, 0.59).
 std::string integrator_colour(Integrator integrator);
 inline constexpr const char* kColourRef = "rgb '#0072B2'";     // blue
-inline constexpr const char* kColourMujoco = "rgb '#D55E00'";  // vermillion
+inline constexpr const char* kColourSecond = "rgb '#D55E00'";  // vermillion
 
-// x, y (and θ unless it stays 0 in both runs, as for a point mass) of both
-// engines against t, and below them the distance between them: position
+// x, y (and θ unless it stays 0 in both runs, as for a point mass) of two
+// runs against t, and below them the distance between them: position
 // (m) and angle (rad) in separate panels, each on a log axis. `ref_label` and
-// `mujoco_label` name the curves. The PNG appears (renamed from a temporary)
+// `second_label` name the curves. The PNG appears (renamed from a temporary)
 // only when gnuplot succeeded. Throws InputError when the path cannot be
 // written or gnuplot fails.
 void plot_comparison(const std::string& png_path, const std::string& title, const Trajectory& ref,
-                     const Trajectory& mujoco, const std::string& ref_label = "ref",
-                     const std::string& mujoco_label = "MuJoCo");
+                     const Trajectory& second, const std::string& ref_label,
+                     const std::string& second_label);
 
 }  // namespace contact2d

@@ -99,7 +99,7 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
         std::string(mj::mapping_name(options.mapping)) + " mapping, " +
         (scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
         " damping";
-    plot_comparison(plot_png, title, ref.trajectory, mujoco.trajectory);
+    plot_comparison(plot_png, title, ref.trajectory, mujoco.trajectory, "ref", "MuJoCo");
   }
   c.shape = std::string(shape_name(scene.shape));
   c.dt = scene.sim.dt;
@@ -142,11 +142,12 @@ ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
       game::ComparisonVideoInput in;
       in.scene = &scene;
       in.reference = &ref.trajectory;
-      in.mujoco = &mujoco.trajectory;
+      in.second = &mujoco.trajectory;
       in.converged = three.converged.available ? &three.converged.trajectory : nullptr;
       in.title = c.scene + " (" + law + "): ref vs MuJoCo, " +
                  engines::integrator_label("mujoco", scene.sim.integrator) + ", calibrated";
       in.reference_label = "ref";
+      in.second_label = "MuJoCo";
       game::write_comparison_video(video, in, 20, 640, 360);
       c.animation = std::filesystem::path(video).filename().string();
     } catch (const InputError& e) {
@@ -175,7 +176,7 @@ ReplayComparison replay_on_both(const std::string& replay_path, const std::strin
   Trajectory a, b;
   a.samples = ref.samples;
   b.samples = mj.samples;
-  plot_comparison(plot_png, "the goal replay: the ball on both engines", a, b);
+  plot_comparison(plot_png, "the goal replay: the ball on both engines", a, b, "ref", "MuJoCo");
   out.plot = std::filesystem::path(plot_png).filename().string();
   return out;
 }

@@ -101,7 +101,7 @@ struct Fixture {
     converged = converged_reference(scene, 1e-8);
     input.scene = &scene;
     input.reference = &reference;
-    input.mujoco = &mujoco;
+    input.second = &mujoco;
     input.converged = &converged;
     input.title = "box: ref vs ref shifted by 0.6 m (test)";
   }
@@ -141,7 +141,7 @@ std::vector<unsigned char> check_mp4(game::OffscreenBackend backend, const std::
   EXPECT_EQ(rgb.size(), static_cast<size_t>(kWidth) * kHeight * 3);
   if (rgb.size() != static_cast<size_t>(kWidth) * kHeight * 3) return {};
   const long ref = count_colour(rgb, kWidth, kHeight, game::kReferenceRgb, 24);
-  const long mj = count_colour(rgb, kWidth, kHeight, game::kMujocoRgb, 24);
+  const long mj = count_colour(rgb, kWidth, kHeight, game::kSecondRgb, 24);
   const long conv = count_colour(rgb, kWidth, kHeight, game::kConvergedRgb, 40);
   std::printf(
       "mp4 (%s): %ld frames (expected %ld); frame 5: reference colour %ld px, MuJoCo "
@@ -198,7 +198,7 @@ TEST(ComparisonVideo, GifHasTheSameFramesAndColours) {
   const std::vector<unsigned char> rgb = decode_frame(video, 5);
   ASSERT_EQ(rgb.size(), static_cast<size_t>(kWidth) * kHeight * 3);
   const long ref = count_colour(rgb, kWidth, kHeight, game::kReferenceRgb, 4);
-  const long mj = count_colour(rgb, kWidth, kHeight, game::kMujocoRgb, 4);
+  const long mj = count_colour(rgb, kWidth, kHeight, game::kSecondRgb, 4);
   std::printf("gif: %ld frames; frame 5: reference colour %ld px, MuJoCo colour %ld px\n", frames,
               ref, mj);
   EXPECT_GT(ref, 1000);
