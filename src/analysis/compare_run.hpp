@@ -68,10 +68,10 @@ std::vector<engines::EngineSpec> comparison_engines(
     const std::vector<std::string>& names, const engines::OptionValues& given, double model_dt,
     const std::string& source, const std::function<std::string(std::string_view)>& spelled);
 
-// The comparison of `scene` on `engines` (at least two; their options and
+// The comparison of `scene` on `specs` (at least two; their options and
 // source as `contact2d compare` takes them). Throws InputError before any
 // work when an engine cannot run the scene.
-Comparison prepare_comparison(const Scene& scene, const std::vector<engines::EngineSpec>& engines);
+Comparison prepare_comparison(const Scene& scene, const std::vector<engines::EngineSpec>& specs);
 
 // Runs every engine after the first, in order, then the first.
 void run_engines(Comparison& c);

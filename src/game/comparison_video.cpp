@@ -36,7 +36,8 @@ constexpr Color kPanel{0.13f, 0.17f, 0.24f, 1.0f};  // the game's HUD panel
 constexpr Color kText{1.0f, 1.0f, 1.0f, 1.0f};
 constexpr Color kWarning{1.0f, 0.55f, 0.45f, 1.0f};
 
-constexpr double kOutlinePx = 4.0;  // the second run's outline; ≥ 4 px keeps whole 2×2 chroma blocks
+constexpr double kOutlinePx =
+    4.0;  // the second run's outline; ≥ 4 px keeps whole 2×2 chroma blocks
 constexpr double kThinPx = 1.5;     // the converged solution
 constexpr double kMarginPx = 24.0;  // around the fitted trajectories
 

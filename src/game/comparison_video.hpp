@@ -44,7 +44,8 @@ struct ComparisonVideoInput {
   const Trajectory* reference = nullptr;       // drawn filled
   const Trajectory* second = nullptr;          // drawn outlined
   const DenseTrajectory* converged = nullptr;  // may be null: a thin outline when present
-  std::string title;  // e.g. "box: ref vs MuJoCo, semi_implicit_euler (MuJoCo Euler), calibrated mapping"
+  std::string
+      title;  // e.g. "box: ref vs MuJoCo, semi_implicit_euler (MuJoCo Euler), calibrated mapping"
   std::string reference_label = "reference";  // legend and HUD names
   std::string second_label = "second";
 };

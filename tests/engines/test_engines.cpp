@@ -125,8 +125,7 @@ TEST(Registry, OptionsAreDataTheParserFollows) {
         EXPECT_EQ(engines::option_value(spec, option.name), value);
         listed += (listed.empty() ? "" : ", ") + std::string(value);
       }
-      EXPECT_EQ(error_of(prefix + ":nonsense"), "--engines " + prefix +
-                                                    ":nonsense: unknown " +
+      EXPECT_EQ(error_of(prefix + ":nonsense"), "--engines " + prefix + ":nonsense: unknown " +
                                                     std::string(option.name) + " (" + listed + ")");
       EXPECT_EQ(engines::option_value(engines::parse_engine(std::string(info->kind)), option.name),
                 option.fallback);
