@@ -29,6 +29,16 @@ void name_runs(std::vector<ComparedRun>& runs) {
   }
 }
 
+// The same engine and model: one kind, every option's value (given or
+// fallback) and the model's Δt alike.
+bool same_engine(const engines::EngineSpec& a, const engines::EngineSpec& b) {
+  if (a.kind != b.kind || a.model_dt != b.model_dt) return false;
+  for (const engines::EngineOption& option : engines::find_engine(a.kind)->options)
+    if (engines::option_value(a, option.name) != engines::option_value(b, option.name))
+      return false;
+  return true;
+}
+
 }  // namespace
 
 std::vector<engines::EngineSpec> comparison_engines(
@@ -44,6 +54,12 @@ std::vector<engines::EngineSpec> comparison_engines(
       engines::EngineSpec spec = engines::parse_engine(name, spelled("engines"));
       spec.source = source;
       if (!engines::find_engine(spec.kind)->model_dt_help.empty()) spec.model_dt = model_dt;
+      for (const engines::EngineSpec& earlier : specs)
+        if (same_engine(earlier, spec))
+          throw InputError(spelled("engines") + " " + name + ": " +
+                           (&earlier == &specs.front()
+                                ? "the reference is always compared, as the first run"
+                                : "the same engine as " + earlier.name() + ", named twice"));
       specs.push_back(spec);
     }
     return specs;

@@ -63,7 +63,8 @@ struct Comparison {
 // takes (--mapping, --geometry). `model_dt` goes to every engine with
 // Δt-dependent model values; `source` is the scene file; `spelled` says
 // how the caller's user writes an option, for errors. Throws InputError
-// for an unknown engine or option, or `given` options together with names.
+// for an unknown engine or option, `given` options together with names, or
+// one engine named twice (the reference included: it is always first).
 std::vector<engines::EngineSpec> comparison_engines(
     const std::vector<std::string>& names, const engines::OptionValues& given, double model_dt,
     const std::string& source, const std::function<std::string(std::string_view)>& spelled);

@@ -40,7 +40,7 @@ struct EngineOption {
 // fallback, and an engine without options has none.
 struct EngineSpec {
   std::string kind = "ref";                                  // EngineInfo::kind
-  std::vector<std::pair<std::string, std::string>> options;  // (name, value), in the engine's order
+  std::vector<std::pair<std::string, std::string>> options;  // (name, value); name() orders them
   std::string source;  // the scene file, named in a generated model's header
   // The Δt the engine's Δt-dependent model values are computed for (0: the
   // scene's timestep), for an engine whose model depends on Δt

@@ -138,6 +138,10 @@ TEST(CompareEngines, BadChoicesAreOneLineErrors) {
             "--mapping exact: with --engines an engine's options are part of its name "
             "(KIND:VALUE:VALUE)");
   EXPECT_EQ(error({"bullet"}, {}), "--engines bullet: unknown engine (use ref or mujoco)");
+  EXPECT_EQ(error({"ref"}, {}),
+            "--engines ref: the reference is always compared, as the first run");
+  EXPECT_EQ(error({"mujoco", "mujoco:calibrated:corners"}, {}),
+            "--engines mujoco:calibrated:corners: the same engine as mujoco, named twice");
   EXPECT_EQ(error({}, {{"mapping", "stiff"}}),
             "--mapping stiff: unknown mapping (seed, exact, calibrated, compensated)");
   EXPECT_THROW(analysis::prepare_comparison(test::scene_from(kBox), {engines::parse_engine("ref")}),
