@@ -22,8 +22,8 @@ namespace {
 
 struct SweepOptions : AnalysisOptions {
   std::vector<double> dts;
-  std::vector<double> mujoco_dts;
-  std::vector<std::string> mujoco_integrators;
+  std::vector<double> other_dts;               // --mujoco-dts: every engine but the reference
+  std::vector<std::string> other_integrators;  // --mujoco-integrators: the same
   std::string orders_csv;
   int repeats = 3;
   double tol = 1e-12;
@@ -50,9 +50,9 @@ int sweep(const SweepOptions& o) {
   try {
     if (!o.integrators.empty()) config.integrators = analysis::parse_integrators(o.integrators);
     if (!o.dts.empty()) config.dts = o.dts;
-    if (!o.mujoco_dts.empty()) config.other_dts = o.mujoco_dts;
-    if (!o.mujoco_integrators.empty())
-      config.other_integrators = analysis::parse_integrators(o.mujoco_integrators);
+    if (!o.other_dts.empty()) config.other_dts = o.other_dts;
+    if (!o.other_integrators.empty())
+      config.other_integrators = analysis::parse_integrators(o.other_integrators);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -113,14 +113,14 @@ Command add_sweep(CLI::App& app) {
                   "Comma-separated time steps (default: 1e-3,5e-4,2e-4,1e-4,5e-5,2e-5,1e-5)")
       ->type_name("SECONDS")
       ->delimiter(',');
-  cmd->add_option("--mujoco-dts", o->mujoco_dts,
-                  "Comma-separated time steps for MuJoCo only (default: --dts; a MuJoCo step costs "
-                  "~100x a reference step)")
+  cmd->add_option("--mujoco-dts", o->other_dts,
+                  "Comma-separated time steps for every engine but the reference: MuJoCo "
+                  "(default: --dts; a MuJoCo step costs ~100x a reference step)")
       ->type_name("SECONDS")
       ->delimiter(',');
-  cmd->add_option("--mujoco-integrators", o->mujoco_integrators,
-                  "Comma-separated integrators for MuJoCo only (default: --integrators; it has no "
-                  "explicit_euler)")
+  cmd->add_option("--mujoco-integrators", o->other_integrators,
+                  "Comma-separated integrators for every engine but the reference: MuJoCo "
+                  "(default: --integrators; MuJoCo has no explicit_euler)")
       ->type_name("NAME")
       ->delimiter(',');
   o->outputs.file(*cmd, "--orders-csv", o->orders_csv, "Write the observed orders to this CSV file",
