@@ -9,6 +9,7 @@
 // the layers (docs/architecture.md), fills one.
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -48,12 +49,23 @@ struct EngineSpec {
   double model_dt = 0.0;
 
   // The value given for option `name`; empty when it was left out.
-  std::string option(std::string_view name) const;
+  std::string option(std::string_view option_name) const {
+    for (const auto& [key, value] : options)
+      if (key == option_name) return value;
+    return {};
+  }
   // Gives option `name` the value (empty: leaves it out). The registry
   // checks names and values where a user gives them (parse_engine,
   // engine_with_options); code that sets one names an option it knows.
-  void set(std::string_view name, const std::string& value);
-  std::string name() const;  // back to "mujoco:exact" etc.
+  void set(std::string_view option_name, const std::string& value) {
+    options.erase(std::remove_if(options.begin(), options.end(),
+                                 [&](const auto& o) { return o.first == option_name; }),
+                  options.end());
+    if (!value.empty()) options.emplace_back(std::string(option_name), value);
+  }
+  // Back to "mujoco:exact" etc. (the registry's: it orders the options as
+  // the engine does).
+  std::string name() const;
 };
 
 struct EngineInfo {

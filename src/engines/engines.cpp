@@ -1,6 +1,5 @@
 #include "engines/engines.hpp"
 
-#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <utility>
@@ -70,19 +69,6 @@ std::vector<std::string> engine_kinds() {
   std::vector<std::string> kinds;
   for (const EngineInfo* info : engine_list()) kinds.emplace_back(info->kind);
   return kinds;
-}
-
-std::string EngineSpec::option(std::string_view option_name) const {
-  for (const auto& [key, value] : options)
-    if (key == option_name) return value;
-  return {};
-}
-
-void EngineSpec::set(std::string_view option_name, const std::string& value) {
-  options.erase(std::remove_if(options.begin(), options.end(),
-                               [&](const auto& o) { return o.first == option_name; }),
-                options.end());
-  if (!value.empty()) options.emplace_back(std::string(option_name), value);
 }
 
 // kind, then the values by position, the trailing ones left out dropped
