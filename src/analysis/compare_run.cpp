@@ -119,8 +119,21 @@ void measure(Comparison& c, double converged_tol, bool diagnosis) {
       r.vs_converged = error_against(r.run.trajectory, c.converged.trajectory);
     if (i > 0) r.vs_first = error_between(first, r.run.trajectory);
   }
-  if (diagnosis)
-    c.diagnosis = diagnose(c.scene, c.runs[1].spec, c.runs[0].run, c.runs[1].run, pair(c, 1));
+  if (!diagnosis) return;
+  for (size_t i = 1; i < c.runs.size() && c.diagnosed == 0; ++i)
+    if (engines::find_engine(c.runs[i].spec.kind)->soft_constraints) c.diagnosed = i;
+  if (c.diagnosed == 0) {
+    std::string others;
+    for (size_t i = 1; i < c.runs.size(); ++i)
+      others += (i > 1 ? (i + 1 == c.runs.size() ? " and " : ", ") : "") + c.runs[i].label;
+    c.diagnosis.summary =
+        "Not run: its causes (the mapping, refsafe, the friction cone at its impratio) are "
+        "those of an engine with soft constraints such as MuJoCo, and " +
+        others + (c.runs.size() > 2 ? " have none." : " has none.");
+    return;
+  }
+  const size_t i = c.diagnosed;
+  c.diagnosis = diagnose(c.scene, c.runs[i].spec, c.runs[0].run, c.runs[i].run, pair(c, i));
 }
 
 ThreeWay pair(const Comparison& c, size_t i) {

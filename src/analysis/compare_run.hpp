@@ -16,7 +16,8 @@
 //                        diverged, else every run that is not physics
 //                        (core/run.hpp: nonphysical())
 //   measure              the distances and, unless skipped, the diagnosis of
-//                        runs[0] ↔ runs[1] (analysis/comparison.hpp)
+//                        the reference and the first engine with soft
+//                        constraints (analysis/comparison.hpp)
 //   comparison_json      the one JSON object `compare --json` prints
 //
 // What the run measures and why is in analysis/comparison.hpp; this file
@@ -54,7 +55,11 @@ struct Comparison {
   // reference first, then the engines asked for in their order.
   std::vector<ComparedRun> runs;
   ConvergedSolution converged;
-  Diagnosis diagnosis;  // of runs[0] ↔ runs[1]; ran = false until measure() runs it
+  // Of runs[0] ↔ runs[diagnosed], the first engine after the reference with
+  // soft constraints (EngineInfo::soft_constraints; 0: none of them has):
+  // ran = false until measure() runs it, and when no engine has them.
+  Diagnosis diagnosis;
+  size_t diagnosed = 0;
 };
 
 // The engines of `contact2d compare`: the reference first, then `names`
@@ -90,7 +95,8 @@ struct RunProblem {
 std::vector<RunProblem> run_problems(const Comparison& c);
 
 // The distances at `converged_tol` and, when `diagnosis`, the diagnosis of
-// runs[0] ↔ runs[1] (re-runs of both engines).
+// runs[0] ↔ runs[diagnosed] (re-runs of both engines); when no engine has
+// soft constraints, a summary that says why there is none.
 void measure(Comparison& c, double converged_tol, bool diagnosis);
 
 // runs[0] ↔ runs[i] with the converged solution, as the diagnosis takes it.

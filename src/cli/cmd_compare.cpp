@@ -5,8 +5,9 @@
 // Runs the reference solver and every other engine (by default each one
 // built in: MuJoCo) on the same scene (same Δt, same sample times),
 // measures each against the converged solution and against the reference,
-// and diagnoses the difference of the reference and the first engine by
-// re-running without each suspected cause (analysis/comparison.hpp).
+// and diagnoses the difference of the reference and the first engine with
+// soft constraints (MuJoCo) by re-running without each suspected cause
+// (analysis/comparison.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -186,9 +187,13 @@ void print_table(const Comparison& c) {
   if (conv.available) std::cout << ", converged " << format_number(conv.seconds, 4) << " s";
   std::cout << "\n";
   const analysis::Diagnosis& d = c.diagnosis;
-  if (!d.ran) return;
+  if (!d.ran) {
+    if (!d.summary.empty()) std::cout << "\nDiagnosis:\n" << wrapped(d.summary, "  ");
+    return;
+  }
   std::cout << "\nDiagnosis"
-            << (c.runs.size() > 2 ? " of " + c.runs[0].label + " <-> " + c.runs[1].label : "")
+            << (c.runs.size() > 2 ? " of " + c.runs[0].label + " <-> " + c.runs[c.diagnosed].label
+                                  : "")
             << " (each cause removed alone, both engines re-run):\n"
             << wrapped(d.summary, "  ");
   int n = 0;

@@ -92,6 +92,12 @@ struct EngineInfo {
   // Non-empty when its model has values computed for a Δt (EngineSpec::
   // model_dt): the help of --model-dt, which holds them at another Δt.
   std::string_view model_dt_help{};
+  // Its contacts are soft constraints of MuJoCo's kind (solref/solimp
+  // impedance, an elliptic cone with impratio), so that the causes of
+  // compare's diagnosis (analysis/comparison.hpp: mapping, refsafe, the
+  // cone law at its impratio) are its causes; the diagnosis runs only on
+  // such an engine.
+  bool soft_constraints = false;
 };
 
 }  // namespace contact2d::engines

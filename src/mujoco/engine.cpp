@@ -57,7 +57,8 @@ const engines::EngineInfo& engine_info() {
         {geometry_name(Geometry::CornerSpheres), geometry_name(Geometry::BoxGeoms)},
         geometry_name(kDefaultGeometry)}},
       "Compute MuJoCo's Δt-dependent values (the calibrated impratio) for this Δt instead of the "
-      "timestep: holds the model fixed while --dt changes"};
+      "timestep: holds the model fixed while --dt changes",
+      true};
   return info;
 }
 

@@ -148,6 +148,31 @@ TEST(CompareEngines, BadChoicesAreOneLineErrors) {
                InputError);
 }
 
+// The diagnosis's causes are those of soft constraints (MuJoCo's): it is of
+// the first engine that has them, and without one it says why it did not
+// run instead of explaining a difference in MuJoCo's terms.
+TEST(CompareEngines, DiagnosisIsOfTheFirstEngineWithSoftConstraints) {
+  const Scene scene = test::scene_from(kBox);
+  const engines::EngineSpec ref = engines::parse_engine("ref");
+  analysis::Comparison c =
+      analysis::prepare_comparison(scene, {ref, ref, engines::parse_engine("mujoco:exact")});
+  analysis::run_engines(c);
+  analysis::measure(c, 1e-10, true);
+  EXPECT_EQ(c.diagnosed, 2u);
+  EXPECT_TRUE(c.diagnosis.ran);
+  // ref ↔ mujoco:exact differ by centimetres here: the diagnosis re-ran and found causes.
+  EXPECT_FALSE(c.diagnosis.findings.empty());
+  analysis::Comparison none = analysis::prepare_comparison(scene, {ref, ref});
+  analysis::run_engines(none);
+  analysis::measure(none, 1e-10, true);
+  EXPECT_EQ(none.diagnosed, 0u);
+  EXPECT_FALSE(none.diagnosis.ran);
+  EXPECT_TRUE(none.diagnosis.findings.empty());
+  EXPECT_EQ(none.diagnosis.summary.rfind("Not run: ", 0), 0u) << none.diagnosis.summary;
+  EXPECT_NE(none.diagnosis.summary.find("ref has none."), std::string::npos)
+      << none.diagnosis.summary;
+}
+
 // An engine that cannot run the scene says so before anything runs.
 TEST(CompareEngines, AnIntegratorAnEngineLacksFailsBeforeAnyRun) {
   Scene scene = test::scene_from(kBox);
