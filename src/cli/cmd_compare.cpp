@@ -119,13 +119,15 @@ void print_table(const Comparison& c) {
             << format_number(c.scene.sim.duration, 4) << " s\n";
   if (c.scene.contact.friction != FrictionLaw::Tanh) {
     // A cone law is a conformance law, not physics; it matches MuJoCo only
-    // at MuJoCo's own impratio.
-    const double impratio = c.runs[1].run.impratio;
+    // at MuJoCo's own impratio: that of the first engine whose model has one.
+    size_t with = 1;
+    while (with + 1 < c.runs.size() && !std::isfinite(c.runs[with].run.impratio)) ++with;
+    const double impratio = c.runs[with].run.impratio;
     std::string note = "friction law: " + std::string(friction_law_name(c.scene.contact.friction)) +
                        " (MuJoCo's cone, not physics), cone ratio " +
                        format_shortest(c.scene.contact.cone_ratio, 6);
     if (std::isfinite(impratio) && impratio != c.scene.contact.cone_ratio)
-      note += "; " + c.runs[1].label + "'s model has impratio " + format_shortest(impratio, 6) +
+      note += "; " + c.runs[with].label + "'s model has impratio " + format_shortest(impratio, 6) +
               ": --set contact.cone_ratio=" + format_shortest(impratio, 6) +
               " to compare like with like";
     std::cout << wrapped(note, "") << "\n";
