@@ -16,7 +16,7 @@ namespace {
 
 // A box landing on a corner with friction (the engines differ by
 // centimetres), short enough for four comparisons.
-const char* kBox = R"(scene = "box"
+const char* kCornerBox = R"(scene = "box"
 [body]
 mass = 1.0
 width = 0.4
@@ -35,19 +35,19 @@ duration = 0.4
 integrator = "semi_implicit_euler"
 )";
 
-std::string spelled(std::string_view name) { return "--" + std::string(name); }
+std::string flag_of(std::string_view name) { return "--" + std::string(name); }
 
-analysis::Comparison measured(const std::vector<std::string>& names) {
-  const Scene scene = test::scene_from(kBox);
+analysis::Comparison compared_on(const std::vector<std::string>& names) {
+  const Scene scene = test::scene_from(kCornerBox);
   analysis::Comparison c = analysis::prepare_comparison(
-      scene, analysis::comparison_engines(names, {}, 0.0, "box.toml", spelled));
+      scene, analysis::comparison_engines(names, {}, 0.0, "box.toml", flag_of));
   analysis::run_engines(c);
   analysis::measure(c, 1e-10, false);
   return c;
 }
 
-void expect_same(const analysis::TrajectoryError& a, const analysis::TrajectoryError& b,
-                 const std::string& what) {
+void expect_same_distances(const analysis::TrajectoryError& a, const analysis::TrajectoryError& b,
+                           const std::string& what) {
   EXPECT_EQ(a.samples, b.samples) << what;
   EXPECT_EQ(a.max_pos, b.max_pos) << what;
   EXPECT_EQ(a.rms_pos, b.rms_pos) << what;
@@ -62,25 +62,27 @@ void expect_same(const analysis::TrajectoryError& a, const analysis::TrajectoryE
 // those of its two-engine comparison; a mixed-up index or a run measured
 // against the wrong one would differ by centimetres.
 TEST(CompareEngines, EachRunIsMeasuredAsInItsOwnPair) {
-  const analysis::Comparison three = measured({"mujoco:exact", "mujoco:calibrated:boxes"});
+  const analysis::Comparison three = compared_on({"mujoco:exact", "mujoco:calibrated:boxes"});
   ASSERT_EQ(three.runs.size(), 3u);
   ASSERT_TRUE(three.converged.available);
-  const analysis::Comparison exact = measured({"mujoco:exact"});
-  const analysis::Comparison boxes = measured({"mujoco:calibrated:boxes"});
-  expect_same(three.runs[1].vs_first, exact.runs[1].vs_first, "exact vs ref");
-  expect_same(three.runs[2].vs_first, boxes.runs[1].vs_first, "boxes vs ref");
-  expect_same(three.runs[0].vs_converged, exact.runs[0].vs_converged, "ref vs converged");
-  expect_same(three.runs[1].vs_converged, exact.runs[1].vs_converged, "exact vs converged");
-  expect_same(three.runs[2].vs_converged, boxes.runs[1].vs_converged, "boxes vs converged");
+  const analysis::Comparison exact = compared_on({"mujoco:exact"});
+  const analysis::Comparison boxes = compared_on({"mujoco:calibrated:boxes"});
+  expect_same_distances(three.runs[1].vs_first, exact.runs[1].vs_first, "exact vs ref");
+  expect_same_distances(three.runs[2].vs_first, boxes.runs[1].vs_first, "boxes vs ref");
+  expect_same_distances(three.runs[0].vs_converged, exact.runs[0].vs_converged, "ref vs converged");
+  expect_same_distances(three.runs[1].vs_converged, exact.runs[1].vs_converged,
+                        "exact vs converged");
+  expect_same_distances(three.runs[2].vs_converged, boxes.runs[1].vs_converged,
+                        "boxes vs converged");
   // The two MuJoCo models differ from each other, so the test would see a swap.
   EXPECT_GT(std::abs(three.runs[1].vs_first.max_pos - three.runs[2].vs_first.max_pos), 1e-4);
   EXPECT_EQ(three.runs[0].vs_first.samples, 0u);  // the first is not measured against itself
 }
 
 TEST(CompareEngines, RunsOfOneEngineAreNamedApart) {
-  const Scene scene = test::scene_from(kBox);
+  const Scene scene = test::scene_from(kCornerBox);
   const analysis::Comparison two = analysis::prepare_comparison(
-      scene, analysis::comparison_engines({}, {}, 0.0, "box.toml", spelled));
+      scene, analysis::comparison_engines({}, {}, 0.0, "box.toml", flag_of));
   ASSERT_EQ(two.runs.size(), 2u);
   EXPECT_EQ(two.runs[0].label, "ref");
   EXPECT_EQ(two.runs[0].key, "ref");
@@ -88,7 +90,7 @@ TEST(CompareEngines, RunsOfOneEngineAreNamedApart) {
   EXPECT_EQ(two.runs[1].key, "mujoco");
   const analysis::Comparison three = analysis::prepare_comparison(
       scene, analysis::comparison_engines({"mujoco:exact", "mujoco::boxes"}, {}, 0.0, "box.toml",
-                                          spelled));
+                                          flag_of));
   EXPECT_EQ(three.runs[1].label, "mujoco:exact");
   EXPECT_EQ(three.runs[1].key, "mujoco_exact");
   EXPECT_EQ(three.runs[2].label, "mujoco::boxes");
@@ -98,7 +100,7 @@ TEST(CompareEngines, RunsOfOneEngineAreNamedApart) {
 // The JSON of two engines keeps its keys; a third adds the same keys under
 // its own key.
 TEST(CompareEngines, JsonKeysOfAFurtherEngineCarryItsKey) {
-  const analysis::Comparison three = measured({"mujoco:exact", "mujoco:calibrated:boxes"});
+  const analysis::Comparison three = compared_on({"mujoco:exact", "mujoco:calibrated:boxes"});
   const std::string json = analysis::comparison_json(three, "box.toml");
   for (const char* key :
        {"\"mapping\": \"exact\"", "\"geometry\": \"corners\"",
@@ -110,14 +112,14 @@ TEST(CompareEngines, JsonKeysOfAFurtherEngineCarryItsKey) {
         "\"mujoco_calibrated_boxes_vs_converged_max_pos_err\": ",
         "\"mujoco_calibrated_boxes_solref\": [", "\"mujoco_calibrated_boxes_warnings\": ["})
     EXPECT_NE(json.find(key), std::string::npos) << key << " in " << json;
-  const std::string pair = analysis::comparison_json(measured({"mujoco"}), "box.toml");
+  const std::string pair = analysis::comparison_json(compared_on({"mujoco"}), "box.toml");
   EXPECT_EQ(pair.find("mujoco_calibrated"), std::string::npos) << pair;
   EXPECT_NE(pair.find("\"ref_vs_mujoco_max_pos_err\": "), std::string::npos) << pair;
 }
 
 TEST(CompareEngines, DefaultIsEveryEngineBuiltInWithTheOptionsItTakes) {
   const std::vector<engines::EngineSpec> specs =
-      analysis::comparison_engines({}, {{"mapping", "exact"}}, 0.002, "box.toml", spelled);
+      analysis::comparison_engines({}, {{"mapping", "exact"}}, 0.002, "box.toml", flag_of);
   ASSERT_EQ(specs.size(), 2u);
   EXPECT_EQ(specs[0].name(), "ref");
   EXPECT_EQ(specs[1].name(), "mujoco:exact");
@@ -128,7 +130,7 @@ TEST(CompareEngines, DefaultIsEveryEngineBuiltInWithTheOptionsItTakes) {
 TEST(CompareEngines, BadChoicesAreOneLineErrors) {
   auto error = [](const std::vector<std::string>& names, const engines::OptionValues& given) {
     try {
-      analysis::comparison_engines(names, given, 0.0, "box.toml", spelled);
+      analysis::comparison_engines(names, given, 0.0, "box.toml", flag_of);
     } catch (const InputError& e) {
       return std::string(e.what());
     }
@@ -144,15 +146,16 @@ TEST(CompareEngines, BadChoicesAreOneLineErrors) {
             "--engines mujoco:calibrated:corners: the same engine as mujoco, named twice");
   EXPECT_EQ(error({}, {{"mapping", "stiff"}}),
             "--mapping stiff: unknown mapping (seed, exact, calibrated, compensated)");
-  EXPECT_THROW(analysis::prepare_comparison(test::scene_from(kBox), {engines::parse_engine("ref")}),
-               InputError);
+  EXPECT_THROW(
+      analysis::prepare_comparison(test::scene_from(kCornerBox), {engines::parse_engine("ref")}),
+      InputError);
 }
 
 // The diagnosis's causes are those of soft constraints (MuJoCo's): it is of
 // the first engine that has them, and without one it says why it did not
 // run instead of explaining a difference in MuJoCo's terms.
 TEST(CompareEngines, DiagnosisIsOfTheFirstEngineWithSoftConstraints) {
-  const Scene scene = test::scene_from(kBox);
+  const Scene scene = test::scene_from(kCornerBox);
   const engines::EngineSpec ref = engines::parse_engine("ref");
   analysis::Comparison c =
       analysis::prepare_comparison(scene, {ref, ref, engines::parse_engine("mujoco:exact")});
@@ -175,11 +178,11 @@ TEST(CompareEngines, DiagnosisIsOfTheFirstEngineWithSoftConstraints) {
 
 // An engine that cannot run the scene says so before anything runs.
 TEST(CompareEngines, AnIntegratorAnEngineLacksFailsBeforeAnyRun) {
-  Scene scene = test::scene_from(kBox);
+  Scene scene = test::scene_from(kCornerBox);
   scene.sim.integrator = Integrator::ExplicitEuler;
   try {
     analysis::prepare_comparison(scene,
-                                 analysis::comparison_engines({}, {}, 0.0, "box.toml", spelled));
+                                 analysis::comparison_engines({}, {}, 0.0, "box.toml", flag_of));
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("explicit_euler has no MuJoCo 2.2 counterpart"),
