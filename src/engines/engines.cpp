@@ -175,6 +175,9 @@ EngineSpec engine_with_options(const std::string& kind, const OptionValues& give
       throw InputError(spelled(option_name) + " " + value + ": not an option of " + kind +
                        (info->options.empty() ? " (it takes none)" : ""));
     check_option_value(*option, value, spelled(option_name) + " " + value);
+    if (const std::string named = spec.option(option_name); !named.empty())
+      throw InputError(spelled(option_name) + " " + value + ": the engine's name " + kind +
+                       " gives " + option_name + " " + named + " already");
   }
   // In the engine's order, as parse_engine leaves them.
   for (const EngineOption& o : info->options)

@@ -70,7 +70,8 @@ struct EngineRun {
 // left out. `spelled("mapping")` is how the caller's user wrote an option
 // ("--mapping", "mapping ="), to start an error. Throws InputError for an
 // unknown engine, an option the engine does not take, a value it does not
-// accept, or a model_dt for an engine without Δt-dependent model values.
+// accept, one its name (`kind` may carry options: "mujoco:exact") gives
+// already, or a model_dt for an engine without Δt-dependent model values.
 using OptionValues = std::vector<std::pair<std::string, std::string>>;
 EngineSpec engine_with_options(const std::string& kind, const OptionValues& given, double model_dt,
                                const std::string& source,

@@ -156,6 +156,9 @@ TEST(Registry, OptionsGivenOneByOneAreCheckedAgainstTheEngine) {
   EXPECT_EQ(with_options_error("ref", {}, 0.002),
             "--model_dt 0.002: ref has no Δt-dependent model values");
   EXPECT_EQ(with_options_error("ref", {{"mapping", ""}}), "");  // empty: left out
+  EXPECT_EQ(with_options_error("mujoco:exact", {{"mapping", "seed"}}),
+            "--mapping seed: the engine's name mujoco:exact gives mapping exact already");
+  EXPECT_EQ(with_options_error("mujoco:exact", {{"geometry", "boxes"}}), "");
   const engines::EngineSpec spec = engines::engine_with_options(
       "mujoco", {{"geometry", "boxes"}, {"mapping", ""}}, 0.002, "s.toml", spelled);
   EXPECT_EQ(spec.name(), "mujoco::boxes");
