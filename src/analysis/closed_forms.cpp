@@ -120,18 +120,14 @@ MujocoConstants mujoco_constants(const Scene& scene) {
 
 // ------------------------------------------------------------ cases
 
-// A body resting flat on its contact points: how many there are and
-// whether they are corners (MuJoCo's corner spheres). Only the point mass
-// and the flat box have this case; a new shape decides here whether it has
-// one.
-struct RestingBody {
-  bool box = false;  // two corners under a flat box; else one point
-  int contacts = 1;
-};
-RestingBody resting_body(Shape shape) {
+// How many contact points a body resting flat stands on (whether they are
+// corners, MuJoCo's corner spheres, is shape_features'). Only the point
+// mass and the flat box have this case; a new shape decides here whether
+// it has one.
+int resting_contacts(Shape shape) {
   switch (shape) {
-    case Shape::PointMass: return {false, 1};
-    case Shape::Box: return {true, 2};
+    case Shape::PointMass: return 1;
+    case Shape::Box: return 2;
     case Shape::TShape:
     case Shape::Circle: break;  // not cases of the table
   }
@@ -140,14 +136,13 @@ RestingBody resting_body(Shape shape) {
 }
 
 ClosedFormCase static_case(Shape shape) {
-  const RestingBody rest = resting_body(shape);
-  const bool box = rest.box;
+  const int n = resting_contacts(shape);
+  const bool box = shape_features(shape).corners;
   ClosedFormCase cs;
   cs.id = box ? "static.box" : "static.point_mass";
   cs.name = box ? "static penetration, flat box (2 corners)" : "static penetration, point mass";
   // ζ = 1 of the vertical mode: c = 2√(k·m)/N with N bottom contacts.
   const double k = 1e4;
-  const int n = rest.contacts;
   Scene& s = cs.scene = base(shape, k, 2.0 * std::sqrt(k * 1.0) / n, 0.3);
   const double surface = box ? 0.5 * s.height : s.half_height;  // COM above the contact points
   s.initial.q = Vec3(0.0, surface, 0.0);
