@@ -677,7 +677,7 @@ std::vector<ClosedFormCase> closed_form_cases() {
   return cases;
 }
 
-ClosedFormTable closed_form_table(unsigned threads) {
+ClosedFormTable closed_form_table(unsigned threads, const std::string& mujoco_engine) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<ClosedFormCase> cases = closed_form_cases();
   struct Runs {
@@ -691,7 +691,7 @@ ClosedFormTable closed_form_table(unsigned threads) {
     const ClosedFormCase& c = cases[i / 3];
     Runs& r = runs[i / 3];
     switch (i % 3) {
-      case 0: r.mj = engines::run_engine("mujoco", c.scene); break;
+      case 0: r.mj = engines::run_engine(mujoco_engine, c.scene); break;
       case 1: r.ref = engines::run_engine("ref", c.scene); break;
       default:
         if (c.slope_frame) {

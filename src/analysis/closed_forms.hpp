@@ -113,6 +113,9 @@ struct ClosedFormTable {
 // Runs every case on the three engines (in parallel, `threads` = 0: one per
 // core) and reads every quantity. Throws std::runtime_error when a run
 // diverges or the converged solution fails where it should run.
-ClosedFormTable closed_form_table(unsigned threads = 0);
+// `mujoco_engine`: the registry's name of the MuJoCo whose column it is
+// ("mujoco", "mujoco3": the same model, the same bounds).
+ClosedFormTable closed_form_table(unsigned threads = 0,
+                                  const std::string& mujoco_engine = "mujoco");
 
 }  // namespace contact2d::analysis

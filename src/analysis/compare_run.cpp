@@ -66,7 +66,7 @@ std::vector<engines::EngineSpec> comparison_engines(
   }
   const engines::EngineInfo* reference = engines::find_engine("ref");
   for (const engines::EngineInfo* info : engines::engine_list()) {
-    if (info->make == nullptr || info == reference) continue;
+    if (info->make == nullptr || info == reference || !info->compared_by_default) continue;
     engines::OptionValues own;
     for (const engines::EngineOption& option : info->options)
       for (const auto& [name, value] : given)

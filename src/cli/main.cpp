@@ -70,6 +70,9 @@ int main(int argc, char** argv) {
   } catch (const contact2d::InputError& e) {
     std::cerr << "contact2d: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const contact2d::EngineError& e) {
+    std::cerr << "contact2d: " << e.what() << "\n";
+    return kExitDiverged;
   }
   return kExitOk;
 }

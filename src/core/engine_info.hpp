@@ -98,6 +98,10 @@ struct EngineInfo {
   // cone law at its impratio) are its causes; the diagnosis runs only on
   // such an engine.
   bool soft_constraints = false;
+  // In the comparison when no list of engines is given (compare without
+  // --engines, Python's compare without engines=). An engine that needs an
+  // outside runtime (mujoco3: Node) is compared when named.
+  bool compared_by_default = true;
 };
 
 }  // namespace contact2d::engines

@@ -12,4 +12,12 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An engine failed during a run for a reason outside the physics (the
+// process that runs it died, or answered outside its protocol): one line
+// naming the engine and what fixes it. The CLI prints it and exits with
+// status 3, as for a run that failed.
+struct EngineError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace contact2d

@@ -41,6 +41,7 @@ RunResult run(Stepper& stepper, const SimParams& sim,
   double lowest = balance.initial;    // min over the steps so far
   bool contact_since_lowest = false;  // a contact was active since that minimum
   on_sample({0.0, stepper.state()});
+  stepper.plan(steps);
   for (long long i = 1; i <= steps; ++i) {
     const double t = static_cast<double>(i) * sim.dt;
     double e = balance.final;

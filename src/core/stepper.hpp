@@ -40,6 +40,11 @@ class Stepper {
   // (Fx, Fy, τ) at the COM, held until changed (the game's player).
   virtual void set_applied(const Vec3& force) = 0;
   virtual StepStatus step() = 0;  // one Δt
+  // The next `steps` steps will be taken with no reset and no change of the
+  // applied force (the run loop says so before it starts): an engine that
+  // works in batches (mujoco3/stepper.hpp) fetches them in few requests.
+  // Nothing by default.
+  virtual void plan(long long /*steps*/) {}
   virtual const State& state() const = 0;
   virtual const ContactSet& contacts() const = 0;  // at state().q
   // The scene's model (the divergence rule and energies use it).

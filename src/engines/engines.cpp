@@ -8,6 +8,7 @@
 #include "core/input_error.hpp"
 #ifdef CONTACT2D_WITH_MUJOCO
 #include "mujoco/engine.hpp"
+#include "mujoco3/engine.hpp"
 #endif
 
 namespace contact2d::engines {
@@ -24,6 +25,8 @@ const EngineInfo kReference{"ref", "ref", make_reference};
 // Known by name so that asking for it says it was not built in.
 const EngineInfo kMujocoAbsent{"mujoco", "MuJoCo", nullptr,
                                [](Integrator i) { return i != Integrator::ExplicitEuler; }};
+const EngineInfo kMujoco3Absent{"mujoco3", "MuJoCo 3", nullptr,
+                                [](Integrator i) { return i != Integrator::ExplicitEuler; }};
 #endif
 
 // "a, b, c".
@@ -51,8 +54,10 @@ const std::vector<const EngineInfo*>& engine_list() {
       &kReference,
 #ifdef CONTACT2D_WITH_MUJOCO
       &mujoco::engine_info(),
+      &mujoco3::engine_info(),
 #else
       &kMujocoAbsent,
+      &kMujoco3Absent,
 #endif
   };
   return list;

@@ -54,6 +54,7 @@ struct Layout {
   // contact force has a moment about z, so it never moves.
   double lever = 0.0;
   bool spin = false;
+  Version version = Version::V2;
   std::vector<Geom> geoms;
   int max_contacts = 0;      // P: contacts the body can make with the ground
   int obstacles = 0;         // N: static obstacles of the scene
@@ -165,9 +166,15 @@ Layout shape_layout(const Scene& scene, Geometry geometry) {
   return {};
 }
 
-Layout make_layout(const Scene& scene, Geometry geometry, Mapping mapping) {
+Layout make_layout(const Scene& scene, Geometry geometry, Mapping mapping, Version version) {
   Layout layout = shape_layout(scene, geometry);
   layout.obstacles = static_cast<int>(scene.obstacles.size());
+  layout.version = version;
+  // MuJoCo 3 gives a body with only slide joints body_invweight0 = 1/m
+  // (engine_setconst.c, body_simple == 2), 2.2.2 the mean of the diagonal,
+  // 2/(3m) for the x–z pair: the hinge "spin", which no contact force turns,
+  // makes the point mass a general body on both, with 2.2.2's Â.
+  if (version == Version::V3) layout.spin = !layout.hinge;
   if (mapping == Mapping::Compensated) {
     // The point mass gets a hinge about MuJoCo z (its inertia is inertia[2]);
     // the others turn the contacts' body with their own hinge (inertia[1]).
@@ -417,6 +424,11 @@ std::string header(const Scene& scene, const MjcfOptions& options, const SolverS
           (options.source.empty() ? std::string("(none)") : options.source + " (as given)") +
           ", shape " + std::string(shape_name(scene.shape)) + ", geometry " +
           std::string(geometry_name(options.geometry)) + "\n";
+  if (options.version == Version::V3)
+    text += "  for MuJoCo 3 (contact2d's engine mujoco3): solver tolerance " +
+            format_exact(kV3Tolerance) +
+            " (3.11's early exits off), compensated corners start at margin -eps (3.9's "
+            "margin/gap), a point mass has the hinge \"spin\" (3.0's slide-only invweight)\n";
   text += "  contact: k " + format_exact(p.k) + " N/m, c " + format_exact(p.c) +
           " N s/m, damping " +
           (p.damping == DampingLaw::Compression ? "compression (MuJoCo's damper is Kelvin-Voigt)"
@@ -491,6 +503,8 @@ void add_options(XMLDocument& doc, XMLElement* root, const Scene& scene, const S
                             {"integrator", mujoco_integrator(scene.sim.integrator)},
                             {"gravity", join({0.0, 0.0, -scene.sim.gravity})}});
   if (s.elliptic) option->SetAttribute("cone", "elliptic");
+  if (l.version == Version::V3)
+    option->SetAttribute("tolerance", format_exact(kV3Tolerance).c_str());
   // impratio scales the friction rows only: none at condim 1 (on every pair).
   int most = condim;
   for (const Obstacle& o : scene.obstacles)
@@ -513,6 +527,17 @@ void add_options(XMLDocument& doc, XMLElement* root, const Scene& scene, const S
 // with hinge ref = θ0, so that the hinge's qpos is θ itself (MuJoCo turns the
 // body by qpos − ref from the frame it is given). Joint axes are in the body
 // frame, so the slides' are MuJoCo x and z turned back by θ0.
+// compensated: a corner sphere's contact is included from the 2D point's
+// touching on (dist < −ε) and its spring measured from there: MuJoCo includes
+// a contact while dist < includemargin and measures from includemargin, which
+// is margin − gap on 2.2.2 (engine_collision_driver.c) and margin on 3.x (the
+// margin/gap redesign of 3.9.0: gap only widens detection). So gap = ε on
+// 2.2.2, margin = −ε on 3.x.
+void set_start(XMLElement* e, const Layout& l) {
+  e->SetAttribute(l.version == Version::V3 ? "margin" : "gap",
+                  format_exact(l.version == Version::V3 ? -kCornerRadius : kCornerRadius).c_str());
+}
+
 void add_body(XMLDocument& doc, XMLElement* world, const Scene& scene, const Layout& l) {
   const Vec3& q0 = scene.initial.q;
   const double theta = l.hinge ? q0.z() : 0.0;
@@ -552,10 +577,8 @@ void add_body(XMLDocument& doc, XMLElement* world, const Scene& scene, const Lay
                          {"type", g.type},
                          {"size", g.size},
                          {"pos", join({moved ? g.x - l.lever : g.x, 0.0, g.z})}});
-    // compensated: a corner sphere's contact is included from the 2D point's
-    // touching on (dist < −ε) and its spring measured from there
-    // (engine_collision_driver.c: includemargin = margin − gap).
-    if (moved && g.corner) e->SetAttribute("gap", format_exact(kCornerRadius).c_str());
+    // compensated: from the 2D point (set_start).
+    if (moved && g.corner) set_start(e, l);
     if (g.visual) {
       e->SetAttribute("contype", "0");
       e->SetAttribute("conaffinity", "0");
@@ -621,7 +644,7 @@ void add_pairs(XMLDocument& doc, XMLElement* root, const Scene& scene, const Sol
                               {"solref", join(os.solref)},
                               {"solimp", join(s.solimp)}});
       // compensated: as the corner geoms' own gap (add_body); a pair uses its own
-      if (l.lever > 0.0 && g.corner) pair->SetAttribute("gap", format_exact(kCornerRadius).c_str());
+      if (l.lever > 0.0 && g.corner) set_start(pair, l);
     }
   }
 }
@@ -673,7 +696,7 @@ std::string format_exact(double value) {
 
 std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
                        const SolverSettings& settings) {
-  const Layout layout = make_layout(scene, options.geometry, settings.mapping);
+  const Layout layout = make_layout(scene, options.geometry, settings.mapping, options.version);
   XMLDocument doc;
   doc.InsertEndChild(doc.NewComment(header(scene, options, settings, layout).c_str()));
   XMLElement* root = doc.NewElement("mujoco");
@@ -703,15 +726,18 @@ GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options) {
   if (options.model_dt > 0.0) model_scene.sim.dt = options.model_dt;
   out.settings = solver_settings(model_scene, options.mapping, inv_mass, split);
   if (options.mapping == Mapping::Compensated)
-    out.settings.lever = make_layout(scene, options.geometry, options.mapping).lever;
+    out.settings.lever =
+        make_layout(scene, options.geometry, options.mapping, options.version).lever;
   // refsafe is MuJoCo's, at the real timestep.
   out.settings.refsafe_clamped =
       out.settings.solref[0] > 0.0 && out.settings.solref[0] < 2.0 * scene.sim.dt;
   // What MuJoCo uses: impratio is not written at condim 1 (no friction rows).
   if (condim_of(scene, options) == 1) out.settings.impratio = 1.0;
   out.xml = write_mjcf(scene, options, out.settings);
-  load_model(out.xml, generated_origin(
-                          options.source));  // never hand out a model MuJoCo rejects or warns on
+  // MuJoCo 3's model is loaded and checked by MuJoCo 3 (mujoco3/stepper.cpp).
+  if (options.version == Version::V2)
+    load_model(out.xml, generated_origin(
+                            options.source));  // never hand out a model MuJoCo rejects or warns on
   return out;
 }
 

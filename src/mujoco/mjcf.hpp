@@ -81,6 +81,19 @@ namespace contact2d::mujoco {
 // MuJoCo's mjMINVAL = 1e-15.
 constexpr double kCornerRadius = 1e-9;
 
+// The MuJoCo the model is written for. The contact law is the same on both;
+// V3 (MuJoCo 3.14, the engine mujoco3) differs where MuJoCo 3 changed what
+// the same MJCF does: a point mass gets the hinge "spin" under every mapping
+// (3.0 gives a body with only slide joints body_invweight0 = 1/m), the
+// compensated corners start at margin = −ε instead of gap = ε (3.9's
+// margin/gap), and the solver's tolerance is kV3Tolerance (3.11's early
+// exits). docs/mujoco3.md measures each.
+enum class Version { V2, V3 };
+
+// MuJoCo 3's solver tolerance: small enough that its early exits (3.11) stop
+// where 2.2.2's Newton solver does (docs/mujoco3.md).
+constexpr double kV3Tolerance = 1e-12;
+
 struct MjcfOptions {
   Mapping mapping = kDefaultMapping;
   Geometry geometry = kDefaultGeometry;
@@ -90,6 +103,7 @@ struct MjcfOptions {
   // computed for; 0: the scene's sim.dt (the timestep). Set, it holds the
   // model fixed while the timestep changes (`--model-dt`).
   double model_dt = 0.0;
+  Version version = Version::V2;
 };
 
 // condim of every contact geom (and the plane): only what the scene needs,

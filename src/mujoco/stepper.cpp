@@ -53,6 +53,7 @@ void MujocoStepper::reset(const State& state) {
     d->qpos[2] = state.q.z();
     d->qvel[2] = state.v.z();
   }
+  set_applied(model_.applied);  // mj_resetData cleared it; the force is held, as the reference's
   read_state();
 }
 

@@ -30,8 +30,9 @@ TEST(Registry, ParsesTheReference) {
 }
 
 TEST(Registry, UnknownNamesAreOneLineErrorsNamingTheOption) {
-  EXPECT_EQ(error_of("bullet"), "--engines bullet: unknown engine (use ref or mujoco)");
-  EXPECT_EQ(error_of("ref:exact"), "--engines ref:exact: unknown engine (use ref or mujoco)");
+  EXPECT_EQ(error_of("bullet"), "--engines bullet: unknown engine (use ref, mujoco or mujoco3)");
+  EXPECT_EQ(error_of("ref:exact"),
+            "--engines ref:exact: unknown engine (use ref, mujoco or mujoco3)");
 #ifdef CONTACT2D_WITH_MUJOCO
   EXPECT_EQ(error_of("mujoco:stiff"),
             "--engines mujoco:stiff: unknown mapping (seed, exact, calibrated, compensated)");
@@ -48,7 +49,8 @@ TEST(Registry, ListsWhatItCanRun) {
   EXPECT_EQ(names.front(), "ref");
   for (const std::string& name : names) EXPECT_EQ(engines::parse_engine(name).name(), name);
 #ifdef CONTACT2D_WITH_MUJOCO
-  EXPECT_EQ(names.size(), 6u);  // ref, mujoco, mujoco:seed|exact|calibrated|compensated
+  // ref, then mujoco and mujoco3 each with :seed|exact|calibrated|compensated
+  EXPECT_EQ(names.size(), 11u);
 #else
   EXPECT_EQ(names.size(), 1u);
 #endif
@@ -178,7 +180,8 @@ TEST(Registry, SetReplacesOrRemovesAnOption) {
 TEST(Registry, HelpListsTheNamesFromTheData) {
   EXPECT_EQ(engines::engine_names_help(),
             "ref, mujoco, mujoco:MAPPING (seed, exact, calibrated, compensated; mujoco = its "
-            "default)");
+            "default), mujoco3, mujoco3:MAPPING (seed, exact, calibrated, compensated; mujoco3 = "
+            "its default)");
 }
 
 // MuJoCo's implicit integrates contact forces explicitly.
@@ -192,9 +195,9 @@ TEST(Registry, ContactIntegrator) {
 #endif
 
 TEST(Registry, EveryEngineIsListedByKind) {
-  EXPECT_EQ(engines::engine_kinds(), (std::vector<std::string>{"ref", "mujoco"}));
-  EXPECT_EQ(error_of("nope"), "--engines nope: unknown engine (use ref or mujoco)");
-  EXPECT_EQ(error_of("ref:x"), "--engines ref:x: unknown engine (use ref or mujoco)");
+  EXPECT_EQ(engines::engine_kinds(), (std::vector<std::string>{"ref", "mujoco", "mujoco3"}));
+  EXPECT_EQ(error_of("nope"), "--engines nope: unknown engine (use ref, mujoco or mujoco3)");
+  EXPECT_EQ(error_of("ref:x"), "--engines ref:x: unknown engine (use ref, mujoco or mujoco3)");
 }
 
 }  // namespace

@@ -139,7 +139,7 @@ TEST(CompareEngines, BadChoicesAreOneLineErrors) {
   EXPECT_EQ(error({"mujoco"}, {{"mapping", "exact"}}),
             "--mapping exact: with --engines an engine's options are part of its name "
             "(KIND:VALUE:VALUE)");
-  EXPECT_EQ(error({"bullet"}, {}), "--engines bullet: unknown engine (use ref or mujoco)");
+  EXPECT_EQ(error({"bullet"}, {}), "--engines bullet: unknown engine (use ref, mujoco or mujoco3)");
   EXPECT_EQ(error({"ref"}, {}),
             "--engines ref: the reference is always compared, as the first run");
   EXPECT_EQ(error({"mujoco", "mujoco:calibrated:corners"}, {}),

@@ -1,0 +1,182 @@
+#include "io/child_process.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <thread>
+
+extern char** environ;  // NOLINT(readability-redundant-declaration): POSIX, not in a header
+
+namespace contact2d {
+namespace {
+
+std::string error_text(int error) { return std::strerror(error); }
+
+void close_fd(int& fd) {
+  if (fd >= 0) ::close(fd);
+  fd = -1;
+}
+
+// Waits up to `seconds` for the child to exit; true when it did.
+bool wait_for(pid_t pid, int& status, double seconds) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  for (;;) {
+    const pid_t r = ::waitpid(pid, &status, WNOHANG);
+    if (r == pid || (r < 0 && errno != EINTR)) return true;
+    if (std::chrono::steady_clock::now() >= until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
+}  // namespace
+
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::string& directory) {
+  int in[2] = {-1, -1}, out[2] = {-1, -1}, err[2] = {-1, -1};
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, in) != 0 ||
+      ::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, out) != 0 ||
+      ::pipe2(err, O_CLOEXEC) != 0) {
+    const int e = errno;
+    for (int fd : {in[0], in[1], out[0], out[1], err[0], err[1]})
+      if (fd >= 0) ::close(fd);
+    throw ChildProcessError("cannot create the pipes to " + argv.at(0) + " (" + error_text(e) +
+                            ")");
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, in[1], STDIN_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, err[1], STDERR_FILENO);
+  if (!directory.empty()) posix_spawn_file_actions_addchdir_np(&actions, directory.c_str());
+  // A group of its own (no terminal Ctrl-C), no signal held or ignored.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t none, defaults;
+  sigemptyset(&none);
+  sigemptyset(&defaults);
+  for (int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) sigaddset(&defaults, s);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  posix_spawnattr_setflags(&attributes,
+                           POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  const int spawned = ::posix_spawnp(&pid_, args[0], &actions, &attributes, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
+  ::close(in[1]);
+  ::close(out[1]);
+  ::close(err[1]);
+  in_ = in[0];
+  out_ = out[0];
+  err_ = err[0];
+  if (spawned != 0) {
+    pid_ = -1;
+    close_fd(in_);
+    close_fd(out_);
+    close_fd(err_);
+    throw ChildProcessError("cannot start " + argv[0] + " (" + error_text(spawned) + ")");
+  }
+}
+
+ChildProcess::~ChildProcess() {
+  close_fd(in_);  // the child's input ends: it exits
+  close_fd(out_);
+  if (pid_ > 0 && !reaped_ && !wait_for(pid_, status_, 1.0)) {
+    ::kill(pid_, SIGKILL);
+    wait_for(pid_, status_, 5.0);
+  }
+  close_fd(err_);
+}
+
+void ChildProcess::write(const std::string& text) {
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::send(in_, text.data() + done, text.size() - done, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      throw ChildProcessError("cannot write to process " + std::to_string(pid_) + ": " + ending());
+    done += static_cast<size_t>(n);
+  }
+}
+
+void ChildProcess::fill() {
+  if (start_ > 0 && start_ == buffer_.size()) {
+    buffer_.clear();
+    start_ = 0;
+  }
+  char chunk[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(out_, chunk, sizeof chunk);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw ChildProcessError("process " + std::to_string(pid_) + " " + ending());
+    buffer_.append(chunk, static_cast<size_t>(n));
+    return;
+  }
+}
+
+std::string ChildProcess::read_line() {
+  for (;;) {
+    const size_t end = buffer_.find('\n', start_);
+    if (end != std::string::npos) {
+      std::string line = buffer_.substr(start_, end - start_);
+      start_ = end + 1;
+      return line;
+    }
+    fill();
+  }
+}
+
+void ChildProcess::read_bytes(void* out, size_t size) {
+  auto* to = static_cast<char*>(out);
+  while (size > 0) {
+    if (start_ == buffer_.size()) fill();
+    const size_t n = std::min(size, buffer_.size() - start_);
+    std::memcpy(to, buffer_.data() + start_, n);
+    start_ += n;
+    to += n;
+    size -= n;
+  }
+}
+
+std::string ChildProcess::ending() {
+  if (pid_ <= 0) return "was not started";
+  if (!reaped_) {
+    if (!wait_for(pid_, status_, 2.0)) return "stopped answering (still running)";
+    reaped_ = true;
+  }
+  std::string text;
+  if (WIFEXITED(status_)) {
+    text = "exited with status " + std::to_string(WEXITSTATUS(status_));
+  } else if (WIFSIGNALED(status_)) {
+    text = "was killed by signal " + std::to_string(WTERMSIG(status_)) + " (" +
+           strsignal(WTERMSIG(status_)) + ")";
+  } else {
+    text = "ended";
+  }
+  // The last non-empty line of its standard error, when it said anything.
+  std::string said;
+  pollfd p{err_, POLLIN, 0};
+  char chunk[4096];
+  while (err_ >= 0 && ::poll(&p, 1, 0) > 0 && (p.revents & POLLIN) != 0) {
+    const ssize_t n = ::read(err_, chunk, sizeof chunk);
+    if (n <= 0) break;
+    said.append(chunk, static_cast<size_t>(n));
+  }
+  while (!said.empty() && (said.back() == '\n' || said.back() == '\r')) said.pop_back();
+  const size_t last = said.rfind('\n');
+  if (last != std::string::npos) said = said.substr(last + 1);
+  if (!said.empty()) text += ": " + said;
+  return text;
+}
+
+}  // namespace contact2d

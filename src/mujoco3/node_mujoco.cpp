@@ -1,0 +1,232 @@
+#include "mujoco3/node_mujoco.hpp"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "core/input_error.hpp"
+#include "io/child_process.hpp"
+#include "io/json.hpp"
+#include "io/json_reader.hpp"
+
+#ifndef CONTACT2D_MUJOCO3_DIR
+#error "CONTACT2D_MUJOCO3_DIR: the folder of driver.mjs (CMakeLists.txt sets it)"
+#endif
+
+namespace contact2d::mujoco3 {
+namespace {
+
+// The oldest Node that runs the package (its WebAssembly features).
+constexpr int kOldestNode = 18;
+
+std::string fix_command() {
+  return "run scripts/setup, or: npm ci --prefix " + package_directory();
+}
+
+bool is_file(const std::string& path) { return ::access(path.c_str(), R_OK) == 0; }
+
+// `node` in PATH ("" when none).
+std::string find_node() {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    const std::string candidate = (dir.empty() ? "." : dir) + "/node";
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return {};
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string text_of(const json::Value* v) { return v ? v->text : std::string(); }
+
+std::string numbers(const std::vector<double>& values) {
+  std::string out = "[";
+  for (size_t i = 0; i < values.size(); ++i) out += (i ? "," : "") + json::number(values[i]);
+  return out + "]";
+}
+
+std::vector<double> numbers_of(const json::Value* v) {
+  std::vector<double> out;
+  if (v == nullptr) return out;
+  for (const json::Value& item : v->items) out.push_back(item.number);
+  return out;
+}
+
+}  // namespace
+
+std::string package_directory() {
+  const char* dir = std::getenv("CONTACT2D_MUJOCO3_DIR");
+  return dir && *dir ? dir : CONTACT2D_MUJOCO3_DIR;
+}
+
+std::string missing() {
+  const std::string dir = package_directory();
+  if (find_node().empty())
+    return "mujoco3: Node.js (the command node) is not installed: run scripts/setup, or: apt-get "
+           "install nodejs npm";
+  if (!is_file(dir + "/driver.mjs"))
+    return "mujoco3: " + dir +
+           "/driver.mjs is missing (set CONTACT2D_MUJOCO3_DIR to the folder "
+           "that holds it, src/mujoco3 of the source tree)";
+  const std::string package = dir + "/node_modules/@mujoco/mujoco/package.json";
+  if (!is_file(package))
+    return "mujoco3: the package @mujoco/mujoco is not installed in " + dir +
+           "/node_modules: " + fix_command();
+  std::string version;
+  try {
+    version = text_of(json::parse(read_text(package), package).get("version"));
+  } catch (const std::exception& e) {
+    return "mujoco3: " + std::string(e.what()) + ": " + fix_command();
+  }
+  if (version != kVersion)
+    return "mujoco3: " + dir + "/node_modules has @mujoco/mujoco " + version +
+           ", contact2d is pinned to " + std::string(kVersion) + ": " + fix_command();
+  return {};
+}
+
+struct Node::Answer {
+  json::Value value;
+  const json::Value* get(const std::string& key) const { return value.get(key); }
+};
+
+std::shared_ptr<Node> Node::of_this_thread() {
+  thread_local std::shared_ptr<Node> node;
+  if (!node || node->failed_) node.reset(new Node());
+  return node;
+}
+
+Node::Node() {
+  const std::string why = missing();
+  if (!why.empty()) throw InputError(why);
+  try {
+    process_ = std::make_unique<ChildProcess>(std::vector<std::string>{find_node(), "driver.mjs"},
+                                              package_directory());
+  } catch (const ChildProcessError& e) {
+    throw InputError("mujoco3: " + std::string(e.what()) + ": " + fix_command());
+  }
+  const Answer hello = request(R"({"op":"hello"})");
+  const std::string version = text_of(hello.get("version"));
+  if (version != kVersion)
+    throw InputError("mujoco3: Node loaded MuJoCo " + version + ", contact2d is pinned to " +
+                     std::string(kVersion) + ": " + fix_command());
+  const int node_major =
+      static_cast<int>(std::strtol(text_of(hello.get("node")).c_str(), nullptr, 10));
+  if (node_major < kOldestNode)
+    throw InputError("mujoco3: Node " + text_of(hello.get("node")) + " is older than " +
+                     std::to_string(kOldestNode) +
+                     ", which @mujoco/mujoco needs: " + fix_command());
+}
+
+Node::~Node() = default;
+
+int Node::pid() const { return static_cast<int>(process_->pid()); }
+
+Node::Answer Node::request(const std::string& line, const std::string& origin) {
+  Answer a;
+  std::string text;
+  try {
+    process_->write(line + "\n");
+    text = process_->read_line();
+    a.value = json::parse(text, "the MuJoCo 3 process's answer");
+  } catch (const std::exception& e) {
+    failed_ = true;
+    throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
+                      " failed: " + e.what() + " (" + fix_command() + ")");
+  }
+  if (const json::Value* said = a.get("messages"))
+    for (const json::Value& m : said->items) messages_.push_back(m.text);
+  if (text_of(a.get("ok")) != "true") {
+    const std::string error = text_of(a.get("error"));
+    if (!origin.empty())
+      throw InputError(origin + ": MuJoCo " + std::string(kVersion) +
+                       " cannot load the model: " + error);
+    // The driver could not import the package: it says so, then exits.
+    failed_ = true;
+    throw EngineError("mujoco3: " + error + " (" + fix_command() + ")");
+  }
+  return a;
+}
+
+LoadedModel Node::load(const std::string& xml, const std::string& origin) {
+  const Answer a = request(R"({"op":"load","xml":)" + json::string(xml) + "}", origin);
+  LoadedModel m;
+  m.id = static_cast<int>(a.get("id")->number);
+  m.nq = static_cast<int>(a.get("nq")->number);
+  m.nv = static_cast<int>(a.get("nv")->number);
+  m.nbody = static_cast<int>(a.get("nbody")->number);
+  m.timestep = a.get("timestep")->number;
+  m.body_pos = numbers_of(a.get("body_pos"));
+  m.body_invweight0 = numbers_of(a.get("body_invweight0"));
+  return m;
+}
+
+void Node::free(int id) { request(R"({"op":"free","id":)" + std::to_string(id) + "}"); }
+
+void Node::keyframe(int id, int key) {
+  request(R"({"op":"keyframe","id":)" + std::to_string(id) + R"(,"key":)" + std::to_string(key) +
+          "}");
+}
+
+void Node::reset(int id, const std::vector<double>& qpos, const std::vector<double>& qvel) {
+  request(R"({"op":"reset","id":)" + std::to_string(id) + R"(,"qpos":)" + numbers(qpos) +
+          R"(,"qvel":)" + numbers(qvel) + "}");
+}
+
+void Node::applied(int id, int body, const std::array<double, 6>& xfrc) {
+  request(R"({"op":"applied","id":)" + std::to_string(id) + R"(,"body":)" + std::to_string(body) +
+          R"(,"xfrc":)" + numbers({xfrc.begin(), xfrc.end()}) + "}");
+}
+
+int Node::step(int id, int n, std::vector<double>& out, bool& bad) {
+  const Answer a =
+      request(R"({"op":"step","id":)" + std::to_string(id) + R"(,"n":)" + std::to_string(n) + "}");
+  const auto bytes = static_cast<size_t>(a.get("bytes")->number);
+  bad = text_of(a.get("bad")) == "true";
+  out.resize(bytes / sizeof(double));
+  try {
+    process_->read_bytes(out.data(), bytes);
+  } catch (const std::exception& e) {
+    failed_ = true;
+    throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
+                      " failed: " + e.what() + " (" + fix_command() + ")");
+  }
+  return static_cast<int>(a.get("steps")->number);
+}
+
+void Node::rewind(int id, int n) {
+  request(R"({"op":"rewind","id":)" + std::to_string(id) + R"(,"n":)" + std::to_string(n) + "}");
+}
+
+std::vector<std::string> Node::counters(int id) {
+  const Answer a = request(R"({"op":"counters","id":)" + std::to_string(id) + "}");
+  std::vector<std::string> out;
+  for (const json::Value& w : a.get("warnings")->items) out.push_back(w.text);
+  return out;
+}
+
+std::vector<std::vector<double>> Node::model_arrays(int id, const std::vector<std::string>& names) {
+  std::string list = "[";
+  for (size_t i = 0; i < names.size(); ++i) list += (i ? "," : "") + json::string(names[i]);
+  const Answer a =
+      request(R"({"op":"model","id":)" + std::to_string(id) + R"(,"names":)" + list + "]}");
+  std::vector<std::vector<double>> out;
+  for (const std::string& name : names) out.push_back(numbers_of(a.get("values")->get(name)));
+  return out;
+}
+
+std::vector<std::string> Node::take_messages() {
+  std::vector<std::string> out;
+  out.swap(messages_);
+  return out;
+}
+
+}  // namespace contact2d::mujoco3

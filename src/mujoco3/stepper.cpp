@@ -1,0 +1,144 @@
+#include "mujoco3/stepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/format.hpp"
+#include "core/input_error.hpp"
+#include "mujoco/divergence.hpp"
+
+namespace contact2d::mujoco3 {
+namespace {
+
+mujoco::GeneratedModel generate(const Scene& scene, mujoco::MjcfOptions& options) {
+  options.version = mujoco::Version::V3;
+  return mujoco::generate_mjcf(scene, options);
+}
+
+}  // namespace
+
+Mujoco3Stepper::Mujoco3Stepper(const Scene& scene, mujoco::MjcfOptions options)
+    : model_(make_model(scene)),
+      integrator_(scene.sim.integrator),
+      node_(Node::of_this_thread()),
+      contacts_(model_) {
+  const mujoco::GeneratedModel generated = generate(scene, options);
+  settings_ = generated.settings;
+  xml_ = generated.xml;
+  loaded_ = node_->load(xml_, mujoco::generated_origin(options.source));
+  // The mapping's Â was read from MuJoCo 2.2.2's compile (mujoco/mjcf.hpp);
+  // the model is written so that 3.14 has the same (the point mass's spin).
+  // Translational body_invweight0 of the body whose contacts it maps: body 1,
+  // or compensated's "contacts" (body 2).
+  const size_t body = settings_.mapping == mujoco::Mapping::Compensated ? 2 : 1;
+  const double a3 = loaded_.body_invweight0.at(2 * body);
+  if (settings_.inv_mass > 0.0 && std::abs(a3 - settings_.inv_mass) > 1e-12 * settings_.inv_mass)
+    throw EngineError("mujoco3: MuJoCo " + std::string(kVersion) + " gives body_invweight0 " +
+                      format_shortest(a3) + " where the model was mapped for " +
+                      format_shortest(settings_.inv_mass) + " (MuJoCo 2.2.2's)");
+  x0_ = loaded_.body_pos.at(3);
+  y0_ = loaded_.body_pos.at(5);
+  turns_ = shape_features(scene.shape).turns;
+  reset(initial_state(scene));
+}
+
+Mujoco3Stepper::~Mujoco3Stepper() {
+  try {
+    node_->free(loaded_.id);
+  } catch (const std::exception&) {  // the process is gone, and the model with it
+  }
+}
+
+void Mujoco3Stepper::read(const double* q) {
+  const double* v = q + loaded_.nq;
+  state_.q = Vec3(x0_ + q[0], y0_ + q[1], turns_ ? q[2] : 0.0);
+  state_.v = Vec3(v[0], v[1], turns_ ? v[2] : 0.0);
+  find_contacts(model_, state_.q, contacts_);
+}
+
+void Mujoco3Stepper::reset(const State& state) {
+  std::vector<double> qpos(static_cast<size_t>(loaded_.nq), 0.0);
+  std::vector<double> qvel(static_cast<size_t>(loaded_.nv), 0.0);
+  qpos[0] = state.q.x() - x0_;
+  qpos[1] = state.q.y() - y0_;
+  qvel[0] = state.v.x();
+  qvel[1] = state.v.y();
+  if (turns_) {
+    qpos[2] = state.q.z();
+    qvel[2] = state.v.z();
+  }
+  node_->reset(loaded_.id, qpos, qvel);
+  batch_steps_ = read_ = 0;
+  planned_ = 0;
+  std::vector<double> both = qpos;
+  both.insert(both.end(), qvel.begin(), qvel.end());
+  read(both.data());
+  if (applied_ != Vec3::Zero()) {  // mj_resetData cleared it
+    const Vec3 force = applied_;
+    applied_ = Vec3::Zero();
+    set_applied(force);
+  }
+}
+
+void Mujoco3Stepper::set_applied(const Vec3& force) {
+  model_.applied = force;
+  if (force == applied_) return;
+  if (read_ < batch_steps_) node_->rewind(loaded_.id, read_);  // back to the state read last
+  batch_steps_ = read_ = 0;
+  planned_ = 0;
+  next_batch_ = 16;
+  applied_ = force;
+  // xfrc_applied of body 1: force (x, y, z), torque (x, y, z); the plane is
+  // x–z, θ turns about −y (mujoco/stepper.cpp).
+  node_->applied(loaded_.id, 1, {force.x(), 0.0, force.y(), 0.0, -force.z(), 0.0});
+}
+
+void Mujoco3Stepper::fetch() {
+  int n = next_batch_;
+  if (planned_ > 0) {
+    n = static_cast<int>(std::min<long long>(planned_, kMaxBatch));
+    planned_ -= n;
+  } else {
+    next_batch_ = std::min(2 * next_batch_, kMaxBatch);
+  }
+  batch_steps_ = node_->step(loaded_.id, n, batch_, batch_bad_);
+  read_ = 0;
+  if (batch_steps_ <= 0) throw EngineError("mujoco3: MuJoCo 3 took no step");
+}
+
+StepStatus Mujoco3Stepper::step() {
+  if (read_ == batch_steps_) fetch();
+  const size_t width = static_cast<size_t>(loaded_.nq + loaded_.nv);
+  read(batch_.data() + width * static_cast<size_t>(read_));
+  ++read_;
+  return batch_bad_ && read_ == batch_steps_ ? StepStatus::NonFinite : StepStatus::Ok;
+}
+
+std::string Mujoco3Stepper::describe() const {
+  return "mujoco3 " + std::string(mujoco::mapping_name(settings_.mapping)) + " " +
+         std::string(mujoco::mujoco_integrator(integrator_));
+}
+
+std::string Mujoco3Stepper::explain(const Divergence& d, const Scene& scene) const {
+  return mujoco::describe_mujoco_divergence(d, scene, settings_, loaded_.body_invweight0.at(2));
+}
+
+std::vector<std::string> Mujoco3Stepper::warnings() const {
+  for (std::string& m : node_->take_messages()) messages_.push_back(std::move(m));
+  std::vector<std::string> out = messages_;
+  for (const std::string& w : node_->counters(loaded_.id)) out.push_back("mjData.warning: " + w);
+  return out;
+}
+
+RunFacts Mujoco3Stepper::facts(const Scene& scene) const {
+  RunFacts f;
+  f.warnings = warnings();
+  if (settings_.refsafe_clamped) f.notes.emplace_back("refsafe");
+  f.values = {{"solref[0]", settings_.solref[0]},
+              {"solref[1]", settings_.solref[1]},
+              {"impratio", settings_.impratio},
+              {"mu_roll", mujoco::cone_mu_roll(scene, settings_)}};
+  return f;
+}
+
+}  // namespace contact2d::mujoco3

@@ -1,0 +1,153 @@
+// mujoco3 through the program: it runs where MuJoCo runs, and what is
+// missing or dies is one line, an exit status and no file. The broken
+// installs are private folders the test makes (CONTACT2D_MUJOCO3_DIR points
+// the program at them); the real package is only linked from there.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "mujoco3_test_util.hpp"
+
+namespace contact2d {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+class Mujoco3Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("contact2d_mj3_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "work");
+    std::ofstream(dir_ / "work" / "box.toml")
+        << "scene = \"box\"\n[contact]\nk = 1e4\nc = 200\nmu = 0.5\ndamping = \"kelvin_voigt\"\n"
+           "[initial]\ny = 0.5\ntheta = 0.3\n[sim]\ndt = 1e-4\nduration = 0.5\n";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // contact2d with the arguments, in work/, with `env` before it.
+  Result run(const std::string& args, const std::string& env = "") const {
+    const std::string out = (dir_ / "stdout").string(), err = (dir_ / "stderr").string();
+    const std::string command = "cd '" + (dir_ / "work").string() + "' && " + env + " '" +
+                                CONTACT2D_BINARY "' " + args + " >'" + out + "' 2>'" + err + "'";
+    const int raw = std::system(command.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  }
+  std::vector<std::string> work_files() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_ / "work"))
+      names.push_back(e.path().filename());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+  // A copy of the driver (plus `extra`, appended) beside a node_modules that
+  // is the real one, or one whose package.json says `version`.
+  fs::path install(const std::string& extra, const std::string& version = "") const {
+    const fs::path real = mujoco3::package_directory();
+    const fs::path fake = dir_ / "mujoco3";
+    fs::create_directories(fake);
+    std::ofstream(fake / "driver.mjs") << slurp(real / "driver.mjs") << extra;
+    if (version.empty()) {
+      fs::create_directory_symlink(real / "node_modules", fake / "node_modules");
+    } else {
+      fs::create_directories(fake / "node_modules/@mujoco/mujoco");
+      std::ofstream(fake / "node_modules/@mujoco/mujoco/package.json")
+          << "{\"name\": \"@mujoco/mujoco\", \"version\": \"" << version << "\"}\n";
+    }
+    return fake;
+  }
+
+  fs::path dir_;
+};
+
+void expect_one_line(const std::string& err, const std::string& needle) {
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_NE(err.find(needle), std::string::npos) << err;
+}
+
+TEST_F(Mujoco3Cli, SimulateAndCompareRunIt) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  Result r = run("simulate box.toml --engine mujoco3 --mapping compensated --csv box.csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("box [mujoco3, semi_implicit_euler (MuJoCo 3 Euler)"), std::string::npos)
+      << r.out;
+  EXPECT_EQ(work_files(), (std::vector<std::string>{"box.csv", "box.toml"}));
+  r = run(
+      "compare box.toml --engines mujoco:compensated,mujoco3:compensated --no-diagnosis --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"ref_vs_mujoco3_max_pos_err\""), std::string::npos) << r.out;
+}
+
+TEST_F(Mujoco3Cli, WithoutTheDriverOrThePackageItSaysWhatFixesIt) {
+  fs::create_directories(dir_ / "empty");
+  Result r = run("simulate box.toml --engine mujoco3 --csv box.csv",
+                 "CONTACT2D_MUJOCO3_DIR='" + (dir_ / "empty").string() + "'");
+  EXPECT_EQ(r.status, 2);
+  expect_one_line(r.err, "driver.mjs is missing");
+  const fs::path fake = dir_ / "nopackage";
+  fs::create_directories(fake);
+  std::ofstream(fake / "driver.mjs") << "\n";
+  r = run("simulate box.toml --engine mujoco3 --csv box.csv",
+          "CONTACT2D_MUJOCO3_DIR='" + fake.string() + "'");
+  EXPECT_EQ(r.status, 2);
+  expect_one_line(r.err, "@mujoco/mujoco is not installed in " + fake.string() +
+                             "/node_modules: run scripts/setup, or: npm ci --prefix " +
+                             fake.string());
+  EXPECT_EQ(work_files(), std::vector<std::string>{"box.toml"});
+  // The reference still runs.
+  EXPECT_EQ(run("simulate box.toml", "CONTACT2D_MUJOCO3_DIR='" + fake.string() + "'").status, 0);
+}
+
+TEST_F(Mujoco3Cli, WithoutNodeItSaysSo) {
+  const Result r = run("simulate box.toml --engine mujoco3", "PATH='" + dir_.string() + "'");
+  EXPECT_EQ(r.status, 2);
+  expect_one_line(r.err, "Node.js (the command node) is not installed: run scripts/setup");
+}
+
+TEST_F(Mujoco3Cli, AnotherVersionOfThePackageIsRefused) {
+  const fs::path fake = install("", "3.13.0");
+  const Result r =
+      run("simulate box.toml --engine mujoco3", "CONTACT2D_MUJOCO3_DIR='" + fake.string() + "'");
+  EXPECT_EQ(r.status, 2);
+  expect_one_line(r.err, "has @mujoco/mujoco 3.13.0, contact2d is pinned to 3.14.0");
+}
+
+// Node killed while it steps (SIGKILL on the fourth request it reads:
+// hello, load, reset, then the first batch): exit 3, one line, no file.
+TEST_F(Mujoco3Cli, NodeKilledMidRunLeavesNoFile) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const fs::path fake = install(
+      "\nlet requests = 0;\ninput.prependListener('line', () => { if (++requests === 4) "
+      "process.kill(process.pid, 'SIGKILL'); });\n");
+  for (const std::string& args :
+       {std::string("simulate box.toml --engine mujoco3 --csv box.csv"),
+        std::string(
+            "compare box.toml --engines mujoco3 --no-diagnosis --csv cmp.csv --plot cmp.png")}) {
+    const Result r = run(args, "CONTACT2D_MUJOCO3_DIR='" + fake.string() + "'");
+    EXPECT_EQ(r.status, 3) << args << "\n" << r.err;
+    expect_one_line(r.err, "killed by signal 9");
+    EXPECT_EQ(work_files(), std::vector<std::string>{"box.toml"}) << args;
+  }
+}
+
+}  // namespace
+}  // namespace contact2d
