@@ -102,6 +102,36 @@ int contacts_per_point(Shape shape, Geometry geometry) {
   return boxes && geometry == Geometry::BoxGeoms ? 2 : 1;
 }
 
+int resting_points(const RigidBody& body) {
+  if (!shape_features(body.shape).corners || body.points.empty()) return 1;
+  double lowest = body.points.front().y();
+  for (const Vec2& p : body.points) lowest = std::min(lowest, p.y());
+  const double size = body_extent(body);
+  int n = 0;
+  for (const Vec2& p : body.points) n += p.y() <= lowest + 1e-12 * size ? 1 : 0;
+  return n;
+}
+
+void set_friction_damper(SolverSettings& s, const ContactParams& contact, const RigidBody& body,
+                         double dt, double gravity) {
+  if (s.mapping != Mapping::Compensated)
+    throw InputError("friction damper: only over --mapping compensated (under " +
+                     std::string(mapping_name(s.mapping)) +
+                     " the friction rows' regulariser leaves no room for a small damper)");
+  if (!(contact.mu > 0.0) || !(contact.c > 0.0)) return;  // no friction rows to damp, or no damper
+  const double pi = 3.14159265358979323846;
+  const double a_t = max_tangential_inverse_mass(body);
+  const double weight = body.mass * gravity / resting_points(body);
+  // α = 0 is Coulomb's step: the cap is the slope.
+  const double tanh_matched = std::sqrt(6.0) / pi * contact.mu * contact.alpha * weight;
+  const double cap = 1.0 / (dt * a_t);
+  s.stick_slope = contact.alpha > 0.0 ? std::min(tanh_matched, cap) : cap;
+  const double d = s.solimp[0];
+  const double regulariser = (1.0 - d) / d * s.inv_mass;
+  s.friction_ratio = 1e3 * a_t * s.stick_slope / (regulariser * contact.c);
+  s.impratio = std::clamp(s.stick_slope / (s.friction_ratio * contact.c), kMinImpratio, kMaxImpratio);
+}
+
 SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_mass, int split) {
   return solver_settings(scene.contact, make_body(scene), scene.sim.dt, mapping, inv_mass, split,
                          largest_damping(scene));

@@ -141,6 +141,12 @@ struct SolverSettings {
   // Standard form only: MuJoCo's refsafe raises timeconst to 2·timestep
   // (silently softening the contact); true when that happens here.
   bool refsafe_clamped = false;
+  // MuJoCo 3's friction damper (friction_damper_settings; 0: the friction
+  // rows share the contact's damper, as MuJoCo 2.2.2 must): φ, the friction
+  // rows' damper as a fraction of the normal row's, and b, the stick slope
+  // (N·s/m) of one 2D contact point that impratio then sets.
+  double friction_ratio = 0.0;
+  double stick_slope = 0.0;
 };
 
 // Solver settings of a mapping. `inv_mass` is MuJoCo's body_invweight0 of
@@ -174,6 +180,34 @@ double compensating_lever(double mass, double hinge_inertia, double max_inverse_
 // What calibrated and compensated multiply k/n and c/n by in solref: Â
 // (calibrated), D = d/m + (1 − d)·Â (compensated); 0 for seed and exact.
 double solref_scale(const SolverSettings& settings);
+
+// MuJoCo 3's friction damper (solreffriction, from 2.3.6, on explicit
+// <pair>s, elliptic cone only): the friction rows of a contact get the damper
+// B_f = φ·B of their own instead of the normal row's B, with R_t = R/impratio
+// as before. Then (docs/mujoco3.md, measured to 1.7e-10 relative)
+//   stick:  f_t = −b·v_t per 2D point, b = impratio·φ·c;
+//   slide:  f_n = (k·p − c·v_n + μ·φ·c·|v_t|)/(1 + μ²/impratio):
+// the push μ·c·|v_t| of the shared damper (mapping.hpp) shrinks by φ, and
+// impratio, which is large now, removes the divisor. The settings here:
+//   b = min((√6/π)·μ·α·m·g/N, 1/(Δt·A_t)) per 2D point, N the points the
+//       body rests on: the tanh law's slope μ·F·α scaled so that the
+//       saturated-viscous stopping excess μ·g·m²/(2·B²) of the body (B = N·b)
+//       equals tanh's π²/(12·α²·μ·g) — a body sliding to rest stops where
+//       the reference's does — capped where the explicit friction would
+//       reverse a slip within one step (A_t as for calibrated's impratio);
+//   φ = 1e3·A_t·b/(R·c), R = (1 − d)/d·Â the normal row's regulariser: the
+//       smallest ratio that keeps R_t ≥ 1e3·A_t, so that f_t = −B_f·v_t/(A_t
+//       + R_t) is b·v_t to 0.1 % while the push is as small as that allows;
+//   impratio = b/(φ·c).
+// Only over compensated (whose R ≈ 1e10·A_max leaves room for a small φ;
+// under calibrated φ ≤ 1e-4 breaks, docs/mujoco3.md). A scene without
+// friction (μ = 0) is left as it is.
+void set_friction_damper(SolverSettings& s, const ContactParams& contact, const RigidBody& body,
+                         double dt, double gravity);
+
+// The 2D contact points a body rests on, flat on the ground (θ = 0): 1 for a
+// point mass or disc, the lowest corners of a box or T.
+int resting_points(const RigidBody& body);
 
 // MuJoCo's contact spring and damper per unit of approximate inverse mass
 // as its solver computes them from solref/solimp (K·d_max², B·d_max): the

@@ -55,6 +55,7 @@ struct Layout {
   double lever = 0.0;
   bool spin = false;
   Version version = Version::V2;
+  bool pairs_with_ground = false;  // the friction damper: the ground through <pair>s
   std::vector<Geom> geoms;
   int max_contacts = 0;      // P: contacts the body can make with the ground
   int obstacles = 0;         // N: static obstacles of the scene
@@ -335,6 +336,15 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
   const double r = body_extent(body);
   const double a_t = turns ? 1.0 / body.mass + r * r / body.inertia : 1.0 / body.mass;
   text += format_exact(a_t) + " 1/kg, the largest tangential inverse mass of a contact point\n";
+  if (s.friction_ratio > 0.0) {
+    text += in + "friction damper (MuJoCo 3's solreffriction on one <pair> per contact geom): N = " +
+            std::to_string(resting_points(body)) + " points at rest, b = min(sqrt(6)/pi mu alpha m g/N, " +
+            "1/(dt A_t)) = " + format_exact(s.stick_slope) +
+            " N s/m per point (stick slope: the stop of tanh's law); phi = 1e3 A_t b/(R c) = " +
+            format_exact(s.friction_ratio) + " (R = (1-d)/d A: R_t >= 1e3 A_t); impratio = b/(phi c) = " +
+            format_exact(s.impratio) + "; solreffriction = (solref[0], phi solref[1]) per pair\n";
+    return text;
+  }
   text +=
       in +
       (rolls ? "impratio = min(1/(c Δt A_t), I (max(mu, 1e-5)/mu_roll)^2/(c Δt)) = "
@@ -579,6 +589,11 @@ void add_body(XMLDocument& doc, XMLElement* world, const Scene& scene, const Lay
                          {"pos", join({moved ? g.x - l.lever : g.x, 0.0, g.z})}});
     // compensated: from the 2D point (set_start).
     if (moved && g.corner) set_start(e, l);
+    // The friction damper: the ground touches them through pairs (add_pairs).
+    if (l.pairs_with_ground && !g.visual) {
+      e->SetAttribute("contype", "0");
+      e->SetAttribute("conaffinity", "0");
+    }
     if (g.visual) {
       e->SetAttribute("contype", "0");
       e->SetAttribute("conaffinity", "0");
@@ -629,8 +644,31 @@ void add_obstacles(XMLDocument& doc, XMLElement* world, const Scene& scene) {
 // obstacle's own law.
 void add_pairs(XMLDocument& doc, XMLElement* root, const Scene& scene, const SolverSettings& s,
                const Layout& l) {
-  if (scene.obstacles.empty()) return;
+  if (scene.obstacles.empty() && !l.pairs_with_ground) return;
   XMLElement* contact = add(doc, root, "contact", {});
+  // The friction rows' own damper φ·D_ (solref = (−S, −D_)), φ chosen per
+  // law so that impratio·φ·c is the stick slope b (mapping.hpp).
+  auto set_damper = [&](XMLElement* pair, const std::array<double, 2>& solref, double c) {
+    if (s.friction_ratio <= 0.0 || !(c > 0.0)) return;
+    const double phi = s.stick_slope / (s.impratio * c);
+    pair->SetAttribute("solreffriction", join({solref[0], phi * solref[1]}).c_str());
+  };
+  if (l.pairs_with_ground) {
+    const ContactParams& p = scene.contact;
+    for (const Geom& g : l.geoms) {
+      if (g.visual) continue;
+      XMLElement* pair = add(doc, contact, "pair",
+                             {{"geom1", g.name},
+                              {"geom2", "ground"},
+                              {"condim", std::to_string(contact_condim(p))},
+                              {"friction", join({p.mu, p.mu, p.mu_torsion, cone_mu_roll(scene, s),
+                                                 cone_mu_roll(scene, s)})},
+                              {"solref", join(s.solref)},
+                              {"solimp", join(s.solimp)}});
+      if (l.lever > 0.0 && g.corner) set_start(pair, l);
+      set_damper(pair, s.solref, p.c);
+    }
+  }
   for (size_t i = 0; i < scene.obstacles.size(); ++i) {
     const ObstacleContactSettings os = obstacle_settings(scene, scene.obstacles[i], s);
     const ContactParams& p = os.law;
@@ -645,6 +683,7 @@ void add_pairs(XMLDocument& doc, XMLElement* root, const Scene& scene, const Sol
                               {"solimp", join(s.solimp)}});
       // compensated: as the corner geoms' own gap (add_body); a pair uses its own
       if (l.lever > 0.0 && g.corner) set_start(pair, l);
+      set_damper(pair, os.solref, p.c);
     }
   }
 }
@@ -696,7 +735,8 @@ std::string format_exact(double value) {
 
 std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
                        const SolverSettings& settings) {
-  const Layout layout = make_layout(scene, options.geometry, settings.mapping, options.version);
+  Layout layout = make_layout(scene, options.geometry, settings.mapping, options.version);
+  layout.pairs_with_ground = settings.friction_ratio > 0.0;
   XMLDocument doc;
   doc.InsertEndChild(doc.NewComment(header(scene, options, settings, layout).c_str()));
   XMLElement* root = doc.NewElement("mujoco");
@@ -728,6 +768,12 @@ GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options) {
   if (options.mapping == Mapping::Compensated)
     out.settings.lever =
         make_layout(scene, options.geometry, options.mapping, options.version).lever;
+  if (options.friction_damper) {
+    if (options.version != Version::V3)
+      throw InputError("friction damper: MuJoCo 2.2.2 has no solreffriction (MuJoCo 3: mujoco3)");
+    set_friction_damper(out.settings, scene.contact, make_body(scene), model_scene.sim.dt,
+                        scene.sim.gravity);
+  }
   // refsafe is MuJoCo's, at the real timestep.
   out.settings.refsafe_clamped =
       out.settings.solref[0] > 0.0 && out.settings.solref[0] < 2.0 * scene.sim.dt;

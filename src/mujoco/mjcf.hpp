@@ -104,6 +104,11 @@ struct MjcfOptions {
   // model fixed while the timestep changes (`--model-dt`).
   double model_dt = 0.0;
   Version version = Version::V2;
+  // MuJoCo 3 only: the friction rows get a damper of their own
+  // (set_friction_damper in mapping.hpp: solreffriction on one <pair> per
+  // contact geom and the ground, and per obstacle). The engine mujoco3's
+  // option friction=damper.
+  bool friction_damper = false;
 };
 
 // condim of every contact geom (and the plane): only what the scene needs,

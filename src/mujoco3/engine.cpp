@@ -14,6 +14,7 @@ std::unique_ptr<Stepper> make_mujoco3(const engines::EngineSpec& spec, const Sce
   mujoco::MjcfOptions options =
       mujoco::mjcf_options(spec.option("mapping"), spec.option("geometry"), spec.source);
   options.model_dt = spec.model_dt;
+  options.friction_damper = spec.option("friction") == "damper";
   return std::make_unique<Mujoco3Stepper>(scene, options);
 }
 
@@ -38,6 +39,13 @@ const engines::EngineInfo& engine_info() {
     i.make = make_mujoco3;
     i.check = check;
     i.compared_by_default = false;
+    i.options.push_back(
+        {"friction",
+         "MuJoCo 3's friction rows (shared: the contact's damper, as 2.2.2, which pushes a sliding "
+         "body up by mu c |v_t|; damper: a damper of their own, matched to the tanh law's stop, "
+         "compensated mapping only)",
+         {"shared", "damper"},
+         "shared"});
     return i;
   }();
   return info;
