@@ -1,4 +1,5 @@
-// contact2d generate SCENE [-o FILE] [--mapping NAME] [--geometry NAME] [overrides]
+// contact2d generate SCENE [-o FILE] [--engine mujoco|mujoco3] [--mapping NAME]
+//   [--geometry NAME] [--friction shared|damper] [overrides]
 #include <iostream>
 #include <memory>
 
@@ -6,6 +7,7 @@
 #include "core/input_error.hpp"
 #include "io/atomic_file.hpp"
 #include "mujoco/mjcf.hpp"
+#include "mujoco3/node_mujoco.hpp"
 
 namespace contact2d::cli {
 namespace {
@@ -15,6 +17,7 @@ struct GenerateOptions {
   EngineOptions engine_options;  // MuJoCo's --mapping, --geometry, --model-dt
   std::string output;
   OutputOptions outputs;  // -o
+  std::string engine = "mujoco";  // the MuJoCo it is written for
 };
 
 int generate(const GenerateOptions& options) {
@@ -26,7 +29,14 @@ int generate(const GenerateOptions& options) {
       contact2d::mujoco::mjcf_options(options.engine_options.value("mapping"),
                                       options.engine_options.value("geometry"), options.scene.path);
   mjcf.model_dt = options.engine_options.model_dt;
+  mjcf.friction_damper = options.engine_options.value("friction") == "damper";
+  if (options.engine == "mujoco3") mjcf.version = contact2d::mujoco::Version::V3;
   const auto model = contact2d::mujoco::generate_mjcf(scene, mjcf);
+  // MuJoCo 2.2.2 checked it in generate_mjcf; MuJoCo 3's is checked by MuJoCo 3.
+  if (options.engine == "mujoco3") {
+    const auto node = contact2d::mujoco3::Node::of_this_thread();
+    node->free(node->load(model.xml, contact2d::mujoco::generated_origin(options.scene.path)).id);
+  }
   if (model.settings.refsafe_clamped) {
     std::cerr << "contact2d: note: timeconst " << format_number(model.settings.solref[0])
               << " s < 2 dt: MuJoCo raises it to 2 dt (refsafe), a softer contact than contact.k\n";
@@ -47,6 +57,11 @@ Command add_generate(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("generate", "Write the MuJoCo MJCF model of a scene");
   options->scene.add_to(*cmd);
   options->engine_options.add_to(*cmd);
+  cmd->add_option("--engine", options->engine,
+                  "The MuJoCo the model is for: mujoco (2.2.2) or mujoco3 (3.14: the model that "
+                  "engine runs, checked by MuJoCo 3)")
+      ->type_name("KIND")
+      ->check(CLI::IsMember({"mujoco", "mujoco3"}));
   options->outputs.file(*cmd, "-o,--output", options->output,
                         "Write the MJCF to this file (default: standard output)", "FILE.xml");
   return {cmd, [options] { return generate(*options); }};

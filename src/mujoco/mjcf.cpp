@@ -770,7 +770,8 @@ GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options) {
         make_layout(scene, options.geometry, options.mapping, options.version).lever;
   if (options.friction_damper) {
     if (options.version != Version::V3)
-      throw InputError("friction damper: MuJoCo 2.2.2 has no solreffriction (MuJoCo 3: mujoco3)");
+      throw InputError(
+          "friction damper: MuJoCo 2.2.2 has no solreffriction; it is for MuJoCo 3 (the engine mujoco3)");
     set_friction_damper(out.settings, scene.contact, make_body(scene), model_scene.sim.dt,
                         scene.sim.gravity);
   }
