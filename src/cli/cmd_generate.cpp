@@ -16,7 +16,7 @@ struct GenerateOptions {
   SceneOptions scene;
   EngineOptions engine_options;  // MuJoCo's --mapping, --geometry, --model-dt
   std::string output;
-  OutputOptions outputs;  // -o
+  OutputOptions outputs;          // -o
   std::string engine = "mujoco";  // the MuJoCo it is written for
 };
 

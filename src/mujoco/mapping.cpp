@@ -129,7 +129,8 @@ void set_friction_damper(SolverSettings& s, const ContactParams& contact, const 
   const double d = s.solimp[0];
   const double regulariser = (1.0 - d) / d * s.inv_mass;
   s.friction_ratio = 1e3 * a_t * s.stick_slope / (regulariser * contact.c);
-  s.impratio = std::clamp(s.stick_slope / (s.friction_ratio * contact.c), kMinImpratio, kMaxImpratio);
+  s.impratio =
+      std::clamp(s.stick_slope / (s.friction_ratio * contact.c), kMinImpratio, kMaxImpratio);
 }
 
 SolverSettings solver_settings(const Scene& scene, Mapping mapping, double inv_mass, int split) {

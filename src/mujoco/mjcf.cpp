@@ -337,12 +337,15 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
   const double a_t = turns ? 1.0 / body.mass + r * r / body.inertia : 1.0 / body.mass;
   text += format_exact(a_t) + " 1/kg, the largest tangential inverse mass of a contact point\n";
   if (s.friction_ratio > 0.0) {
-    text += in + "friction damper (MuJoCo 3's solreffriction on one <pair> per contact geom): N = " +
-            std::to_string(resting_points(body)) + " points at rest, b = min(sqrt(6)/pi mu alpha m g/N, " +
+    text += in +
+            "friction damper (MuJoCo 3's solreffriction on one <pair> per contact geom): N = " +
+            std::to_string(resting_points(body)) +
+            " points at rest, b = min(sqrt(6)/pi mu alpha m g/N, " +
             "1/(dt A_t)) = " + format_exact(s.stick_slope) +
             " N s/m per point (stick slope: the stop of tanh's law); phi = 1e3 A_t b/(R c) = " +
-            format_exact(s.friction_ratio) + " (R = (1-d)/d A: R_t >= 1e3 A_t); impratio = b/(phi c) = " +
-            format_exact(s.impratio) + "; solreffriction = (solref[0], phi solref[1]) per pair\n";
+            format_exact(s.friction_ratio) +
+            " (R = (1-d)/d A: R_t >= 1e3 A_t); impratio = b/(phi c) = " + format_exact(s.impratio) +
+            "; solreffriction = (solref[0], phi solref[1]) per pair\n";
     return text;
   }
   text +=
@@ -657,14 +660,15 @@ void add_pairs(XMLDocument& doc, XMLElement* root, const Scene& scene, const Sol
     const ContactParams& p = scene.contact;
     for (const Geom& g : l.geoms) {
       if (g.visual) continue;
-      XMLElement* pair = add(doc, contact, "pair",
-                             {{"geom1", g.name},
-                              {"geom2", "ground"},
-                              {"condim", std::to_string(contact_condim(p))},
-                              {"friction", join({p.mu, p.mu, p.mu_torsion, cone_mu_roll(scene, s),
-                                                 cone_mu_roll(scene, s)})},
-                              {"solref", join(s.solref)},
-                              {"solimp", join(s.solimp)}});
+      XMLElement* pair =
+          add(doc, contact, "pair",
+              {{"geom1", g.name},
+               {"geom2", "ground"},
+               {"condim", std::to_string(contact_condim(p))},
+               {"friction",
+                join({p.mu, p.mu, p.mu_torsion, cone_mu_roll(scene, s), cone_mu_roll(scene, s)})},
+               {"solref", join(s.solref)},
+               {"solimp", join(s.solimp)}});
       if (l.lever > 0.0 && g.corner) set_start(pair, l);
       set_damper(pair, s.solref, p.c);
     }
@@ -771,7 +775,8 @@ GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options) {
   if (options.friction_damper) {
     if (options.version != Version::V3)
       throw InputError(
-          "friction damper: MuJoCo 2.2.2 has no solreffriction; it is for MuJoCo 3 (the engine mujoco3)");
+          "friction damper: MuJoCo 2.2.2 has no solreffriction; it is for MuJoCo 3 (the engine "
+          "mujoco3)");
     set_friction_damper(out.settings, scene.contact, make_body(scene), model_scene.sim.dt,
                         scene.sim.gravity);
   }

@@ -20,10 +20,10 @@
 //
 // Everything MuJoCo prints (its warnings) is collected and returned as
 // "messages" on the next answer, so stdout carries only the protocol.
-import { readFileSync } from 'node:fs';
-import { createInterface } from 'node:readline';
-import { fileURLToPath } from 'node:url';
-import { dirname, join } from 'node:path';
+import {readFileSync} from 'node:fs';
+import {dirname, join} from 'node:path';
+import {createInterface} from 'node:readline';
+import {fileURLToPath} from 'node:url';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const messages = [];
@@ -31,15 +31,19 @@ const collect = (text) => messages.push(String(text));
 
 let loadMujoco;
 try {
-  ({ default: loadMujoco } = await import('@mujoco/mujoco'));
+  ({default: loadMujoco} = await import('@mujoco/mujoco'));
 } catch (e) {
-  process.stdout.write(JSON.stringify({ ok: false, error: 'cannot import @mujoco/mujoco: ' +
-    String(e && e.message ? e.message : e).split('\n')[0] }) + '\n');
+  process.stdout.write(JSON.stringify({
+    ok: false,
+    error: 'cannot import @mujoco/mujoco: ' + String(e && e.message ? e.message : e).split('\n')[0]
+  }) + '\n');
   process.exit(3);
 }
-const packageVersion = JSON.parse(
-  readFileSync(join(here, 'node_modules', '@mujoco', 'mujoco', 'package.json'), 'utf8')).version;
-const mj = await loadMujoco({ print: collect, printErr: collect });
+const packageVersion =
+    JSON.parse(
+            readFileSync(join(here, 'node_modules', '@mujoco', 'mujoco', 'package.json'), 'utf8'))
+        .version;
+const mj = await loadMujoco({print: collect, printErr: collect});
 
 const models = new Map();  // id → {m, d, saved}
 let nextId = 1;
@@ -59,15 +63,20 @@ function badCounters(d) {
   // mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC
   const w = d.warning;
   return w.get(mj.mjtWarning.mjWARN_BADQPOS.value).number +
-         w.get(mj.mjtWarning.mjWARN_BADQVEL.value).number +
-         w.get(mj.mjtWarning.mjWARN_BADQACC.value).number;
+      w.get(mj.mjtWarning.mjWARN_BADQVEL.value).number +
+      w.get(mj.mjtWarning.mjWARN_BADQACC.value).number;
 }
 
 // The state a "rewind" returns to: everything mj_step reads that changes.
 function save(e) {
   const d = e.d;
-  e.saved = { time: d.time, qpos: d.qpos.slice(), qvel: d.qvel.slice(),
-              act: d.act.slice(), warm: d.qacc_warmstart.slice() };
+  e.saved = {
+    time: d.time,
+    qpos: d.qpos.slice(),
+    qvel: d.qvel.slice(),
+    act: d.act.slice(),
+    warm: d.qacc_warmstart.slice()
+  };
 }
 
 function restore(e) {
@@ -80,14 +89,22 @@ function restore(e) {
 }
 
 const ops = {
-  hello: () => ({ version: mj.mj_versionString(), package: packageVersion, node: process.versions.node }),
+  hello: () =>
+      ({version: mj.mj_versionString(), package: packageVersion, node: process.versions.node}),
   load: (r) => {
     const m = mj.MjModel.from_xml_string(r.xml);
     const d = new mj.MjData(m);
     const id = nextId++;
-    models.set(id, { m, d, saved: null });
-    return { id, nq: m.nq, nv: m.nv, nbody: m.nbody, timestep: m.opt.timestep,
-             body_pos: Array.from(m.body_pos), body_invweight0: Array.from(m.body_invweight0) };
+    models.set(id, {m, d, saved: null});
+    return {
+      id,
+      nq: m.nq,
+      nv: m.nv,
+      nbody: m.nbody,
+      timestep: m.opt.timestep,
+      body_pos: Array.from(m.body_pos),
+      body_invweight0: Array.from(m.body_invweight0)
+    };
   },
   free: (r) => {
     const e = entry(r);
@@ -117,7 +134,7 @@ const ops = {
   },
   step: (r) => {
     const e = entry(r);
-    const { m, d } = e;
+    const {m, d} = e;
     const width = m.nq + m.nv;
     const out = new Float64Array(r.n * width);
     save(e);
@@ -128,11 +145,14 @@ const ops = {
       out.set(d.qvel, steps * width + m.nq);
       ++steps;
       const now = badCounters(d);
-      if (now !== before) { bad = true; break; }
+      if (now !== before) {
+        bad = true;
+        break;
+      }
       before = now;
     }
     const bytes = Buffer.from(out.buffer, 0, steps * width * 8);
-    return { steps, bad, bytes: bytes.length, payload: bytes };
+    return {steps, bad, bytes: bytes.length, payload: bytes};
   },
   rewind: (r) => {
     const e = entry(r);
@@ -142,32 +162,32 @@ const ops = {
     return {};
   },
   counters: (r) => {
-    const { d } = entry(r);
+    const {d} = entry(r);
     const out = [];
     for (let i = 0; i < mj.mjtWarning.mjNWARNING.value; ++i) {
       const n = d.warning.get(i).number;
       if (n > 0) out.push(`${mj.mju_warningText(i, d.warning.get(i).lastinfo)} (${n} times)`);
     }
-    return { warnings: out };
+    return {warnings: out};
   },
   model: (r) => {
-    const { m } = entry(r);
+    const {m} = entry(r);
     const out = {};
     for (const name of r.names) out[name] = Array.from(m[name]);
-    return { values: out };
+    return {values: out};
   },
 };
 
-const input = createInterface({ input: process.stdin, crlfDelay: Infinity });
+const input = createInterface({input: process.stdin, crlfDelay: Infinity});
 input.on('line', (line) => {
   let answer;
   try {
     const request = JSON.parse(line);
     const op = ops[request.op];
     if (!op) throw new Error(`unknown op ${request.op}`);
-    answer = { ok: true, ...op(request) };
+    answer = {ok: true, ...op(request)};
   } catch (e) {
-    answer = { ok: false, error: oneLine(e) };
+    answer = {ok: false, error: oneLine(e)};
   }
   const payload = answer.payload;
   delete answer.payload;
