@@ -120,8 +120,11 @@ TEST(Mujoco3, ClosedFormsHoldAsOnMujoco222) {
 //  - along the way: the laws differ in shape below a slip of ~1/α (tanh
 //    rises as tanh(α·v), the damper's friction as b·v up to μ·F_n), a
 //    difference of position that scales as 1/(α²·μ·g): measured
-//    0.094–0.11/(α²·μ·g) on these cases; held to 0.2/(α²·μ·g), which is
-//    below 1e-4 m for α ≥ 26 s/m at μ = 0.3.
+//    0.094–0.11/(α²·μ·g) on these cases; held to 0.2/(α²·μ·g) + 1e-5 m,
+//    below 1e-4 m for α ≥ 28 s/m at μ = 0.3. The 1e-5 m is what stays at
+//    large α, where the shape term vanishes: MuJoCo's contact point sits
+//    halfway into the penetration, so its friction tilts a box by a lever
+//    longer by d/2 (measured 2.7e-6 m at α = 250).
 // The shared damper (MuJoCo 2.2.2's) is printed beside it: its push
 // μ·c·|v_t| lifts the body and moves it by 0.5–12 mm.
 TEST(Mujoco3Friction, BodiesSlidingToRestStopWhereTheTanhLawDoes) {
@@ -169,7 +172,8 @@ TEST(Mujoco3Friction, BodiesSlidingToRestStopWhereTheTanhLawDoes) {
         "shared %.3g m\n",
         c.shape, c.mass, c.c, c.mu, c.alpha, c.v0, apart, stop, shared_apart);
     EXPECT_LE(std::abs(stop), 1e-4) << c.shape << " alpha " << c.alpha;
-    EXPECT_LE(apart, 0.2 / (c.alpha * c.alpha * c.mu * 9.81)) << c.shape << " alpha " << c.alpha;
+    EXPECT_LE(apart, 0.2 / (c.alpha * c.alpha * c.mu * 9.81) + 1e-5)
+        << c.shape << " alpha " << c.alpha;
     // The body came to rest (the run is long enough to measure the stop).
     EXPECT_LE(std::abs(b.samples.back().state.v.x()), 1e-3) << c.shape;
   }
