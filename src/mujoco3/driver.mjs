@@ -12,8 +12,8 @@
 // body_invweight0, timestep}; free {id}; reset {id, qpos, qvel} (mj_resetData,
 // then the given state); keyframe {id, key}; applied {id, body, xfrc};
 // step {id, n} → {steps, bad, bytes}: up to n mj_step, stopping after the
-// first one that raised a bad-number counter (qpos, qvel, qacc: MuJoCo then
-// resets mjData itself); rewind {id, n}: back to the state before the last
+// first one that left a bad number in qpos or qvel (MuJoCo's autoreset is
+// off, so it stays there); rewind {id, n}: back to the state before the last
 // "step" and n steps again (a changed applied force takes effect there);
 // counters {id} → {warnings: ["text (N times)"]}; model {id, names} → the
 // named mjModel arrays.
@@ -93,6 +93,9 @@ const ops = {
       ({version: mj.mj_versionString(), package: packageVersion, node: process.versions.node}),
   load: (r) => {
     const m = mj.MjModel.from_xml_string(r.xml);
+    // Bad numbers stay in qpos/qvel, where "step" sees them at once, instead
+    // of MuJoCo resetting mjData (its warning counters count them all the same).
+    m.opt.disableflags |= mj.mjtDisableBit.mjDSBL_AUTORESET.value;
     const d = new mj.MjData(m);
     const id = nextId++;
     models.set(id, {m, d, saved: null});
@@ -134,25 +137,30 @@ const ops = {
   },
   step: (r) => {
     const e = entry(r);
-    const {m, d} = e;
-    const width = m.nq + m.nv;
+    const { m, d } = e;
+    const nq = m.nq, nv = m.nv, width = nq + nv;
     const out = new Float64Array(r.n * width);
     save(e);
-    let before = badCounters(d), steps = 0, bad = false;
+    // Views into MuJoCo's memory, taken again if a step ever moved it.
+    let qpos = d.qpos, qvel = d.qvel;
+    let steps = 0, bad = false;
     while (steps < r.n) {
       mj.mj_step(m, d);
-      out.set(d.qpos, steps * width);
-      out.set(d.qvel, steps * width + m.nq);
+      if (qpos.length !== nq) ({ qpos, qvel } = d);
+      const at = steps * width;
+      out.set(qpos, at);
+      out.set(qvel, at + nq);
       ++steps;
-      const now = badCounters(d);
-      if (now !== before) {
-        bad = true;
-        break;
+      // MuJoCo's own test (mju_isBad: NaN or beyond mjMAXVAL = 1e10), on
+      // qpos and qvel; a bad qacc makes qvel bad in the same step. Reading
+      // the warning counters instead costs more than the step.
+      for (let i = at; i < at + width; ++i) {
+        if (!(Math.abs(out[i]) <= 1e10)) bad = true;
       }
-      before = now;
+      if (bad) break;
     }
     const bytes = Buffer.from(out.buffer, 0, steps * width * 8);
-    return {steps, bad, bytes: bytes.length, payload: bytes};
+    return { steps, bad, bytes: bytes.length, payload: bytes };
   },
   rewind: (r) => {
     const e = entry(r);
