@@ -18,14 +18,11 @@ mujoco::GeneratedModel generate(const Scene& scene, mujoco::MjcfOptions& options
 }  // namespace
 
 Mujoco3Stepper::Mujoco3Stepper(const Scene& scene, mujoco::MjcfOptions options)
-    : model_(make_model(scene)),
-      integrator_(scene.sim.integrator),
-      node_(Node::of_this_thread()),
-      contacts_(model_) {
-  const mujoco::GeneratedModel generated = generate(scene, options);
-  settings_ = generated.settings;
-  xml_ = generated.xml;
-  loaded_ = node_->load(xml_, mujoco::generated_origin(options.source));
+    : Mujoco3Stepper(scene, generate(scene, options), options.source) {}
+
+Mujoco3Stepper::Mujoco3Stepper(const Scene& scene, const mujoco::GeneratedModel& generated,
+                               const std::string& source)
+    : Mujoco3Stepper(scene, generated.xml, mujoco::generated_origin(source), generated.settings) {
   // The mapping's Â was read from MuJoCo 2.2.2's compile (mujoco/mjcf.hpp);
   // the model is written so that 3.14 has the same (the point mass's spin).
   // Translational body_invweight0 of the body whose contacts it maps: body 1,
@@ -36,6 +33,17 @@ Mujoco3Stepper::Mujoco3Stepper(const Scene& scene, mujoco::MjcfOptions options)
     throw EngineError("mujoco3: MuJoCo " + std::string(kVersion) + " gives body_invweight0 " +
                       format_shortest(a3) + " where the model was mapped for " +
                       format_shortest(settings_.inv_mass) + " (MuJoCo 2.2.2's)");
+}
+
+Mujoco3Stepper::Mujoco3Stepper(const Scene& scene, const std::string& xml,
+                               const std::string& origin, const mujoco::SolverSettings& settings)
+    : model_(make_model(scene)),
+      integrator_(scene.sim.integrator),
+      settings_(settings),
+      xml_(xml),
+      node_(Node::of_this_thread()),
+      contacts_(model_) {
+  loaded_ = node_->load(xml_, origin);
   x0_ = loaded_.body_pos.at(3);
   y0_ = loaded_.body_pos.at(5);
   turns_ = shape_features(scene.shape).turns;

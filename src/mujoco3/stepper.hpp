@@ -33,6 +33,11 @@ class Mujoco3Stepper final : public Stepper {
   // Writes the model for MuJoCo 3 (options.version is set to V3) and loads
   // it there (InputError on MuJoCo 3's refusal or when it cannot run here).
   Mujoco3Stepper(const Scene& scene, mujoco::MjcfOptions options);
+  // MJCF text as given (`origin` names it in messages), with the settings it
+  // was written with (facts, the divergence message): the measurements that
+  // run a model changed by hand (bench/version_table.cpp).
+  Mujoco3Stepper(const Scene& scene, const std::string& xml, const std::string& origin,
+                 const mujoco::SolverSettings& settings);
   ~Mujoco3Stepper() override;
   Mujoco3Stepper(const Mujoco3Stepper&) = delete;
   Mujoco3Stepper& operator=(const Mujoco3Stepper&) = delete;
@@ -54,6 +59,8 @@ class Mujoco3Stepper final : public Stepper {
   std::vector<std::string> warnings() const;
 
  private:
+  Mujoco3Stepper(const Scene& scene, const mujoco::GeneratedModel& generated,
+                 const std::string& source);
   void fetch();
   void read(const double* qpos_qvel);
 
