@@ -151,11 +151,13 @@ std::string not_physics(const std::string& source, const std::string& engine,
 py::dict py_simulate(const py::object& scene_object, const std::string& engine,
                      const std::optional<std::string>& integrator, std::optional<double> dt,
                      std::optional<double> duration, const std::string& mapping,
-                     const std::string& geometry, double model_dt, bool allow_nonphysical) {
+                     const std::string& geometry, const std::string& friction, double model_dt,
+                     bool allow_nonphysical) {
   const Scene scene = checked_scene(scene_object, integrator, dt, duration);
   const std::string source = source_of(scene_object);
   const engines::EngineSpec spec = engines::engine_with_options(
-      engine, {{"mapping", mapping}, {"geometry", geometry}}, model_dt, source, python_keyword);
+      engine, {{"mapping", mapping}, {"geometry", geometry}, {"friction", friction}}, model_dt,
+      source, python_keyword);
   engines::EngineRun run;
   {
     py::gil_scoped_release release;
@@ -180,7 +182,8 @@ py::dict py_simulate(const py::object& scene_object, const std::string& engine,
 
 py::dict py_compare(const py::object& scene_object, const std::optional<std::string>& integrator,
                     std::optional<double> dt, std::optional<double> duration,
-                    const std::string& mapping, const std::string& geometry, double model_dt,
+                    const std::string& mapping, const std::string& geometry,
+                    const std::string& friction, double model_dt,
                     const std::vector<std::string>& engine_names, double converged_tol,
                     bool diagnosis, bool allow_nonphysical) {
   const std::string source = source_of(scene_object);
@@ -189,8 +192,9 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
                      " is out of range: must be in [1e-14, 1e-6]");
   analysis::Comparison c = analysis::prepare_comparison(
       checked_scene(scene_object, integrator, dt, duration),
-      analysis::comparison_engines(engine_names, {{"mapping", mapping}, {"geometry", geometry}},
-                                   model_dt, source, python_keyword));
+      analysis::comparison_engines(
+          engine_names, {{"mapping", mapping}, {"geometry", geometry}, {"friction", friction}},
+          model_dt, source, python_keyword));
   std::vector<std::string> warnings;
   {
     py::gil_scoped_release release;
@@ -221,10 +225,17 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
 
 py::dict py_generate(const py::object& scene_object, const std::optional<std::string>& integrator,
                      std::optional<double> dt, std::optional<double> duration,
-                     const std::string& mapping, const std::string& geometry, double model_dt) {
+                     const std::string& mapping, const std::string& geometry,
+                     const std::string& friction, const std::string& engine, double model_dt) {
   const Scene scene = checked_scene(scene_object, integrator, dt, duration);
   mujoco::MjcfOptions options = mujoco::mjcf_options(mapping, geometry, source_of(scene_object));
   options.model_dt = model_dt;
+  if (engine != "mujoco" && engine != "mujoco3")
+    throw InputError("engine = " + engine + ": generate writes for mujoco (2.2.2) or mujoco3");
+  if (!friction.empty() && friction != "shared" && friction != "damper")
+    throw InputError("friction = " + friction + ": unknown (shared, damper)");
+  options.friction_damper = friction == "damper";
+  if (engine == "mujoco3") options.version = mujoco::Version::V3;
   mujoco::GeneratedModel model;
   {
     py::gil_scoped_release release;

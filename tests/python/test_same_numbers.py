@@ -169,3 +169,23 @@ def test_solref_json(args, kwargs):
 def test_inspect_json(args, kwargs):
     out, _ = run_program("inspect", *args, "--json")
     assert contact2d.inspect(**kwargs) == json.loads(out)
+
+
+def test_mujoco3_is_the_programs(tmp_path):
+    """engine="mujoco3" with friction="damper" is --engine mujoco3 --friction
+    damper: the same trajectory, and generate(engine="mujoco3") the same MJCF."""
+    scene = "validation/scenes/point_mass.toml"
+    csv = tmp_path / "mj3.csv"
+    run_program("simulate", scene, "--engine", "mujoco3", "--mapping", "compensated",
+                "--friction", "damper", "--duration", "0.5", "--csv", str(csv))
+    run = contact2d.simulate(contact2d.Scene.load(scene), engine="mujoco3",
+                             mapping="compensated", friction="damper", duration=0.5)
+    assert run.engine == "mujoco3:compensated::damper"  # the name with its options
+    _, rows = read_csv(csv)
+    assert csv_rows(run.trajectory) == rows
+    out, _ = run_program("generate", scene, "--engine", "mujoco3", "--mapping", "compensated",
+                         "--friction", "damper")
+    assert contact2d.generate(contact2d.Scene.load(scene), mapping="compensated",
+                              engine="mujoco3", friction="damper") == out
+    with pytest.raises(ValueError, match="friction damper: only over --mapping compensated"):
+        contact2d.simulate(contact2d.Scene.load(scene), engine="mujoco3", friction="damper")

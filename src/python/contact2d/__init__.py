@@ -62,10 +62,12 @@ class Simulation:
 def simulate(scene: Scene, engine: str = "ref", integrator: Optional[str] = None,
              dt: Optional[float] = None, duration: Optional[float] = None, mapping: str = "",
              geometry: str = "", model_dt: float = 0.0,
-             allow_nonphysical: bool = False) -> Simulation:
-    """Runs one engine on the scene, as ``contact2d simulate``."""
+             allow_nonphysical: bool = False, friction: str = "") -> Simulation:
+    """Runs one engine on the scene, as ``contact2d simulate``: engine "ref",
+    "mujoco" (2.2.2) or "mujoco3" (3.14, docs/mujoco3.md); friction "shared"
+    or "damper" is MuJoCo 3's option (``--friction``)."""
     run = _contact2d._simulate(scene, engine, integrator, dt, duration, mapping, geometry,
-                               model_dt, allow_nonphysical)
+                               friction, model_dt, allow_nonphysical)
     return Simulation(**run)
 
 
@@ -73,7 +75,7 @@ def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: float
             integrator: Optional[str] = None, dt: Optional[float] = None,
             duration: Optional[float] = None, converged_tol: float = 1e-12,
             diagnosis: bool = True, allow_nonphysical: bool = False,
-            engines: Sequence[str] = ()) -> dict:
+            engines: Sequence[str] = (), friction: str = "") -> dict:
     """The reference and MuJoCo against the converged solution and each
     other, as ``contact2d compare --json``: that JSON object as a dict, with
     the trajectories added as arrays ("ref_trajectory", "mujoco_trajectory",
@@ -83,8 +85,8 @@ def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: float
     (names with their options, "mujoco:exact:boxes"; not together with
     mapping or geometry): every engine adds its keys and its
     "KEY_trajectory" ("mujoco_exact_trajectory" when two share a kind)."""
-    run = _contact2d._compare(scene, integrator, dt, duration, mapping, geometry, model_dt,
-                              list(engines), converged_tol, diagnosis, allow_nonphysical)
+    run = _contact2d._compare(scene, integrator, dt, duration, mapping, geometry, friction,
+                              model_dt, list(engines), converged_tol, diagnosis, allow_nonphysical)
     result = json.loads(run["json"])
     for key, value in run.items():
         if key != "json":
@@ -94,9 +96,13 @@ def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: float
 
 def generate(scene: Scene, mapping: str = "", geometry: str = "", model_dt: float = 0.0,
              integrator: Optional[str] = None, dt: Optional[float] = None,
-             duration: Optional[float] = None) -> str:
-    """The MuJoCo MJCF of the scene, as ``contact2d generate``."""
-    run = _contact2d._generate(scene, integrator, dt, duration, mapping, geometry, model_dt)
+             duration: Optional[float] = None, engine: str = "mujoco",
+             friction: str = "") -> str:
+    """The MuJoCo MJCF of the scene, as ``contact2d generate``: for MuJoCo
+    2.2.2 (engine "mujoco") or MuJoCo 3 ("mujoco3", with friction "damper"
+    if asked; not checked by MuJoCo 3 here, the engine loads it)."""
+    run = _contact2d._generate(scene, integrator, dt, duration, mapping, geometry, friction,
+                               engine, model_dt)
     _notes(run["notes"])
     return run["xml"]
 
