@@ -68,6 +68,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
   posix_spawnattr_setflags(&attributes,
                            POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
   std::vector<char*> args;
+  args.reserve(argv.size() + 1);
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   const int spawned = ::posix_spawnp(&pid_, args[0], &actions, &attributes, args.data(), environ);

@@ -33,7 +33,7 @@ std::string find_node() {
   std::stringstream dirs(path ? path : "");
   std::string dir;
   while (std::getline(dirs, dir, ':')) {
-    const std::string candidate = (dir.empty() ? "." : dir) + "/node";
+    std::string candidate = (dir.empty() ? "." : dir) + "/node";
     if (::access(candidate.c_str(), X_OK) == 0) return candidate;
   }
   return {};
@@ -219,6 +219,7 @@ std::vector<std::vector<double>> Node::model_arrays(int id, const std::vector<st
   const Answer a =
       request(R"({"op":"model","id":)" + std::to_string(id) + R"(,"names":)" + list + "]}");
   std::vector<std::vector<double>> out;
+  out.reserve(names.size());
   for (const std::string& name : names) out.push_back(numbers_of(a.get("values")->get(name)));
   return out;
 }

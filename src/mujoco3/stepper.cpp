@@ -116,7 +116,7 @@ void Mujoco3Stepper::fetch() {
 
 StepStatus Mujoco3Stepper::step() {
   if (read_ == batch_steps_) fetch();
-  const size_t width = static_cast<size_t>(loaded_.nq + loaded_.nv);
+  const size_t width = static_cast<size_t>(loaded_.nq) + static_cast<size_t>(loaded_.nv);
   read(batch_.data() + width * static_cast<size_t>(read_));
   ++read_;
   return batch_bad_ && read_ == batch_steps_ ? StepStatus::NonFinite : StepStatus::Ok;

@@ -9,6 +9,7 @@
 #include "analysis/atlas.hpp"
 #include "analysis/closed_forms.hpp"
 #include "analysis/friction_table.hpp"
+#include "analysis/version_table.hpp"
 #include "report/results.hpp"
 
 namespace contact2d::report {
@@ -22,6 +23,10 @@ std::string closed_forms_page(const analysis::ClosedFormTable& table);  // close
 // friction.md: MuJoCo with friction, both mappings, the push's share; goal
 // in m (the 1e-3).
 std::string friction_page(const std::vector<analysis::FrictionRow>& rows, double goal);
+
+// versions.md: MuJoCo 3.14 beside 2.2.2 (its not_run says why when it did
+// not run here).
+std::string versions_page(const analysis::VersionTable& table);
 
 // atlas.md: the default atlas (validation/atlas/default.toml), its summary
 // and how it ran (src/report/atlas_page.cpp).

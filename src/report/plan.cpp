@@ -295,7 +295,7 @@ std::string load_average() {
 const std::vector<std::string>& page_names() {
   static const std::vector<std::string> names{"README.md",  "sweep.md",        "stability.md",
                                               "extreme.md", "closed_forms.md", "friction.md",
-                                              "atlas.md"};
+                                              "atlas.md",   "versions.md"};
   return names;
 }
 
@@ -316,6 +316,14 @@ void write_report(const ReportRequest& o) {
   const analysis::ClosedFormTable closed_forms = closed_form_rows();
   progress("friction");
   const std::vector<analysis::FrictionRow> friction = friction_rows();
+  // versions.md: MuJoCo 3.14 beside 2.2.2 on the four bodies with the
+  // Kelvin–Voigt damper both have.
+  progress("versions");
+  std::vector<analysis::NamedScene> version_scenes;
+  for (const std::string& s : kScenes)
+    version_scenes.push_back({s, load(scene_path(s), {{"contact.damping", "kelvin_voigt"}})});
+  const analysis::VersionTable versions =
+      mujoco ? version_rows(version_scenes) : analysis::VersionTable{{}, "built without MuJoCo"};
   // atlas.md: the small default atlas (its rows in OUT/atlas/).
   progress("atlas validation/atlas/default.toml");
   AtlasRun atlas;
@@ -335,6 +343,7 @@ void write_report(const ReportRequest& o) {
   write_page(o.out + "/" + names[4], closed_forms_page(closed_forms));
   write_page(o.out + "/" + names[5], friction_page(friction, 1e-3));
   write_page(o.out + "/" + names[6], atlas_page(atlas.summary, atlas.info));
+  write_page(o.out + "/" + names[7], versions_page(versions));
 }
 
 }  // namespace contact2d::report

@@ -380,7 +380,11 @@ std::string page_index() {
            {"atlas.md", "a small atlas: how close MuJoCo gets over k × ζ for every body"},
            {"friction.md",
             "with friction: how close MuJoCo gets, every 2.2.2 setting tried, and the "
-            "difference taken apart (the cone's shape, its push, the rest)"}}) {
+            "difference taken apart (the cone's shape, its push, the rest)"},
+           {"versions.md",
+            "MuJoCo 3.14 beside 2.2.2: the distance between the versions, each of MuJoCo 3's "
+            "changes measured, friction without the push (MuJoCo 3's damper), and which "
+            "version and mapping to use for what"}}) {
     add_row(t, {page == "README.md" ? page : "[" + page + "](" + page + ")", what});
   }
   return "## The pages of this report\n\n" + to_markdown(t) + "\n";

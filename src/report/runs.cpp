@@ -366,6 +366,10 @@ analysis::ClosedFormTable closed_form_rows() { return analysis::closed_form_tabl
 
 std::vector<analysis::FrictionRow> friction_rows() { return analysis::friction_table(); }
 
+analysis::VersionTable version_rows(const std::vector<analysis::NamedScene>& scenes) {
+  return analysis::version_table(scenes);
+}
+
 void run_atlas(const std::string& spec_path, const std::string& out_dir,
                const std::string& plot_dir, const std::string& png_prefix, AtlasRun& run) {
   const AtlasSpec spec = load_atlas_spec(spec_path);

@@ -18,6 +18,7 @@
 #include "analysis/atlas.hpp"
 #include "analysis/closed_forms.hpp"
 #include "analysis/friction_table.hpp"
+#include "analysis/version_table.hpp"
 #include "core/scene.hpp"
 #include "report/pages.hpp"
 #include "report/random_scenes.hpp"
@@ -103,6 +104,9 @@ bool points_turn(const Scene& scene);
 // reference (analysis::friction_table).
 analysis::ClosedFormTable closed_form_rows();
 std::vector<analysis::FrictionRow> friction_rows();
+// MuJoCo 3.14 beside 2.2.2 on these scenes (analysis::version_table; its
+// not_run says why when MuJoCo 3 cannot run here).
+analysis::VersionTable version_rows(const std::vector<analysis::NamedScene>& scenes);
 
 // `contact2d atlas SPEC --out OUT_DIR` on every core, then its summary and
 // heat maps (PNG_PREFIX*.png under PLOT_DIR) into `run`. The summary points

@@ -213,6 +213,33 @@ TEST(ReportPages, FrictionMatchesGolden) {
   expect_golden("friction.md", page);
 }
 
+// versions.md from hand-written rows: each cause named from its columns,
+// the damper column "—" where it does not apply, and the not-run line.
+TEST(ReportPages, VersionsMatchesGolden) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  analysis::VersionTable table;
+  // scene, mapping, friction, for_v3, tolerance, gap, v2_model, ref_v2, ref_v3, ref_v3_damper
+  table.rows = {{"point_mass", "calibrated", true, 1e-13, 0, 1e-13, 0.21, 0.028, 0.028, nan},
+                {"box", "compensated", true, 2e-13, 4e-13, 2e-8, 2e-8, 0.017, 0.017, 0.016},
+                {"circle", "calibrated", false, 7e-13, 5e-11, 7e-13, 5e-11, 1e-7, 1e-7, nan},
+                {"tshape", "calibrated", false, 1e-12, 2e-12, 1e-12, 2e-12, 2e-4, 2e-4, nan}};
+  const std::string page = versions_page(table);
+  EXPECT_NE(page.find("| point_mass | calibrated | 1e-13 | 0 | 1e-13 | 0.21 | 3.0's slide-only "
+                      "invweight |"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| 3.9's margin/gap |"), std::string::npos);
+  EXPECT_NE(page.find("| 3.11's early exits |"), std::string::npos);
+  EXPECT_NE(page.find("| none |"), std::string::npos);
+  EXPECT_NE(page.find("within 1e-12 m on every row"), std::string::npos);
+  EXPECT_NE(page.find("Closest with the damper here: box, 0.016 m"), std::string::npos);
+  expect_golden("versions.md", page);
+  const std::string skipped =
+      versions_page({{}, "mujoco3: Node.js (the command node) is not installed"});
+  EXPECT_NE(skipped.find("**Not run here**: mujoco3: Node.js"), std::string::npos);
+  EXPECT_EQ(skipped.find("## With friction"), std::string::npos);
+}
+
 TEST(ReportPages, ClosedFormsMatchesGolden) {
   expect_golden("closed_forms.md", closed_forms_page(closed_forms_fixture()));
 }
