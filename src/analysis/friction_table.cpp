@@ -17,6 +17,7 @@
 #include "io/scene_file.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/stepper.hpp"
+#include "mujoco3/node_mujoco.hpp"
 
 namespace contact2d::analysis {
 
@@ -263,7 +264,14 @@ FrictionParts friction_parts(const Scene& scene, const std::string& mapping) {
 
 FrictionRow friction_row(const FrictionScene& s) {
   const Trajectory reference = simulate(s.scene);
-  FrictionRow row{s.name, s.what, {}, {}, {}, 0.0, 0.0, 0.0, 0.0, {}};
+  FrictionRow row;
+  row.name = s.name;
+  row.what = s.what;
+  if (mujoco3::missing().empty()) {
+    const engines::EngineSpec damper = engines::parse_engine("mujoco3:compensated:corners:damper");
+    row.mujoco3_damper =
+        outcome(reference, simulate(*engines::make_stepper(damper, s.scene), s.scene.sim));
+  }
   Trajectory compensated;
   for (mujoco::Mapping m : {mujoco::Mapping::Calibrated, mujoco::Mapping::Compensated}) {
     Trajectory mj = simulate(*engines::make_stepper(mujoco_engine(m), s.scene), s.scene.sim);

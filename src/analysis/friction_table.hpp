@@ -37,6 +37,7 @@
 // but which shows how much of the difference the push makes.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -102,6 +103,9 @@ struct FrictionRow {
   // Each knob's difference to the reference (m), in kFrictionKnobs' order;
   // NaN where it does not apply, +∞ where MuJoCo diverged.
   std::vector<double> knobs;
+  // MuJoCo 3.14 with its friction damper (mujoco3:compensated:corners:damper,
+  // docs/mujoco3.md): max_pos is NaN when MuJoCo 3 did not run here.
+  FrictionOutcome mujoco3_damper{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
 };
 
 // The scene as the reference runs it to conform to MuJoCo's model under

@@ -42,9 +42,10 @@ three (triangle inequality).
 
 )md";
   Table t{{"scene", "calibrated (m)", "compensated (m)", "MuJoCo's hop (m)", "shape (m)",
-           "push (m)", "the rest (m)"},
+           "push (m)", "the rest (m)", "MuJoCo 3.14, damper (m)"},
           {}};
   int reached = 0, conforms = 0, push_larger = 0;
+  int damper_ran = 0, damper_reached = 0, damper_better = 0;  // MuJoCo 3.14's damper
   double worst_rest = 0.0;
   for (const analysis::FrictionRow& r : rows) {
     const double best = std::min(r.calibrated.max_pos, r.compensated.max_pos);
@@ -55,7 +56,15 @@ three (triangle inequality).
     add_row(t, {r.what + " (`" + r.name + "`)", format_significant(r.calibrated.max_pos, 3),
                 format_significant(r.compensated.max_pos, 3),
                 format_significant(r.compensated.hop, 3), format_significant(r.shape, 3),
-                format_significant(r.push, 3), format_significant(r.conformance, 3)});
+                format_significant(r.push, 3), format_significant(r.conformance, 3),
+                std::isnan(r.mujoco3_damper.max_pos)
+                    ? std::string("not run")
+                    : format_significant(r.mujoco3_damper.max_pos, 3)});
+    if (!std::isnan(r.mujoco3_damper.max_pos)) {
+      ++damper_ran;
+      damper_reached += r.mujoco3_damper.max_pos <= goal;
+      damper_better += r.mujoco3_damper.max_pos < best;
+    }
   }
   out += to_markdown(t);
   out += "\n" + std::to_string(reached) + " of " + std::to_string(rows.size()) +
@@ -67,6 +76,16 @@ three (triangle inequality).
          " m: what separates the engines is the friction law. Of it the " +
          "push is the larger part in " + std::to_string(push_larger) + " of " +
          std::to_string(rows.size()) + " scenes, the shape in the others.\n";
+  if (damper_ran > 0)
+    out +=
+        "\nThe last column is MuJoCo 3.14 with the friction rows' own damper "
+        "(`mujoco3:compensated:corners:damper`, versions.md, docs/mujoco3.md), which 2.2.2 "
+        "cannot have: " +
+        std::to_string(damper_reached) + " of " + std::to_string(damper_ran) + " scenes within " +
+        format_significant(goal) +
+        " m, closer than 2.2.2's better "
+        "mapping in " +
+        std::to_string(damper_better) + " of " + std::to_string(damper_ran) + ".\n";
   out += R"md(
 **What keeps MuJoCo away: the push.** In MuJoCo 2.2.2's elliptic cone a
 sliding contact's normal force is
