@@ -23,9 +23,10 @@ const char* const kGifFilter =
 
 VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps,
                          VideoFormat format, std::string option)
-    : path_(path), option_(std::move(option)) {
+    : path_(path), option_(std::move(option)), out_(std::make_unique<AtomicFile>(path)) {
   // A write to a dead ffmpeg must fail with EPIPE, not kill the game.
   std::signal(SIGPIPE, SIG_IGN);
+  const std::string& temporary = out_->temp_path();
   int fds[2];
   if (pipe(fds) != 0)
     throw InputError(option_ + " " + path + ": cannot create a pipe (" + std::strerror(errno) +
@@ -37,10 +38,10 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps
       "rgb24",  "-video_size", size,    "-framerate", rate, "-i",       "-"};
   const std::vector<std::string> encoding =
       format == VideoFormat::Gif
-          ? std::vector<std::string>{"-vf", kGifFilter, "-f", "gif", path + ".tmp"}
+          ? std::vector<std::string>{"-vf", kGifFilter, "-f", "gif", temporary}
           : std::vector<std::string>{"-vf",       "vflip",      "-c:v", "libx264",  "-preset",
                                      "veryfast",  "-crf",       "20",   "-pix_fmt", "yuv420p",
-                                     "-movflags", "+faststart", "-f",   "mp4",      path + ".tmp"};
+                                     "-movflags", "+faststart", "-f",   "mp4",      temporary};
   args.insert(args.end(), encoding.begin(), encoding.end());
   std::vector<char*> argv;
   argv.reserve(args.size() + 1);
@@ -71,7 +72,6 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps
   }
   pipe_ = fdopen(fds[1], "wb");
   register_child(pid_);
-  temp_slot_ = register_temporary(path_ + ".tmp");
 }
 
 VideoWriter::~VideoWriter() { abandon(); }
@@ -85,9 +85,7 @@ void VideoWriter::abandon() {
   waitpid(pid_, &status, 0);
   register_child(0);
   pid_ = -1;
-  std::remove((path_ + ".tmp").c_str());
-  unregister_temporary(temp_slot_);
-  temp_slot_ = -1;
+  out_.reset();  // removes the temporary
 }
 
 bool VideoWriter::write(const std::vector<unsigned char>& rgb) {
@@ -103,20 +101,20 @@ void VideoWriter::finish() {
   waitpid(pid_, &status, 0);
   register_child(0);
   pid_ = -1;
-  const std::string temporary = path_ + ".tmp";
-  unregister_temporary(temp_slot_);  // from here on, removed or renamed below
-  temp_slot_ = -1;
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::remove(temporary.c_str());
+    out_.reset();
     throw InputError(option_ + " " + path_ + ": ffmpeg failed (exit status " +
                      std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
                      "); no video written");
   }
   // Like every output of contact2d: the file appears only when complete.
-  if (std::rename(temporary.c_str(), path_.c_str()) != 0) {
-    throw InputError(option_ + " " + path_ + ": cannot write the video (" + std::strerror(errno) +
-                     ")");
+  try {
+    out_->commit();
+  } catch (const InputError& e) {
+    out_.reset();
+    throw InputError(option_ + " " + e.what());
   }
+  out_.reset();
 }
 
 }  // namespace contact2d::game

@@ -6,8 +6,11 @@
 
 #include <sys/types.h>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "io/atomic_file.hpp"
 
 namespace contact2d::game {
 
@@ -28,7 +31,7 @@ class VideoWriter {
   bool write(const std::vector<unsigned char>& rgb);
   // Closes the pipe and waits; throws InputError when ffmpeg failed.
   void finish();
-  // Stops ffmpeg and removes "<path>.tmp": no video. What the destructor
+  // Stops ffmpeg and removes its temporary: no video. What the destructor
   // does when finish() was not called (an exception left the frame loop):
   // a video appears only when it is complete.
   void abandon();
@@ -38,7 +41,9 @@ class VideoWriter {
   std::string option_;
   FILE* pipe_ = nullptr;
   pid_t pid_ = -1;
-  int temp_slot_ = -1;  // "<path>.tmp", removed if a signal ends the program (io/interrupt.hpp)
+  // What ffmpeg writes (its temporary file, unique to this process, renamed
+  // onto the path or written through a device or FIFO at finish(): io/atomic_file.hpp).
+  std::unique_ptr<AtomicFile> out_;
 };
 
 }  // namespace contact2d::game

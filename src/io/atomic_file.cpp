@@ -89,11 +89,48 @@ void remove_stale_temporaries(const std::string& path) {
   }
 }
 
+// Whether `path` is in /proc or /dev/fd, or a symbolic link into /proc
+// (/dev/stdout): one of this process's open files, which only writing
+// through reaches (renaming onto its file would leave the program's own
+// descriptor on the old one).
+bool links_into_proc(const std::string& path) {
+  if (path.rfind("/proc/", 0) == 0 || path.rfind("/dev/fd/", 0) == 0) return true;
+  std::error_code ec;
+  if (!fs::is_symlink(fs::symlink_status(path, ec))) return false;
+  const std::string target = fs::read_symlink(path, ec).string();
+  return target.rfind("/proc/", 0) == 0 || links_into_proc(target);
+}
+
 }  // namespace
 
-AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-  remove_stale_temporaries(path_);
-  std::string pattern = path_ + ".tmp." + std::to_string(::getpid()) + ".XXXXXX";
+OutputTarget output_target(const std::string& path) {
+  OutputTarget t{path, false};
+  std::error_code ec;
+  const fs::file_status followed = fs::status(path, ec);
+  const bool exists = fs::exists(followed);
+  if ((exists && !fs::is_regular_file(followed) && !fs::is_directory(followed)) ||
+      links_into_proc(path)) {
+    t.stream = true;  // a FIFO, a device, a socket, this process's stdout
+    return t;
+  }
+  if (fs::is_symlink(fs::symlink_status(path, ec)) && exists)
+    t.path = fs::canonical(path, ec).string();  // the link stays, its file is replaced
+  return t;
+}
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), target_(output_target(path_)) {
+  std::string pattern;
+  if (target_.stream) {
+    // Written through at commit; meanwhile in the temporary directory, never
+    // beside a device (/dev) or a FIFO.
+    std::error_code ec;
+    const fs::path tmp = fs::temp_directory_path(ec);
+    pattern = ((ec ? fs::path("/tmp") : tmp) / "contact2d.stream.").string() +
+              std::to_string(::getpid()) + ".XXXXXX";
+  } else {
+    remove_stale_temporaries(target_.path);
+    pattern = target_.path + ".tmp." + std::to_string(::getpid()) + ".XXXXXX";
+  }
   const InterruptsHeld held;  // no signal between creating the file and registering it
   const int fd = mkstemp(pattern.data());
   if (fd < 0) {
@@ -119,11 +156,72 @@ AtomicFile::~AtomicFile() {
   unregister_temporary(slot_);
 }
 
+namespace {
+
+// Copies the file `from` into `to`, opened for writing as it is (a FIFO, a
+// device: no O_CREAT, no O_TRUNC). A reader that went away is EPIPE, not
+// SIGPIPE: the signal is ignored meanwhile. Returns 0 or the errno.
+int write_through(const std::string& from, const std::string& to) {
+  struct sigaction ignore {
+  }, saved{};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  ::sigaction(SIGPIPE, &ignore, &saved);
+  int error = 0;
+  // This process's own stream (/dev/stdout, /dev/fd/N): its descriptor, so
+  // that the output continues where the program's other output is (opening
+  // the path anew would start a redirected file over at offset 0).
+  int own = -1;
+  if (to == "/dev/stdout") own = STDOUT_FILENO;
+  if (to == "/dev/stderr") own = STDERR_FILENO;
+  for (const char* prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+    const std::string p(prefix);
+    if (to.size() > p.size() && to.compare(0, p.size(), p) == 0 &&
+        to.find_first_not_of("0123456789", p.size()) == std::string::npos)
+      own = static_cast<int>(std::strtol(to.c_str() + p.size(), nullptr, 10));
+  }
+  if (own == STDOUT_FILENO) std::fflush(stdout);
+  const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
+  const int out = in < 0     ? -1
+                  : own >= 0 ? own
+                             : ::open(to.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+  if (in < 0 || out < 0) error = errno;
+  char buffer[1 << 16];
+  while (error == 0) {
+    const ssize_t n = ::read(in, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) error = errno;
+    if (n <= 0) break;
+    for (ssize_t done = 0; done < n && error == 0;) {
+      const ssize_t w = ::write(out, buffer + done, static_cast<size_t>(n - done));
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) error = w < 0 ? errno : EIO;
+      done += w > 0 ? w : 0;
+    }
+  }
+  if (out >= 0 && own < 0 && ::close(out) != 0 && error == 0) error = errno;
+  if (in >= 0) ::close(in);
+  ::sigaction(SIGPIPE, &saved, nullptr);
+  return error;
+}
+
+}  // namespace
+
 void AtomicFile::commit() {
   const bool flushed = std::fflush(file_) == 0;
   const bool closed = std::fclose(file_) == 0;
   file_ = nullptr;
-  const bool renamed = flushed && closed && std::rename(temp_path_.c_str(), path_.c_str()) == 0;
+  if (target_.stream) {
+    const int error = flushed && closed ? write_through(temp_path_, path_) : errno;
+    std::remove(temp_path_.c_str());
+    unregister_temporary(slot_);
+    slot_ = -1;
+    if (error != 0)
+      throw InputError(path_ + ": cannot write output (" + std::strerror(error) + ")");
+    return;
+  }
+  const bool renamed =
+      flushed && closed && std::rename(temp_path_.c_str(), target_.path.c_str()) == 0;
   const int error = errno;
   if (!renamed) std::remove(temp_path_.c_str());
   unregister_temporary(slot_);
@@ -155,7 +253,17 @@ void check_output_file(const std::string& option, const std::string& path) {
   const std::string what = option + " " + path;
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw InputError(what + ": is a directory (give a file name)");
-  require_writable_directory(what, directory_of(path));
+  const OutputTarget target = output_target(path);
+  if (target.stream) {
+    if (::access(path.c_str(), W_OK) != 0)
+      throw InputError(what + ": is not writable (" + std::strerror(errno) + ")");
+    return;
+  }
+  if (fs::is_symlink(fs::symlink_status(path, ec)) && !fs::exists(path, ec))
+    throw InputError(what +
+                     ": a symbolic link to a file that does not exist (give the file "
+                     "itself)");
+  require_writable_directory(what, directory_of(target.path));
 }
 
 void check_output_directory(const std::string& option, const std::string& path) {

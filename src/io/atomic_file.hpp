@@ -10,9 +10,25 @@
 
 namespace contact2d {
 
+// What an output path names, and how it is written (docs/cli.md):
+//  - a regular file, or none yet: replaced atomically (a temporary beside it,
+//    renamed onto it at commit);
+//  - a symbolic link to a regular file: that file, the same way (the link
+//    stays); a link to a file that does not exist is refused
+//    (check_output_file);
+//  - a FIFO, a character or block device, a socket, or a link into /proc
+//    (/dev/stdout, /dev/fd/N): written through at commit, never replaced or
+//    removed (stream); the output waits in the temporary directory until then.
+struct OutputTarget {
+  std::string path;     // the file that is replaced (symlinks followed), or `path` itself
+  bool stream = false;  // written through
+};
+OutputTarget output_target(const std::string& path);
+
 class AtomicFile {
  public:
-  // Opens a temporary file "PATH.tmp.PID.XXXXXX" in the target's directory;
+  // Opens a temporary file "PATH.tmp.PID.XXXXXX" in the target's directory
+  // ("$TMPDIR/contact2d.stream.PID.XXXXXX" for a target written through);
   // throws InputError (from io/scene_file.hpp) when the directory does not
   // exist or is not writable. First it removes the temporaries of the same
   // PATH that a killed run left (SIGKILL cannot be caught): those whose PID
@@ -31,6 +47,7 @@ class AtomicFile {
 
  private:
   std::string path_;
+  OutputTarget target_;
   std::string temp_path_;
   std::FILE* file_ = nullptr;
   int slot_ = -1;  // io/interrupt.hpp: removed if a signal ends the program first

@@ -95,3 +95,37 @@ INSTANTIATE_TEST_SUITE_P(Commands, BadOutput, ::testing::ValuesIn(output_cases()
                          [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
+
+namespace {
+
+// The program's own standard output as an output path (io/atomic_file.hpp:
+// a link into /proc is written through this process's descriptor): the
+// trajectory and the summary line land in the redirected file one after
+// the other, nothing is renamed onto the path. /proc/self/fd/1 rather than
+// /dev/stdout, so that a regression could not replace a file of the
+// machine's /dev (renaming onto /proc fails).
+TEST(OutputThroughStdout, SimulateWritesItsCsvAndSummaryInOrder) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("contact2d_stdout_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string command = "cd '" + dir.string() + "' && '" + CONTACT2D_EXE + "' simulate " +
+                              kPointMass +
+                              " --duration 0.01 --csv /proc/self/fd/1 >out.txt 2>err.txt";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_file(dir / "err.txt");
+  const std::string out = read_file(dir / "out.txt");
+  const size_t header = out.find("t,x,y,theta,vx,vy,omega\n");
+  const size_t summary = out.find("point_mass [ref, ");
+  EXPECT_EQ(header, 0u) << out;
+  EXPECT_NE(summary, std::string::npos) << out;
+  EXPECT_GT(summary, header) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1 + 11 + 1)
+      << out;  // header, 11 rows, summary
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"err.txt", "out.txt"}));
+  fs::remove_all(dir);
+}
+
+}  // namespace
