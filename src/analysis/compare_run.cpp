@@ -263,6 +263,11 @@ std::string comparison_json(const Comparison& c, const std::string& scene_label)
   for (size_t i = 1; i < runs.size(); ++i)
     json_errors(o, runs[0].key + "_vs_" + runs[i].key, runs[i].vs_first, true);
   json_diagnosis(o, c.diagnosis);
+  if (const std::vector<std::string> notes = version_notes(c); !notes.empty()) {
+    o << ", \"version_notes\": [";
+    for (size_t i = 0; i < notes.size(); ++i) o << (i ? ", " : "") << json::string(notes[i]);
+    o << "]";
+  }
   o << "}\n";
   return o.str();
 }

@@ -106,6 +106,12 @@ ThreeWay pair(const Comparison& c, size_t i);
 // is its "scene" (the scene file as given).
 std::string comparison_json(const Comparison& c, const std::string& scene_label);
 
+// What two runs of one engine in two versions have between them, as
+// sentences (analysis/comparison.cpp: MuJoCo 2.2.2 and MuJoCo 3.14 — their
+// distance and its named cause); empty when no such pair was compared.
+// compare prints them under "Versions"; --json has them as "version_notes".
+std::vector<std::string> version_notes(const Comparison& c);
+
 // Energy of the scene's body at the first and last sample of a run, J.
 struct Energies {
   double initial = 0.0;

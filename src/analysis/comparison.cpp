@@ -8,6 +8,7 @@
 #include <optional>
 #include <utility>
 
+#include "analysis/compare_run.hpp"
 #include "analysis/reference.hpp"
 #include "core/contacts.hpp"
 #include "core/dynamics.hpp"
@@ -604,6 +605,48 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
   rank_findings(dg.findings);
   dg.summary = diagnosis_summary(dg.findings, before);
   return dg;
+}
+
+std::vector<std::string> version_notes(const Comparison& c) {
+  // An option's value, or the fallback the engine gives it when left out.
+  auto value = [](const engines::EngineSpec& spec, std::string_view name) {
+    std::string v = spec.option(name);
+    if (const engines::EngineInfo* info = engines::find_engine(spec.kind); v.empty() && info)
+      for (const engines::EngineOption& o : info->options)
+        if (o.name == name) v = std::string(o.fallback);
+    return v;
+  };
+  std::vector<std::string> notes;
+  for (const ComparedRun& two : c.runs) {
+    if (two.spec.kind != "mujoco") continue;
+    for (const ComparedRun& three : c.runs) {
+      if (three.spec.kind != "mujoco3") continue;
+      const double apart = error_between(two.run.trajectory, three.run.trajectory).max_pos;
+      std::string note = two.label + " (MuJoCo 2.2.2) <-> " + three.label +
+                         " (MuJoCo 3.14): " + format_number(apart, 4) + " m. ";
+      const bool damper = value(three.spec, "friction") == "damper" && c.scene.contact.mu > 0.0;
+      if (value(two.spec, "mapping") != value(three.spec, "mapping") ||
+          value(two.spec, "geometry") != value(three.spec, "geometry")) {
+        note += "Their models differ in mapping or geometry (" + two.spec.name() + ", " +
+                three.spec.name() + "): compare one mapping on both to see the versions alone.";
+      } else if (damper) {
+        note +=
+            "MuJoCo 3's friction damper (--friction damper) is the cause: its friction rows "
+            "have a damper of their own, which takes away the push mu*c*|v_t| that 2.2.2's "
+            "shared damper puts on the normal force; against the reference 2.2.2 is " +
+            format_number(two.vs_first.max_pos, 3) + " m away, 3.14 " +
+            format_number(three.vs_first.max_pos, 3) + " m (docs/mujoco3.md).";
+      } else {
+        note +=
+            "The same contact law on both: the model for MuJoCo 3 undoes its three changes "
+            "(3.0's effective mass of a slide-only body, 3.9's margin/gap, 3.11's early "
+            "exits; docs/mujoco3.md), so what is left is rounding of two builds, as far as "
+            "this scene amplifies it.";
+      }
+      notes.push_back(note);
+    }
+  }
+  return notes;
 }
 
 }  // namespace contact2d::analysis

@@ -188,6 +188,9 @@ void print_table(const Comparison& c) {
               << format_number(c.runs[i].run.seconds, 4) << " s";
   if (conv.available) std::cout << ", converged " << format_number(conv.seconds, 4) << " s";
   std::cout << "\n";
+  const std::vector<std::string> versions = analysis::version_notes(c);
+  if (!versions.empty()) std::cout << "\nVersions:\n";
+  for (const std::string& note : versions) std::cout << wrapped(note, "  ");
   const analysis::Diagnosis& d = c.diagnosis;
   if (!d.ran) {
     if (!d.summary.empty()) std::cout << "\nDiagnosis:\n" << wrapped(d.summary, "  ");
