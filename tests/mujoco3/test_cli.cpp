@@ -95,6 +95,16 @@ TEST_F(Mujoco3Cli, SimulateAndCompareRunIt) {
       "compare box.toml --engines mujoco:compensated,mujoco3:compensated --no-diagnosis --json");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("\"ref_vs_mujoco3_max_pos_err\""), std::string::npos) << r.out;
+  // The versions side by side: their distance and its cause.
+  EXPECT_NE(r.out.find("\"version_notes\": [\"MuJoCo (MuJoCo 2.2.2) <-> MuJoCo 3 (MuJoCo 3.14): "),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("The same contact law on both"), std::string::npos) << r.out;
+  r = run("compare box.toml --engines mujoco:compensated,mujoco3:compensated:corners:damper "
+          "--no-diagnosis --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("friction damper (--friction damper) is the cause"), std::string::npos)
+      << r.out;
 }
 
 TEST_F(Mujoco3Cli, WithoutTheDriverOrThePackageItSaysWhatFixesIt) {
