@@ -51,7 +51,8 @@ namespace contact2d::analysis {
 struct AtlasPoint {
   long long index = 0;
   std::string body;     // the body's label
-  std::string mapping;  // seed | exact | calibrated
+  std::string mapping;  // seed | exact | calibrated | compensated
+  std::string engine;   // the MuJoCo: "mujoco" (2.2.2) or "mujoco3" (the spec's engine)
   DampingLaw damping = DampingLaw::KelvinVoigt;
   double mass = 0.0;  // total mass, kg
   double k = 0.0, zeta = 0.0, c = 0.0, mu = 0.0, mu_roll = 0.0, dt = 0.0;

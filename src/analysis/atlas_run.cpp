@@ -63,7 +63,7 @@ AtlasResult run_atlas_point(const AtlasPoint& point, double converged_tol) {
   std::optional<engines::EngineRun> ref, mujoco;
   engines::EngineSpec ref_spec;
   engines::EngineSpec mj_spec;
-  mj_spec.kind = "mujoco";
+  mj_spec.kind = point.engine;
   mj_spec.set("mapping", point.mapping);
   mj_spec.source = "atlas point " + std::to_string(point.index);
   for (const auto* spec : {&ref_spec, &mj_spec}) {

@@ -99,6 +99,10 @@ AtlasPoint atlas_point(const AtlasSpec& spec, long long index) {
   const AtlasBody& body = spec.bodies.at(static_cast<size_t>(rest));
   p.body = body.label;
   p.mapping = spec.mappings[m];
+  p.engine = spec.engine.empty() ? "mujoco" : spec.engine;
+  if (p.engine != "mujoco" && p.engine != "mujoco3")
+    throw InputError(spec.origin + ": atlas.engine = \"" + spec.engine +
+                     "\" is not a MuJoCo engine: mujoco (2.2.2, the default) or mujoco3 (3.14)");
   p.damping = spec.damping[d];
   Scene s = body.scene;
   const double base_mass = total_mass(s);

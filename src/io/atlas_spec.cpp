@@ -187,6 +187,7 @@ void read_atlas_table(AtlasSpec& spec, const toml::table* atlas, const std::stri
   } else {
     spec.damping.push_back(DampingLaw::KelvinVoigt);
   }
+  reader.string("engine", spec.engine);
   std::string integrator(integrator_name(spec.integrator));
   reader.string("integrator", integrator);
   const std::optional<Integrator> parsed = parse_integrator(integrator);
@@ -211,8 +212,8 @@ void read_atlas_table(AtlasSpec& spec, const toml::table* atlas, const std::stri
   reader.integer("count", count);
   reader.integer("seed", seed);
   reader.reject_unknown(
-      "sample, bodies, mappings, damping, integrator, duration, output_dt, converged_tol, count, "
-      "seed");
+      "sample, bodies, mappings, engine, damping, integrator, duration, output_dt, converged_tol, "
+      "count, seed");
   if (spec.random) {
     if (count == -1) fail(origin, "atlas.count", "is required for sample = \"random\"");
     if (count < 1 || count > kAtlasMaxPoints)

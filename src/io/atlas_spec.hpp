@@ -5,7 +5,8 @@
 //   [atlas]
 //   sample = "grid"                  # or "random"
 //   bodies = ["point_mass", "box"]   # shapes (default geometry) or scene files
-//   mappings = ["calibrated"]        # seed | exact | calibrated
+//   mappings = ["calibrated"]        # seed | exact | calibrated | compensated
+//   engine = "mujoco3"               # optional: MuJoCo 3.14 instead of 2.2.2
 //   damping = ["kelvin_voigt"]       # kelvin_voigt | compression
 //   integrator = "semi_implicit_euler"
 //   duration = 2.0                   # s
@@ -54,6 +55,9 @@ struct AtlasSpec {
   bool random = false;
   std::vector<AtlasBody> bodies;
   std::vector<std::string> mappings;
+  // The registry's kind of the MuJoCo run at every point; empty: MuJoCo
+  // 2.2.2 (analysis/atlas_run.cpp checks the name).
+  std::string engine;
   std::vector<DampingLaw> damping;
   Integrator integrator = Integrator::SemiImplicitEuler;
   double duration = 2.0;

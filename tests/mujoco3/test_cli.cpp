@@ -100,11 +100,56 @@ TEST_F(Mujoco3Cli, SimulateAndCompareRunIt) {
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("The same contact law on both"), std::string::npos) << r.out;
-  r = run("compare box.toml --engines mujoco:compensated,mujoco3:compensated:corners:damper "
+  r =
+      run("compare box.toml --engines mujoco:compensated,mujoco3:compensated:corners:damper "
           "--no-diagnosis --json");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("friction damper (--friction damper) is the cause"), std::string::npos)
       << r.out;
+}
+
+// The atlas on MuJoCo 3 (engine = "mujoco3" in the spec): the same rows as
+// on 2.2.2 but for rounding, column by column; another engine is one line.
+TEST_F(Mujoco3Cli, TheAtlasRunsOnMujoco3) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const std::string spec = slurp(std::string(CONTACT2D_SOURCE_DIR) + "/tests/slurm/tiny.toml");
+  const std::string head = "[atlas]\n";
+  const size_t at = spec.find(head);
+  ASSERT_NE(at, std::string::npos);
+  auto with_engine = [&](const std::string& engine) {
+    std::string s = spec;
+    s.insert(at + head.size(), "engine = \"" + engine + "\"\n");
+    return s;
+  };
+  std::ofstream(dir_ / "work" / "two.toml") << spec;
+  std::ofstream(dir_ / "work" / "three.toml") << with_engine("mujoco3");
+  std::ofstream(dir_ / "work" / "bad.toml") << with_engine("bullet");
+  ASSERT_EQ(run("atlas two.toml --out two").status, 0);
+  ASSERT_EQ(run("atlas three.toml --out three").status, 0);
+  auto column = [&](const std::string& dir, const std::string& name) {
+    std::istringstream lines(slurp(dir_ / "work" / dir / "points.csv"));
+    std::string header, line;
+    std::getline(lines, header);
+    size_t index = 0;
+    for (std::istringstream h(header); std::getline(h, line, ',') && line != name;) ++index;
+    std::vector<double> values;
+    while (std::getline(lines, line)) {
+      std::istringstream cells(line);
+      std::string cell;
+      for (size_t i = 0; i <= index; ++i) std::getline(cells, cell, ',');
+      values.push_back(std::stod(cell));
+    }
+    return values;
+  };
+  const std::vector<double> two = column("two", "ref_mujoco_max_pos");
+  const std::vector<double> three = column("three", "ref_mujoco_max_pos");
+  ASSERT_EQ(two.size(), 8u);
+  ASSERT_EQ(three.size(), two.size());
+  // Versions differ by rounding (test_versions.cpp): 1e-9 m on these short runs.
+  for (size_t i = 0; i < two.size(); ++i) EXPECT_NEAR(three[i], two[i], 1e-9) << "point " << i;
+  const Result bad = run("atlas bad.toml --out bad");
+  EXPECT_EQ(bad.status, 2);
+  expect_one_line(bad.err, "atlas.engine = \"bullet\" is not a MuJoCo engine");
 }
 
 TEST_F(Mujoco3Cli, WithoutTheDriverOrThePackageItSaysWhatFixesIt) {
