@@ -2,6 +2,7 @@
 // subcommand parses its arguments, loads a scene, calls the library and prints
 // or writes the result.  Exit status: 0 success, 2 bad input, 3 diverged.
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,17 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   } catch (const contact2d::EngineError& e) {
     std::cerr << "contact2d: " << e.what() << "\n";
+    return kExitDiverged;
+  } catch (const std::bad_alloc&) {
+    std::cerr
+        << "contact2d: out of memory (a run of this length and output_dt needs more than "
+           "this machine has: a longer output_dt or a shorter duration keeps fewer samples)\n";
+    return kExitDiverged;
+  } catch (const std::exception& e) {  // a run failed for a reason outside its input
+    std::string what = e.what();
+    for (char& ch : what)
+      if (ch == '\n') ch = ' ';
+    std::cerr << "contact2d: " << what << "\n";
     return kExitDiverged;
   }
   return kExitOk;

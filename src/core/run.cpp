@@ -1,5 +1,6 @@
 #include "core/run.hpp"
 
+#include <algorithm>
 #include <limits>
 
 namespace contact2d {
@@ -72,7 +73,10 @@ RunResult run(Stepper& stepper, const SimParams& sim,
 
 Trajectory simulate(Stepper& stepper, const SimParams& sim) {
   Trajectory trajectory;
-  trajectory.samples.reserve(static_cast<size_t>(step_count(sim) / sample_stride(sim) + 2));
+  // Room for the samples of a usual run; a longer one grows as it streams
+  // (reserving 1e9 samples up front would fail before the first step).
+  const long long samples = step_count(sim) / sample_stride(sim) + 2;
+  trajectory.samples.reserve(static_cast<size_t>(std::min<long long>(samples, 1 << 20)));
   const RunResult result =
       run(stepper, sim, [&](const Sample& s) { trajectory.samples.push_back(s); });
   trajectory.divergence = result.divergence;

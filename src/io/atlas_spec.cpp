@@ -1,6 +1,8 @@
 // The atlas spec (io/atlas_spec.hpp).
 #include "io/atlas_spec.hpp"
 
+#include "io/read_file.hpp"
+
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -316,12 +318,9 @@ AtlasSpec parse_atlas_spec(const std::string& text, const std::string& origin,
 }
 
 AtlasSpec load_atlas_spec(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the atlas spec");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = read_input_file(path, "the atlas spec");
   const std::filesystem::path p(path);
-  return parse_atlas_spec(text.str(), path, p.has_parent_path() ? p.parent_path().string() : ".");
+  return parse_atlas_spec(text, path, p.has_parent_path() ? p.parent_path().string() : ".");
 }
 
 long long atlas_point_count(const AtlasSpec& spec) {

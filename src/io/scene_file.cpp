@@ -1,5 +1,7 @@
 #include "io/scene_file.hpp"
+
 #include "core/format.hpp"
+#include "io/read_file.hpp"
 #include "io/toml_table.hpp"
 
 #include <toml++/toml.h>
@@ -372,14 +374,9 @@ Scene load_scene(const std::string& path, const std::vector<Override>& overrides
   if (std::filesystem::is_directory(path, ec)) {
     throw InputError(path + ": cannot read scene file (it is a directory)");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read scene file (missing or unreadable)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read scene file (read error)");
   // A MuJoCo model given where a scene belongs: say what it is, not that
   // the TOML is malformed. XML starts with '<' (after blanks); TOML cannot.
-  const std::string& content = text.str();
+  const std::string content = read_input_file(path, "scene file");
   const size_t first = content.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
   if (first != std::string::npos && content[first] == '<') {
     throw InputError(path +

@@ -20,6 +20,7 @@
 
 #include "core/input_error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/scene_file.hpp"
 
 namespace contact2d {
 namespace {
@@ -119,6 +120,34 @@ TEST_F(OutputTargets, AFailedRunWritesNothingThroughAFifo) {
     std::fputs("half a run", out.get());
   }  // not committed: nothing opens the FIFO (no reader is needed, none waits)
   expect_only({"pipe"});
+}
+
+}  // namespace
+}  // namespace contact2d
+
+namespace contact2d {
+namespace {
+
+// Input files are read bounded (io/read_file.hpp): a scene file past 4 MiB
+// (here a private file of 5 MiB of comment lines, standing for /dev/zero or
+// a file given by mistake) is one line, not a read until memory runs out.
+TEST(InputFiles, AHugeSceneFileIsRefusedInOneLine) {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                     ("contact2d_huge_" + std::to_string(::getpid()) + ".toml");
+  {
+    std::ofstream out(path);
+    const std::string line(1023, '#');
+    for (int i = 0; i < 5 * 1024; ++i) out << line << '\n';
+  }
+  try {
+    load_scene(path.string());
+    ADD_FAILURE() << "read";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("cannot read scene file (larger than 4 MiB"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos);
+  }
+  std::filesystem::remove(path);
 }
 
 }  // namespace

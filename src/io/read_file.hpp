@@ -1,0 +1,18 @@
+// Reading an input file whole, bounded: a scene or an atlas spec is a few
+// kB, so a path that names something endless (/dev/zero, a FIFO nobody
+// closes, a huge file given by mistake) is refused at kMaxInputBytes with
+// one line instead of reading until memory runs out.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace contact2d {
+
+constexpr std::size_t kMaxInputBytes = 4u << 20;  // 4 MiB
+
+// The file's text. Throws InputError "PATH: cannot read WHAT (…)" when
+// it cannot be opened or read, or is larger than kMaxInputBytes.
+std::string read_input_file(const std::string& path, const std::string& what);
+
+}  // namespace contact2d
