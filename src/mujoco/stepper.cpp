@@ -1,5 +1,7 @@
 #include "mujoco/stepper.hpp"
 
+#include <utility>
+
 #include "mujoco/divergence.hpp"
 
 namespace contact2d::mujoco {
@@ -93,15 +95,20 @@ std::vector<std::string> MujocoStepper::warnings() const {
   return out;
 }
 
-RunFacts MujocoStepper::facts(const Scene& scene) const {
+RunFacts mujoco_run_facts(const Scene& scene, const SolverSettings& settings,
+                          std::vector<std::string> warnings) {
   RunFacts f;
-  f.warnings = warnings();
-  if (settings_.refsafe_clamped) f.notes.emplace_back("refsafe");
-  f.values = {{"solref[0]", settings_.solref[0]},
-              {"solref[1]", settings_.solref[1]},
-              {"impratio", settings_.impratio},
-              {"mu_roll", cone_mu_roll(scene, settings_)}};
+  f.warnings = std::move(warnings);
+  if (settings.refsafe_clamped) f.notes.emplace_back("refsafe");
+  f.values = {{"solref[0]", settings.solref[0]},
+              {"solref[1]", settings.solref[1]},
+              {"impratio", settings.impratio},
+              {"mu_roll", cone_mu_roll(scene, settings)}};
   return f;
+}
+
+RunFacts MujocoStepper::facts(const Scene& scene) const {
+  return mujoco_run_facts(scene, settings_, warnings());
 }
 
 }  // namespace contact2d::mujoco

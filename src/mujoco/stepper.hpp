@@ -23,6 +23,13 @@
 
 namespace contact2d::mujoco {
 
+// What a MuJoCo run reports beyond its trajectory (Stepper::facts), from the
+// settings its model was written with: its warnings, "refsafe" when the
+// timeconst was raised, and solref, impratio and the rolling coefficient the
+// model writes. Both versions' steppers report through it.
+RunFacts mujoco_run_facts(const Scene& scene, const SolverSettings& settings,
+                          std::vector<std::string> warnings);
+
 class MujocoStepper final : public Stepper {
  public:
   // Generates the model and loads it (InputError on a load error or warning).

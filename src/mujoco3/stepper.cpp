@@ -6,6 +6,7 @@
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "mujoco/divergence.hpp"
+#include "mujoco/stepper.hpp"
 
 namespace contact2d::mujoco3 {
 namespace {
@@ -139,14 +140,7 @@ std::vector<std::string> Mujoco3Stepper::warnings() const {
 }
 
 RunFacts Mujoco3Stepper::facts(const Scene& scene) const {
-  RunFacts f;
-  f.warnings = warnings();
-  if (settings_.refsafe_clamped) f.notes.emplace_back("refsafe");
-  f.values = {{"solref[0]", settings_.solref[0]},
-              {"solref[1]", settings_.solref[1]},
-              {"impratio", settings_.impratio},
-              {"mu_roll", mujoco::cone_mu_roll(scene, settings_)}};
-  return f;
+  return mujoco::mujoco_run_facts(scene, settings_, warnings());
 }
 
 }  // namespace contact2d::mujoco3

@@ -223,16 +223,6 @@ TEST(ComparisonVideo, OtherExtensionsAreRefusedNamingTheOption) {
   }
 }
 
-// The size of the writer's temporary "PATH.tmp.PID.XXXXXX" (io/atomic_file.hpp),
-// -1 while there is none.
-long long temporary_size(const fs::path& video) {
-  const std::string prefix = video.filename().string() + ".tmp.";
-  for (const auto& e : fs::directory_iterator(video.parent_path()))
-    if (e.path().filename().string().rfind(prefix, 0) == 0)
-      return static_cast<long long>(fs::file_size(e.path()));
-  return -1;
-}
-
 // A writer dropped before finish() (an exception left the frame loop)
 // leaves neither the video nor its temporary: a video appears only complete.
 TEST(ComparisonVideo, AnAbandonedWriterLeavesNoFile) {
@@ -244,13 +234,13 @@ TEST(ComparisonVideo, AnAbandonedWriterLeavesNoFile) {
     bool started = false;
     for (int i = 0; i < 1000 && !started; ++i) {
       ASSERT_TRUE(writer.write(grey));
-      started = temporary_size(video) > 0;
+      started = test::temporary_size(video) > 0;
       if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     ASSERT_TRUE(started);
   }
   EXPECT_FALSE(fs::exists(video));
-  EXPECT_EQ(temporary_size(video), -1);
+  EXPECT_EQ(test::temporary_size(video), -1);
 }
 
 // Without a display: the window backend fails with one line saying what to

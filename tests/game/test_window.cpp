@@ -269,16 +269,6 @@ void keys_move_the_ball(const std::string& engine) {
   EXPECT_NE(json.find("\"engine\":\"" + engine + "\""), std::string::npos) << json;
 }
 
-// The size of a video's temporary "PATH.tmp.PID.XXXXXX" (io/atomic_file.hpp),
-// -1 while there is none.
-long long partial_size(const fs::path& video) {
-  const std::string prefix = video.filename().string() + ".tmp.";
-  for (const auto& e : fs::directory_iterator(video.parent_path()))
-    if (e.path().filename().string().rfind(prefix, 0) == 0)
-      return static_cast<long long>(fs::file_size(e.path()));
-  return -1;
-}
-
 TEST(Window, KeysMoveTheBallAndTheScreenShowsTheGame) { keys_move_the_ball("ref"); }
 
 #ifdef CONTACT2D_WITH_MUJOCO
@@ -344,7 +334,7 @@ TEST(Window, RecordingTheGoalReplayWritesAVideoOfEveryFrame) {
       << read_file(err);
   const std::string json = read_file(out), log = read_file(err);
   EXPECT_NE(json.find("\"goal\":true"), std::string::npos) << json;
-  EXPECT_EQ(partial_size(video), -1);
+  EXPECT_EQ(contact2d::test::temporary_size(video), -1);
   ASSERT_TRUE(fs::exists(video));
   const long frames_drawn = std::atol(log.substr(log.find("play: ") + 6).c_str());
   const long frames_in_video = std::atol(
@@ -386,7 +376,7 @@ TEST(Window, InterruptedRecordingLeavesNoFile) {
   }
   bool started = false;
   for (int i = 0; i < 3000 && !started; ++i) {  // up to 30 s for ffmpeg's first bytes
-    started = partial_size(video) > 0;
+    started = contact2d::test::temporary_size(video) > 0;
     if (!started) pause(0.01);
   }
   ASSERT_TRUE(started) << read_file(err);
@@ -396,7 +386,7 @@ TEST(Window, InterruptedRecordingLeavesNoFile) {
   ASSERT_TRUE(WIFEXITED(status)) << "killed instead of exiting";
   EXPECT_EQ(WEXITSTATUS(status), 130);
   pause(0.5);  // a surviving ffmpeg would write (or rename) by now
-  EXPECT_EQ(partial_size(video), -1);
+  EXPECT_EQ(contact2d::test::temporary_size(video), -1);
   EXPECT_FALSE(fs::exists(video));
   const std::string log = read_file(err);
   EXPECT_NE(log.find("contact2d: interrupted (SIGINT)"), std::string::npos) << log;
