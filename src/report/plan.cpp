@@ -320,6 +320,7 @@ void write_report(const ReportRequest& o) {
   // Kelvin–Voigt damper both have.
   progress("versions");
   std::vector<analysis::NamedScene> version_scenes;
+  version_scenes.reserve(kScenes.size());
   for (const std::string& s : kScenes)
     version_scenes.push_back({s, load(scene_path(s), {{"contact.damping", "kelvin_voigt"}})});
   const analysis::VersionTable versions =
