@@ -3,7 +3,7 @@
 // same MJCF is the same contact law on both (docs/mujoco3.md), held to
 // rounding at the first step that differs and to 1e-9 m or the scene's own
 // amplification of rounding (VersionGap, below). Its own executable with
-// the label "versions": ~90 s of stepping, run in the Release stage only.
+// the label "versions": 50–80 s of stepping, run in the Release stage only.
 #include <cmath>
 #include <filesystem>
 
