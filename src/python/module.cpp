@@ -136,6 +136,15 @@ py::array_t<double> converged_array(const DenseTrajectory& d, const Trajectory& 
   return trajectory_array(t);
 }
 
+// model_dt as the CLI's --model-dt takes it: (0, 1] s, or not given (None).
+double checked_model_dt(const std::optional<double>& model_dt) {
+  if (!model_dt) return 0.0;
+  if (!(*model_dt > 0.0 && *model_dt <= 1.0))
+    throw InputError("model_dt = " + format_number("%g", *model_dt) +
+                     " is out of range: must be in (0, 1] s (or None: the timestep)");
+  return *model_dt;
+}
+
 // How a Python caller wrote an option, to start an error: "mapping =".
 std::string python_keyword(std::string_view name) { return std::string(name) + " ="; }
 
@@ -151,8 +160,9 @@ std::string not_physics(const std::string& source, const std::string& engine,
 py::dict py_simulate(const py::object& scene_object, const std::string& engine,
                      const std::optional<std::string>& integrator, std::optional<double> dt,
                      std::optional<double> duration, const std::string& mapping,
-                     const std::string& geometry, const std::string& friction, double model_dt,
-                     bool allow_nonphysical) {
+                     const std::string& geometry, const std::string& friction,
+                     const std::optional<double>& model_dt_given, bool allow_nonphysical) {
+  const double model_dt = checked_model_dt(model_dt_given);
   const Scene scene = checked_scene(scene_object, integrator, dt, duration);
   const std::string source = source_of(scene_object);
   const engines::EngineSpec spec = engines::engine_with_options(
@@ -183,9 +193,10 @@ py::dict py_simulate(const py::object& scene_object, const std::string& engine,
 py::dict py_compare(const py::object& scene_object, const std::optional<std::string>& integrator,
                     std::optional<double> dt, std::optional<double> duration,
                     const std::string& mapping, const std::string& geometry,
-                    const std::string& friction, double model_dt,
+                    const std::string& friction, const std::optional<double>& model_dt_given,
                     const std::vector<std::string>& engine_names, double converged_tol,
                     bool diagnosis, bool allow_nonphysical) {
+  const double model_dt = checked_model_dt(model_dt_given);
   const std::string source = source_of(scene_object);
   if (!(converged_tol >= 1e-14 && converged_tol <= 1e-6))
     throw InputError("converged_tol = " + format_number("%g", converged_tol) +
@@ -226,7 +237,9 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
 py::dict py_generate(const py::object& scene_object, const std::optional<std::string>& integrator,
                      std::optional<double> dt, std::optional<double> duration,
                      const std::string& mapping, const std::string& geometry,
-                     const std::string& friction, const std::string& engine, double model_dt) {
+                     const std::string& friction, const std::string& engine,
+                     const std::optional<double>& model_dt_given) {
+  const double model_dt = checked_model_dt(model_dt_given);
   const Scene scene = checked_scene(scene_object, integrator, dt, duration);
   mujoco::MjcfOptions options = mujoco::mjcf_options(mapping, geometry, source_of(scene_object));
   options.model_dt = model_dt;

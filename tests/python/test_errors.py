@@ -137,3 +137,16 @@ def test_gil_released_while_running():
     thread.join()
     elapsed = time.perf_counter() - start
     assert elapsed > 0.1 and longest < 0.5 * elapsed, (elapsed, longest)
+
+
+@pytest.mark.parametrize("value", [float("nan"), -1.0, 0.0, float("inf"), 1e300, 2.0])
+def test_model_dt_takes_the_cli_range(value):
+    """model_dt is --model-dt: (0, 1] s, or None (the timestep); anything else is
+    the one-line error, for every function that takes it."""
+    scene = contact2d.Scene.load("validation/scenes/box.toml")
+    for call in (lambda: contact2d.simulate(scene, engine="mujoco", model_dt=value),
+                 lambda: contact2d.compare(scene, model_dt=value, diagnosis=False),
+                 lambda: contact2d.generate(scene, model_dt=value)):
+        with pytest.raises(ValueError, match=r"model_dt = .* is out of range: must be in \(0, 1\] s"):
+            call()
+    assert contact2d.generate(scene, model_dt=1e-3).startswith("<!--")

@@ -61,7 +61,7 @@ class Simulation:
 
 def simulate(scene: Scene, engine: str = "ref", integrator: Optional[str] = None,
              dt: Optional[float] = None, duration: Optional[float] = None, mapping: str = "",
-             geometry: str = "", model_dt: float = 0.0,
+             geometry: str = "", model_dt: Optional[float] = None,
              allow_nonphysical: bool = False, friction: str = "") -> Simulation:
     """Runs one engine on the scene, as ``contact2d simulate``: engine "ref",
     "mujoco" (2.2.2) or "mujoco3" (3.14, docs/mujoco3.md); friction "shared"
@@ -71,7 +71,7 @@ def simulate(scene: Scene, engine: str = "ref", integrator: Optional[str] = None
     return Simulation(**run)
 
 
-def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: float = 0.0,
+def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: Optional[float] = None,
             integrator: Optional[str] = None, dt: Optional[float] = None,
             duration: Optional[float] = None, converged_tol: float = 1e-12,
             diagnosis: bool = True, allow_nonphysical: bool = False,
@@ -94,7 +94,7 @@ def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: float
     return result
 
 
-def generate(scene: Scene, mapping: str = "", geometry: str = "", model_dt: float = 0.0,
+def generate(scene: Scene, mapping: str = "", geometry: str = "", model_dt: Optional[float] = None,
              integrator: Optional[str] = None, dt: Optional[float] = None,
              duration: Optional[float] = None, engine: str = "mujoco",
              friction: str = "") -> str:
