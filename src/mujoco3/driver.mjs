@@ -10,13 +10,12 @@
 //
 // ops: hello → {version, package}; load {xml} → {id, nq, nv, body_pos,
 // body_invweight0, timestep}; free {id}; reset {id, qpos, qvel} (mj_resetData,
-// then the given state); keyframe {id, key}; applied {id, body, xfrc};
+// then the given state); applied {id, body, xfrc};
 // step {id, n} → {steps, bad, bytes}: up to n mj_step, stopping after the
 // first one that left a bad number in qpos or qvel (MuJoCo's autoreset is
 // off, so it stays there); rewind {id, n}: back to the state before the last
 // "step" and n steps again (a changed applied force takes effect there);
-// counters {id} → {warnings: ["text (N times)"]}; model {id, names} → the
-// named mjModel arrays.
+// counters {id} → {warnings: ["text (N times)"]}.
 //
 // Everything MuJoCo prints (its warnings) is collected and returned as
 // "messages" on the next answer, so stdout carries only the protocol.
@@ -116,12 +115,6 @@ const ops = {
     models.delete(r.id);
     return {};
   },
-  keyframe: (r) => {
-    const e = entry(r);
-    mj.mj_resetDataKeyframe(e.m, e.d, r.key);
-    e.saved = null;
-    return {};
-  },
   reset: (r) => {
     const e = entry(r);
     mj.mj_resetData(e.m, e.d);
@@ -177,12 +170,6 @@ const ops = {
       if (n > 0) out.push(`${mj.mju_warningText(i, d.warning.get(i).lastinfo)} (${n} times)`);
     }
     return {warnings: out};
-  },
-  model: (r) => {
-    const {m} = entry(r);
-    const out = {};
-    for (const name of r.names) out[name] = Array.from(m[name]);
-    return {values: out};
   },
 };
 

@@ -171,11 +171,6 @@ LoadedModel Node::load(const std::string& xml, const std::string& origin) {
 
 void Node::free(int id) { request(R"({"op":"free","id":)" + std::to_string(id) + "}"); }
 
-void Node::keyframe(int id, int key) {
-  request(R"({"op":"keyframe","id":)" + std::to_string(id) + R"(,"key":)" + std::to_string(key) +
-          "}");
-}
-
 void Node::reset(int id, const std::vector<double>& qpos, const std::vector<double>& qvel) {
   request(R"({"op":"reset","id":)" + std::to_string(id) + R"(,"qpos":)" + numbers(qpos) +
           R"(,"qvel":)" + numbers(qvel) + "}");
@@ -210,17 +205,6 @@ std::vector<std::string> Node::counters(int id) {
   const Answer a = request(R"({"op":"counters","id":)" + std::to_string(id) + "}");
   std::vector<std::string> out;
   for (const json::Value& w : a.get("warnings")->items) out.push_back(w.text);
-  return out;
-}
-
-std::vector<std::vector<double>> Node::model_arrays(int id, const std::vector<std::string>& names) {
-  std::string list = "[";
-  for (size_t i = 0; i < names.size(); ++i) list += (i ? "," : "") + json::string(names[i]);
-  const Answer a =
-      request(R"({"op":"model","id":)" + std::to_string(id) + R"(,"names":)" + list + "]}");
-  std::vector<std::vector<double>> out;
-  out.reserve(names.size());
-  for (const std::string& name : names) out.push_back(numbers_of(a.get("values")->get(name)));
   return out;
 }
 

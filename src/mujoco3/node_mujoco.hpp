@@ -59,7 +59,6 @@ class Node {
   // cannot load the model: ..." on its refusal.
   LoadedModel load(const std::string& xml, const std::string& origin);
   void free(int id);
-  void keyframe(int id, int key);
   // mj_resetData, then this qpos and qvel.
   void reset(int id, const std::vector<double>& qpos, const std::vector<double>& qvel);
   // xfrc_applied of `body`.
@@ -72,8 +71,6 @@ class Node {
   void rewind(int id, int n);
   // MuJoCo's non-zero warning counters ("... (N times)").
   std::vector<std::string> counters(int id);
-  // Named mjModel arrays of a loaded model, in the order asked.
-  std::vector<std::vector<double>> model_arrays(int id, const std::vector<std::string>& names);
   // MuJoCo's printed messages since the last call.
   std::vector<std::string> take_messages();
   // The process's id (tests kill it).
