@@ -40,6 +40,12 @@ Command add_inspect(CLI::App& app) {
   cmd->add_option("model", options->inspect.path, "A MuJoCo MJCF file")->required();
   cmd->add_option("--key", options->inspect.key,
                   "Keyframe to inspect the model at (default: qpos0)");
+  cmd->add_option("--settle", options->inspect.settle,
+                  "Let MuJoCo step the model this many seconds first (from the keyframe or "
+                  "qpos0), so it comes to rest on what it touches (>= 0; default 0)");
+  cmd->add_flag("--estimate-loads", options->inspect.estimate_loads,
+                "Loads from the least-squares split of gravity over the contacts (an "
+                "estimate) instead of MuJoCo's own contact forces");
   cmd->add_flag("--pairs", options->inspect.pairs,
                 "Also list every geom pair that can collide (explicit <pair>s and default "
                 "collisions)");

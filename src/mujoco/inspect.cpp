@@ -24,45 +24,10 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = 3.14159265358979323846;
 
-std::string one_line(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  std::replace(text.begin(), text.end(), '\n', ' ');
-  return text;
-}
-
-std::string name_of(const mjModel* m, int type, int id, const char* what) {
-  const char* name = mj_id2name(m, type, id);
-  if (name && name[0]) return name;
-  if (type == mjOBJ_BODY && id == 0) return "world";
-  return std::string(what) + " #" + std::to_string(id);
-}
-
 std::string list_text(const double* v, int n) {
   std::string out;
   for (int i = 0; i < n; ++i) out += (i ? " " : "") + format_number(v[i]);
   return out;
-}
-
-// The contact's normal row of the Jacobian: n·(J_p(body2) − J_p(body1)) at pos.
-std::vector<double> normal_jacobian(const mjModel* m, const mjData* d, int body1, int body2,
-                                    const std::array<double, 3>& pos,
-                                    const std::array<double, 3>& normal) {
-  const size_t nv = static_cast<size_t>(m->nv);
-  std::vector<double> j1(3 * nv), j2(3 * nv), jr(3 * nv), row(nv, 0.0);
-  mj_jac(m, d, j1.data(), jr.data(), pos.data(), body1);
-  mj_jac(m, d, j2.data(), jr.data(), pos.data(), body2);
-  for (size_t k = 0; k < 3; ++k)
-    for (size_t i = 0; i < nv; ++i) row[i] += normal[k] * (j2[k * nv + i] - j1[k * nv + i]);
-  return row;
-}
-
-// A = J·M⁻¹·Jᵀ for one row (mj_solveM on the factor mj_forward left).
-double inverse_mass(const mjModel* m, mjData* d, const std::vector<double>& row) {
-  std::vector<double> x(row.size());
-  mj_solveM(m, d, x.data(), row.data(), 1);
-  double a = 0.0;
-  for (size_t i = 0; i < row.size(); ++i) a += row[i] * x[i];
-  return a;
 }
 
 // Element `id` of a model array of `width` numbers per element.
@@ -121,8 +86,7 @@ void resolve_pair(const mjModel* m, int ipair, int g1, int g2, InspectRow& row) 
 }
 
 struct Context {
-  const mjModel* m;
-  mjData* d;
+  const ModelState* s;
   Integrator integrator;
   bool pyramidal;
   std::optional<double> slope;
@@ -131,7 +95,7 @@ struct Context {
 // Everything that follows from solref, solimp, condim, friction, A, Â and the load.
 void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warnings,
               const std::string& label) {
-  const mjModel* m = ctx.m;
+  const ModelState& s = *ctx.s;
   std::array<double, 2> ref = r.solref;
   if ((ref[0] > 0.0) != (ref[1] > 0.0)) {
     warnings.push_back(label + ": solref " + format_number(ref[0]) + " " + format_number(ref[1]) +
@@ -142,9 +106,9 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
   r.timeconst_used = 0.0;
   r.refsafe_changes = false;
   if (ref[0] > 0.0) {
-    if (!(m->opt.disableflags & mjDSBL_REFSAFE) && ref[0] < 2.0 * m->opt.timestep) {
+    if (s.refsafe && ref[0] < 2.0 * s.timestep) {
       r.refsafe_changes = true;
-      ref[0] = 2.0 * m->opt.timestep;
+      ref[0] = 2.0 * s.timestep;
     }
     r.timeconst_used = ref[0];
   }
@@ -153,12 +117,12 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
                      : -ref[0] / std::max(mjMINVAL, r.dmax * r.dmax);
   r.B = ref[1] > 0.0 ? 2.0 / std::max(mjMINVAL, r.dmax * ref[0])
                      : -ref[1] / std::max(mjMINVAL, r.dmax);
-  r.inv_weight =
-      element(m->body_invweight0, r.body1, 2)[0] + element(m->body_invweight0, r.body2, 2)[0];
+  r.inv_weight = s.body_invweight0[2 * static_cast<size_t>(r.body1)] +
+                 s.body_invweight0[2 * static_cast<size_t>(r.body2)];
   const double mu = r.friction[0];
   r.phi = 1.0;
   if (ctx.pyramidal && r.condim > 1)
-    r.phi = mu * mu * (1.0 + mu * mu) / ((r.condim - 1) * std::max(mjMINVAL, m->opt.impratio));
+    r.phi = mu * mu * (1.0 + mu * mu) / ((r.condim - 1) * std::max(mjMINVAL, s.impratio));
   r.normal_weight = r.inv_weight * r.phi;
   if (!r.A_measured) r.A = r.inv_weight;
   r.d_now = mujoco_impedance(r.solimp, r.dist);
@@ -179,7 +143,7 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
   regime(r.d_rest, r.k, r.c, r.omega, r.zeta);
   double k_max = 0.0, c_max = 0.0;
   regime(r.dmax, k_max, c_max, r.omega_max, r.zeta_max);
-  r.omega_dt = r.omega_max * m->opt.timestep;
+  r.omega_dt = r.omega_max * s.timestep;
   r.limit = stability_limit(ctx.integrator, r.zeta_max);
   r.restitution = benchmarks::kelvin_voigt_restitution(r.zeta);
   if (!(r.A > 0.0)) {  // the joints cannot move the contact along its normal
@@ -212,22 +176,15 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
       const double dd = mujoco_impedance(r.solimp, -p);
       const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
       r.creep = r.load * std::sin(th) * (1.0 - dd) * r.inv_weight * shape /
-                (std::max(mjMINVAL, m->opt.impratio) * r.B * dd);
+                (std::max(mjMINVAL, s.impratio) * r.B * dd);
     }
   }
 }
 
-Integrator integrator_of(const mjModel* m) {
-  return m->opt.integrator == mjINT_RK4 ? Integrator::RK4 : Integrator::SemiImplicitEuler;
-}
-
-std::string mj_integrator_name(const mjModel* m) {
-  switch (m->opt.integrator) {
-    case mjINT_EULER: return "Euler";
-    case mjINT_RK4: return "RK4";
-    case mjINT_IMPLICIT: return "implicit";
-    default: return "integrator " + std::to_string(m->opt.integrator);
-  }
+// MuJoCo's Euler and implicit integrators treat contacts as semi-implicit
+// Euler does (core stability_limit); RK4 has its own limit.
+Integrator integrator_of(const ModelState& s) {
+  return s.integrator == "RK4" ? Integrator::RK4 : Integrator::SemiImplicitEuler;
 }
 
 std::string label_of(const InspectRow& r) {
@@ -235,13 +192,13 @@ std::string label_of(const InspectRow& r) {
          r.geom1_name + " – " + r.geom2_name + ")";
 }
 
-void fill_names(const mjModel* m, InspectRow& r) {
-  r.body1 = m->geom_bodyid[r.geom1];
-  r.body2 = m->geom_bodyid[r.geom2];
-  r.geom1_name = name_of(m, mjOBJ_GEOM, r.geom1, "geom");
-  r.geom2_name = name_of(m, mjOBJ_GEOM, r.geom2, "geom");
-  r.body1_name = name_of(m, mjOBJ_BODY, r.body1, "body");
-  r.body2_name = name_of(m, mjOBJ_BODY, r.body2, "body");
+void fill_names(const ModelState& s, InspectRow& r) {
+  r.body1 = s.geom_body[static_cast<size_t>(r.geom1)];
+  r.body2 = s.geom_body[static_cast<size_t>(r.geom2)];
+  r.geom1_name = s.geom_names[static_cast<size_t>(r.geom1)];
+  r.geom2_name = s.geom_names[static_cast<size_t>(r.geom2)];
+  r.body1_name = s.body_names[static_cast<size_t>(r.body1)];
+  r.body2_name = s.body_names[static_cast<size_t>(r.body2)];
 }
 
 // Both geom types are plane or height field: mj_collision has no function.
@@ -322,73 +279,69 @@ std::vector<ClosestPoints> closest_points(const mjModel* m, const mjData* d, int
 // The stages of inspect(), in order: the contacts, their static loads, the
 // pairs, the warnings.
 
-// The contacts MuJoCo has now, with their normal rows of the Jacobian
-// (returned) and A, into rep.contacts.
-std::vector<std::vector<double>> collect_contacts(const mjModel* m, mjData* d, InspectReport& rep) {
-  std::vector<std::vector<double>> rows;
-  for (int i = 0; i < d->ncon; ++i) {
-    const mjContact& con = d->contact[i];
+// The contacts MuJoCo has at this state, into rep.contacts, each with
+// MuJoCo's own normal force as its load.
+void collect_contacts(const ModelState& s, InspectReport& rep) {
+  for (size_t i = 0; i < s.contacts.size(); ++i) {
+    const StateContact& con = s.contacts[i];
     InspectRow r;
     r.active = true;
-    r.contact = i;
+    r.contact = static_cast<int>(i);
     r.geom1 = con.geom1;
     r.geom2 = con.geom2;
-    fill_names(m, r);
-    r.source = "default collision";
-    for (int p = 0; p < m->npair; ++p) {
-      if ((m->pair_geom1[p] == con.geom1 && m->pair_geom2[p] == con.geom2) ||
-          (m->pair_geom1[p] == con.geom2 && m->pair_geom2[p] == con.geom1))
-        r.source = "explicit <pair>";
-    }
-    r.dist = con.dist - con.includemargin;
-    for (size_t k = 0; k < 3; ++k) {
-      r.pos[k] = con.pos[k];
-      r.normal[k] = con.frame[k];
-    }
-    r.condim = con.dim;
-    for (size_t k = 0; k < 5; ++k) r.friction[k] = con.friction[k];
-    for (size_t k = 0; k < 2; ++k) r.solref[k] = con.solref[k];
-    for (size_t k = 0; k < 5; ++k) r.solimp[k] = con.solimp[k];
-    rows.push_back(normal_jacobian(m, d, r.body1, r.body2, r.pos, r.normal));
-    r.A = inverse_mass(m, d, rows.back());
+    fill_names(s, r);
+    r.source = con.explicit_pair ? "explicit <pair>" : "default collision";
+    r.dist = con.dist;
+    r.pos = con.pos;
+    r.normal = con.normal;
+    r.condim = con.condim;
+    r.friction = con.friction;
+    r.solref = con.solref;
+    r.solimp = con.solimp;
+    r.A = con.A;
     r.A_measured = true;
+    r.force = con.force;
+    r.load = std::max(0.0, con.force);
     rep.contacts.push_back(r);
   }
-  return rows;
 }
 
-// The static loads: Jₙᵀ·f = qfrc_bias (qvel = 0) over every contact, least
-// squares, minimum norm; `still` is the model at this configuration at rest.
-void static_loads(const mjModel* m, const mjData* still,
-                  const std::vector<std::vector<double>>& rows, InspectReport& rep) {
-  const int nc = static_cast<int>(rows.size());
-  if (nc > 0) {
-    Eigen::MatrixXd jt(m->nv, nc);
-    Eigen::VectorXd b(m->nv);
-    for (int i = 0; i < m->nv; ++i) b(i) = still->qfrc_bias[i];
-    for (int c = 0; c < nc; ++c)
-      for (int i = 0; i < m->nv; ++i)
-        jt(i, c) = rows[static_cast<size_t>(c)][static_cast<size_t>(i)];
-    const Eigen::VectorXd f = jt.completeOrthogonalDecomposition().solve(b);
-    const double scale = b.norm();
-    rep.residual = scale > 0.0 ? (jt * f - b).norm() / scale : 0.0;
-    rep.balanced =
-        rep.residual < 1e-6 && f.minCoeff() >= -1e-9 * std::max(1.0, f.cwiseAbs().maxCoeff());
-    for (int c = 0; c < nc; ++c) rep.contacts[static_cast<size_t>(c)].load = std::max(0.0, f(c));
+// The least-squares loads: Jₙᵀ·f = qfrc_bias (qvel = 0) over every
+// contact, minimum norm — the normal forces alone holding the model at this
+// configuration. An estimate: it ignores the friction forces and the
+// joints' own limits and springs, and splits a statically indeterminate load
+// by least norm, not by stiffness (MuJoCo's split). Sets rep.balanced and
+// rep.residual; the loads only when `use` (--loads estimate).
+void estimate_loads(const ModelState& s, InspectReport& rep, bool use) {
+  const int nc = static_cast<int>(s.contacts.size());
+  if (nc == 0) return;
+  Eigen::MatrixXd jt(s.nv, nc);
+  Eigen::VectorXd b(s.nv);
+  for (int i = 0; i < s.nv; ++i) b(i) = s.bias[static_cast<size_t>(i)];
+  for (int c = 0; c < nc; ++c)
+    for (int i = 0; i < s.nv; ++i)
+      jt(i, c) = s.contacts[static_cast<size_t>(c)].jacobian[static_cast<size_t>(i)];
+  const Eigen::VectorXd f = jt.completeOrthogonalDecomposition().solve(b);
+  const double scale = b.norm();
+  rep.residual = scale > 0.0 ? (jt * f - b).norm() / scale : 0.0;
+  rep.balanced =
+      rep.residual < 1e-6 && f.minCoeff() >= -1e-9 * std::max(1.0, f.cwiseAbs().maxCoeff());
+  for (int c = 0; c < nc; ++c) {
+    InspectRow& r = rep.contacts[static_cast<size_t>(c)];
+    r.estimate = std::max(0.0, f(c));
+    if (use) r.load = r.estimate;
   }
 }
 
 // Every geom pair that can collide (--pairs), into rep.pairs.
-void collect_pairs(const Context& ctx, InspectReport& rep) {
-  const mjModel* m = ctx.m;
-  mjData* d = ctx.d;
+void collect_pairs(const Context& ctx, const mjModel* m, mjData* d, InspectReport& rep) {
   rep.pairs_listed = true;
   auto add = [&](int ipair, int g1, int g2) {
     InspectRow r;
     order_by_type(m, g1, g2);
     r.geom1 = g1;
     r.geom2 = g2;
-    fill_names(m, r);
+    fill_names(*ctx.s, r);
     r.source = ipair >= 0 ? "explicit <pair>" : "default collision";
     resolve_pair(m, ipair, g1, g2, r);
     r.load = kNaN;
@@ -450,7 +403,7 @@ void collect_pairs(const Context& ctx, InspectReport& rep) {
 }
 
 // The warnings on the rows and on the model, then MuJoCo's own messages.
-void add_warnings(const mjModel* m, const std::vector<std::string>& messages, InspectReport& rep) {
+void add_warnings(const ModelState& s, const InspectOptions& options, InspectReport& rep) {
   const size_t nc = rep.contacts.size();
   auto warn_rows = [&](const std::vector<InspectRow>& list) {
     for (const InspectRow& r : list) {
@@ -487,7 +440,7 @@ void add_warnings(const mjModel* m, const std::vector<std::string>& messages, In
     for (const InspectRow& r : *list) friction |= r.condim > 1;
   if (friction && rep.impratio < 1.0)
     rep.warnings.push_back("impratio = " + format_number(rep.impratio) +
-                           " < 1: MuJoCo 2.2 gives the friction rows R_t = R/impratio, so friction "
+                           " < 1: MuJoCo gives the friction rows R_t = R/impratio, so friction "
                            "is " +
                            format_number(1.0 / rep.impratio) +
                            "× softer than the normal (a body creeps that much faster); "
@@ -495,7 +448,7 @@ void add_warnings(const mjModel* m, const std::vector<std::string>& messages, In
   std::map<int, std::pair<double, double>> masses;  // body → (min, max) of 1/A
   for (const InspectRow& r : rep.contacts) {
     for (int b : {r.body1, r.body2}) {
-      if (m->body_weldid[b] == 0 || !(r.A > 0.0)) continue;
+      if (s.body_weld[static_cast<size_t>(b)] == 0 || !(r.A > 0.0)) continue;
       auto [it, fresh] = masses.emplace(b, std::make_pair(1.0 / r.A, 1.0 / r.A));
       if (!fresh) {
         it->second.first = std::min(it->second.first, 1.0 / r.A);
@@ -505,95 +458,123 @@ void add_warnings(const mjModel* m, const std::vector<std::string>& messages, In
   }
   for (const auto& [b, range] : masses)
     if (range.second > 10.0 * range.first)
-      rep.warnings.push_back("body " + name_of(m, mjOBJ_BODY, b, "body") +
+      rep.warnings.push_back("body " + s.body_names[static_cast<size_t>(b)] +
                              ": its effective mass differs " +
                              format_number(range.second / range.first) + "× across its contacts (" +
                              format_number(range.first) + " to " + format_number(range.second) +
                              " kg): the same solref gives each a different k and c");
-  if (!rep.balanced && nc > 0)
+  if (options.estimate_loads && !rep.balanced && nc > 0)
     rep.warnings.push_back(
         "the contacts' normal forces alone do not hold the model at rest under gravity "
         "(relative residual " +
         format_number(rep.residual) +
-        "): the static loads are a least-squares share, and the penetrations follow them");
-  if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT))
-    rep.warnings.push_back(std::string("the model disables ") +
-                           (m->opt.disableflags & mjDSBL_CONTACT ? "contacts" : "constraints") +
+        "): the estimated loads are a least-squares share, and the penetrations follow them");
+  if (nc > 0 && !rep.at_rest)
+    rep.warnings.push_back(
+        "the model is not at rest (largest |qvel| " + format_number(rep.speed) + ", |qacc| " +
+        format_number(rep.accel) + "; at rest: ≤ " + format_number(kRestSpeed) + " and ≤ " +
+        format_number(kRestAccel) + (rep.settled > 0.0 ? " after " + format_number(rep.settled) +
+                                                             " s of settling"
+                                                       : std::string()) +
+        "): the loads are MuJoCo's forces at this instant, not its rest loads, and the rest "
+        "depths follow them" +
+        (rep.settled > 0.0 ? "; a longer --settle may bring it to rest"
+                           : "; --settle SECONDS lets MuJoCo bring it to rest"));
+  if (!s.disabled.empty())
+    rep.warnings.push_back("the model disables " + s.disabled +
                            " (<option><flag>): MuJoCo makes no contacts at all");
-  for (const std::string& w : messages) rep.warnings.push_back("MuJoCo: " + w);
+  for (const std::string& w : s.messages) rep.warnings.push_back("MuJoCo: " + w);
 }
 
-}  // namespace
-
-InspectReport inspect(const InspectOptions& options) {
+// The report's contacts from the state: MuJoCo's loads (or the estimate),
+// then everything that follows from each contact's parameters.
+InspectReport begin_report(const ModelState& s, const InspectOptions& options) {
   if (options.slope && !(*options.slope >= 0.0 && *options.slope < 90.0))
     throw InputError("--slope " + format_number(*options.slope) + ": must be in [0, 90) degrees");
-  {
-    std::ifstream file(options.path);
-    if (!file) throw InputError(options.path + ": cannot open the file");
-  }
   InspectReport rep;
   rep.path = options.path;
   rep.key = options.key;
   rep.slope = options.slope;
-  std::vector<std::string> messages;
-  WarningCapture capture(messages);
-  char error[1000] = "";
-  mjModel* raw = nullptr;
-  try {
-    raw = mj_loadXML(options.path.c_str(), nullptr, error, sizeof error);
-  } catch (const MujocoError& e) {
-    throw InputError(options.path + ": MuJoCo cannot load the model: " + one_line(e.what()));
-  }
-  if (!raw) throw InputError(options.path + ": MuJoCo cannot load the model: " + one_line(error));
-  const ModelPtr model(raw);
-  const mjModel* m = model.get();
-  rep.load_warning = one_line(error);
-  for (const std::string& w : messages)
-    rep.load_warning += (rep.load_warning.empty() ? "" : "; ") + w;
-  messages.clear();
-
-  int key = -1;
-  if (!options.key.empty()) {
-    key = mj_name2id(m, mjOBJ_KEY, options.key.c_str());
-    if (key < 0) {
-      std::string names;
-      for (int i = 0; i < m->nkey; ++i)
-        names += (names.empty() ? "" : ", ") + name_of(m, mjOBJ_KEY, i, "key");
-      throw InputError("--key " + options.key + ": no keyframe of that name in " + options.path +
-                       (m->nkey ? " (its keyframes: " + names + ")" : " (it has none)"));
-    }
-  }
-  const DataPtr data = make_data(m);
-  mjData* d = data.get();
-  if (key >= 0)
-    mj_resetDataKeyframe(m, d, key);
-  else
-    mj_resetData(m, d);
-  mj_forward(m, d);
-  // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0.
-  const DataPtr still = make_data(m);
-  mju_copy(still->qpos, d->qpos, m->nq);
-  mju_zero(still->qvel, m->nv);
-  mj_forward(m, still.get());
-
-  rep.integrator = mj_integrator_name(m);
-  rep.dt = m->opt.timestep;
-  rep.cone = m->opt.cone == mjCONE_ELLIPTIC ? "elliptic" : "pyramidal";
-  rep.impratio = m->opt.impratio;
-  for (int i = 0; i < 3; ++i) rep.gravity[static_cast<size_t>(i)] = m->opt.gravity[i];
-  rep.refsafe_enabled = !(m->opt.disableflags & mjDSBL_REFSAFE);
-  const Context ctx{m, d, integrator_of(m), m->opt.cone != mjCONE_ELLIPTIC, options.slope};
-
-  const std::vector<std::vector<double>> rows = collect_contacts(m, d, rep);
-  static_loads(m, still.get(), rows, rep);
+  rep.version = s.version;
+  rep.load_warning = s.load_warning;
+  rep.integrator = s.integrator;
+  rep.dt = s.timestep;
+  rep.cone = s.elliptic ? "elliptic" : "pyramidal";
+  rep.impratio = s.impratio;
+  rep.gravity = s.gravity;
+  rep.refsafe_enabled = s.refsafe;
+  rep.settled = s.settled;
+  rep.speed = s.speed;
+  rep.accel = s.accel;
+  rep.at_rest = at_rest(s);
+  rep.loads_estimated = options.estimate_loads;
+  collect_contacts(s, rep);
+  estimate_loads(s, rep, options.estimate_loads);
+  const Context ctx{&s, integrator_of(s), !s.elliptic, options.slope};
   for (InspectRow& r : rep.contacts) evaluate(ctx, r, rep.warnings, label_of(r));
-  if (options.pairs) collect_pairs(ctx, rep);
-  add_warnings(m, messages, rep);
+  return rep;
+}
+
+StateRequest state_request(const InspectOptions& options) {
+  StateRequest request;
+  request.path = options.path;
+  request.key = options.key;
+  request.settle = options.settle;
+  return request;
+}
+
+}  // namespace
+
+InspectReport inspect_state(const ModelState& state, const InspectOptions& options) {
+  if (options.pairs)
+    throw InputError("--pairs: lists pairs with MuJoCo 2.2.2's collision functions; run it "
+                     "without --engine mujoco3");
+  InspectReport rep = begin_report(state, options);
+  add_warnings(state, options, rep);
+  return rep;
+}
+
+InspectReport inspect(const InspectOptions& options) {
+  if (options.slope && !(*options.slope >= 0.0 && *options.slope < 90.0))
+    throw InputError("--slope " + format_number(*options.slope) + ": must be in [0, 90) degrees");
+  LoadedState loaded = load_model_state(state_request(options));
+  const ModelState& s = loaded.state;
+  InspectReport rep = begin_report(s, options);
+  if (options.pairs) {
+    std::vector<std::string> messages;
+    WarningCapture capture(messages);
+    const Context ctx{&s, integrator_of(s), !s.elliptic, options.slope};
+    collect_pairs(ctx, loaded.model.get(), loaded.data.get(), rep);
+  }
+  add_warnings(s, options, rep);
   return rep;
 }
 
 namespace {
+
+std::string state_name(const InspectReport& rep) {
+  std::string out = rep.key.empty() ? "qpos0" : "keyframe " + rep.key;
+  if (rep.settled > 0.0)
+    out += " settled " + format_number(rep.settled) + " s (" +
+           (rep.at_rest ? "at rest" : "not at rest") + ": largest |qvel| " +
+           format_number(rep.speed) + ", |qacc| " + format_number(rep.accel) + ")";
+  return out;
+}
+
+// What to try when a state has no contacts.
+std::string no_contacts_hint(const InspectReport& rep) {
+  std::string out;
+  if (rep.settled <= 0.0)
+    out += "--settle SECONDS lets MuJoCo drop the model onto what it rests on (3 s suits most "
+           "models)";
+  else
+    out += "after " + format_number(rep.settled) +
+           " s of settling nothing touches (the model may fly, hang, or fall past everything: "
+           "a longer --settle, or --key)";
+  out += "; --key NAME inspects a keyframe; --pairs lists every geom pair that can collide, "
+         "with its numbers at the closest points";
+  return out;
+}
 
 void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow& r) {
   o << (r.active ? "contact " + std::to_string(r.contact) : std::string("pair")) << ": "
@@ -640,8 +621,8 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
       << format_number(r.limit) << " (" << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
   }
   if (std::isfinite(r.load))
-    o << "  static load " << format_number(r.load) << " N, static penetration "
-      << format_number(r.penetration) << " m\n";
+    o << "  load " << format_number(r.load) << " N" << (rep.loads_estimated ? " (estimate)" : "")
+      << ", rest depth " << format_number(r.penetration) << " m\n";
   else
     o << "  static load: not known (not in contact now)\n";
   if (rep.slope) {
@@ -700,7 +681,8 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
     << ", \"zeta\": " << jn(r.zeta) << ", \"omega_max\": " << jn(r.omega_max)
     << ", \"zeta_max\": " << jn(r.zeta_max) << ", \"omega_dt\": " << jn(r.omega_dt)
     << ", \"limit\": " << jn(r.limit) << ",\n     \"restitution\": " << jn(r.restitution)
-    << ", \"load\": " << jn(r.load) << ", \"penetration\": " << jn(r.penetration)
+    << ", \"load\": " << jn(r.load) << ", \"force\": " << (r.active ? jn(r.force) : "null")
+    << ", \"estimate\": " << jn(r.estimate) << ", \"penetration\": " << jn(r.penetration)
     << ", \"creep\": " << jn(r.creep) << ", \"creep_note\": " << json_string(r.creep_note) << "}";
 }
 
@@ -708,8 +690,7 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
 
 std::string format_inspect_text(const InspectReport& rep) {
   std::ostringstream o;
-  o << "model " << rep.path << " at " << (rep.key.empty() ? "qpos0" : "keyframe " + rep.key)
-    << "\n";
+  o << "model " << rep.path << " at " << state_name(rep) << ", MuJoCo " << rep.version << "\n";
   if (!rep.load_warning.empty()) o << "MuJoCo warns while loading: " << rep.load_warning << "\n";
   o << "integrator " << rep.integrator << ", timestep " << format_number(rep.dt) << " s, cone "
     << rep.cone << ", impratio " << format_number(rep.impratio)
@@ -721,11 +702,16 @@ std::string format_inspect_text(const InspectReport& rep) {
             : std::string())
     << "), gravity " << list_text(rep.gravity.data(), 3) << " m/s²\n";
   if (rep.contacts.empty()) {
-    o << "no contacts at " << (rep.key.empty() ? "qpos0" : "keyframe " + rep.key) << "\n";
+    o << "no contacts at " << state_name(rep) << ": " << no_contacts_hint(rep) << "\n";
   } else {
-    o << rep.contacts.size() << " contact" << (rep.contacts.size() == 1 ? "" : "s")
-      << "; static loads: normal forces holding the model against gravity at rest"
-      << (rep.balanced ? "" : " (least squares: they do not balance it)") << "\n";
+    o << rep.contacts.size() << " contact" << (rep.contacts.size() == 1 ? "" : "s") << "; loads: "
+      << (rep.loads_estimated
+              ? std::string("estimated, the least-squares normal forces holding the model "
+                            "against gravity") +
+                    (rep.balanced ? "" : " (they do not balance it)")
+              : std::string("MuJoCo's own contact forces (mj_contactForce)") +
+                    (rep.at_rest ? ", at rest" : ", NOT at rest"))
+      << "\n";
   }
   // A contact whose text is that of the one before (but for its index), as
   // a box's corners on a plane: one line naming them.
@@ -774,6 +760,10 @@ std::string format_inspect_json(const InspectReport& rep) {
   std::ostringstream o;
   o << "{\n  \"model\": " << json_string(rep.path)
     << ",\n  \"key\": " << (rep.key.empty() ? "null" : json_string(rep.key))
+    << ",\n  \"mujoco\": " << json_string(rep.version) << ",\n  \"settled\": " << jn(rep.settled)
+    << ",\n  \"speed\": " << jn(rep.speed) << ",\n  \"accel\": " << jn(rep.accel)
+    << ",\n  \"at_rest\": " << (rep.at_rest ? "true" : "false") << ",\n  \"loads\": "
+    << json_string(rep.loads_estimated ? "estimate" : "mujoco")
     << ",\n  \"load_warning\": " << json_string(rep.load_warning)
     << ",\n  \"integrator\": " << json_string(rep.integrator) << ",\n  \"timestep\": " << jn(rep.dt)
     << ",\n  \"cone\": " << json_string(rep.cone) << ",\n  \"impratio\": " << jn(rep.impratio)

@@ -48,15 +48,20 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "mujoco/model_state.hpp"
 
 namespace contact2d::mujoco {
 
 struct InspectOptions {
   std::string path;
   std::string key;              // keyframe name; empty: qpos0
+  double settle = 0.0;          // s of mj_step before reading the state (model_state.hpp)
+  bool estimate_loads = false;  // loads from the least-squares split, not MuJoCo's forces
   bool pairs = false;           // also every geom pair that can collide
   std::optional<double> slope;  // degrees, [0, 90)
 };
@@ -86,7 +91,9 @@ struct InspectRow {
   double inv_weight = 0.0;         // Â: body_invweight0 of both bodies
   double normal_weight = 0.0;      // Â the normal row sees (pyramidal: ·φ)
   double phi = 1.0;                // normal_weight / inv_weight
-  double load = 0.0;               // static normal load, N (NaN: not known)
+  double force = 0.0;     // MuJoCo's normal force at this state (mj_contactForce), N
+  double estimate = NAN;  // the least-squares load (estimate_loads), N
+  double load = 0.0;      // the load the rest depth is for: force, or estimate (NaN: not known)
   double penetration = 0.0;        // static penetration, m (NaN: not known)
   double k = 0.0, c = 0.0;         // N/m, N·s/m at d_rest
   double omega = 0.0, zeta = 0.0;  // at d_rest
@@ -99,6 +106,12 @@ struct InspectRow {
 
 struct InspectReport {
   std::string path, key;
+  std::string version;  // MuJoCo's
+  double settled = 0.0;  // s of settling
+  double speed = 0.0;    // largest |qvel| at the state
+  double accel = 0.0;    // largest |qacc| at the state
+  bool at_rest = true;   // model_state.hpp's at_rest()
+  bool loads_estimated = false;
   std::string load_warning;
   std::string integrator;  // Euler, RK4, implicit
   double dt = 0.0;
@@ -115,9 +128,14 @@ struct InspectReport {
   std::vector<std::string> warnings;
 };
 
-// Throws InputError: the file cannot be read or MuJoCo cannot load it
-// (MuJoCo's message on one line), an unknown --key, --slope out of range.
+// MuJoCo 2.2.2's. Throws InputError: the file cannot be read or MuJoCo
+// cannot load it (MuJoCo's message on one line), an unknown --key, --slope
+// or --settle out of range.
 InspectReport inspect(const InspectOptions& options);
+
+// The same from a state either version read (mujoco3/model_state.hpp for
+// 3.14); options.pairs is refused (it probes MuJoCo 2.2.2's model).
+InspectReport inspect_state(const ModelState& state, const InspectOptions& options);
 
 std::string format_inspect_text(const InspectReport& report);
 std::string format_inspect_json(const InspectReport& report);

@@ -94,4 +94,31 @@ std::vector<std::string> warning_counters(const mjData* data) {
   return out;
 }
 
+std::string name_of(const mjModel* m, int type, int id, const char* what) {
+  const char* name = mj_id2name(m, type, id);
+  if (name && name[0]) return name;
+  if (type == mjOBJ_BODY && id == 0) return "world";
+  return std::string(what) + " #" + std::to_string(id);
+}
+
+std::vector<double> normal_jacobian(const mjModel* m, const mjData* d, int body1, int body2,
+                                    const std::array<double, 3>& pos,
+                                    const std::array<double, 3>& normal) {
+  const size_t nv = static_cast<size_t>(m->nv);
+  std::vector<double> j1(3 * nv), j2(3 * nv), jr(3 * nv), row(nv, 0.0);
+  mj_jac(m, d, j1.data(), jr.data(), pos.data(), body1);
+  mj_jac(m, d, j2.data(), jr.data(), pos.data(), body2);
+  for (size_t k = 0; k < 3; ++k)
+    for (size_t i = 0; i < nv; ++i) row[i] += normal[k] * (j2[k * nv + i] - j1[k * nv + i]);
+  return row;
+}
+
+double inverse_mass(const mjModel* m, mjData* d, const std::vector<double>& row) {
+  std::vector<double> x(row.size());
+  mj_solveM(m, d, x.data(), row.data(), 1);
+  double a = 0.0;
+  for (size_t i = 0; i < row.size(); ++i) a += row[i] * x[i];
+  return a;
+}
+
 }  // namespace contact2d::mujoco

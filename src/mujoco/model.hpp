@@ -8,6 +8,7 @@
 // collected by a WarningCapture, the second read by the adapter.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -54,5 +55,16 @@ struct MujocoError : std::runtime_error {
 // Text of mjData.warning counters that are non-zero ("bad number in qacc
 // (3 times)"), empty when there are none.
 std::vector<std::string> warning_counters(const mjData* data);
+
+// A model object's name; "world" for body 0; "<what> #id" when unnamed.
+std::string name_of(const mjModel* m, int type, int id, const char* what);
+
+// A contact's normal row of the Jacobian, n·(J_p(body2) − J_p(body1)) at pos.
+std::vector<double> normal_jacobian(const mjModel* m, const mjData* d, int body1, int body2,
+                                    const std::array<double, 3>& pos,
+                                    const std::array<double, 3>& normal);
+
+// A = J·M⁻¹·Jᵀ for one row (mj_solveM on the factor mj_forward left).
+double inverse_mass(const mjModel* m, mjData* d, const std::vector<double>& row);
 
 }  // namespace contact2d::mujoco

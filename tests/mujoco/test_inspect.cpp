@@ -119,12 +119,15 @@ class Inspect : public ::testing::Test {
   }
 
   mj::InspectReport report(const std::string& xml, const std::string& key = "",
-                           std::optional<double> slope = std::nullopt, bool pairs = false) const {
+                           std::optional<double> slope = std::nullopt, bool pairs = false,
+                           double settle = 0.0, bool estimate = false) const {
     mj::InspectOptions o;
     o.path = write("model.xml", xml);
     o.key = key;
     o.slope = slope;
     o.pairs = pairs;
+    o.settle = settle;
+    o.estimate_loads = estimate;
     return mj::inspect(o);
   }
 
@@ -167,7 +170,9 @@ double mean_contact_depth(const Sim& s) {
 }
 
 TEST_F(Inspect, BoxOnAPlaneWithDefaultsRestsAtThePrintedStaticPenetration) {
-  const mj::InspectReport rep = report(kBoxModel);
+  // The least-squares estimate at qpos0 (the box 1e-4 m off its rest).
+  const mj::InspectReport rep = report(kBoxModel, "", std::nullopt, false, 0.0, true);
+  EXPECT_TRUE(rep.loads_estimated);
   ASSERT_EQ(rep.contacts.size(), 4u);
   EXPECT_TRUE(rep.balanced);
   EXPECT_EQ(rep.cone, "pyramidal");
@@ -192,6 +197,27 @@ TEST_F(Inspect, BoxOnAPlaneWithDefaultsRestsAtThePrintedStaticPenetration) {
   // bisection); bound 1e-9 relative. A wrong load share (mg instead of mg/4)
   // or a wrong Â would move p by a factor of 2 or more.
   EXPECT_NEAR(depth, rep.contacts[0].penetration, 1e-9 * rep.contacts[0].penetration);
+}
+
+TEST_F(Inspect, SettledBoxCarriesMujocosForcesAndRestsAtThePrintedDepths) {
+  // The user's way: --settle 3, MuJoCo's own forces as the loads.
+  const mj::InspectReport rep = report(kBoxModel, "", std::nullopt, false, 3.0);
+  EXPECT_TRUE(rep.at_rest);
+  EXPECT_FALSE(rep.loads_estimated);
+  EXPECT_GT(rep.settled, 0.0);
+  EXPECT_LE(rep.settled, 3.0);
+  ASSERT_EQ(rep.contacts.size(), 4u);
+  double total = 0.0;
+  for (const mj::InspectRow& r : rep.contacts) {
+    total += r.load;
+    EXPECT_DOUBLE_EQ(r.load, r.force);
+    // The printed rest depth against the state's own: the settle stops once
+    // |qvel| ≤ 0.01 and |qacc| ≤ 0.1, so the force is within ~1 % of g·m/4 of
+    // the rest load; measured below; bound 2 % (the issue's target).
+    EXPECT_NEAR(r.penetration, -r.dist, 0.02 * r.penetration);
+  }
+  // The four corners carry the weight (1 kg) to within the rest criterion's 1 % of g.
+  EXPECT_NEAR(total, 9.81, 0.01 * 9.81);
 }
 
 // The box crept for 1 s on gravity tilted by θ, after 1 s to settle; returns
@@ -258,7 +284,7 @@ TEST_F(Inspect, PyramidalCreepIsNotPrintedWhereAnEdgeUnloads) {
 }
 
 TEST_F(Inspect, BallPairOverridesItsClassAndRestsAtThePrintedDepth) {
-  const mj::InspectReport rep = report(kBallModel);
+  const mj::InspectReport rep = report(kBallModel, "", std::nullopt, false, 3.0);
   ASSERT_EQ(rep.contacts.size(), 1u);
   const mj::InspectRow& r = rep.contacts[0];
   EXPECT_EQ(r.source, "explicit <pair>");
@@ -572,7 +598,7 @@ TEST_F(Inspect, MujocoTurnsUnstableWhereThePrintedOmegaDtLimitIs) {
     std::string xml = kBallModel;
     xml.replace(xml.find("<option timestep=\"0.0001\"/>"), 28,
                 "<option timestep=\"0.0001\" integrator=\"" + integrator + "\"/>");
-    const mj::InspectReport rep = report(xml);
+    const mj::InspectReport rep = report(xml, "", std::nullopt, false, 3.0);
     EXPECT_EQ(rep.integrator, integrator);
     ASSERT_EQ(rep.contacts.size(), 1u);
     const mj::InspectRow& r = rep.contacts[0];
@@ -605,7 +631,7 @@ TEST_F(Inspect, WarnsForAPyramidalConeWithHighFrictionAndForImpratioBelowOne) {
   std::string xml = kBoxModel;
   xml.replace(xml.find("<worldbody>"), 11,
               "<option impratio=\"0.5\"/><default><geom friction=\"2\"/></default>\n  <worldbody>");
-  const mj::InspectReport rep = report(xml);
+  const mj::InspectReport rep = report(xml, "", std::nullopt, false, 3.0);
   ASSERT_FALSE(rep.contacts.empty());
   // φ = μ²(1 + μ²)/((condim − 1)·impratio) = 4·5/(2·0.5) = 20.
   EXPECT_DOUBLE_EQ(rep.contacts[0].phi, 20.0);
@@ -659,7 +685,7 @@ TEST_F(Inspect, SaysSoWhenTheNormalForcesCannotHoldTheModel) {
   </worldbody>
 </mujoco>
 )";
-  const mj::InspectReport rep = report(xml);
+  const mj::InspectReport rep = report(xml, "", std::nullopt, false, 0.0, true);
   ASSERT_EQ(rep.contacts.size(), 1u);
   EXPECT_FALSE(rep.balanced);
   EXPECT_NEAR(rep.residual, std::sin(20.0 * kPiInspect / 180.0), 1e-9);
@@ -668,7 +694,7 @@ TEST_F(Inspect, SaysSoWhenTheNormalForcesCannotHoldTheModel) {
   for (const std::string& w : rep.warnings)
     found |= w.find("normal forces alone do not hold the model") != std::string::npos;
   EXPECT_TRUE(found);
-  EXPECT_TRUE(report(kBoxModel).balanced);
+  EXPECT_TRUE(report(kBoxModel, "", std::nullopt, false, 0.0, true).balanced);
 }
 
 TEST_F(Inspect, AContactItsJointsCannotMoveAlongTheNormalHasNoDynamics) {

@@ -1,0 +1,154 @@
+// A user's model at one state, from MuJoCo 2.2.2 (mujoco/model_state.hpp).
+#include "mujoco/model_state.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "core/format.hpp"
+#include "core/input_error.hpp"
+
+namespace contact2d::mujoco {
+namespace {
+
+std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
+}
+
+std::string prefix(const StateRequest& r) {
+  return (r.option.empty() ? "" : r.option + " ") + r.path + ": ";
+}
+
+std::string integrator_name(int integrator) {
+  switch (integrator) {
+    case mjINT_EULER: return "Euler";
+    case mjINT_RK4: return "RK4";
+    case mjINT_IMPLICIT: return "implicit";
+    default: return "integrator " + std::to_string(integrator);
+  }
+}
+
+}  // namespace
+
+void check_state_request(const StateRequest& r) {
+  if (!(r.settle >= 0.0 && std::isfinite(r.settle)))
+    throw InputError("--settle " + format_number(r.settle) +
+                     ": must be a time in seconds, >= 0 and finite");
+  std::ifstream file(r.path);
+  if (!file) throw InputError(prefix(r) + "cannot open the file");
+}
+
+LoadedState load_model_state(const StateRequest& r) {
+  check_state_request(r);
+  LoadedState out;
+  ModelState& s = out.state;
+  s.version = mj_versionString();
+  std::vector<std::string> messages;
+  WarningCapture capture(messages);
+  char error[1000] = "";
+  mjModel* raw = nullptr;
+  try {
+    raw = mj_loadXML(r.path.c_str(), nullptr, error, sizeof error);
+  } catch (const MujocoError& e) {
+    throw InputError(prefix(r) + "MuJoCo cannot load the model: " + one_line(e.what()));
+  }
+  if (!raw) throw InputError(prefix(r) + "MuJoCo cannot load the model: " + one_line(error));
+  out.model.reset(raw);
+  const mjModel* m = raw;
+  s.load_warning = one_line(error);
+  for (const std::string& w : messages)
+    s.load_warning += (s.load_warning.empty() ? "" : "; ") + one_line(w);
+  messages.clear();
+
+  int key = -1;
+  if (!r.key.empty()) {
+    key = mj_name2id(m, mjOBJ_KEY, r.key.c_str());
+    if (key < 0) {
+      std::string names;
+      for (int i = 0; i < m->nkey; ++i)
+        names += (names.empty() ? "" : ", ") + name_of(m, mjOBJ_KEY, i, "key");
+      throw InputError("--key " + r.key + ": no keyframe of that name in " + r.path +
+                       (m->nkey ? " (its keyframes: " + names + ")" : " (it has none)"));
+    }
+  }
+  out.data = make_data(m);
+  mjData* d = out.data.get();
+  if (key >= 0)
+    mj_resetDataKeyframe(m, d, key);
+  else
+    mj_resetData(m, d);
+  const long steps = std::min(kMaxSettleSteps, std::lround(r.settle / m->opt.timestep));
+  for (long i = 0; i < steps; ++i) mj_step(m, d);
+  mj_forward(m, d);
+  for (int i = 0; i < m->nv; ++i) {
+    s.speed = std::max(s.speed, std::abs(d->qvel[i]));
+    s.accel = std::max(s.accel, std::abs(d->qacc[i]));
+  }
+  s.settled = static_cast<double>(steps) * m->opt.timestep;
+  for (const std::string& w : warning_counters(d)) messages.push_back(w);
+
+  s.timestep = m->opt.timestep;
+  s.integrator = integrator_name(m->opt.integrator);
+  s.elliptic = m->opt.cone == mjCONE_ELLIPTIC;
+  s.impratio = m->opt.impratio;
+  for (int i = 0; i < 3; ++i) s.gravity[static_cast<size_t>(i)] = m->opt.gravity[i];
+  s.refsafe = !(m->opt.disableflags & mjDSBL_REFSAFE);
+  if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT))
+    s.disabled = m->opt.disableflags & mjDSBL_CONTACT ? "contacts" : "constraints";
+  for (int b = 0; b < m->nbody; ++b) {
+    s.body_names.push_back(name_of(m, mjOBJ_BODY, b, "body"));
+    s.body_weld.push_back(m->body_weldid[b]);
+    s.body_mass.push_back(m->body_mass[b]);
+    s.body_invweight0.push_back(m->body_invweight0[2 * b]);
+    s.body_invweight0.push_back(m->body_invweight0[2 * b + 1]);
+  }
+  for (int g = 0; g < m->ngeom; ++g) {
+    s.geom_names.push_back(name_of(m, mjOBJ_GEOM, g, "geom"));
+    s.geom_body.push_back(m->geom_bodyid[g]);
+  }
+  s.nv = m->nv;
+
+  // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0.
+  const DataPtr still = make_data(m);
+  mju_copy(still->qpos, d->qpos, m->nq);
+  mju_zero(still->qvel, m->nv);
+  mj_forward(m, still.get());
+  s.bias.assign(still->qfrc_bias, still->qfrc_bias + m->nv);
+
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& con = d->contact[i];
+    StateContact c;
+    c.geom1 = con.geom1;
+    c.geom2 = con.geom2;
+    c.body1 = m->geom_bodyid[con.geom1];
+    c.body2 = m->geom_bodyid[con.geom2];
+    for (int p = 0; p < m->npair; ++p)
+      c.explicit_pair |= (m->pair_geom1[p] == con.geom1 && m->pair_geom2[p] == con.geom2) ||
+                         (m->pair_geom1[p] == con.geom2 && m->pair_geom2[p] == con.geom1);
+    c.dist = con.dist - con.includemargin;
+    for (size_t k = 0; k < 3; ++k) {
+      c.pos[k] = con.pos[k];
+      c.normal[k] = con.frame[k];
+    }
+    c.condim = con.dim;
+    for (size_t k = 0; k < 5; ++k) c.friction[k] = con.friction[k];
+    for (size_t k = 0; k < 2; ++k) c.solref[k] = con.solref[k];
+    for (size_t k = 0; k < 5; ++k) c.solimp[k] = con.solimp[k];
+    c.jacobian = normal_jacobian(m, d, c.body1, c.body2, c.pos, c.normal);
+    c.A = inverse_mass(m, d, c.jacobian);
+    double force[6] = {};
+    mj_contactForce(m, d, i, force);
+    c.force = force[0];
+    s.contacts.push_back(c);
+  }
+  s.messages = messages;
+  return out;
+}
+
+ModelState read_model_state(const StateRequest& request) {
+  return std::move(load_model_state(request).state);
+}
+
+}  // namespace contact2d::mujoco
