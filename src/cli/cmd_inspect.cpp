@@ -1,18 +1,22 @@
-// contact2d inspect MODEL.xml [--key NAME] [--pairs] [--slope DEG] [--json]
+// contact2d inspect MODEL.xml [--engine mujoco|mujoco3] [--key NAME] [--settle S]
+//                  [--estimate-loads] [--pairs] [--slope DEG] [--json]
 // What the contacts of a user's own MJCF model are in physical units, as
-// MuJoCo 2.2 resolves and integrates them (mujoco/inspect.hpp).
+// MuJoCo 2.2.2 or 3.14 resolves and integrates them (mujoco/inspect.hpp).
 #include <iostream>
 #include <memory>
 #include <optional>
 
 #include "cli/common.hpp"
+#include "core/input_error.hpp"
 #include "mujoco/inspect.hpp"
+#include "mujoco3/node_mujoco.hpp"
 
 namespace contact2d::cli {
 namespace {
 
 struct InspectCliOptions {
   contact2d::mujoco::InspectOptions inspect;
+  std::string engine = "mujoco";
   std::optional<double> slope;
   bool json = false;
 };
@@ -21,7 +25,20 @@ int inspect(const InspectCliOptions& options) {
   namespace mj = contact2d::mujoco;
   mj::InspectOptions in = options.inspect;
   in.slope = options.slope;
-  const mj::InspectReport report = mj::inspect(in);  // throws InputError: exit 2
+  // Throws InputError: exit 2.
+  mj::InspectReport report;
+  if (options.engine == "mujoco") {
+    report = mj::inspect(in);
+  } else if (options.engine == "mujoco3") {
+    mj::StateRequest request;
+    request.path = in.path;
+    request.key = in.key;
+    request.settle = in.settle;
+    report = mj::inspect_state(contact2d::mujoco3::read_model_state(request), in);
+  } else {
+    throw InputError("--engine " + options.engine +
+                     ": inspect reads a model in mujoco (2.2.2) or mujoco3 (3.14)");
+  }
   if (!report.load_warning.empty())
     std::cerr << "contact2d: note: MuJoCo warns while loading " << in.path << ": "
               << report.load_warning << "\n";
@@ -38,6 +55,8 @@ Command add_inspect(CLI::App& app) {
       "Your own MJCF model's contacts in physical units: solref/solimp as MuJoCo resolves them, "
       "k, c, ω, ζ, stability, rest depth, restitution, creep");
   cmd->add_option("model", options->inspect.path, "A MuJoCo MJCF file")->required();
+  cmd->add_option("--engine", options->engine,
+                  "The MuJoCo that reads the model: mujoco (2.2.2) or mujoco3 (3.14)");
   cmd->add_option("--key", options->inspect.key,
                   "Keyframe to inspect the model at (default: qpos0)");
   cmd->add_option("--settle", options->inspect.settle,

@@ -473,9 +473,9 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
     rep.warnings.push_back(
         "the model is not at rest (largest |qvel| " + format_number(rep.speed) + ", |qacc| " +
         format_number(rep.accel) + "; at rest: ≤ " + format_number(kRestSpeed) + " and ≤ " +
-        format_number(kRestAccel) + (rep.settled > 0.0 ? " after " + format_number(rep.settled) +
-                                                             " s of settling"
-                                                       : std::string()) +
+        format_number(kRestAccel) +
+        (rep.settled > 0.0 ? " after " + format_number(rep.settled) + " s of settling"
+                           : std::string()) +
         "): the loads are MuJoCo's forces at this instant, not its rest loads, and the rest "
         "depths follow them" +
         (rep.settled > 0.0 ? "; a longer --settle may bring it to rest"
@@ -527,8 +527,9 @@ StateRequest state_request(const InspectOptions& options) {
 
 InspectReport inspect_state(const ModelState& state, const InspectOptions& options) {
   if (options.pairs)
-    throw InputError("--pairs: lists pairs with MuJoCo 2.2.2's collision functions; run it "
-                     "without --engine mujoco3");
+    throw InputError(
+        "--pairs: lists pairs with MuJoCo 2.2.2's collision functions; run it "
+        "without --engine mujoco3");
   InspectReport rep = begin_report(state, options);
   add_warnings(state, options, rep);
   return rep;
@@ -565,14 +566,16 @@ std::string state_name(const InspectReport& rep) {
 std::string no_contacts_hint(const InspectReport& rep) {
   std::string out;
   if (rep.settled <= 0.0)
-    out += "--settle SECONDS lets MuJoCo drop the model onto what it rests on (3 s suits most "
-           "models)";
+    out +=
+        "--settle SECONDS lets MuJoCo drop the model onto what it rests on (3 s suits most "
+        "models)";
   else
     out += "after " + format_number(rep.settled) +
            " s of settling nothing touches (the model may fly, hang, or fall past everything: "
            "a longer --settle, or --key)";
-  out += "; --key NAME inspects a keyframe; --pairs lists every geom pair that can collide, "
-         "with its numbers at the closest points";
+  out +=
+      "; --key NAME inspects a keyframe; --pairs lists every geom pair that can collide, "
+      "with its numbers at the closest points";
   return out;
 }
 
@@ -762,8 +765,8 @@ std::string format_inspect_json(const InspectReport& rep) {
     << ",\n  \"key\": " << (rep.key.empty() ? "null" : json_string(rep.key))
     << ",\n  \"mujoco\": " << json_string(rep.version) << ",\n  \"settled\": " << jn(rep.settled)
     << ",\n  \"speed\": " << jn(rep.speed) << ",\n  \"accel\": " << jn(rep.accel)
-    << ",\n  \"at_rest\": " << (rep.at_rest ? "true" : "false") << ",\n  \"loads\": "
-    << json_string(rep.loads_estimated ? "estimate" : "mujoco")
+    << ",\n  \"at_rest\": " << (rep.at_rest ? "true" : "false")
+    << ",\n  \"loads\": " << json_string(rep.loads_estimated ? "estimate" : "mujoco")
     << ",\n  \"load_warning\": " << json_string(rep.load_warning)
     << ",\n  \"integrator\": " << json_string(rep.integrator) << ",\n  \"timestep\": " << jn(rep.dt)
     << ",\n  \"cone\": " << json_string(rep.cone) << ",\n  \"impratio\": " << jn(rep.impratio)

@@ -82,21 +82,21 @@ struct InspectRow {
   double timeconst_used = 0.0;  // standard form: after refsafe; 0 for the direct form
   bool refsafe_changes = false;
   double K = 0.0, B = 0.0;
-  double dmax = 0.0;               // solimp[1] after MuJoCo's clamps
-  double d_now = 0.0;              // impedance at dist
-  double d_rest = 0.0;             // impedance at the static penetration
-  double A = 0.0;                  // true inverse mass at the contact, 1/kg
-  bool A_measured = false;         // false: no contact point found, A = Â assumed
-  bool closest = false;            // a pair not in contact: A at its closest points (dist > 0)
-  double inv_weight = 0.0;         // Â: body_invweight0 of both bodies
-  double normal_weight = 0.0;      // Â the normal row sees (pyramidal: ·φ)
-  double phi = 1.0;                // normal_weight / inv_weight
-  double force = 0.0;     // MuJoCo's normal force at this state (mj_contactForce), N
-  double estimate = NAN;  // the least-squares load (estimate_loads), N
-  double load = 0.0;      // the load the rest depth is for: force, or estimate (NaN: not known)
-  double penetration = 0.0;        // static penetration, m (NaN: not known)
-  double k = 0.0, c = 0.0;         // N/m, N·s/m at d_rest
-  double omega = 0.0, zeta = 0.0;  // at d_rest
+  double dmax = 0.0;           // solimp[1] after MuJoCo's clamps
+  double d_now = 0.0;          // impedance at dist
+  double d_rest = 0.0;         // impedance at the static penetration
+  double A = 0.0;              // true inverse mass at the contact, 1/kg
+  bool A_measured = false;     // false: no contact point found, A = Â assumed
+  bool closest = false;        // a pair not in contact: A at its closest points (dist > 0)
+  double inv_weight = 0.0;     // Â: body_invweight0 of both bodies
+  double normal_weight = 0.0;  // Â the normal row sees (pyramidal: ·φ)
+  double phi = 1.0;            // normal_weight / inv_weight
+  double force = 0.0;          // MuJoCo's normal force at this state (mj_contactForce), N
+  double estimate = NAN;       // the least-squares load (estimate_loads), N
+  double load = 0.0;         // the load the rest depth is for: force, or estimate (NaN: not known)
+  double penetration = 0.0;  // static penetration, m (NaN: not known)
+  double k = 0.0, c = 0.0;   // N/m, N·s/m at d_rest
+  double omega = 0.0, zeta = 0.0;          // at d_rest
   double omega_max = 0.0, zeta_max = 0.0;  // at d_max
   double omega_dt = 0.0, limit = 0.0;      // ω·Δt at d_max and the integrator's limit
   double restitution = 0.0;
@@ -106,7 +106,7 @@ struct InspectRow {
 
 struct InspectReport {
   std::string path, key;
-  std::string version;  // MuJoCo's
+  std::string version;   // MuJoCo's
   double settled = 0.0;  // s of settling
   double speed = 0.0;    // largest |qvel| at the state
   double accel = 0.0;    // largest |qacc| at the state

@@ -6,9 +6,9 @@
 //
 // The state: the model's keyframe (or qpos0), then, with a settle time,
 // mj_step for that long (at most 1e6 steps) so MuJoCo itself brings the
-// model to rest; then mj_forward. The settled criterion is stated, not assumed: `speed` and `accel` are the largest
-// |qvel| and |qacc| at the end, and the state counts as at rest when they
-// are at most kRestSpeed and kRestAccel.
+// model to rest; then mj_forward. The settled criterion is stated, not assumed: `speed` and `accel`
+// are the largest |qvel| and |qacc| at the end, and the state counts as at rest when they are at
+// most kRestSpeed and kRestAccel.
 //
 // Per contact (d->contact[i] that is in the constraint problem):
 //   dist      con.dist − con.includemargin (negative: penetrating), m;
@@ -67,8 +67,8 @@ struct StateContact {
 };
 
 struct ModelState {
-  std::string version;       // MuJoCo's, "2.2.2" or "3.14.0"
-  std::string load_warning;  // MuJoCo's warning while loading, one line
+  std::string version;                // MuJoCo's, "2.2.2" or "3.14.0"
+  std::string load_warning;           // MuJoCo's warning while loading, one line
   std::vector<std::string> messages;  // MuJoCo's warnings while stepping
   // <option>
   double timestep = 0.0;
@@ -86,9 +86,9 @@ struct ModelState {
   std::vector<int> geom_body;
   // the state
   int nv = 0;
-  double settled = 0.0;  // s stepped
-  double speed = 0.0;    // largest |qvel| at the end
-  double accel = 0.0;    // largest |qacc| at the end
+  double settled = 0.0;      // s stepped
+  double speed = 0.0;        // largest |qvel| at the end
+  double accel = 0.0;        // largest |qacc| at the end
   std::vector<double> bias;  // qfrc_bias at this configuration with qvel = 0
   std::vector<StateContact> contacts;
 };

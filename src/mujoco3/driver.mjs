@@ -15,12 +15,15 @@
 // first one that left a bad number in qpos or qvel (MuJoCo's autoreset is
 // off, so it stays there); rewind {id, n}: back to the state before the last
 // "step" and n steps again (a changed applied force takes effect there);
-// counters {id} → {warnings: ["text (N times)"]}.
+// counters {id} → {warnings: ["text (N times)"]};
+// state {path, key, settle} → a user's model file at one state, the fields
+// of mujoco/model_state.hpp's ModelState (the model is loaded, settled,
+// read and freed within the request).
 //
 // Everything MuJoCo prints (its warnings) is collected and returned as
 // "messages" on the next answer, so stdout carries only the protocol.
-import {readFileSync} from 'node:fs';
-import {dirname, join} from 'node:path';
+import {lstatSync, readdirSync, readFileSync} from 'node:fs';
+import {basename, dirname, join} from 'node:path';
 import {createInterface} from 'node:readline';
 import {fileURLToPath} from 'node:url';
 
@@ -85,6 +88,186 @@ function restore(e) {
   d.qvel.set(s.qvel);
   d.act.set(s.act);
   d.qacc_warmstart.set(s.warm);
+}
+
+// The package cannot read the disk: a user's model folder (its includes,
+// meshes and textures beside it) is copied into MuJoCo's in-memory file
+// system, at most kStageBytes in all, and removed after the request.
+const kStageBytes = 256 * 1024 * 1024;
+function stage(path) {
+  const root = '/model';
+  let bytes = 0;
+  const copy = (from, to) => {
+    mj.FS.mkdirTree(to);
+    for (const entry of readdirSync(from, {withFileTypes: true})) {
+      const source = join(from, entry.name), target = to + '/' + entry.name;
+      if (entry.isDirectory()) {
+        copy(source, target);
+      } else if (entry.isFile()) {
+        const data = readFileSync(source);
+        bytes += data.length;
+        if (bytes > kStageBytes) {
+          throw new Error(`the model's folder ${dirname(path)} holds more than ` +
+                          `${kStageBytes / 1048576} MiB (MuJoCo 3 reads a copy of it)`);
+        }
+        mj.FS.writeFile(target, data);
+      }
+    }
+  };
+  try {
+    copy(dirname(path), root);
+  } catch (e) {
+    unstage(root);
+    throw e;
+  }
+  return {root, file: root + '/' + basename(path)};
+}
+
+function unstage(path) {
+  let info;
+  try {
+    info = mj.FS.stat(path);
+  } catch {
+    return;
+  }
+  if (mj.FS.isDir(info.mode)) {
+    for (const name of mj.FS.readdir(path)) {
+      if (name !== '.' && name !== '..') unstage(path + '/' + name);
+    }
+    mj.FS.rmdir(path);
+  } else {
+    mj.FS.unlink(path);
+  }
+}
+
+// A name from the model's names buffer ("" when unnamed).
+const decoder = new TextDecoder();
+function nameAt(m, adr) {
+  const names = m.names;
+  let end = adr;
+  while (names[end]) ++end;
+  return decoder.decode(names.slice(adr, end));
+}
+
+const integrators = ['Euler', 'RK4', 'implicit', 'implicitfast'];
+
+function readState(m, d, r) {
+  const nv = m.nv, nbody = m.nbody, ngeom = m.ngeom;
+  const obj = mj.mjtObj;
+  let key = -1;
+  if (r.key) {
+    key = mj.mj_name2id(m, obj.mjOBJ_KEY.value, r.key);
+    if (key < 0) {
+      const names = [];
+      for (let i = 0; i < m.nkey; ++i) names.push(nameAt(m, m.name_keyadr[i]) || `key #${i}`);
+      throw new Error(`--key ${r.key}: no keyframe of that name in ${r.path}` +
+                      (names.length ? ` (its keyframes: ${names.join(', ')})` : ' (it has none)'));
+    }
+    mj.mj_resetDataKeyframe(m, d, key);
+  } else {
+    mj.mj_resetData(m, d);
+  }
+  const steps = Math.min(1000000, Math.round(r.settle / m.opt.timestep));
+  for (let i = 0; i < steps; ++i) mj.mj_step(m, d);
+  mj.mj_forward(m, d);
+  let speed = 0, accel = 0;
+  for (let i = 0; i < nv; ++i) {
+    speed = Math.max(speed, Math.abs(d.qvel[i]));
+    accel = Math.max(accel, Math.abs(d.qacc[i]));
+  }
+  const warnings = [];
+  for (let i = 0; i < mj.mjtWarning.mjNWARNING.value; ++i) {
+    const n = d.warning.get(i).number;
+    if (n > 0) warnings.push(`${mj.mju_warningText(i, d.warning.get(i).lastinfo)} (${n} times)`);
+  }
+  const disable = m.opt.disableflags, bits = mj.mjtDisableBit;
+  const out = {
+    version: mj.mj_versionString(),
+    timestep: m.opt.timestep,
+    integrator: integrators[m.opt.integrator] ?? `integrator ${m.opt.integrator}`,
+    elliptic: m.opt.cone === mj.mjtCone.mjCONE_ELLIPTIC.value,
+    impratio: m.opt.impratio,
+    gravity: Array.from(m.opt.gravity),
+    refsafe: !(disable & bits.mjDSBL_REFSAFE.value),
+    disabled: disable & bits.mjDSBL_CONTACT.value      ? 'contacts'
+        : disable & bits.mjDSBL_CONSTRAINT.value ? 'constraints'
+                                                 : '',
+    body_names: [],
+    geom_names: [],
+    body_weld: Array.from(m.body_weldid),
+    body_mass: Array.from(m.body_mass),
+    body_invweight0: Array.from(m.body_invweight0),
+    geom_body: Array.from(m.geom_bodyid),
+    nv,
+    settled: steps * m.opt.timestep,
+    speed,
+    accel,
+    step_warnings: warnings,
+    contacts: []
+  };
+  for (let b = 0; b < nbody; ++b)
+    out.body_names.push(nameAt(m, m.name_bodyadr[b]) || (b === 0 ? 'world' : `body #${b}`));
+  for (let g = 0; g < ngeom; ++g) out.geom_names.push(nameAt(m, m.name_geomadr[g]) || `geom #${g}`);
+
+  // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0.
+  const still = new mj.MjData(m);
+  try {
+    still.qpos.set(d.qpos);
+    mj.mj_forward(m, still);
+    out.bias = Array.from(still.qfrc_bias);
+  } finally {
+    still.delete();
+  }
+
+  const jp1 = new mj.DoubleBuffer(3 * nv), jp2 = new mj.DoubleBuffer(3 * nv);
+  const jr = new mj.DoubleBuffer(3 * nv), x = new mj.DoubleBuffer(nv);
+  const force = new mj.DoubleBuffer(6);
+  try {
+    for (let i = 0; i < d.ncon; ++i) {
+      const con = d.contact.get(i);
+      if (con.exclude !== 0 || con.efc_address < 0) continue;  // not in the constraint problem
+      const g1 = con.geom1, g2 = con.geom2;
+      const b1 = m.geom_bodyid[g1], b2 = m.geom_bodyid[g2];
+      const pos = Array.from(con.pos), normal = Array.from(con.frame).slice(0, 3);
+      mj.mj_jac(m, d, jp1, jr, pos, b1);
+      mj.mj_jac(m, d, jp2, jr, pos, b2);
+      const j1 = jp1.GetView(), j2 = jp2.GetView();
+      const row = new Array(nv).fill(0);
+      for (let k = 0; k < 3; ++k)
+        for (let c = 0; c < nv; ++c) row[c] += normal[k] * (j2[k * nv + c] - j1[k * nv + c]);
+      mj.mj_solveM(m, d, x, row);
+      const solved = x.GetView();
+      let A = 0;
+      for (let c = 0; c < nv; ++c) A += row[c] * solved[c];
+      mj.mj_contactForce(m, d, i, force);
+      let explicitPair = false;
+      for (let p = 0; p < m.npair; ++p) {
+        const p1 = m.pair_geom1[p], p2 = m.pair_geom2[p];
+        if ((p1 === g1 && p2 === g2) || (p1 === g2 && p2 === g1)) explicitPair = true;
+      }
+      out.contacts.push({
+        geom1: g1,
+        geom2: g2,
+        body1: b1,
+        body2: b2,
+        explicit_pair: explicitPair,
+        dist: con.dist - con.includemargin,
+        pos,
+        normal,
+        condim: con.dim,
+        friction: Array.from(con.friction),
+        solref: Array.from(con.solref),
+        solimp: Array.from(con.solimp),
+        A,
+        force: force.GetView()[0],
+        jacobian_index: row.flatMap((v, c) => v !== 0 ? [c] : []),
+        jacobian_value: row.filter((v) => v !== 0)
+      });
+    }
+  } finally {
+    for (const b of [jp1, jp2, jr, x, force]) b.delete();
+  }
+  return out;
 }
 
 const ops = {
@@ -161,6 +344,29 @@ const ops = {
     restore(e);
     for (let i = 0; i < r.n; ++i) mj.mj_step(e.m, e.d);
     return {};
+  },
+  state: (r) => {
+    const {root, file} = stage(r.path);
+    try {
+      const before = messages.length;
+      let m;
+      try {
+        m = mj.MjModel.from_xml_path(file);
+      } catch (e) {
+        throw new Error(`${r.option ? r.option + ' ' : ''}${r.path}: MuJoCo ` +
+                        `${mj.mj_versionString()} cannot load the model: ${oneLine(e)}`);
+      }
+      const loadWarning = messages.splice(before).map(oneLine).join('; ');
+      const d = new mj.MjData(m);
+      try {
+        return {...readState(m, d, r), load_warning: loadWarning};
+      } finally {
+        d.delete();
+        m.delete();
+      }
+    } finally {
+      unstage(root);
+    }
   },
   counters: (r) => {
     const {d} = entry(r);

@@ -1,6 +1,7 @@
 #include "mujoco3/node_mujoco.hpp"
 
 #include <unistd.h>
+#include <filesystem>
 
 #include <cstdlib>
 #include <fstream>
@@ -130,7 +131,7 @@ Node::~Node() = default;
 
 int Node::pid() const { return static_cast<int>(process_->pid()); }
 
-Node::Answer Node::request(const std::string& line, const std::string& origin) {
+Node::Answer Node::request(const std::string& line, const std::string& origin, bool verbatim) {
   Answer a;
   std::string text;
   try {
@@ -146,6 +147,7 @@ Node::Answer Node::request(const std::string& line, const std::string& origin) {
     for (const json::Value& m : said->items) messages_.push_back(m.text);
   if (text_of(a.get("ok")) != "true") {
     const std::string error = text_of(a.get("error"));
+    if (verbatim) throw InputError(error);
     if (!origin.empty())
       throw InputError(origin + ": MuJoCo " + std::string(kVersion) +
                        " cannot load the model: " + error);
@@ -199,6 +201,102 @@ int Node::step(int id, int n, std::vector<double>& out, bool& bad) {
 
 void Node::rewind(int id, int n) {
   request(R"({"op":"rewind","id":)" + std::to_string(id) + R"(,"n":)" + std::to_string(n) + "}");
+}
+
+mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
+  const std::string path = std::filesystem::absolute(r.path).string();
+  const Answer a = request(R"({"op":"state","path":)" + json::string(path) + R"(,"key":)" +
+                               json::string(r.key) + R"(,"settle":)" + json::number(r.settle) +
+                               R"(,"option":)" + json::string(r.option) + "}",
+                           {}, true);
+  mujoco::ModelState s;
+  auto texts = [](const json::Value* v) {
+    std::vector<std::string> out;
+    if (v)
+      for (const json::Value& item : v->items) out.push_back(item.text);
+    return out;
+  };
+  auto ints = [](const json::Value* v) {
+    std::vector<int> out;
+    for (double x : numbers_of(v)) out.push_back(static_cast<int>(x));
+    return out;
+  };
+  auto number = [](const json::Value* v) { return v ? v->number : 0.0; };
+  s.version = text_of(a.get("version"));
+  s.load_warning = text_of(a.get("load_warning"));
+  s.messages = texts(a.get("step_warnings"));
+  s.timestep = number(a.get("timestep"));
+  s.integrator = text_of(a.get("integrator"));
+  s.elliptic = text_of(a.get("elliptic")) == "true";
+  s.impratio = number(a.get("impratio"));
+  const std::vector<double> g = numbers_of(a.get("gravity"));
+  for (size_t i = 0; i < 3 && i < g.size(); ++i) s.gravity[i] = g[i];
+  s.refsafe = text_of(a.get("refsafe")) == "true";
+  s.disabled = text_of(a.get("disabled"));
+  s.body_names = texts(a.get("body_names"));
+  s.geom_names = texts(a.get("geom_names"));
+  s.body_weld = ints(a.get("body_weld"));
+  s.body_mass = numbers_of(a.get("body_mass"));
+  s.body_invweight0 = numbers_of(a.get("body_invweight0"));
+  s.geom_body = ints(a.get("geom_body"));
+  s.nv = static_cast<int>(number(a.get("nv")));
+  s.settled = number(a.get("settled"));
+  s.speed = number(a.get("speed"));
+  s.accel = number(a.get("accel"));
+  s.bias = numbers_of(a.get("bias"));
+  if (const json::Value* list = a.get("contacts")) {
+    for (const json::Value& c : list->items) {
+      mujoco::StateContact out;
+      out.geom1 = static_cast<int>(number(c.get("geom1")));
+      out.geom2 = static_cast<int>(number(c.get("geom2")));
+      out.body1 = static_cast<int>(number(c.get("body1")));
+      out.body2 = static_cast<int>(number(c.get("body2")));
+      out.explicit_pair = text_of(c.get("explicit_pair")) == "true";
+      out.dist = number(c.get("dist"));
+      auto fill = [&](const char* key, auto& array) {
+        const std::vector<double> v = numbers_of(c.get(key));
+        for (size_t i = 0; i < array.size() && i < v.size(); ++i) array[i] = v[i];
+      };
+      fill("pos", out.pos);
+      fill("normal", out.normal);
+      fill("friction", out.friction);
+      fill("solref", out.solref);
+      fill("solimp", out.solimp);
+      out.condim = static_cast<int>(number(c.get("condim")));
+      out.A = number(c.get("A"));
+      out.force = number(c.get("force"));
+      // The normal row arrives sparse: its non-zero columns and values.
+      out.jacobian.assign(static_cast<size_t>(s.nv), 0.0);
+      const std::vector<double> index = numbers_of(c.get("jacobian_index"));
+      const std::vector<double> value = numbers_of(c.get("jacobian_value"));
+      for (size_t i = 0; i < index.size() && i < value.size(); ++i) {
+        const auto column = static_cast<size_t>(index[i]);
+        if (column < out.jacobian.size()) out.jacobian[column] = value[i];
+      }
+      s.contacts.push_back(out);
+    }
+  }
+  // Every index the contact math reads must be in range: the driver is
+  // this program's own, but a model is anybody's.
+  const size_t nbody = s.body_names.size(), ngeom = s.geom_names.size();
+  bool sound = s.body_weld.size() == nbody && s.body_mass.size() == nbody &&
+               s.body_invweight0.size() == 2 * nbody && s.geom_body.size() == ngeom &&
+               s.bias.size() == static_cast<size_t>(s.nv);
+  for (const int b : s.geom_body) sound = sound && b >= 0 && static_cast<size_t>(b) < nbody;
+  for (const mujoco::StateContact& c : s.contacts)
+    sound = sound && c.geom1 >= 0 && static_cast<size_t>(c.geom1) < ngeom && c.geom2 >= 0 &&
+            static_cast<size_t>(c.geom2) < ngeom;
+  if (!sound) {
+    failed_ = true;
+    throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
+                      " answered a state whose arrays do not fit together (" + fix_command() + ")");
+  }
+  return s;
+}
+
+mujoco::ModelState read_model_state(const mujoco::StateRequest& request) {
+  mujoco::check_state_request(request);
+  return Node::of_this_thread()->state(request);
 }
 
 std::vector<std::string> Node::counters(int id) {

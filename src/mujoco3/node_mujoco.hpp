@@ -19,6 +19,8 @@
 #include <string_view>
 #include <vector>
 
+#include "mujoco/model_state.hpp"
+
 namespace contact2d {
 class ChildProcess;
 }
@@ -69,6 +71,10 @@ class Node {
   int step(int id, int n, std::vector<double>& out, bool& bad);
   // Back to the state before the last step() and n steps again.
   void rewind(int id, int n);
+  // A user's model file at one state (mujoco/model_state.hpp), as 3.14
+  // loads, settles and reads it; InputError with the driver's one line
+  // (MuJoCo 3 refusing the model, an unknown keyframe).
+  mujoco::ModelState state(const mujoco::StateRequest& request);
   // MuJoCo's non-zero warning counters ("... (N times)").
   std::vector<std::string> counters(int id);
   // MuJoCo's printed messages since the last call.
@@ -79,11 +85,17 @@ class Node {
  private:
   Node();
   struct Answer;
-  Answer request(const std::string& line, const std::string& origin = {});
+  // origin non-empty: an error is MuJoCo refusing that model; `verbatim`:
+  // an error is the driver's own line, an InputError.
+  Answer request(const std::string& line, const std::string& origin = {}, bool verbatim = false);
 
   std::unique_ptr<ChildProcess> process_;
   std::vector<std::string> messages_;
   bool failed_ = false;  // it died or broke the protocol: the next user starts another
 };
+
+// mujoco/model_state.hpp's read_model_state, in MuJoCo 3.14 (this
+// thread's Node process).
+mujoco::ModelState read_model_state(const mujoco::StateRequest& request);
 
 }  // namespace contact2d::mujoco3
