@@ -10,6 +10,7 @@
 
 #include "cli/common.hpp"
 #include "mujoco/solref_request.hpp"
+#include "mujoco3/node_mujoco.hpp"
 
 namespace contact2d::cli {
 namespace {
@@ -21,9 +22,10 @@ struct SolrefOptions {
 
 int solref(const SolrefOptions& options) {
   namespace mj = contact2d::mujoco;
-  const mj::SolrefReport report = mj::solref_request(options.request, [](const std::string& line) {
-    std::cerr << "contact2d: note: " << line << "\n";
-  });
+  const mj::SolrefReport report = mj::solref_request(
+      options.request, [](const std::string& line) { std::cerr << "contact2d: note: " << line << "\n"; },
+      options.request.engine == "mujoco3" ? mj::StateReader(contact2d::mujoco3::read_model_state)
+                                          : mj::StateReader(mj::read_model_state));
   std::cout << (options.json ? mj::format_report_json(report) : mj::format_report_text(report));
   return kExitOk;
 }
@@ -64,6 +66,14 @@ Command add_solref(CLI::App& app) {
       "A MuJoCo MJCF file: read the body's mass, joints, body_invweight0 and friction, and count "
       "its contacts at rest (3 s of mj_step)");
   cmd->add_option("--body", options->request.body, "The body's name in --model");
+  cmd->add_option("--engine", options->request.engine,
+                  "The MuJoCo whose numbers to give: mujoco (2.2.2) or mujoco3 (3.14): Â and, "
+                  "with --model, the settled contacts as that version compiles and steps it");
+  cmd->add_option("--settle", options->request.settle,
+                  "--model: seconds of mj_step before reading the body's contacts (>= 0; "
+                  "default 3)");
+  cmd->add_option("--key", options->request.key,
+                  "--model: the keyframe the settling starts from (default qpos0)");
   mass->excludes(model);
   cmd->add_option("--mu", options->request.mu,
                   "Sliding friction coefficient (>= 0; absent: the snippets keep your friction)");

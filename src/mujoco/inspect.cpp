@@ -129,6 +129,17 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
   if (std::isfinite(r.load)) {
     r.penetration = static_penetration(r.solimp, r.K, r.normal_weight, r.load);
     r.d_rest = mujoco_impedance(r.solimp, -r.penetration);
+    // Every row at aref/R only in the quadratic zone: otherwise MuJoCo's
+    // normal force is not the one the depth balances.
+    if (r.active && r.quadratic < r.rows) {
+      r.depth_note = std::to_string(r.rows - r.quadratic) + " of its " + std::to_string(r.rows) +
+                     " constraint rows are out of the solver's quadratic zone (" +
+                     (r.condim == 1  ? "it pushes nothing"
+                      : s.elliptic ? "on the friction cone's surface"
+                                   : "a pyramid edge unloaded") +
+                     ": it slips, or lifts): its depth does not follow its load";
+      r.penetration = kNaN;
+    }
   } else {
     r.penetration = kNaN;
     r.d_rest = mujoco_impedance(r.solimp, 0.0);
@@ -141,6 +152,22 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
     zeta = r.A * c / (2.0 * omega);
   };
   regime(r.d_rest, r.k, r.c, r.omega, r.zeta);
+  // A contact not yet at rest: in the solver's quadratic zone MuJoCo's
+  // force is f = (aref − J·qacc)/R with aref = −B·v + K·d·p, so the depth
+  // that force sets differs from the rest depth of that load by the part
+  // (B·v + J·qacc)/R, R = (1 − d)/d·Â at the depth now. Above 1 % of the
+  // load, MuJoCo's depth now is not yet the rest depth (a lightly loaded
+  // particle in a settling pile: a few percent).
+  if (r.active && r.depth_note.empty() && std::isfinite(r.penetration) && r.load > 0.0) {
+    const double R = (1.0 - r.d_now) / r.d_now * r.normal_weight;
+    r.unsettled = std::abs(r.B * r.normal_speed + r.normal_accel) / R;
+    if (r.unsettled > 0.01 * r.load)
+      r.depth_note = "not at rest along its normal (v = " + format_number(r.normal_speed) +
+                     " m/s, a = " + format_number(r.normal_accel) + " m/s²: " +
+                     format_number(100.0 * r.unsettled / r.load) +
+                     " % of its force is not its rest load), MuJoCo's depth now is not yet this "
+                     "one (a longer --settle)";
+  }
   double k_max = 0.0, c_max = 0.0;
   regime(r.dmax, k_max, c_max, r.omega_max, r.zeta_max);
   r.omega_dt = r.omega_max * s.timestep;
@@ -301,6 +328,12 @@ void collect_contacts(const ModelState& s, InspectReport& rep) {
     r.A = con.A;
     r.A_measured = true;
     r.force = con.force;
+    r.rows = con.rows;
+    for (size_t k = 0; k < con.jacobian.size() && k < s.qvel.size(); ++k) {
+      r.normal_speed += con.jacobian[k] * s.qvel[k];
+      r.normal_accel += con.jacobian[k] * s.qacc[k];
+    }
+    r.quadratic = con.quadratic;
     r.load = std::max(0.0, con.force);
     rep.contacts.push_back(r);
   }
@@ -625,7 +658,11 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
   }
   if (std::isfinite(r.load))
     o << "  load " << format_number(r.load) << " N" << (rep.loads_estimated ? " (estimate)" : "")
-      << ", rest depth " << format_number(r.penetration) << " m\n";
+      << ", rest depth "
+      << (r.depth_note.empty()             ? format_number(r.penetration) + " m"
+          : std::isfinite(r.penetration) ? format_number(r.penetration) + " m (" + r.depth_note + ")"
+                                         : "not known: " + r.depth_note)
+      << "\n";
   else
     o << "  static load: not known (not in contact now)\n";
   if (rep.slope) {
@@ -686,6 +723,8 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
     << ", \"limit\": " << jn(r.limit) << ",\n     \"restitution\": " << jn(r.restitution)
     << ", \"load\": " << jn(r.load) << ", \"force\": " << (r.active ? jn(r.force) : "null")
     << ", \"estimate\": " << jn(r.estimate) << ", \"penetration\": " << jn(r.penetration)
+    << ", \"normal_speed\": " << (r.active ? jn(r.normal_speed) : "null")
+    << ", \"depth_note\": " << json_string(r.depth_note)
     << ", \"creep\": " << jn(r.creep) << ", \"creep_note\": " << json_string(r.creep_note) << "}";
 }
 

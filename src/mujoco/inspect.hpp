@@ -95,6 +95,11 @@ struct InspectRow {
   double estimate = NAN;       // the least-squares load (estimate_loads), N
   double load = 0.0;         // the load the rest depth is for: force, or estimate (NaN: not known)
   double penetration = 0.0;  // static penetration, m (NaN: not known)
+  int rows = 0, quadratic = 0;  // constraint rows, and those in the solver's quadratic zone
+  double normal_speed = 0.0;    // n·(v₂ − v₁) at the contact now (J·qvel), m/s
+  double normal_accel = 0.0;    // J·qacc, m/s²
+  double unsettled = 0.0;       // the part of its force that is not rest: (B·v + J·qacc)/R
+  std::string depth_note;       // why there is no rest depth, or why MuJoCo is not at it now
   double k = 0.0, c = 0.0;   // N/m, N·s/m at d_rest
   double omega = 0.0, zeta = 0.0;          // at d_rest
   double omega_max = 0.0, zeta_max = 0.0;  // at d_max

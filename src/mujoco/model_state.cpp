@@ -30,6 +30,23 @@ std::string integrator_name(int integrator) {
   }
 }
 
+// How many of a contact's rows are in the solver's quadratic zone, from
+// their forces (efc_state is stale after MuJoCo 3's early exits: a row of
+// 46 N marked satisfied on the settled humanoid): a pyramidal or
+// frictionless row is there when it pushes (a satisfied row carries 0
+// exactly); an elliptic contact, all its rows, when its force is strictly
+// inside the cone, ‖(f_i/μ_i)‖ < f_n (on the cone's surface it slides).
+int quadratic_rows(const double* force, int rows, bool elliptic, const double* mu) {
+  if (!elliptic) {
+    int n = 0;
+    for (int k = 0; k < rows; ++k) n += force[k] > 0.0;
+    return n;
+  }
+  double t = 0.0;
+  for (int k = 1; k < rows; ++k) t += (force[k] / mu[k - 1]) * (force[k] / mu[k - 1]);
+  return force[0] > 0.0 && std::sqrt(t) < force[0] * (1.0 - 1e-9) ? rows : 0;
+}
+
 }  // namespace
 
 void check_state_request(const StateRequest& r) {
@@ -104,9 +121,22 @@ LoadedState load_model_state(const StateRequest& r) {
     s.body_invweight0.push_back(m->body_invweight0[2 * b]);
     s.body_invweight0.push_back(m->body_invweight0[2 * b + 1]);
   }
+  s.body_joints.assign(static_cast<size_t>(m->nbody), "");
+  for (int j = 0; j < m->njnt; ++j) {
+    std::string& list = s.body_joints[static_cast<size_t>(m->jnt_bodyid[j])];
+    const int type = m->jnt_type[j];
+    list += std::string(list.empty() ? "" : ", ") + (type == mjJNT_FREE    ? "free"
+                                                     : type == mjJNT_SLIDE ? "slide"
+                                                     : type == mjJNT_HINGE ? "hinge"
+                                                                           : "ball");
+  }
+  for (int b = 0; b < m->nbody; ++b) s.body_parent.push_back(m->body_parentid[b]);
   for (int g = 0; g < m->ngeom; ++g) {
     s.geom_names.push_back(name_of(m, mjOBJ_GEOM, g, "geom"));
     s.geom_body.push_back(m->geom_bodyid[g]);
+    s.geom_mu.push_back(m->geom_friction[3 * g]);
+    s.geom_condim.push_back(m->geom_condim[g]);
+    s.geom_collides.push_back((m->geom_contype[g] | m->geom_conaffinity[g]) != 0);
   }
   s.nv = m->nv;
 
@@ -116,6 +146,8 @@ LoadedState load_model_state(const StateRequest& r) {
   mju_zero(still->qvel, m->nv);
   mj_forward(m, still.get());
   s.bias.assign(still->qfrc_bias, still->qfrc_bias + m->nv);
+  s.qvel.assign(d->qvel, d->qvel + m->nv);
+  s.qacc.assign(d->qacc, d->qacc + m->nv);
 
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& con = d->contact[i];
@@ -141,6 +173,10 @@ LoadedState load_model_state(const StateRequest& r) {
     double force[6] = {};
     mj_contactForce(m, d, i, force);
     c.force = force[0];
+    c.rows = m->opt.cone == mjCONE_ELLIPTIC || con.dim == 1 ? con.dim : 2 * (con.dim - 1);
+    if (con.efc_address >= 0)
+      c.quadratic = quadratic_rows(d->efc_force + con.efc_address, c.rows,
+                                   m->opt.cone == mjCONE_ELLIPTIC && con.dim > 1, con.friction);
     s.contacts.push_back(c);
   }
   s.messages = messages;

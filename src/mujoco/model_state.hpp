@@ -16,12 +16,18 @@
 //             mj_solveM on the factor mj_forward left), 1/kg;
 //   force     MuJoCo's own normal force (mj_contactForce, the contact
 //             frame's first component), N;
-//   jacobian  the normal row n·(J₁ − J₂) (nv), for the least-squares loads.
+//   jacobian  the normal row n·(J₁ − J₂) (nv), for the least-squares loads;
+//   rows      how many of its constraint rows are in the solver's quadratic
+//             zone (from their forces: a pushing pyramidal row, an elliptic
+//             force strictly inside its cone): a contact rests at the depth
+//             its load gives only when all are (an unloaded pyramid edge or
+//             an elliptic contact on its cone's surface slips).
 // Per body: body_invweight0 (Â, what the regulariser uses), the weld id
 // (0: welded to the world) and the mass.
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -63,6 +69,8 @@ struct StateContact {
   std::array<double, 5> solimp{};
   double A = 0.0;
   double force = 0.0;
+  int rows = 0;       // its constraint rows (pyramidal: 2(condim − 1), or 1; elliptic: condim)
+  int quadratic = 0;  // of them, in the solver's quadratic zone (efc_state)
   std::vector<double> jacobian;
 };
 
@@ -83,12 +91,18 @@ struct ModelState {
   std::vector<int> body_weld;                       // body_weldid
   std::vector<double> body_mass;
   std::vector<double> body_invweight0;  // 2 per body: translational, rotational
+  std::vector<int> body_parent;            // body_parentid
+  std::vector<std::string> body_joints;    // the body's own joints' types, "slide, slide, hinge"
   std::vector<int> geom_body;
+  std::vector<double> geom_mu;             // sliding friction (geom_friction[0])
+  std::vector<int> geom_condim;
+  std::vector<bool> geom_collides;         // contype or conaffinity non-zero
   // the state
   int nv = 0;
   double settled = 0.0;      // s stepped
   double speed = 0.0;        // largest |qvel| at the end
   double accel = 0.0;        // largest |qacc| at the end
+  std::vector<double> qvel, qacc;  // at this state
   std::vector<double> bias;  // qfrc_bias at this configuration with qvel = 0
   std::vector<StateContact> contacts;
 };
@@ -108,6 +122,9 @@ struct LoadedState {
   ModelState state;
 };
 LoadedState load_model_state(const StateRequest& request);
+
+// A version's reader: read_model_state here, mujoco3::read_model_state.
+using StateReader = std::function<ModelState(const StateRequest&)>;
 
 // The request's checks shared by both versions (InputError naming the option).
 void check_state_request(const StateRequest& request);

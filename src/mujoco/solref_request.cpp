@@ -21,12 +21,19 @@ std::vector<Mapping> chosen_mappings(const std::string& name) {
 }
 
 SolrefReport solref_request(const SolrefRequest& options,
-                            const std::function<void(const std::string&)>& note) {
+                            const std::function<void(const std::string&)>& note,
+                            const StateReader& read) {
   auto tell = [&note](const std::string& line) {
     if (note) note(line);
   };
   const auto mappings = chosen_mappings(options.mapping);
+  if (options.engine != "mujoco" && options.engine != "mujoco3")
+    throw InputError("--engine " + options.engine +
+                     ": solref is for mujoco (2.2.2) or mujoco3 (3.14)");
+  if (options.engine == "mujoco3" && !read)
+    throw InputError("--engine mujoco3: MuJoCo 3 is not available in this build");
   SolrefInput in;
+  in.mujoco3 = options.engine == "mujoco3";
   in.k = options.k.value_or(1.0);  // a placeholder until solve_targets when a target gives it
   in.c = options.c.value_or(0.0);
   in.dt = options.dt;
@@ -62,26 +69,46 @@ SolrefReport solref_request(const SolrefRequest& options,
       if (probe.joint == Joint::Hinge && !(probe.lever > 0.0)) probe.lever = 1.0;
       return probe;
     }());
-    const ModelBody body = read_model_body(options.model, options.body);
+    StateRequest request;
+    request.path = options.model;
+    request.key = options.key;
+    request.settle = options.settle;
+    request.option = "--model";
+    const ModelBody body =
+        read_model_body(read ? read(request) : read_model_state(request), options.model,
+                        options.body);
     if (!body.load_warning.empty())
       tell("MuJoCo warns while loading " + options.model + ": " + body.load_warning);
     in.mass = body.mass;
     in.inv_weight = body.inv_weight;
     in.body_source = options.model + ", body '" + options.body +
                      "' (joints: " + (body.joints.empty() ? std::string("none") : body.joints) +
-                     ")";
-    // The joint set gives A; Â is the model's whatever it is.
+                     "), MuJoCo " + body.version;
     in.joint = body.joint.value_or(Joint::Free);
-    if (!body.joint)
-      tell("body '" + options.body +
-           "' is not on one of the joint sets free, planar, slide, hinge; A is taken as 1/m + "
-           "r²/I");
     if (in.keep_friction) in.user_friction = body.friction;
+    in.settled_contacts = body.contacts;
     const std::string settled =
         "after settling " + format_number(body.settle_seconds, 6) + " s with mj_step" +
-        (body.rest_speed > 1e-3
-             ? " (still moving: |qvel| = " + format_number(body.rest_speed, 3) + ")"
-             : std::string());
+        (body.at_rest ? std::string()
+                      : " (not at rest: |qvel| up to " + format_number(body.rest_speed, 3) +
+                            "; a longer --settle)");
+    if (!body.contacts.empty()) {
+      // The contact that carries the most: its A and MuJoCo's load at it.
+      const SettledContact* most = &body.contacts.front();
+      for (const SettledContact& c : body.contacts)
+        if (c.load > most->load) most = &c;
+      in.measured = ContactMechanics{most->A, most->load};
+      in.measured_source = "measured in the model " + settled + ": contact " + most->geom1 +
+                           " – " + most->geom2 + ", the most loaded of the body's " +
+                           std::to_string(body.contacts.size());
+      if (!(most->A > 0.0))
+        throw InputError("--body " + options.body +
+                         ": its joints cannot move its contact along the normal (A = 0)");
+    } else if (!body.joint) {
+      tell("body '" + options.body + "' has no contacts " + settled +
+           " and is not on one of the joint sets free, planar, slide, hinge; A is taken as 1/m + "
+           "r²/I");
+    }
     if (options.contacts) {
       in.contacts_source = "--contacts " + std::to_string(in.contacts) + "; MuJoCo makes " +
                            std::to_string(body.rest_contacts) + " " + settled;

@@ -29,6 +29,9 @@ struct SolrefRequest {
   std::optional<std::string> joint;  // --joint
   std::string mapping = "all";       // --mapping: calibrated | exact | seed | all
   std::optional<int> contacts;       // --contacts
+  std::string engine = "mujoco";     // --engine: mujoco (2.2.2) | mujoco3 (3.14)
+  double settle = kSettleSeconds;    // --settle: s of mj_step before reading --model's contacts
+  std::string key;                   // --key: the keyframe the settling starts from
 };
 
 // The mappings --mapping names, in the order the report gives them. Throws
@@ -41,7 +44,10 @@ std::vector<Mapping> chosen_mappings(const std::string& name);
 // InputError naming the option for a value out of range, a combination of
 // options that does not go together, a model MuJoCo cannot load, or a
 // mapping asked for by name that cannot express k and c.
+// `read` reads --model in options.engine's MuJoCo (mujoco/model_state.hpp;
+// empty: 2.2.2's read_model_state, which only --engine mujoco may use).
 SolrefReport solref_request(const SolrefRequest& options,
-                            const std::function<void(const std::string&)>& note = {});
+                            const std::function<void(const std::string&)>& note = {},
+                            const StateReader& read = {});
 
 }  // namespace contact2d::mujoco

@@ -189,11 +189,11 @@ std::optional<Joint> parse_joint(std::string_view name) {
   return std::nullopt;
 }
 
-double joint_inv_weight(Joint joint, double mass, double inertia, double pivot) {
+double joint_inv_weight(Joint joint, double mass, double inertia, double pivot, bool mujoco3) {
   switch (joint) {
     case Joint::Free: return 1.0 / mass;
     case Joint::Planar: return 2.0 / (3.0 * mass);
-    case Joint::Slide: return 1.0 / (3.0 * mass);
+    case Joint::Slide: return mujoco3 ? 1.0 / mass : 1.0 / (3.0 * mass);
     case Joint::Hinge: return pivot * pivot / (3.0 * (inertia + mass * pivot * pivot));
   }
   return 0.0;
@@ -221,7 +221,9 @@ void validate(const SolrefInput& in) {
   require(finite(in.lever) && in.lever >= 0.0, "--lever", in.lever, "a finite number >= 0 (m)");
   require(finite(in.pivot) && in.pivot >= 0.0, "--pivot", in.pivot, "a finite number >= 0 (m)");
   const std::string joint = "--joint " + std::string(joint_name(in.joint));
-  if (in.joint == Joint::Hinge) {
+  if (in.measured) {
+    // A and the load were measured in the model: no lever or pivot needed.
+  } else if (in.joint == Joint::Hinge) {
     if (!(in.pivot > 0.0))
       throw InputError("--pivot " + format_number(in.pivot) + ": " + joint +
                        " needs the COM's distance from the hinge axis > 0 (m; at 0 MuJoCo's "
@@ -295,6 +297,7 @@ double static_penetration(const std::array<double, 5>& solimp, double K, double 
 }
 
 ContactMechanics contact_mechanics(const SolrefInput& input) {
+  if (input.measured) return *input.measured;
   ContactMechanics m;
   if (input.joint == Joint::Hinge) {
     const double hinge_inertia = input.inertia + input.mass * input.pivot * input.pivot;
@@ -392,7 +395,8 @@ SolrefReport solref_report(const SolrefInput& input, const std::vector<Mapping>&
   report.load = mech.load;
   report.inv_weight = input.inv_weight > 0.0
                           ? input.inv_weight
-                          : joint_inv_weight(input.joint, input.mass, input.inertia, input.pivot);
+                          : joint_inv_weight(input.joint, input.mass, input.inertia, input.pivot,
+                                             input.mujoco3);
   for (Mapping mapping : mappings) report.mappings.push_back(outcome(report, mapping));
   for (MappingOutcome& o : report.mappings)
     if (o.unavailable.empty()) o.unfit = unfit_reason(report, o);
@@ -421,36 +425,21 @@ SolrefReport solref_report(const SolrefInput& input, const std::vector<Mapping>&
   return report;
 }
 
-ModelBody read_model_body(const std::string& path, const std::string& body) {
-  std::ifstream file(path);
-  if (!file) throw InputError("--model " + path + ": cannot open the file");
-  std::vector<std::string> warnings;
-  WarningCapture capture(warnings);
-  char error[1000] = "";
-  mjModel* raw = nullptr;
-  try {
-    raw = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
-  } catch (const MujocoError& e) {
-    throw InputError("--model " + path + ": MuJoCo cannot load the model: " + e.what());
-  }
-  if (!raw) {
-    std::string text = error;
-    std::replace(text.begin(), text.end(), '\n', ' ');
-    throw InputError("--model " + path + ": MuJoCo cannot load the model: " + text);
-  }
-  const ModelPtr model(raw);
-  const int id = mj_name2id(model.get(), mjOBJ_BODY, body.c_str());
+ModelBody read_model_body(const ModelState& state, const std::string& path,
+                          const std::string& body) {
+  int id = -1;
+  for (size_t b = 0; b < state.body_names.size(); ++b)
+    if (state.body_names[b] == body) id = static_cast<int>(b);
   if (id <= 0)
     throw InputError("--body " + body + ": " +
                      (id == 0 ? std::string("is the world body, which does not move")
                               : "no body of that name in " + path));
+  const auto bi = static_cast<size_t>(id);
   ModelBody out;
-  out.mass = model->body_mass[id];
-  out.inv_weight = model->body_invweight0[2 * static_cast<std::ptrdiff_t>(id)];
-  std::string warning = error;
-  for (const std::string& w : warnings) warning += (warning.empty() ? "" : "; ") + w;
-  std::replace(warning.begin(), warning.end(), '\n', ' ');
-  out.load_warning = warning;
+  out.version = state.version;
+  out.mass = state.body_mass[bi];
+  out.inv_weight = state.body_invweight0[2 * bi];
+  out.load_warning = state.load_warning;
   if (!(out.mass > 0.0))
     throw InputError("--body " + body + ": has mass " + format_number(out.mass) + " kg in " + path +
                      "; it must be > 0");
@@ -459,20 +448,16 @@ ModelBody read_model_body(const std::string& path, const std::string& body) {
                      " in " + path + " (the body has no translational joint)");
   // The joint set, from the body's own joints (a body inside another moving
   // body is none of the four).
+  out.joints = state.body_joints[bi];
   int slides = 0, hinges = 0, frees = 0, others = 0;
-  for (int j = 0; j < model->njnt; ++j) {
-    if (model->jnt_bodyid[j] != id) continue;
-    const int type = model->jnt_type[j];
-    out.joints += std::string(out.joints.empty() ? "" : ", ") + (type == mjJNT_FREE    ? "free"
-                                                                 : type == mjJNT_SLIDE ? "slide"
-                                                                 : type == mjJNT_HINGE ? "hinge"
-                                                                                       : "ball");
-    (type == mjJNT_FREE    ? frees
-     : type == mjJNT_SLIDE ? slides
-     : type == mjJNT_HINGE ? hinges
-                           : others)++;
+  for (size_t at = 0; at < out.joints.size();) {
+    size_t end = out.joints.find(", ", at);
+    if (end == std::string::npos) end = out.joints.size();
+    const std::string type = out.joints.substr(at, end - at);
+    (type == "free" ? frees : type == "slide" ? slides : type == "hinge" ? hinges : others)++;
+    at = end + 2;
   }
-  if (model->body_parentid[id] == 0 && others == 0) {
+  if (state.body_parent[bi] == 0 && others == 0) {
     if (frees == 1 && slides + hinges == 0) out.joint = Joint::Free;
     if (frees == 0 && slides == 2 && hinges <= 1) out.joint = Joint::Planar;
     if (frees == 0 && slides == 1 && hinges == 0) out.joint = Joint::Slide;
@@ -480,43 +465,36 @@ ModelBody read_model_body(const std::string& path, const std::string& body) {
   }
   // The friction the snippet keeps when --mu is absent: the body's first
   // colliding geom's, and the model's cone and impratio.
-  for (int i = 0; i < model->ngeom; ++i) {
-    if (model->geom_bodyid[i] != id || (model->geom_contype[i] | model->geom_conaffinity[i]) == 0)
-      continue;
-    out.friction.mu = model->geom_friction[3 * static_cast<std::ptrdiff_t>(i)];
-    out.friction.condim = model->geom_condim[i];
-    const char* name = mj_id2name(model.get(), mjOBJ_GEOM, i);
-    out.friction.source = "geom " +
-                          (name ? "'" + std::string(name) + "'" : "#" + std::to_string(i)) +
-                          " of " + path + ": μ = " + format_number(out.friction.mu) + ", condim " +
+  for (size_t g = 0; g < state.geom_body.size(); ++g) {
+    if (state.geom_body[g] != id || !state.geom_collides[g]) continue;
+    out.friction.mu = state.geom_mu[g];
+    out.friction.condim = state.geom_condim[g];
+    out.friction.source = "geom '" + state.geom_names[g] + "' of " + path +
+                          ": μ = " + format_number(out.friction.mu) + ", condim " +
                           std::to_string(out.friction.condim);
     break;
   }
-  out.friction.elliptic = model->opt.cone == mjCONE_ELLIPTIC;
-  out.friction.impratio = model->opt.impratio;
+  out.friction.elliptic = state.elliptic;
+  out.friction.impratio = state.impratio;
   out.friction.source += std::string(out.friction.elliptic ? ", elliptic" : ", pyramidal") +
                          " cone, impratio " + format_number(out.friction.impratio);
-  // The contacts MuJoCo makes for the body at rest: settle from qpos0 with
-  // the model's own contact settings (the count is the geometry's, not the
-  // stiffness's), then count the contacts one of whose geoms is the body's.
-  const DataPtr data = make_data(model.get());
-  const long steps = std::min(1000000L, std::lround(kSettleSeconds / model->opt.timestep));
-  for (long i = 0; i < steps; ++i) mj_step(model.get(), data.get());
-  mj_forward(model.get(), data.get());
-  out.settle_seconds = data->time;
-  for (int i = 0; i < data->ncon; ++i) {
-    const mjContact& contact = data->contact[i];
-    if (model->geom_bodyid[contact.geom1] == id || model->geom_bodyid[contact.geom2] == id)
-      ++out.rest_contacts;
+  // The body's contacts in the settled state, as MuJoCo has them: the
+  // effective mass at each contact point (the whole chain of joints that
+  // moves it) and MuJoCo's own normal force.
+  out.settle_seconds = state.settled;
+  out.rest_speed = state.speed;
+  out.at_rest = at_rest(state);
+  for (const StateContact& c : state.contacts) {
+    if (c.body1 != id && c.body2 != id) continue;
+    SettledContact sc;
+    sc.geom1 = state.geom_names[static_cast<size_t>(c.geom1)];
+    sc.geom2 = state.geom_names[static_cast<size_t>(c.geom2)];
+    sc.A = c.A;
+    sc.load = std::max(0.0, c.force);
+    sc.penetration = -c.dist;
+    out.contacts.push_back(sc);
   }
-  for (int j = 0; j < model->njnt; ++j) {
-    if (model->jnt_bodyid[j] != id) continue;
-    const int dofs = model->jnt_type[j] == mjJNT_FREE   ? 6
-                     : model->jnt_type[j] == mjJNT_BALL ? 3
-                                                        : 1;
-    for (int k = 0; k < dofs; ++k)
-      out.rest_speed = std::max(out.rest_speed, std::abs(data->qvel[model->jnt_dofadr[j] + k]));
-  }
+  out.rest_contacts = static_cast<int>(out.contacts.size());
   return out;
 }
 
@@ -534,7 +512,8 @@ std::string format_report_text(const SolrefReport& r) {
   if (!in.targets_note.empty()) o << "from your targets: " << in.targets_note << "\n";
   const bool hinge = in.joint == Joint::Hinge;
   o << "m = " << format_number(in.mass) << " kg; A = "
-    << (hinge            ? "lever²/(I + m·pivot²)"
+    << (in.measured      ? "n·J·M⁻¹·Jᵀ·n"
+        : hinge          ? "lever²/(I + m·pivot²)"
         : in.lever > 0.0 ? "1/m + r²/I"
                          : "1/m")
     << " = " << format_number(r.inv_mass)
@@ -546,15 +525,27 @@ std::string format_report_text(const SolrefReport& r) {
     static const char* const kWhy[] = {"1/m: a free joint", "2/(3m): slide x, slide z and a hinge",
                                        "1/(3m): one slide joint",
                                        "pivot²/(3·(I + m·pivot²)): one hinge"};
-    o << " (" << kWhy[static_cast<int>(in.joint)] << ", --joint " << joint_name(in.joint)
-      << ", as MuJoCo's mj_setConst computes it)";
+    o << " (" << (in.joint == Joint::Slide && in.mujoco3 ? "1/m: slide joints only, MuJoCo 3"
+                                                         : kWhy[static_cast<int>(in.joint)])
+      << ", --joint " << joint_name(in.joint) << ", as MuJoCo's mj_setConst computes it)";
   }
   o << "\n";
-  o << "at rest each of " << in.contacts << " MuJoCo contact" << (in.contacts > 1 ? "s" : "")
-    << " (" << in.contacts_source << ") carries f = "
-    << (hinge ? "m·g·pivot/(lever·" + std::to_string(in.contacts) + ")"
-              : "m·g/" + std::to_string(in.contacts))
-    << " = " << format_number(r.load) << " N; f/k = " << format_number(r.load / in.k) << " m\n";
+  if (in.measured) {
+    o << "at rest MuJoCo's contacts of the body (" << in.contacts_source << "):\n";
+    for (const SettledContact& c : in.settled_contacts)
+      o << "  " << c.geom1 << " – " << c.geom2 << ": load " << format_number(c.load)
+        << " N, depth " << format_number(c.penetration) << " m, A = " << format_number(c.A)
+        << " 1/kg (effective mass " << format_number(1.0 / c.A) << " kg)\n";
+    o << "the numbers below are for f = " << format_number(r.load) << " N, A = "
+      << format_number(r.inv_mass) << " 1/kg (" << in.measured_source
+      << "); f/k = " << format_number(r.load / in.k) << " m\n";
+  } else {
+    o << "at rest each of " << in.contacts << " MuJoCo contact" << (in.contacts > 1 ? "s" : "")
+      << " (" << in.contacts_source << ") carries f = "
+      << (hinge ? "m·g·pivot/(lever·" + std::to_string(in.contacts) + ")"
+                : "m·g/" + std::to_string(in.contacts))
+      << " = " << format_number(r.load) << " N; f/k = " << format_number(r.load / in.k) << " m\n";
+  }
   if (in.keep_friction)
     o << "friction: no --mu, so the snippets write no condim and no friction: your geoms keep "
          "theirs (the pyramidal cone's effect on the rest depth is computed with "
@@ -642,6 +633,16 @@ std::string format_report_json(const SolrefReport& r) {
     << ",\n  \"inv_mass\": " << json::number(r.inv_mass)
     << ",\n  \"body_invweight0\": " << json::number(r.inv_weight)
     << ",\n  \"load_per_contact\": " << json::number(r.load)
+    << ",\n  \"measured\": " << (in.measured ? json::string(in.measured_source) : "null")
+    << ",\n  \"settled_contacts\": [";
+  for (size_t i = 0; i < in.settled_contacts.size(); ++i) {
+    const SettledContact& c = in.settled_contacts[i];
+    o << (i ? ", " : "") << "{\"geom1\": " << json::string(c.geom1)
+      << ", \"geom2\": " << json::string(c.geom2) << ", \"load\": " << json::number(c.load)
+      << ", \"penetration\": " << json::number(c.penetration) << ", \"A\": " << json::number(c.A)
+      << "}";
+  }
+  o << "]"
     << ",\n  \"nominal_penetration\": " << json::number(r.load / in.k)
     << ",\n  \"recommendation\": " << json::string(r.recommendation) << ",\n  \"mappings\": [";
   bool first = true;

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "mujoco/mapping.hpp"
+#include "mujoco/model_state.hpp"
 
 namespace contact2d::mujoco {
 
@@ -49,7 +50,11 @@ std::string_view joint_name(Joint joint);  // "free", "planar", "slide", "hinge"
 std::optional<Joint> parse_joint(std::string_view name);
 // body_invweight0 as MuJoCo 2.2's set0 computes it for that joint set (the
 // header comment); pivot: the COM's distance from the hinge axis (hinge only).
-double joint_inv_weight(Joint joint, double mass, double inertia, double pivot);
+// MuJoCo 3 (mujoco3): a body whose joints are all slides does not rotate
+// and gets 1/m (engine_setconst.c: body_simple == 2), so one slide joint is
+// 1/m there, 1/(3m) in 2.2.2.
+double joint_inv_weight(Joint joint, double mass, double inertia, double pivot,
+                        bool mujoco3 = false);
 
 // The user's friction when the snippet does not write it (no --mu): what the
 // pyramidal cone's effect on the normal force is computed with.
@@ -59,6 +64,21 @@ struct UserFriction {
   double impratio = 1.0;
   bool elliptic = false;
   std::string source = "MuJoCo's defaults: μ = 1, condim 3, pyramidal cone, impratio 1";
+};
+
+// The contact as a mechanism: A, the true inverse mass along the normal
+// (1/m + lever²/I; a hinge lever²/(I + m·pivot²)), and f, the normal load
+// per MuJoCo contact at rest (m·g/contacts; a hinge m·g·pivot/(lever·contacts)).
+struct ContactMechanics {
+  double inv_mass = 0.0;
+  double load = 0.0;
+};
+// One of the body's contacts in the settled model, as MuJoCo has it.
+struct SettledContact {
+  std::string geom1, geom2;
+  double A = 0.0;            // n·J·M⁻¹·Jᵀ·n at the contact, 1/kg
+  double load = 0.0;         // MuJoCo's normal force, N
+  double penetration = 0.0;  // −dist, m
 };
 
 struct SolrefInput {
@@ -78,6 +98,14 @@ struct SolrefInput {
   double mu_roll = 0.0;        // rolling friction, m (needs inertia and lever, the rolling radius)
   int contacts = 1;            // MuJoCo contacts that share the body's weight at rest
   std::string contacts_source = "--contacts";  // where that number comes from, for the text
+  // solref --model: the contact as MuJoCo has it in the settled model (A at
+  // the contact point through the body's whole chain of joints, MuJoCo's
+  // normal force); contact_mechanics returns it instead of the joint set's
+  // formula, and the body's contacts are listed.
+  std::optional<ContactMechanics> measured;
+  std::string measured_source;
+  std::vector<SettledContact> settled_contacts;
+  bool mujoco3 = false;  // Â by MuJoCo 3's rule (joint_inv_weight)
   double gravity = 9.81;                       // m/s²
   // Where the numbers come from, for the text ("--mass 1" or "model.xml, body 'box'").
   std::string body_source;
@@ -86,13 +114,6 @@ struct SolrefInput {
   std::string targets_note;
 };
 
-// The contact as a mechanism: A, the true inverse mass along the normal
-// (1/m + lever²/I; a hinge lever²/(I + m·pivot²)), and f, the normal load
-// per MuJoCo contact at rest (m·g/contacts; a hinge m·g·pivot/(lever·contacts)).
-struct ContactMechanics {
-  double inv_mass = 0.0;
-  double load = 0.0;
-};
 ContactMechanics contact_mechanics(const SolrefInput& input);
 
 // What a user wants of a contact instead of k and c (`contact2d solref
@@ -172,22 +193,27 @@ double static_penetration(const std::array<double, 5>& solimp, double K, double 
 // A body of a MuJoCo model file: mass, body_invweight0 (translational), its
 // joints, its friction, and the contacts MuJoCo makes for it at rest.
 struct ModelBody {
+  std::string version;  // the MuJoCo that compiled and settled the model
   double mass = 0.0;
   double inv_weight = 0.0;
   std::optional<Joint> joint;  // none: a joint set other than the four
   std::string joints;          // the body's joints as MuJoCo types, e.g. "slide, slide, hinge"
   UserFriction friction;       // of the body's first colliding geom, and the model's cone
   int rest_contacts = 0;       // MuJoCo contacts of the body after settling
+  std::vector<SettledContact> contacts;
   double settle_seconds = 0.0;
-  double rest_speed = 0.0;   // largest |qvel| of the body's dofs at the end of the settling
+  double rest_speed = 0.0;   // largest |qvel| of the model at the end of the settling
+  bool at_rest = false;      // model_state.hpp's criterion
   std::string load_warning;  // MuJoCo's warning while loading, if any
 };
-// How long read_model_body lets the model settle (mj_step from qpos0)
-// before it counts the contacts: 3 s, or 1e6 steps if fewer.
+// How long solref lets a user's model settle (mj_step from qpos0, or the
+// keyframe) by default before it reads the body's contacts.
 constexpr double kSettleSeconds = 3.0;
-// Throws InputError "--model FILE: ..." when MuJoCo cannot load it and
-// "--body NAME: ..." when the model has no such body (or it is the world).
-ModelBody read_model_body(const std::string& path, const std::string& body);
+// The body `body` of the state a version read from `path`. Throws
+// InputError "--body NAME: ..." when the model has no such body (or it is
+// the world), or its mass or body_invweight0 is not positive.
+ModelBody read_model_body(const ModelState& state, const std::string& path,
+                          const std::string& body);
 
 std::string format_report_text(const SolrefReport& report);
 std::string format_report_json(const SolrefReport& report);

@@ -198,6 +198,11 @@ function readState(m, d, r) {
     body_mass: Array.from(m.body_mass),
     body_invweight0: Array.from(m.body_invweight0),
     geom_body: Array.from(m.geom_bodyid),
+    body_parent: Array.from(m.body_parentid),
+    body_joints: Array.from({length: nbody}, () => []),
+    geom_mu: Array.from({length: ngeom}, (_, g) => m.geom_friction[3 * g]),
+    geom_condim: Array.from(m.geom_condim),
+    geom_collides: Array.from({length: ngeom}, (_, g) => (m.geom_contype[g] | m.geom_conaffinity[g]) !== 0),
     nv,
     settled: steps * m.opt.timestep,
     speed,
@@ -205,6 +210,9 @@ function readState(m, d, r) {
     step_warnings: warnings,
     contacts: []
   };
+  const jointTypes = ['free', 'ball', 'slide', 'hinge'];
+  for (let j = 0; j < m.njnt; ++j) out.body_joints[m.jnt_bodyid[j]].push(jointTypes[m.jnt_type[j]]);
+  out.body_joints = out.body_joints.map((list) => list.join(', '));
   for (let b = 0; b < nbody; ++b)
     out.body_names.push(nameAt(m, m.name_bodyadr[b]) || (b === 0 ? 'world' : `body #${b}`));
   for (let g = 0; g < ngeom; ++g) out.geom_names.push(nameAt(m, m.name_geomadr[g]) || `geom #${g}`);
@@ -215,6 +223,8 @@ function readState(m, d, r) {
     still.qpos.set(d.qpos);
     mj.mj_forward(m, still);
     out.bias = Array.from(still.qfrc_bias);
+    out.qvel = Array.from(d.qvel);
+    out.qacc = Array.from(d.qacc);
   } finally {
     still.delete();
   }
@@ -240,6 +250,19 @@ function readState(m, d, r) {
       let A = 0;
       for (let c = 0; c < nv; ++c) A += row[c] * solved[c];
       mj.mj_contactForce(m, d, i, force);
+      const elliptic = m.opt.cone === mj.mjtCone.mjCONE_ELLIPTIC.value;
+      const rows = elliptic || con.dim === 1 ? con.dim : 2 * (con.dim - 1);
+      // From the forces, as mujoco/model_state.cpp's quadratic_rows (efc_state
+      // is stale after the solver's early exits).
+      const f = d.efc_force.slice(con.efc_address, con.efc_address + rows);
+      let quadratic = 0;
+      if (elliptic && con.dim > 1) {
+        let t = 0;
+        for (let k = 1; k < rows; ++k) t += (f[k] / con.friction[k - 1]) ** 2;
+        quadratic = f[0] > 0 && Math.sqrt(t) < f[0] * (1 - 1e-9) ? rows : 0;
+      } else {
+        for (let k = 0; k < rows; ++k) quadratic += f[k] > 0;
+      }
       let explicitPair = false;
       for (let p = 0; p < m.npair; ++p) {
         const p1 = m.pair_geom1[p], p2 = m.pair_geom2[p];
@@ -260,6 +283,8 @@ function readState(m, d, r) {
         solimp: Array.from(con.solimp),
         A,
         force: force.GetView()[0],
+        rows,
+        quadratic,
         jacobian_index: row.flatMap((v, c) => v !== 0 ? [c] : []),
         jacobian_value: row.filter((v) => v !== 0)
       });

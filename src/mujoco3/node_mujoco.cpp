@@ -239,11 +239,19 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
   s.body_mass = numbers_of(a.get("body_mass"));
   s.body_invweight0 = numbers_of(a.get("body_invweight0"));
   s.geom_body = ints(a.get("geom_body"));
+  s.body_parent = ints(a.get("body_parent"));
+  s.body_joints = texts(a.get("body_joints"));
+  s.geom_mu = numbers_of(a.get("geom_mu"));
+  s.geom_condim = ints(a.get("geom_condim"));
+  if (const json::Value* list = a.get("geom_collides"))
+    for (const json::Value& v : list->items) s.geom_collides.push_back(v.text == "true");
   s.nv = static_cast<int>(number(a.get("nv")));
   s.settled = number(a.get("settled"));
   s.speed = number(a.get("speed"));
   s.accel = number(a.get("accel"));
   s.bias = numbers_of(a.get("bias"));
+  s.qvel = numbers_of(a.get("qvel"));
+  s.qacc = numbers_of(a.get("qacc"));
   if (const json::Value* list = a.get("contacts")) {
     for (const json::Value& c : list->items) {
       mujoco::StateContact out;
@@ -265,6 +273,8 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
       out.condim = static_cast<int>(number(c.get("condim")));
       out.A = number(c.get("A"));
       out.force = number(c.get("force"));
+      out.rows = static_cast<int>(number(c.get("rows")));
+      out.quadratic = static_cast<int>(number(c.get("quadratic")));
       // The normal row arrives sparse: its non-zero columns and values.
       out.jacobian.assign(static_cast<size_t>(s.nv), 0.0);
       const std::vector<double> index = numbers_of(c.get("jacobian_index"));
@@ -281,7 +291,12 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
   const size_t nbody = s.body_names.size(), ngeom = s.geom_names.size();
   bool sound = s.body_weld.size() == nbody && s.body_mass.size() == nbody &&
                s.body_invweight0.size() == 2 * nbody && s.geom_body.size() == ngeom &&
-               s.bias.size() == static_cast<size_t>(s.nv);
+               s.body_parent.size() == nbody && s.body_joints.size() == nbody &&
+               s.geom_mu.size() == ngeom && s.geom_condim.size() == ngeom &&
+               s.geom_collides.size() == ngeom &&
+               s.bias.size() == static_cast<size_t>(s.nv) &&
+               s.qvel.size() == static_cast<size_t>(s.nv) &&
+               s.qacc.size() == static_cast<size_t>(s.nv);
   for (const int b : s.geom_body) sound = sound && b >= 0 && static_cast<size_t>(b) < nbody;
   for (const mujoco::StateContact& c : s.contacts)
     sound = sound && c.geom1 >= 0 && static_cast<size_t>(c.geom1) < ngeom && c.geom2 >= 0 &&

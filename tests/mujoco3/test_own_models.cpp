@@ -1,0 +1,244 @@
+// `inspect` on models nobody here wrote (Debian's MuJoCo samples,
+// libmujoco-samples, which scripts/setup installs) and on hand-written
+// articulated ones, read by both MuJoCo versions: after --settle, each
+// contact's load is MuJoCo's own force, and every printed rest depth that
+// carries no note is within 2 % of MuJoCo's own depth at that state.
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+
+#include "mujoco/inspect.hpp"
+#include "mujoco/model_state.hpp"
+#include "mujoco3_test_util.hpp"
+
+namespace contact2d {
+namespace {
+
+namespace fs = std::filesystem;
+namespace mj = contact2d::mujoco;
+
+const fs::path kSamples = "/usr/share/mujoco/model";
+
+using Reader = std::function<mj::ModelState(const mj::StateRequest&)>;
+
+struct Version {
+  const char* name;
+  Reader read;
+};
+
+const Version kVersions[] = {
+    {"2.2.2", [](const mj::StateRequest& r) { return mj::read_model_state(r); }},
+    {"3.14", [](const mj::StateRequest& r) { return mujoco3::read_model_state(r); }},
+};
+
+mj::InspectReport inspect_with(const Version& v, const std::string& path, double settle) {
+  mj::StateRequest request;
+  request.path = path;
+  request.settle = settle;
+  mj::InspectOptions options;
+  options.path = path;
+  options.settle = settle;
+  return mj::inspect_state(v.read(request), options);
+}
+
+// The largest |printed rest depth + MuJoCo's dist| / depth over the
+// contacts without a note, and how many had none.
+std::pair<double, int> depth_error(const mj::InspectReport& rep) {
+  double worst = 0.0;
+  int plain = 0;
+  for (const mj::InspectRow& r : rep.contacts) {
+    if (!r.depth_note.empty() || !(r.dist < 0.0)) continue;
+    ++plain;
+    worst = std::max(worst, std::abs(r.penetration + r.dist) / r.penetration);
+  }
+  return {worst, plain};
+}
+
+#define CONTACT2D_NEEDS_SAMPLES()                                                         \
+  do {                                                                                    \
+    if (!fs::exists(kSamples / "humanoid/humanoid.xml"))                                  \
+      FAIL() << "Debian's MuJoCo samples are missing (libmujoco-samples): scripts/setup"; \
+  } while (false)
+
+// The humanoid lying down after 60 s of settling (it creeps for tens of
+// seconds: at 3 s its feet still slip). Measured on both versions: 10
+// contacts, every depth within 0.03 %, at rest (|qvel| 0.004). The issue's
+// MuJoCo forces: head 13.4 N, right hand 113.6 N, waist 83.8 N.
+TEST(OwnModels, SettledHumanoidRestsAtThePrintedDepthsOnBothVersions) {
+  CONTACT2D_NEEDS_SAMPLES();
+  CONTACT2D_NEEDS_MUJOCO3();
+  for (const Version& v : kVersions) {
+    SCOPED_TRACE(v.name);
+    const mj::InspectReport rep =
+        inspect_with(v, (kSamples / "humanoid/humanoid.xml").string(), 60.0);
+    EXPECT_TRUE(rep.at_rest) << rep.speed << " " << rep.accel;
+    ASSERT_GE(rep.contacts.size(), 8u);
+    const auto [worst, plain] = depth_error(rep);
+    EXPECT_EQ(plain, static_cast<int>(rep.contacts.size()));
+    EXPECT_LT(worst, 0.02);
+    double total = 0.0;
+    for (const mj::InspectRow& r : rep.contacts) {
+      EXPECT_EQ(r.load, std::max(0.0, r.force));
+      if (r.body1_name == "world") total += r.load;
+    }
+    // The floor's contacts (the others are the body's own, arm on waist)
+    // carry the humanoid's weight (40.8 kg): forces
+    // along the normals, which are vertical, sum to m·g within the rest
+    // criterion (|qacc| ≤ 0.1, 1 % of g) and friction's vertical part (0).
+    double mass = 0.0;
+    const mj::ModelState s = v.read({(kSamples / "humanoid/humanoid.xml").string(), "", 60.0, ""});
+    for (double m : s.body_mass) mass += m;
+    EXPECT_NEAR(total, mass * 9.81, 0.01 * mass * 9.81);
+  }
+}
+
+// Models MuJoCo 2.2.2 loads and 3.14 refuses (the composite syntax changed
+// in 3.0): the mug on its keyframe-free qpos0, the rope and the hammock.
+TEST(OwnModels, SampleModelsRestAtThePrintedDepths) {
+  CONTACT2D_NEEDS_SAMPLES();
+  struct Case {
+    const char* file;
+    double settle;
+  };
+  for (const Case c : {Case{"mug/mug.xml", 3.0}, Case{"composite/rope.xml", 10.0},
+                       Case{"hammock/hammock.xml", 30.0}}) {
+    SCOPED_TRACE(c.file);
+    const mj::InspectReport rep =
+        inspect_with(kVersions[0], (kSamples / c.file).string(), c.settle);
+    EXPECT_TRUE(rep.at_rest) << rep.speed << " " << rep.accel;
+    ASSERT_FALSE(rep.contacts.empty());
+    const auto [worst, plain] = depth_error(rep);
+    EXPECT_GE(plain, 1);
+    EXPECT_LT(worst, 0.02);
+  }
+}
+
+TEST(OwnModels, MujocoThreeRefusingASampleIsOneLine) {
+  CONTACT2D_NEEDS_SAMPLES();
+  CONTACT2D_NEEDS_MUJOCO3();
+  try {
+    mujoco3::read_model_state({(kSamples / "composite/rope.xml").string(), "", 1.0, ""});
+    FAIL() << "MuJoCo 3 loaded the 2.x composite";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("rope.xml: MuJoCo 3.14.0 cannot load the model:"), std::string::npos)
+        << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+class OwnArticulated : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("contact2d_own_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& text) const {
+    std::ofstream(dir_ / "model.xml") << text;
+    return (dir_ / "model.xml").string();
+  }
+  fs::path dir_;
+};
+
+// A rod hinged to the world (axis y at the origin), horizontal, its tip — a
+// sphere of radius r at x = L — on the floor. The rod (a massless-free
+// cylinder, contype 0) and the tip: moment balance about the hinge,
+// F·L = m_rod·g·L/2 + m_tip·g·L, F = g·(m_rod/2 + m_tip), whatever the
+// contact's stiffness. A = L²/M (the one dof: n·J = L at the contact point).
+TEST_F(OwnArticulated, RodHingedToTheWorldCarriesItsMomentBalance) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const double L = 0.6, r = 0.03, m_rod = 2.0, m_tip = 0.5;
+  const std::string path = write(R"(<mujoco>
+  <option timestep="0.002"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <body name="rod" pos="0 0 0.03">
+      <joint name="hinge" type="hinge" axis="0 1 0"/>
+      <geom name="shaft" type="cylinder" fromto="0 0 0 0.6 0 0" size="0.01" mass="2"
+            contype="0" conaffinity="0"/>
+      <geom name="tip" type="sphere" pos="0.6 0 0" size="0.03" mass="0.5"/>
+    </body>
+  </worldbody>
+</mujoco>
+)");
+  for (const Version& v : kVersions) {
+    SCOPED_TRACE(v.name);
+    const mj::InspectReport rep = inspect_with(v, path, 3.0);
+    EXPECT_TRUE(rep.at_rest);
+    ASSERT_EQ(rep.contacts.size(), 1u);
+    const mj::InspectRow& c = rep.contacts[0];
+    // Settled to |qacc| ≤ 0.1 rad/s² (measured ~1e-10): the moment
+    // balance holds to the rod's rest angle, cos(p/L) − 1 ~ 1e-8; bound 1e-6.
+    EXPECT_NEAR(c.load, 9.81 * (m_rod / 2 + m_tip), 1e-6 * 9.81 * (m_rod / 2 + m_tip));
+    const auto [worst, plain] = depth_error(rep);
+    EXPECT_EQ(plain, 1);
+    EXPECT_LT(worst, 0.02);
+    // The effective mass is the rod's inertia about the hinge over L², not
+    // the free body's m: I = m_rod·(L²/3 + r_s²/4) + m_tip·(L² + 2r²/5),
+    // r_s the shaft's radius (a solid cylinder about a diameter through its
+    // end). The rod rests turned by θ ≈ p/L ≈ 2e-4 rad: the lever is L·cos θ,
+    // A off by θ² ≈ 3e-8 (measured 1.25e-8); bound 1e-6 relative.
+    const double I =
+        m_rod * (L * L / 3.0 + 0.01 * 0.01 / 4.0) + m_tip * (L * L + 2.0 * r * r / 5.0);
+    EXPECT_NEAR(c.A, L * L / I, 1e-6 * L * L / I);
+  }
+}
+
+// A two-link leg lying on the floor: link 1 hinged to the world at the
+// origin, link 2 hinged at its end (x = L1), a foot sphere at x = L1 + L2
+// and a knee sphere on link 1 at x = L1. Statically determinate: about the
+// knee, F_foot·L2 = m2·g·L2/2 (link 2's rod) + m_foot·g·L2; about the hip,
+// F_knee·L1 + F_foot·(L1 + L2) = (m1/2 + m_knee)·g·L1 + m2·g·(L1 + L2/2)
+// + m_foot·g·(L1 + L2).
+TEST_F(OwnArticulated, TwoLinkLegCarriesItsStaticLoads) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const std::string path = write(R"(<mujoco>
+  <option timestep="0.001"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="3 3 0.1"/>
+    <body name="thigh" pos="0 0 0.04">
+      <joint name="hip" type="hinge" axis="0 1 0"/>
+      <geom name="thigh" type="cylinder" fromto="0 0 0 0.4 0 0" size="0.01" mass="3"
+            contype="0" conaffinity="0"/>
+      <geom name="knee" type="sphere" pos="0.4 0 0" size="0.04" mass="0.2"/>
+      <body name="shin" pos="0.4 0 0">
+        <joint name="knee" type="hinge" axis="0 1 0"/>
+        <geom name="shin" type="cylinder" fromto="0 0 0 0.5 0 0" size="0.01" mass="2"
+              contype="0" conaffinity="0"/>
+        <geom name="foot" type="sphere" pos="0.5 0 0" size="0.04" mass="0.4"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+)");
+  const double L1 = 0.4, L2 = 0.5, m1 = 3.0, m_knee = 0.2, m2 = 2.0, m_foot = 0.4, g = 9.81;
+  const double foot = g * (m2 / 2 + m_foot);
+  const double knee = ((m1 / 2 + m_knee) * g * L1 + m2 * g * (L1 + L2 / 2) +
+                       m_foot * g * (L1 + L2) - foot * (L1 + L2)) /
+                      L1;
+  for (const Version& v : kVersions) {
+    SCOPED_TRACE(v.name);
+    const mj::InspectReport rep = inspect_with(v, path, 3.0);
+    EXPECT_TRUE(rep.at_rest);
+    ASSERT_EQ(rep.contacts.size(), 2u);
+    for (const mj::InspectRow& c : rep.contacts) {
+      const double expected = c.geom2_name == "foot" ? foot : knee;
+      // As for the rod: the balance at the rest angles; bound 1e-6 relative.
+      EXPECT_NEAR(c.load, expected, 1e-6 * expected) << c.geom2_name;
+    }
+    const auto [worst, plain] = depth_error(rep);
+    EXPECT_EQ(plain, 2);
+    EXPECT_LT(worst, 0.02);
+  }
+}
+
+}  // namespace
+}  // namespace contact2d
