@@ -23,7 +23,8 @@ struct SolrefOptions {
 int solref(const SolrefOptions& options) {
   namespace mj = contact2d::mujoco;
   const mj::SolrefReport report = mj::solref_request(
-      options.request, [](const std::string& line) { std::cerr << "contact2d: note: " << line << "\n"; },
+      options.request,
+      [](const std::string& line) { std::cerr << "contact2d: note: " << line << "\n"; },
       options.request.engine == "mujoco3" ? mj::StateReader(contact2d::mujoco3::read_model_state)
                                           : mj::StateReader(mj::read_model_state));
   std::cout << (options.json ? mj::format_report_json(report) : mj::format_report_text(report));
@@ -72,6 +73,10 @@ Command add_solref(CLI::App& app) {
   cmd->add_option("--settle", options->request.settle,
                   "--model: seconds of mj_step before reading the body's contacts (>= 0; "
                   "default 3)");
+  cmd->add_option("--apply", options->request.apply,
+                  "--model: write the model with the recommended mapping on the body's geoms to "
+                  "this file (in the model's folder), settle it and list the body's contacts "
+                  "there");
   cmd->add_option("--key", options->request.key,
                   "--model: the keyframe the settling starts from (default qpos0)");
   mass->excludes(model);

@@ -2,6 +2,8 @@
 
 #include "core/format.hpp"
 #include "core/input_error.hpp"
+#include "io/atomic_file.hpp"
+#include "mujoco/solref_apply.hpp"
 
 namespace contact2d::mujoco {
 
@@ -60,6 +62,11 @@ SolrefReport solref_request(const SolrefRequest& options,
   in.contacts_source = options.contacts ? "--contacts " + std::to_string(in.contacts)
                                         : "the default, 1: give --contacts N when N MuJoCo "
                                           "contacts share the weight (a box on a plane makes 4)";
+  if (!options.apply.empty()) {
+    if (options.model.empty())
+      throw InputError("--apply " + options.apply + ": needs --model FILE --body NAME");
+    check_output_file("--apply", options.apply);
+  }
   if (!options.model.empty()) {
     if (options.body.empty()) throw InputError("--model " + options.model + ": needs --body NAME");
     validate([&] {  // the numbers first: a bad --k is named before the file is read
@@ -74,9 +81,8 @@ SolrefReport solref_request(const SolrefRequest& options,
     request.key = options.key;
     request.settle = options.settle;
     request.option = "--model";
-    const ModelBody body =
-        read_model_body(read ? read(request) : read_model_state(request), options.model,
-                        options.body);
+    const ModelBody body = read_model_body(read ? read(request) : read_model_state(request),
+                                           options.model, options.body);
     if (!body.load_warning.empty())
       tell("MuJoCo warns while loading " + options.model + ": " + body.load_warning);
     in.mass = body.mass;
@@ -98,8 +104,8 @@ SolrefReport solref_request(const SolrefRequest& options,
       for (const SettledContact& c : body.contacts)
         if (c.load > most->load) most = &c;
       in.measured = ContactMechanics{most->A, most->load};
-      in.measured_source = "measured in the model " + settled + ": contact " + most->geom1 +
-                           " – " + most->geom2 + ", the most loaded of the body's " +
+      in.measured_source = "measured in the model " + settled + ": contact " + most->geom1 + " – " +
+                           most->geom2 + ", the most loaded of the body's " +
                            std::to_string(body.contacts.size());
       if (!(most->A > 0.0))
         throw InputError("--body " + options.body +
@@ -133,6 +139,18 @@ SolrefReport solref_request(const SolrefRequest& options,
   // One mapping asked for by name and it cannot express k, c: bad input.
   if (report.mappings.size() == 1 && !report.mappings[0].unavailable.empty())
     throw InputError(report.mappings[0].unavailable);
+  if (!options.apply.empty()) {
+    // The recommendation is printed first; --mapping NAME applies that one.
+    const MappingOutcome& chosen = report.mappings.front();
+    if (!chosen.unavailable.empty() || (options.mapping == "all" && report.recommendation.empty()))
+      throw InputError("--apply " + options.apply +
+                       ": no mapping is fit for a model to build on here (the report says why)");
+    StateRequest settle;
+    settle.key = options.key;
+    settle.settle = options.settle;
+    report.applied = apply_solref(report, chosen, options.model, options.body, options.apply,
+                                  settle, read ? read : StateReader(read_model_state));
+  }
   return report;
 }
 

@@ -32,6 +32,7 @@ struct SolrefRequest {
   std::string engine = "mujoco";     // --engine: mujoco (2.2.2) | mujoco3 (3.14)
   double settle = kSettleSeconds;    // --settle: s of mj_step before reading --model's contacts
   std::string key;                   // --key: the keyframe the settling starts from
+  std::string apply;                 // --apply OUT.xml: the model with the recommendation
 };
 
 // The mappings --mapping names, in the order the report gives them. Throws

@@ -393,10 +393,10 @@ SolrefReport solref_report(const SolrefInput& input, const std::vector<Mapping>&
   const ContactMechanics mech = contact_mechanics(input);
   report.inv_mass = mech.inv_mass;
   report.load = mech.load;
-  report.inv_weight = input.inv_weight > 0.0
-                          ? input.inv_weight
-                          : joint_inv_weight(input.joint, input.mass, input.inertia, input.pivot,
-                                             input.mujoco3);
+  report.inv_weight =
+      input.inv_weight > 0.0
+          ? input.inv_weight
+          : joint_inv_weight(input.joint, input.mass, input.inertia, input.pivot, input.mujoco3);
   for (Mapping mapping : mappings) report.mappings.push_back(outcome(report, mapping));
   for (MappingOutcome& o : report.mappings)
     if (o.unavailable.empty()) o.unfit = unfit_reason(report, o);
@@ -525,19 +525,20 @@ std::string format_report_text(const SolrefReport& r) {
     static const char* const kWhy[] = {"1/m: a free joint", "2/(3m): slide x, slide z and a hinge",
                                        "1/(3m): one slide joint",
                                        "pivot²/(3·(I + m·pivot²)): one hinge"};
-    o << " (" << (in.joint == Joint::Slide && in.mujoco3 ? "1/m: slide joints only, MuJoCo 3"
-                                                         : kWhy[static_cast<int>(in.joint)])
+    o << " ("
+      << (in.joint == Joint::Slide && in.mujoco3 ? "1/m: slide joints only, MuJoCo 3"
+                                                 : kWhy[static_cast<int>(in.joint)])
       << ", --joint " << joint_name(in.joint) << ", as MuJoCo's mj_setConst computes it)";
   }
   o << "\n";
   if (in.measured) {
     o << "at rest MuJoCo's contacts of the body (" << in.contacts_source << "):\n";
     for (const SettledContact& c : in.settled_contacts)
-      o << "  " << c.geom1 << " – " << c.geom2 << ": load " << format_number(c.load)
-        << " N, depth " << format_number(c.penetration) << " m, A = " << format_number(c.A)
+      o << "  " << c.geom1 << " – " << c.geom2 << ": load " << format_number(c.load) << " N, depth "
+        << format_number(c.penetration) << " m, A = " << format_number(c.A)
         << " 1/kg (effective mass " << format_number(1.0 / c.A) << " kg)\n";
-    o << "the numbers below are for f = " << format_number(r.load) << " N, A = "
-      << format_number(r.inv_mass) << " 1/kg (" << in.measured_source
+    o << "the numbers below are for f = " << format_number(r.load)
+      << " N, A = " << format_number(r.inv_mass) << " 1/kg (" << in.measured_source
       << "); f/k = " << format_number(r.load / in.k) << " m\n";
   } else {
     o << "at rest each of " << in.contacts << " MuJoCo contact" << (in.contacts > 1 ? "s" : "")
@@ -613,6 +614,18 @@ std::string format_report_text(const SolrefReport& r) {
     std::istringstream b(m.pair_snippet);
     for (std::string line; std::getline(b, line);) o << "    " << line << "\n";
   }
+  if (r.applied) {
+    const Applied& a = *r.applied;
+    o << "\napplied: " << a.path << " is the model with " << a.mapping
+      << " on the body's geoms; MuJoCo settled it " << format_number(a.settled) << " s ("
+      << (a.at_rest ? "at rest" : "NOT at rest") << "):\n";
+    if (a.contacts.empty()) o << "  the body has no contacts there\n";
+    for (const AppliedContact& c : a.contacts)
+      o << "  " << c.geom1 << " – " << c.geom2 << ": load " << format_number(c.load) << " N, depth "
+        << format_number(c.penetration)
+        << " m (the mapping's at that load: " << format_number(c.predicted) << " m, "
+        << format_number(100.0 * (c.penetration - c.predicted) / c.predicted) << " %)\n";
+  }
   return o.str();
 }
 
@@ -678,7 +691,25 @@ std::string format_report_json(const SolrefReport& r) {
       << ",\n      \"default_snippet\": " << json::string(m.default_snippet)
       << ",\n      \"pair_snippet\": " << json::string(m.pair_snippet) << "\n    }";
   }
-  o << "\n  ]\n}\n";
+  o << "\n  ]";
+  o << ",\n  \"applied\": ";
+  if (!r.applied) {
+    o << "null";
+  } else {
+    const Applied& a = *r.applied;
+    o << "{\"path\": " << json::string(a.path) << ", \"mapping\": " << json::string(a.mapping)
+      << ", \"settled\": " << json::number(a.settled)
+      << ", \"at_rest\": " << (a.at_rest ? "true" : "false") << ", \"settled_contacts\": [";
+    for (size_t i = 0; i < a.contacts.size(); ++i) {
+      const AppliedContact& c = a.contacts[i];
+      o << (i ? ", " : "") << "{\"geom1\": " << json::string(c.geom1)
+        << ", \"geom2\": " << json::string(c.geom2) << ", \"load\": " << json::number(c.load)
+        << ", \"penetration\": " << json::number(c.penetration)
+        << ", \"predicted\": " << json::number(c.predicted) << "}";
+    }
+    o << "]}";
+  }
+  o << "\n}\n";
   return o.str();
 }
 

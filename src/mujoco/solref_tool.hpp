@@ -105,8 +105,8 @@ struct SolrefInput {
   std::optional<ContactMechanics> measured;
   std::string measured_source;
   std::vector<SettledContact> settled_contacts;
-  bool mujoco3 = false;  // Â by MuJoCo 3's rule (joint_inv_weight)
-  double gravity = 9.81;                       // m/s²
+  bool mujoco3 = false;   // Â by MuJoCo 3's rule (joint_inv_weight)
+  double gravity = 9.81;  // m/s²
   // Where the numbers come from, for the text ("--mass 1" or "model.xml, body 'box'").
   std::string body_source;
   // How k and c were found when targets gave them (solve_targets), for the
@@ -160,6 +160,23 @@ struct MappingOutcome {
   std::string pair_snippet;          // <option> + <contact><pair>
 };
 
+// solref --apply: the model with the recommended mapping written into it
+// (mujoco/solref_apply.hpp), settled again: the body's contacts there.
+struct AppliedContact {
+  std::string geom1, geom2;
+  double load = 0.0;         // MuJoCo's normal force in OUT.xml, N
+  double penetration = 0.0;  // MuJoCo's depth there, m
+  double predicted = 0.0;    // the mapping's rest depth at that load, m
+};
+
+struct Applied {
+  std::string path;
+  std::string mapping;
+  double settled = 0.0;
+  bool at_rest = false;
+  std::vector<AppliedContact> contacts;
+};
+
 struct SolrefReport {
   SolrefInput input;
   double inv_mass = 0.0;    // A = 1/m + lever²/I (hinge: lever²/(I + m·pivot²))
@@ -167,6 +184,7 @@ struct SolrefReport {
   double load = 0.0;  // f = m·g/contacts, N per contact (hinge: m·g·pivot/(lever·contacts))
   std::vector<MappingOutcome> mappings;  // the recommended one first
   std::string recommendation;            // the mapping to use and why ("" when none is fit)
+  std::optional<Applied> applied;        // --apply
 };
 
 // The mappings `contact2d solref` offers for a user's own model, in the
