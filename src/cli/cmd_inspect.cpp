@@ -7,9 +7,8 @@
 #include <optional>
 
 #include "cli/common.hpp"
-#include "core/input_error.hpp"
 #include "mujoco/inspect.hpp"
-#include "mujoco3/node_mujoco.hpp"
+#include "mujoco3/own_model.hpp"
 
 namespace contact2d::cli {
 namespace {
@@ -26,19 +25,7 @@ int inspect(const InspectCliOptions& options) {
   mj::InspectOptions in = options.inspect;
   in.slope = options.slope;
   // Throws InputError: exit 2.
-  mj::InspectReport report;
-  if (options.engine == "mujoco") {
-    report = mj::inspect(in);
-  } else if (options.engine == "mujoco3") {
-    mj::StateRequest request;
-    request.path = in.path;
-    request.key = in.key;
-    request.settle = in.settle;
-    report = mj::inspect_state(contact2d::mujoco3::read_model_state(request), in);
-  } else {
-    throw InputError("--engine " + options.engine +
-                     ": inspect reads a model in mujoco (2.2.2) or mujoco3 (3.14)");
-  }
+  const mj::InspectReport report = contact2d::mujoco3::inspect(in, options.engine);
   if (!report.load_warning.empty())
     std::cerr << "contact2d: note: MuJoCo warns while loading " << in.path << ": "
               << report.load_warning << "\n";

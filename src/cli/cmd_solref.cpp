@@ -10,7 +10,7 @@
 
 #include "cli/common.hpp"
 #include "mujoco/solref_request.hpp"
-#include "mujoco3/node_mujoco.hpp"
+#include "mujoco3/own_model.hpp"
 
 namespace contact2d::cli {
 namespace {
@@ -22,11 +22,9 @@ struct SolrefOptions {
 
 int solref(const SolrefOptions& options) {
   namespace mj = contact2d::mujoco;
-  const mj::SolrefReport report = mj::solref_request(
+  const mj::SolrefReport report = contact2d::mujoco3::solref(
       options.request,
-      [](const std::string& line) { std::cerr << "contact2d: note: " << line << "\n"; },
-      options.request.engine == "mujoco3" ? mj::StateReader(contact2d::mujoco3::read_model_state)
-                                          : mj::StateReader(mj::read_model_state));
+      [](const std::string& line) { std::cerr << "contact2d: note: " << line << "\n"; });
   std::cout << (options.json ? mj::format_report_json(report) : mj::format_report_text(report));
   return kExitOk;
 }

@@ -68,6 +68,9 @@ SolrefReport solref_request(const SolrefRequest& options,
     check_output_file("--apply", options.apply);
   }
   if (!options.model.empty()) {
+    if (options.mass)
+      throw InputError("--mass " + format_number(*options.mass) +
+                       ": not with --model (the body's mass is read from the model)");
     if (options.body.empty()) throw InputError("--model " + options.model + ": needs --body NAME");
     validate([&] {  // the numbers first: a bad --k is named before the file is read
       SolrefInput probe = in;

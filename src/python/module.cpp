@@ -37,6 +37,7 @@
 #include "mujoco/inspect.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/solref_request.hpp"
+#include "mujoco3/own_model.hpp"
 
 namespace py = pybind11;
 using namespace contact2d;
@@ -271,8 +272,7 @@ py::dict py_solref(const mujoco::SolrefRequest& request) {
   {
     py::gil_scoped_release release;
     report = reading(request.model, [&] {
-      return mujoco::solref_request(request,
-                                    [&notes](const std::string& line) { notes.push_back(line); });
+      return mujoco3::solref(request, [&notes](const std::string& line) { notes.push_back(line); });
     });
   }
   py::dict out;
@@ -282,16 +282,19 @@ py::dict py_solref(const mujoco::SolrefRequest& request) {
 }
 
 py::dict py_inspect(const std::string& path, const std::string& key, bool pairs,
-                    std::optional<double> slope) {
+                    std::optional<double> slope, double settle, bool estimate_loads,
+                    const std::string& engine) {
   mujoco::InspectOptions options;
   options.path = path;
   options.key = key;
   options.pairs = pairs;
   options.slope = slope;
+  options.settle = settle;
+  options.estimate_loads = estimate_loads;
   mujoco::InspectReport report;
   {
     py::gil_scoped_release release;
-    report = reading(path, [&] { return mujoco::inspect(options); });
+    report = reading(path, [&] { return mujoco3::inspect(options, engine); });
   }
   std::vector<std::string> notes;
   if (!report.load_warning.empty())
@@ -424,33 +427,38 @@ void bind_commands(py::module_& m) {
   m.def("_compare", &py_compare);
   m.def("_generate", &py_generate);
   m.def("_inspect", &py_inspect);
-  m.def(
-      "_solref",
-      [](std::optional<double> k, std::optional<double> c, double dt, std::optional<double> mass,
-         const std::string& mapping, std::optional<std::string> joint, double inertia, double lever,
-         double pivot, std::optional<double> mu, double mu_roll, const std::string& model,
-         const std::string& body, std::optional<int> contacts, std::optional<double> restitution,
-         std::optional<double> contact_time, std::optional<double> penetration) {
-        mujoco::SolrefRequest r;
-        r.k = k;
-        r.c = c;
-        r.dt = dt;
-        r.mass = mass;
-        r.mapping = mapping;
-        r.joint = std::move(joint);
-        r.inertia = inertia;
-        r.lever = lever;
-        r.pivot = pivot;
-        r.mu = mu;
-        r.mu_roll = mu_roll;
-        r.model = model;
-        r.body = body;
-        r.contacts = contacts;
-        r.targets.restitution = restitution;
-        r.targets.contact_time = contact_time;
-        r.targets.penetration = penetration;
-        return py_solref(r);
-      });
+  m.def("_solref",
+        [](std::optional<double> k, std::optional<double> c, double dt, std::optional<double> mass,
+           const std::string& mapping, std::optional<std::string> joint, double inertia,
+           double lever, double pivot, std::optional<double> mu, double mu_roll,
+           const std::string& model, const std::string& body, std::optional<int> contacts,
+           std::optional<double> restitution, std::optional<double> contact_time,
+           std::optional<double> penetration, const std::string& engine, double settle,
+           const std::string& key, const std::string& apply) {
+          mujoco::SolrefRequest r;
+          r.k = k;
+          r.c = c;
+          r.dt = dt;
+          r.mass = mass;
+          r.mapping = mapping;
+          r.joint = std::move(joint);
+          r.inertia = inertia;
+          r.lever = lever;
+          r.pivot = pivot;
+          r.mu = mu;
+          r.mu_roll = mu_roll;
+          r.model = model;
+          r.body = body;
+          r.contacts = contacts;
+          r.targets.restitution = restitution;
+          r.targets.contact_time = contact_time;
+          r.targets.penetration = penetration;
+          r.engine = engine;
+          r.settle = settle;
+          r.key = key;
+          r.apply = apply;
+          return py_solref(r);
+        });
   m.attr("mujoco_available") = engines::mujoco_available();
 }
 

@@ -106,6 +106,14 @@ def test_solref_errors():
     assert str(e.value) == message
 
 
+def test_solref_mass_with_model_is_refused():
+    """The CLI refuses --mass with --model; the module used to drop the mass."""
+    with pytest.raises(ValueError) as e:
+        contact2d.solref(k=1e4, c=1, dt=1e-3, mass=2, model="docs/examples/box_on_plane.xml",
+                         body="box")
+    assert str(e.value).startswith("--mass 2: not with --model")
+
+
 def test_inspect_missing_file():
     message = program_error("inspect", "no/such.xml")
     with pytest.raises(FileNotFoundError) as e:

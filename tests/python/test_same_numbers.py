@@ -151,6 +151,10 @@ SOLREF_CASES = [
     (["--k", "2e4", "--c", "50", "--dt", "2e-3", "--model", "docs/examples/box_on_plane.xml",
       "--body", "box"],
      dict(k=2e4, c=50, dt=2e-3, model="docs/examples/box_on_plane.xml", body="box")),
+    (["--k", "2e4", "--c", "50", "--dt", "2e-3", "--model", "docs/examples/box_on_plane.xml",
+      "--body", "box", "--engine", "mujoco3", "--settle", "1"],
+     dict(k=2e4, c=50, dt=2e-3, model="docs/examples/box_on_plane.xml", body="box",
+          engine="mujoco3", settle=1)),
 ]
 
 
@@ -165,6 +169,10 @@ def test_solref_json(args, kwargs):
      dict(path="docs/examples/inspect.xml", slope=10)),
     (["docs/examples/box_on_plane.xml", "--pairs"],
      dict(path="docs/examples/box_on_plane.xml", pairs=True)),
+    (["docs/examples/box_on_plane.xml", "--settle", "2", "--engine", "mujoco3"],
+     dict(path="docs/examples/box_on_plane.xml", settle=2, engine="mujoco3")),
+    (["docs/examples/inspect.xml", "--estimate-loads"],
+     dict(path="docs/examples/inspect.xml", estimate_loads=True)),
 ])
 def test_inspect_json(args, kwargs):
     out, _ = run_program("inspect", *args, "--json")

@@ -113,19 +113,24 @@ def solref(k: Optional[float] = None, c: Optional[float] = None, *, dt: float,
            mu: Optional[float] = None, mu_roll: float = 0.0, model: str = "", body: str = "",
            contacts: Optional[int] = None, restitution: Optional[float] = None,
            contact_time: Optional[float] = None,
-           penetration: Optional[float] = None) -> dict:
+           penetration: Optional[float] = None, engine: str = "mujoco", settle: float = 3.0,
+           key: str = "", apply: str = "") -> dict:
     """solref, solimp, impratio and what MuJoCo does with them, per mapping,
-    as ``contact2d solref --json`` (each keyword is that option)."""
+    as ``contact2d solref --json`` (each keyword is that option; ``engine``
+    is ``"mujoco"`` for 2.2.2 or ``"mujoco3"`` for 3.14)."""
     run = _contact2d._solref(k, c, dt, mass, mapping, joint, inertia, lever, pivot, mu, mu_roll,
-                             model, body, contacts, restitution, contact_time, penetration)
+                             model, body, contacts, restitution, contact_time, penetration,
+                             engine, settle, key, apply)
     _notes(run["notes"])
     return json.loads(run["json"])
 
 
 def inspect(path: str, key: str = "", pairs: bool = False,
-            slope: Optional[float] = None) -> dict:
+            slope: Optional[float] = None, settle: float = 0.0, estimate_loads: bool = False,
+            engine: str = "mujoco") -> dict:
     """Any MJCF model's contacts in physical units, as
-    ``contact2d inspect --json``."""
-    run = _contact2d._inspect(path, key, pairs, slope)
+    ``contact2d inspect --json`` (``settle``: seconds MuJoCo steps the model
+    first; ``engine``: ``"mujoco"`` for 2.2.2 or ``"mujoco3"`` for 3.14)."""
+    run = _contact2d._inspect(path, key, pairs, slope, settle, estimate_loads, engine)
     _notes(run["notes"])
     return json.loads(run["json"])
