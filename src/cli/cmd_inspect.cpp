@@ -2,6 +2,7 @@
 //                  [--estimate-loads] [--pairs] [--slope DEG] [--json]
 // What the contacts of a user's own MJCF model are in physical units, as
 // MuJoCo 2.2.2 or 3.14 resolves and integrates them (mujoco/inspect.hpp).
+#include <chrono>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -24,6 +25,16 @@ int inspect(const InspectCliOptions& options) {
   namespace mj = contact2d::mujoco;
   mj::InspectOptions in = options.inspect;
   in.slope = options.slope;
+  // A line on stderr every ~2 s once the pairs take longer than that.
+  const auto start = std::chrono::steady_clock::now();
+  auto last = start;
+  in.progress = [&](size_t done, size_t total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last < std::chrono::seconds(2)) return;
+    last = now;
+    std::cerr << "contact2d: inspect: " << done << " of " << total << " geom pairs ("
+              << std::chrono::duration_cast<std::chrono::seconds>(now - start).count() << " s)\n";
+  };
   // Throws InputError: exit 2.
   const mj::InspectReport report = contact2d::mujoco3::inspect(in, options.engine);
   if (!report.load_warning.empty())
@@ -52,6 +63,8 @@ Command add_inspect(CLI::App& app) {
   cmd->add_flag("--estimate-loads", options->inspect.estimate_loads,
                 "Loads from the least-squares split of gravity over the contacts (an "
                 "estimate) instead of MuJoCo's own contact forces");
+  cmd->add_option("--body", options->inspect.body,
+                  "Only the contacts and pairs of this body (the loads still come from all)");
   cmd->add_flag("--pairs", options->inspect.pairs,
                 "Also list every geom pair that can collide (explicit <pair>s and default "
                 "collisions)");

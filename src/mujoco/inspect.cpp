@@ -134,9 +134,9 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
     if (r.active && r.quadratic < r.rows) {
       r.depth_note = std::to_string(r.rows - r.quadratic) + " of its " + std::to_string(r.rows) +
                      " constraint rows are out of the solver's quadratic zone (" +
-                     (r.condim == 1  ? "it pushes nothing"
-                      : s.elliptic ? "on the friction cone's surface"
-                                   : "a pyramid edge unloaded") +
+                     (r.condim == 1 ? "it pushes nothing"
+                      : s.elliptic  ? "on the friction cone's surface"
+                                    : "a pyramid edge unloaded") +
                      ": it slips, or lifts): its depth does not follow its load";
       r.penetration = kNaN;
     }
@@ -163,8 +163,8 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
     r.unsettled = std::abs(r.B * r.normal_speed + r.normal_accel) / R;
     if (r.unsettled > 0.01 * r.load)
       r.depth_note = "not at rest along its normal (v = " + format_number(r.normal_speed) +
-                     " m/s, a = " + format_number(r.normal_accel) + " m/s²: " +
-                     format_number(100.0 * r.unsettled / r.load) +
+                     " m/s, a = " + format_number(r.normal_accel) +
+                     " m/s²: " + format_number(100.0 * r.unsettled / r.load) +
                      " % of its force is not its rest load), MuJoCo's depth now is not yet this "
                      "one (a longer --settle)";
   }
@@ -252,42 +252,29 @@ void order_by_type(const mjModel* m, int& g1, int& g2) {
   if (m->geom_type[g1] > m->geom_type[g2]) std::swap(g1, g2);
 }
 
-// The closest points of a geom pair not in contact: MuJoCo's collision on a
-// copy of the model in which only this pair collides, with a margin that
-// reaches it (the centres' distance and both bounding radii), the override
-// flag off; the contacts of least distance (a capsule parallel to a plane
-// has one at each end).
+// The closest points of a geom pair not in contact: MuJoCo's own collision
+// function for the two geom types (mjCOLLISIONFUNC, what mj_collision calls
+// for the pair) at the state `d` holds, with a margin that reaches them (the
+// centres' distance and both bounding radii); the contacts of least
+// distance (a capsule parallel to a plane has one at each end). No model
+// copy and no mj_forward per pair: the cost is the pair's narrow phase.
 struct ClosestPoints {
   std::array<double, 3> pos{}, normal{};
   double dist = 0.0;
 };
-std::vector<ClosestPoints> closest_points(const mjModel* m, const mjData* d, int ipair, int g1,
-                                          int g2) {
-  const ModelPtr copy(mj_copyModel(nullptr, m));
-  if (!copy) return {};
-  mjModel* c = copy.get();
+std::vector<ClosestPoints> closest_points(const mjModel* m, const mjData* d, int g1, int g2) {
+  const mjfCollision collide = mjCOLLISIONFUNC[m->geom_type[g1]][m->geom_type[g2]];
+  if (!collide) return {};
   double between[3];
   mju_sub3(between, d->geom_xpos + 3 * static_cast<std::ptrdiff_t>(g1),
            d->geom_xpos + 3 * static_cast<std::ptrdiff_t>(g2));
   const double reach = mju_norm3(between) + m->geom_rbound[g1] + m->geom_rbound[g2] + 1.0;
-  c->opt.enableflags &= ~mjENBL_OVERRIDE;
-  if (ipair >= 0) {
-    for (int gi = 0; gi < c->ngeom; ++gi) c->geom_contype[gi] = c->geom_conaffinity[gi] = 0;
-    c->pair_margin[ipair] = reach;
-  } else {
-    for (int gi = 0; gi < c->ngeom; ++gi)
-      if (gi != g1 && gi != g2) c->geom_contype[gi] = c->geom_conaffinity[gi] = 0;
-    c->npair = 0;
-    c->geom_margin[g1] = c->geom_margin[g2] = reach;
-  }
-  const DataPtr probe = make_data(c);
-  mju_copy(probe->qpos, d->qpos, m->nq);
-  mj_forward(c, probe.get());
+  std::array<mjContact, mjMAXCONPAIR> found{};
+  const int n = collide(m, d, found.data(), g1, g2, reach);
   std::vector<ClosestPoints> all;
   double least = INFINITY;
-  for (int i = 0; i < probe->ncon; ++i) {
-    const mjContact& con = probe->contact[i];
-    if (!((con.geom1 == g1 && con.geom2 == g2) || (con.geom1 == g2 && con.geom2 == g1))) continue;
+  for (int i = 0; i < n && i < mjMAXCONPAIR; ++i) {
+    const mjContact& con = found[static_cast<size_t>(i)];
     ClosestPoints p;
     for (size_t k = 0; k < 3; ++k) {
       p.pos[k] = con.pos[k];
@@ -367,7 +354,8 @@ void estimate_loads(const ModelState& s, InspectReport& rep, bool use) {
 }
 
 // Every geom pair that can collide (--pairs), into rep.pairs.
-void collect_pairs(const Context& ctx, const mjModel* m, mjData* d, InspectReport& rep) {
+void collect_pairs(const Context& ctx, const mjModel* m, mjData* d, InspectReport& rep,
+                   const std::function<void(size_t, size_t)>& progress) {
   rep.pairs_listed = true;
   auto add = [&](int ipair, int g1, int g2) {
     InspectRow r;
@@ -390,10 +378,8 @@ void collect_pairs(const Context& ctx, const mjModel* m, mjData* d, InspectRepor
       }
     }
     if (r.contacts_now == 0) {
-      std::vector<std::string> ignored;  // the probe's own warnings (nconmax) are not the model's
-      WarningCapture quiet(ignored);
       // Of equally close points, the one the joints move most easily (the largest A).
-      for (const ClosestPoints& near : closest_points(m, d, ipair, g1, g2)) {
+      for (const ClosestPoints& near : closest_points(m, d, g1, g2)) {
         const double a =
             inverse_mass(m, d, normal_jacobian(m, d, r.body1, r.body2, near.pos, near.normal));
         if (r.closest && !(a > r.A)) continue;
@@ -411,8 +397,21 @@ void collect_pairs(const Context& ctx, const mjModel* m, mjData* d, InspectRepor
   const bool disabled = (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT)) != 0;
   const bool use_pairs = !disabled && m->opt.collision != mjCOL_DYNAMIC;
   const bool use_dynamic = !disabled && m->opt.collision != mjCOL_PAIR && m->nbody >= 2;
+  // The candidates first (their count is the progress's total), then each.
+  struct Candidate {
+    int ipair, g1, g2;
+  };
+  std::vector<Candidate> candidates;
+  auto wanted = [&](int g1, int g2) {
+    if (rep.body.empty()) return true;
+    for (const int g : {g1, g2})
+      if (ctx.s->body_names[static_cast<size_t>(m->geom_bodyid[g])] == rep.body) return true;
+    return false;
+  };
   if (use_pairs)
-    for (int p = 0; p < m->npair; ++p) add(p, m->pair_geom1[p], m->pair_geom2[p]);
+    for (int p = 0; p < m->npair; ++p)
+      if (wanted(m->pair_geom1[p], m->pair_geom2[p]))
+        candidates.push_back({p, m->pair_geom1[p], m->pair_geom2[p]});
   if (use_dynamic) {
     for (int b1 = 0; b1 < m->nbody; ++b1) {
       for (int b2 = b1 + 1; b2 < m->nbody; ++b2) {
@@ -426,13 +425,20 @@ void collect_pairs(const Context& ctx, const mjModel* m, mjData* d, InspectRepor
             for (int p = 0; use_pairs && p < m->npair; ++p)
               explicit_pair |= (m->pair_geom1[p] == g1 && m->pair_geom2[p] == g2) ||
                                (m->pair_geom1[p] == g2 && m->pair_geom2[p] == g1);
-            if (explicit_pair || no_collision_function(m, g1, g2) || filtered(m, g1, g2)) continue;
-            add(-1, g1, g2);
+            if (explicit_pair || no_collision_function(m, g1, g2) || filtered(m, g1, g2) ||
+                !wanted(g1, g2))
+              continue;
+            candidates.push_back({-1, g1, g2});
           }
         }
       }
     }
   }
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    if (progress && i % 1024 == 0) progress(i, candidates.size());
+    add(candidates[i].ipair, candidates[i].g1, candidates[i].g2);
+  }
+  if (progress) progress(candidates.size(), candidates.size());
 }
 
 // The warnings on the rows and on the model, then MuJoCo's own messages.
@@ -519,6 +525,52 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
   for (const std::string& w : s.messages) rep.warnings.push_back("MuJoCo: " + w);
 }
 
+bool involves(const InspectRow& r, const std::string& body) {
+  return r.body1_name == body || r.body2_name == body;
+}
+
+// A warning about one of the rows kept (it starts with the row's label).
+bool mentions_body(const std::string& warning, const std::vector<InspectRow>& rows) {
+  for (const InspectRow& r : rows)
+    if (warning.rfind(label_of(r), 0) == 0) return true;
+  return false;
+}
+
+// Per moving body: its contacts, their loads, depths, effective masses and
+// how close the stiffest is to the integrator's limit.
+std::vector<BodySummary> summarize(const ModelState& s, const std::vector<InspectRow>& rows) {
+  std::map<int, BodySummary> by_body;
+  for (const InspectRow& r : rows) {
+    for (const int b : {r.body1, r.body2}) {
+      if (s.body_weld[static_cast<size_t>(b)] == 0) continue;  // the world and what is welded to it
+      auto [it, fresh] = by_body.emplace(b, BodySummary{});
+      BodySummary& sum = it->second;
+      if (fresh) {
+        sum.name = s.body_names[static_cast<size_t>(b)];
+        sum.deepest = kNaN;
+        sum.mass_min = INFINITY;
+        sum.mass_max = 0.0;
+      }
+      ++sum.contacts;
+      if (std::isfinite(r.load)) sum.load += r.load;
+      if (std::isfinite(r.penetration))
+        sum.deepest =
+            std::isfinite(sum.deepest) ? std::max(sum.deepest, r.penetration) : r.penetration;
+      if (r.A > 0.0) {
+        sum.mass_min = std::min(sum.mass_min, 1.0 / r.A);
+        sum.mass_max = std::max(sum.mass_max, 1.0 / r.A);
+        if (r.limit > 0.0) sum.stability = std::max(sum.stability, r.omega_dt / r.limit);
+      }
+    }
+  }
+  std::vector<BodySummary> out;
+  for (auto& [b, sum] : by_body) {
+    if (!std::isfinite(sum.mass_min)) sum.mass_min = sum.mass_max = kNaN;
+    out.push_back(sum);
+  }
+  return out;
+}
+
 // The report's contacts from the state: MuJoCo's loads (or the estimate),
 // then everything that follows from each contact's parameters.
 InspectReport begin_report(const ModelState& s, const InspectOptions& options) {
@@ -545,6 +597,20 @@ InspectReport begin_report(const ModelState& s, const InspectOptions& options) {
   estimate_loads(s, rep, options.estimate_loads);
   const Context ctx{&s, integrator_of(s), !s.elliptic, options.slope};
   for (InspectRow& r : rep.contacts) evaluate(ctx, r, rep.warnings, label_of(r));
+  if (!options.body.empty()) {
+    if (std::find(s.body_names.begin(), s.body_names.end(), options.body) == s.body_names.end())
+      throw InputError("--body " + options.body + ": no body of that name in " + options.path);
+    rep.body = options.body;
+    // The least-squares loads above used every contact; only the listing is filtered.
+    rep.contacts.erase(std::remove_if(rep.contacts.begin(), rep.contacts.end(),
+                                      [&](const InspectRow& r) { return !involves(r, rep.body); }),
+                       rep.contacts.end());
+    std::vector<std::string> kept;
+    for (const std::string& w : rep.warnings)
+      if (mentions_body(w, rep.contacts)) kept.push_back(w);
+    rep.warnings = kept;
+  }
+  rep.bodies = summarize(s, rep.contacts);
   return rep;
 }
 
@@ -578,7 +644,7 @@ InspectReport inspect(const InspectOptions& options) {
     std::vector<std::string> messages;
     WarningCapture capture(messages);
     const Context ctx{&s, integrator_of(s), !s.elliptic, options.slope};
-    collect_pairs(ctx, loaded.model.get(), loaded.data.get(), rep);
+    collect_pairs(ctx, loaded.model.get(), loaded.data.get(), rep, options.progress);
   }
   add_warnings(s, options, rep);
   return rep;
@@ -659,9 +725,10 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
   if (std::isfinite(r.load))
     o << "  load " << format_number(r.load) << " N" << (rep.loads_estimated ? " (estimate)" : "")
       << ", rest depth "
-      << (r.depth_note.empty()             ? format_number(r.penetration) + " m"
-          : std::isfinite(r.penetration) ? format_number(r.penetration) + " m (" + r.depth_note + ")"
-                                         : "not known: " + r.depth_note)
+      << (r.depth_note.empty() ? format_number(r.penetration) + " m"
+          : std::isfinite(r.penetration)
+              ? format_number(r.penetration) + " m (" + r.depth_note + ")"
+              : "not known: " + r.depth_note)
       << "\n";
   else
     o << "  static load: not known (not in contact now)\n";
@@ -724,8 +791,8 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
     << ", \"load\": " << jn(r.load) << ", \"force\": " << (r.active ? jn(r.force) : "null")
     << ", \"estimate\": " << jn(r.estimate) << ", \"penetration\": " << jn(r.penetration)
     << ", \"normal_speed\": " << (r.active ? jn(r.normal_speed) : "null")
-    << ", \"depth_note\": " << json_string(r.depth_note)
-    << ", \"creep\": " << jn(r.creep) << ", \"creep_note\": " << json_string(r.creep_note) << "}";
+    << ", \"depth_note\": " << json_string(r.depth_note) << ", \"creep\": " << jn(r.creep)
+    << ", \"creep_note\": " << json_string(r.creep_note) << "}";
 }
 
 }  // namespace
@@ -754,6 +821,24 @@ std::string format_inspect_text(const InspectReport& rep) {
               : std::string("MuJoCo's own contact forces (mj_contactForce)") +
                     (rep.at_rest ? ", at rest" : ", NOT at rest"))
       << "\n";
+  }
+  if (!rep.body.empty()) o << "only body " << rep.body << "'s contacts and pairs (--body)\n";
+  if (!rep.bodies.empty()) {
+    o << "\nper body: contacts, load (sum), deepest rest depth, effective mass at its contacts, "
+         "stiffest ω·Δt / the integrator's limit\n";
+    size_t width = 4;
+    for (const BodySummary& b : rep.bodies) width = std::max(width, b.name.size());
+    for (const BodySummary& b : rep.bodies) {
+      o << "  " << b.name << std::string(width - b.name.size(), ' ') << "  " << b.contacts << "  "
+        << format_number(b.load) << " N  "
+        << (std::isfinite(b.deepest) ? format_number(b.deepest) + " m" : std::string("-")) << "  ";
+      if (std::isfinite(b.mass_min))
+        o << format_number(b.mass_min)
+          << (b.mass_max > b.mass_min ? "–" + format_number(b.mass_max) : std::string()) << " kg";
+      else
+        o << "-";
+      o << "  " << format_number(b.stability) << (b.stability >= 1.0 ? " UNSTABLE" : "") << "\n";
+    }
   }
   // A contact whose text is that of the one before (but for its index), as
   // a box's corners on a plane: one line naming them.
@@ -812,7 +897,17 @@ std::string format_inspect_json(const InspectReport& rep) {
     << ",\n  \"gravity\": " << json_array(rep.gravity.data(), 3)
     << ",\n  \"slope\": " << (rep.slope ? jn(*rep.slope) : "null")
     << ",\n  \"balanced\": " << (rep.balanced ? "true" : "false")
-    << ",\n  \"residual\": " << jn(rep.residual) << ",\n  \"contacts\": [";
+    << ",\n  \"residual\": " << jn(rep.residual)
+    << ",\n  \"body\": " << (rep.body.empty() ? "null" : json_string(rep.body))
+    << ",\n  \"bodies\": [";
+  for (size_t i = 0; i < rep.bodies.size(); ++i) {
+    const BodySummary& b = rep.bodies[i];
+    o << (i ? ",\n    " : "\n    ") << "{\"name\": " << json_string(b.name)
+      << ", \"contacts\": " << b.contacts << ", \"load\": " << jn(b.load)
+      << ", \"deepest\": " << jn(b.deepest) << ", \"mass_min\": " << jn(b.mass_min)
+      << ", \"mass_max\": " << jn(b.mass_max) << ", \"stability\": " << jn(b.stability) << "}";
+  }
+  o << (rep.bodies.empty() ? "]" : "\n  ]") << ",\n  \"contacts\": [";
   for (size_t i = 0; i < rep.contacts.size(); ++i) {
     o << (i ? ",\n" : "\n");
     json_row(o, rep.contacts[i]);

@@ -49,6 +49,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -62,6 +64,9 @@ struct InspectOptions {
   std::string key;              // keyframe name; empty: qpos0
   double settle = 0.0;          // s of mj_step before reading the state (model_state.hpp)
   bool estimate_loads = false;  // loads from the least-squares split, not MuJoCo's forces
+  std::string body;             // only the contacts and pairs of this body; empty: all
+  // Called every 1024 pairs with (done, total) while --pairs works.
+  std::function<void(size_t, size_t)> progress;
   bool pairs = false;           // also every geom pair that can collide
   std::optional<double> slope;  // degrees, [0, 90)
 };
@@ -95,18 +100,28 @@ struct InspectRow {
   double estimate = NAN;       // the least-squares load (estimate_loads), N
   double load = 0.0;         // the load the rest depth is for: force, or estimate (NaN: not known)
   double penetration = 0.0;  // static penetration, m (NaN: not known)
-  int rows = 0, quadratic = 0;  // constraint rows, and those in the solver's quadratic zone
-  double normal_speed = 0.0;    // n·(v₂ − v₁) at the contact now (J·qvel), m/s
-  double normal_accel = 0.0;    // J·qacc, m/s²
-  double unsettled = 0.0;       // the part of its force that is not rest: (B·v + J·qacc)/R
-  std::string depth_note;       // why there is no rest depth, or why MuJoCo is not at it now
-  double k = 0.0, c = 0.0;   // N/m, N·s/m at d_rest
-  double omega = 0.0, zeta = 0.0;          // at d_rest
+  int rows = 0, quadratic = 0;     // constraint rows, and those in the solver's quadratic zone
+  double normal_speed = 0.0;       // n·(v₂ − v₁) at the contact now (J·qvel), m/s
+  double normal_accel = 0.0;       // J·qacc, m/s²
+  double unsettled = 0.0;          // the part of its force that is not rest: (B·v + J·qacc)/R
+  std::string depth_note;          // why there is no rest depth, or why MuJoCo is not at it now
+  double k = 0.0, c = 0.0;         // N/m, N·s/m at d_rest
+  double omega = 0.0, zeta = 0.0;  // at d_rest
   double omega_max = 0.0, zeta_max = 0.0;  // at d_max
   double omega_dt = 0.0, limit = 0.0;      // ω·Δt at d_max and the integrator's limit
   double restitution = 0.0;
   double creep = 0.0;      // m/s at --slope (NaN: not computed)
   std::string creep_note;  // why there is no creep number, or what it assumes
+};
+
+// One body's contacts at a glance (the text's first table).
+struct BodySummary {
+  std::string name;
+  int contacts = 0;
+  double load = 0.0;                      // the sum of its contacts' loads, N
+  double deepest = 0.0;                   // the largest rest depth, m (NaN: none known)
+  double mass_min = 0.0, mass_max = 0.0;  // effective masses 1/A over its contacts, kg
+  double stability = 0.0;  // the largest ω·Δt / limit over its contacts (≥ 1: unstable)
 };
 
 struct InspectReport {
@@ -128,7 +143,9 @@ struct InspectReport {
   bool balanced = true;   // the contacts' normal forces alone hold the model at rest
   double residual = 0.0;  // |Jₙᵀ·f − qfrc_bias| / |qfrc_bias|
   std::vector<InspectRow> contacts;
-  std::vector<InspectRow> pairs;  // with --pairs
+  std::vector<BodySummary> bodies;  // every moving body with a contact, in body order
+  std::string body;                 // --body: the one body listed
+  std::vector<InspectRow> pairs;    // with --pairs
   bool pairs_listed = false;
   std::vector<std::string> warnings;
 };
