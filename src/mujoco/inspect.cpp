@@ -316,10 +316,8 @@ void collect_contacts(const ModelState& s, InspectReport& rep) {
     r.A_measured = true;
     r.force = con.force;
     r.rows = con.rows;
-    for (size_t k = 0; k < con.jacobian.size() && k < s.qvel.size(); ++k) {
-      r.normal_speed += con.jacobian[k] * s.qvel[k];
-      r.normal_accel += con.jacobian[k] * s.qacc[k];
-    }
+    r.normal_speed = con.jacobian.dot(s.qvel);
+    r.normal_accel = con.jacobian.dot(s.qacc);
     r.quadratic = con.quadratic;
     r.load = std::max(0.0, con.force);
     rep.contacts.push_back(r);
@@ -335,12 +333,13 @@ void collect_contacts(const ModelState& s, InspectReport& rep) {
 void estimate_loads(const ModelState& s, InspectReport& rep, bool use) {
   const int nc = static_cast<int>(s.contacts.size());
   if (nc == 0) return;
-  Eigen::MatrixXd jt(s.nv, nc);
+  Eigen::MatrixXd jt = Eigen::MatrixXd::Zero(s.nv, nc);
   Eigen::VectorXd b(s.nv);
   for (int i = 0; i < s.nv; ++i) b(i) = s.bias[static_cast<size_t>(i)];
-  for (int c = 0; c < nc; ++c)
-    for (int i = 0; i < s.nv; ++i)
-      jt(i, c) = s.contacts[static_cast<size_t>(c)].jacobian[static_cast<size_t>(i)];
+  for (int c = 0; c < nc; ++c) {
+    const SparseRow& row = s.contacts[static_cast<size_t>(c)].jacobian;
+    for (size_t k = 0; k < row.index.size(); ++k) jt(row.index[k], c) = row.value[k];
+  }
   const Eigen::VectorXd f = jt.completeOrthogonalDecomposition().solve(b);
   const double scale = b.norm();
   rep.residual = scale > 0.0 ? (jt * f - b).norm() / scale : 0.0;

@@ -16,7 +16,8 @@
 //             mj_solveM on the factor mj_forward left), 1/kg;
 //   force     MuJoCo's own normal force (mj_contactForce, the contact
 //             frame's first component), N;
-//   jacobian  the normal row n·(J₁ − J₂) (nv), for the least-squares loads;
+//   jacobian  the normal row n·(J₁ − J₂) (nv, sparse), for the least-squares
+//             loads, and M⁻¹ times it (the coupling of two contacts);
 //   rows      how many of its constraint rows are in the solver's quadratic
 //             zone (from their forces: a pushing pyramidal row, an elliptic
 //             force strictly inside its cone): a contact rests at the depth
@@ -58,6 +59,41 @@ struct StateRequest {
   std::string option;  // the option naming the file in messages ("--model" or "")
 };
 
+// A row over the model's dofs that is mostly zeros (a contact touches the
+// dofs of two kinematic chains): its non-zero columns, ascending.
+struct SparseRow {
+  std::vector<int> index;
+  std::vector<double> value;
+  static SparseRow of(const std::vector<double>& dense) {
+    SparseRow row;
+    for (size_t i = 0; i < dense.size(); ++i) {
+      if (dense[i] == 0.0) continue;
+      row.index.push_back(static_cast<int>(i));
+      row.value.push_back(dense[i]);
+    }
+    return row;
+  }
+  double dot(const std::vector<double>& dense) const {
+    double sum = 0.0;
+    for (size_t k = 0; k < index.size(); ++k)
+      sum += value[k] * dense[static_cast<size_t>(index[k])];
+    return sum;
+  }
+  double dot(const SparseRow& other) const {
+    double sum = 0.0;
+    for (size_t a = 0, b = 0; a < index.size() && b < other.index.size();) {
+      if (index[a] < other.index[b]) {
+        ++a;
+      } else if (other.index[b] < index[a]) {
+        ++b;
+      } else {
+        sum += value[a++] * other.value[b++];
+      }
+    }
+    return sum;
+  }
+};
+
 struct StateContact {
   int geom1 = -1, geom2 = -1, body1 = -1, body2 = -1;
   bool explicit_pair = false;  // the geoms are an explicit <pair>
@@ -69,9 +105,10 @@ struct StateContact {
   std::array<double, 5> solimp{};
   double A = 0.0;
   double force = 0.0;
-  int rows = 0;       // its constraint rows (pyramidal: 2(condim − 1), or 1; elliptic: condim)
-  int quadratic = 0;  // of them, in the solver's quadratic zone (efc_state)
-  std::vector<double> jacobian;
+  int rows = 0;        // its constraint rows (pyramidal: 2(condim − 1), or 1; elliptic: condim)
+  int quadratic = 0;   // of them, in the solver's quadratic zone (efc_state)
+  SparseRow jacobian;  // the normal row n·(J₁ − J₂)
+  SparseRow solved;    // M⁻¹·jacobianᵀ: A = jacobian·solved, A_ij = jacobian_i·solved_j
 };
 
 struct ModelState {
@@ -90,20 +127,20 @@ struct ModelState {
   std::vector<std::string> body_names, geom_names;  // "#id" when unnamed
   std::vector<int> body_weld;                       // body_weldid
   std::vector<double> body_mass;
-  std::vector<double> body_invweight0;  // 2 per body: translational, rotational
-  std::vector<int> body_parent;            // body_parentid
-  std::vector<std::string> body_joints;    // the body's own joints' types, "slide, slide, hinge"
+  std::vector<double> body_invweight0;   // 2 per body: translational, rotational
+  std::vector<int> body_parent;          // body_parentid
+  std::vector<std::string> body_joints;  // the body's own joints' types, "slide, slide, hinge"
   std::vector<int> geom_body;
-  std::vector<double> geom_mu;             // sliding friction (geom_friction[0])
+  std::vector<double> geom_mu;  // sliding friction (geom_friction[0])
   std::vector<int> geom_condim;
-  std::vector<bool> geom_collides;         // contype or conaffinity non-zero
+  std::vector<bool> geom_collides;  // contype or conaffinity non-zero
   // the state
   int nv = 0;
-  double settled = 0.0;      // s stepped
-  double speed = 0.0;        // largest |qvel| at the end
-  double accel = 0.0;        // largest |qacc| at the end
+  double settled = 0.0;            // s stepped
+  double speed = 0.0;              // largest |qvel| at the end
+  double accel = 0.0;              // largest |qacc| at the end
   std::vector<double> qvel, qacc;  // at this state
-  std::vector<double> bias;  // qfrc_bias at this configuration with qvel = 0
+  std::vector<double> bias;        // qfrc_bias at this configuration with qvel = 0
   std::vector<StateContact> contacts;
 };
 

@@ -217,17 +217,8 @@ function readState(m, d, r) {
     out.body_names.push(nameAt(m, m.name_bodyadr[b]) || (b === 0 ? 'world' : `body #${b}`));
   for (let g = 0; g < ngeom; ++g) out.geom_names.push(nameAt(m, m.name_geomadr[g]) || `geom #${g}`);
 
-  // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0.
-  const still = new mj.MjData(m);
-  try {
-    still.qpos.set(d.qpos);
-    mj.mj_forward(m, still);
-    out.bias = Array.from(still.qfrc_bias);
-    out.qvel = Array.from(d.qvel);
-    out.qacc = Array.from(d.qacc);
-  } finally {
-    still.delete();
-  }
+  out.qvel = Array.from(d.qvel);
+  out.qacc = Array.from(d.qacc);
 
   const jp1 = new mj.DoubleBuffer(3 * nv), jp2 = new mj.DoubleBuffer(3 * nv);
   const jr = new mj.DoubleBuffer(3 * nv), x = new mj.DoubleBuffer(nv);
@@ -246,7 +237,7 @@ function readState(m, d, r) {
       for (let k = 0; k < 3; ++k)
         for (let c = 0; c < nv; ++c) row[c] += normal[k] * (j2[k * nv + c] - j1[k * nv + c]);
       mj.mj_solveM(m, d, x, row);
-      const solved = x.GetView();
+      const solved = Float64Array.from(x.GetView());
       let A = 0;
       for (let c = 0; c < nv; ++c) A += row[c] * solved[c];
       mj.mj_contactForce(m, d, i, force);
@@ -286,12 +277,19 @@ function readState(m, d, r) {
         rows,
         quadratic,
         jacobian_index: row.flatMap((v, c) => v !== 0 ? [c] : []),
-        jacobian_value: row.filter((v) => v !== 0)
+        jacobian_value: row.filter((v) => v !== 0),
+        solved_index: Array.from(solved).flatMap((v, c) => v !== 0 ? [c] : []),
+        solved_value: Array.from(solved).filter((v) => v !== 0)
       });
     }
   } finally {
     for (const b of [jp1, jp2, jr, x, force]) b.delete();
   }
+  // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0,
+  // in the same mjData (as mujoco/model_state.cpp does).
+  d.qvel.fill(0);
+  mj.mj_forward(m, d);
+  out.bias = Array.from(d.qfrc_bias);
   return out;
 }
 

@@ -275,13 +275,27 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
       out.force = number(c.get("force"));
       out.rows = static_cast<int>(number(c.get("rows")));
       out.quadratic = static_cast<int>(number(c.get("quadratic")));
-      // The normal row arrives sparse: its non-zero columns and values.
-      out.jacobian.assign(static_cast<size_t>(s.nv), 0.0);
-      const std::vector<double> index = numbers_of(c.get("jacobian_index"));
-      const std::vector<double> value = numbers_of(c.get("jacobian_value"));
-      for (size_t i = 0; i < index.size() && i < value.size(); ++i) {
-        const auto column = static_cast<size_t>(index[i]);
-        if (column < out.jacobian.size()) out.jacobian[column] = value[i];
+      // The normal row and M⁻¹ times it arrive sparse: non-zero columns and values.
+      auto sparse = [&](const char* index_key, const char* value_key) {
+        mujoco::SparseRow row;
+        const std::vector<double> index = numbers_of(c.get(index_key));
+        row.value = numbers_of(c.get(value_key));
+        for (const double i : index) row.index.push_back(static_cast<int>(i));
+        return row;
+      };
+      out.jacobian = sparse("jacobian_index", "jacobian_value");
+      out.solved = sparse("solved_index", "solved_value");
+      bool columns = out.jacobian.index.size() == out.jacobian.value.size() &&
+                     out.solved.index.size() == out.solved.value.size();
+      for (const mujoco::SparseRow* row : {&out.jacobian, &out.solved})
+        for (size_t i = 0; i < row->index.size(); ++i)
+          columns = columns && row->index[i] >= 0 && row->index[i] < s.nv &&
+                    (i == 0 || row->index[i] > row->index[i - 1]);
+      if (!columns) {
+        failed_ = true;
+        throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
+                          " answered a contact row that is not sparse columns of the model (" +
+                          fix_command() + ")");
       }
       s.contacts.push_back(out);
     }
@@ -293,8 +307,7 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
                s.body_invweight0.size() == 2 * nbody && s.geom_body.size() == ngeom &&
                s.body_parent.size() == nbody && s.body_joints.size() == nbody &&
                s.geom_mu.size() == ngeom && s.geom_condim.size() == ngeom &&
-               s.geom_collides.size() == ngeom &&
-               s.bias.size() == static_cast<size_t>(s.nv) &&
+               s.geom_collides.size() == ngeom && s.bias.size() == static_cast<size_t>(s.nv) &&
                s.qvel.size() == static_cast<size_t>(s.nv) &&
                s.qacc.size() == static_cast<size_t>(s.nv);
   for (const int b : s.geom_body) sound = sound && b >= 0 && static_cast<size_t>(b) < nbody;
