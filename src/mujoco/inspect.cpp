@@ -14,6 +14,7 @@
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/integrators.hpp"
+#include "mujoco/bounce.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
 #include "mujoco/solref_tool.hpp"
@@ -570,6 +571,46 @@ std::vector<BodySummary> summarize(const ModelState& s, const std::vector<Inspec
   return out;
 }
 
+// The speed the bounces are computed at, m/s.
+constexpr double kBounceSpeed = 1.0;
+
+BounceRow bounce_row(const InspectRow& r) { return {r.K, r.B, r.solimp, r.normal_weight}; }
+
+// Each contact alone, then each body's contacts together, as MuJoCo steps
+// them at the model's timestep (bounce.hpp).
+void add_bounces(const ModelState& s, InspectReport& rep) {
+  const bool rk4 = s.integrator == "RK4";
+  for (InspectRow& r : rep.contacts) {
+    r.restitution_dt = kNaN;
+    if (!(r.A > 0.0)) continue;
+    const Bounce b = mujoco_bounce({bounce_row(r)}, Eigen::MatrixXd::Constant(1, 1, r.A),
+                                   s.timestep, rk4, kBounceSpeed);
+    if (b.left) r.restitution_dt = b.restitution;
+  }
+  for (BodySummary& body : rep.bodies) {
+    body.bounce = body.bounce_spread = kNaN;
+    std::vector<const InspectRow*> rows;
+    for (const InspectRow& r : rep.contacts)
+      if ((r.body1_name == body.name || r.body2_name == body.name) && r.A > 0.0) rows.push_back(&r);
+    if (rows.empty()) continue;
+    const auto n = static_cast<Eigen::Index>(rows.size());
+    Eigen::MatrixXd coupling(n, n);
+    std::vector<BounceRow> bounce_rows;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const StateContact& ci =
+          s.contacts[static_cast<size_t>(rows[static_cast<size_t>(i)]->contact)];
+      for (Eigen::Index j = 0; j < n; ++j)
+        coupling(i, j) = ci.jacobian.dot(
+            s.contacts[static_cast<size_t>(rows[static_cast<size_t>(j)]->contact)].solved);
+      bounce_rows.push_back(bounce_row(*rows[static_cast<size_t>(i)]));
+    }
+    const Bounce b = mujoco_bounce(bounce_rows, coupling, s.timestep, rk4, kBounceSpeed);
+    if (!b.left) continue;
+    body.bounce = b.restitution;
+    body.bounce_spread = b.spread;
+  }
+}
+
 // The report's contacts from the state: MuJoCo's loads (or the estimate),
 // then everything that follows from each contact's parameters.
 InspectReport begin_report(const ModelState& s, const InspectOptions& options) {
@@ -610,6 +651,7 @@ InspectReport begin_report(const ModelState& s, const InspectOptions& options) {
     rep.warnings = kept;
   }
   rep.bodies = summarize(s, rep.contacts);
+  add_bounces(s, rep);
   return rep;
 }
 
@@ -716,7 +758,8 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
   } else {
     o << "  k = " << format_number(r.k) << " N/m, c = " << format_number(r.c)
       << " N·s/m; ω = " << format_number(r.omega) << " rad/s, ζ = " << format_number(r.zeta)
-      << "; restitution " << format_number(r.restitution) << "\n";
+      << "; restitution " << format_number(r.restitution) << " (continuous time), "
+      << format_number(r.restitution_dt) << " as MuJoCo steps it alone at Δt\n";
     o << "  ω·Δt = " << format_number(r.omega_dt) << " at d_max (ω = " << format_number(r.omega_max)
       << ", ζ = " << format_number(r.zeta_max) << "): " << rep.integrator << "'s limit "
       << format_number(r.limit) << " (" << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
@@ -787,8 +830,9 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
     << ", \"zeta\": " << jn(r.zeta) << ", \"omega_max\": " << jn(r.omega_max)
     << ", \"zeta_max\": " << jn(r.zeta_max) << ", \"omega_dt\": " << jn(r.omega_dt)
     << ", \"limit\": " << jn(r.limit) << ",\n     \"restitution\": " << jn(r.restitution)
-    << ", \"load\": " << jn(r.load) << ", \"force\": " << (r.active ? jn(r.force) : "null")
-    << ", \"estimate\": " << jn(r.estimate) << ", \"penetration\": " << jn(r.penetration)
+    << ", \"restitution_dt\": " << jn(r.restitution_dt) << ", \"load\": " << jn(r.load)
+    << ", \"force\": " << (r.active ? jn(r.force) : "null") << ", \"estimate\": " << jn(r.estimate)
+    << ", \"penetration\": " << jn(r.penetration)
     << ", \"normal_speed\": " << (r.active ? jn(r.normal_speed) : "null")
     << ", \"depth_note\": " << json_string(r.depth_note) << ", \"creep\": " << jn(r.creep)
     << ", \"creep_note\": " << json_string(r.creep_note) << "}";
@@ -824,7 +868,8 @@ std::string format_inspect_text(const InspectReport& rep) {
   if (!rep.body.empty()) o << "only body " << rep.body << "'s contacts and pairs (--body)\n";
   if (!rep.bodies.empty()) {
     o << "\nper body: contacts, load (sum), deepest rest depth, effective mass at its contacts, "
-         "stiffest ω·Δt / the integrator's limit\n";
+         "stiffest ω·Δt / the integrator's limit, bounce (its contacts hitting together at 1 m/s "
+         "as MuJoCo steps them at Δt)\n";
     size_t width = 4;
     for (const BodySummary& b : rep.bodies) width = std::max(width, b.name.size());
     for (const BodySummary& b : rep.bodies) {
@@ -836,7 +881,11 @@ std::string format_inspect_text(const InspectReport& rep) {
           << (b.mass_max > b.mass_min ? "–" + format_number(b.mass_max) : std::string()) << " kg";
       else
         o << "-";
-      o << "  " << format_number(b.stability) << (b.stability >= 1.0 ? " UNSTABLE" : "") << "\n";
+      o << "  " << format_number(b.stability) << (b.stability >= 1.0 ? " UNSTABLE" : "") << "  "
+        << (std::isfinite(b.bounce)
+                ? "e = " + format_number(b.bounce) + " ± " + format_number(b.bounce_spread / 2.0)
+                : std::string("-"))
+        << "\n";
     }
   }
   // A contact whose text is that of the one before (but for its index), as
@@ -904,7 +953,8 @@ std::string format_inspect_json(const InspectReport& rep) {
     o << (i ? ",\n    " : "\n    ") << "{\"name\": " << json_string(b.name)
       << ", \"contacts\": " << b.contacts << ", \"load\": " << jn(b.load)
       << ", \"deepest\": " << jn(b.deepest) << ", \"mass_min\": " << jn(b.mass_min)
-      << ", \"mass_max\": " << jn(b.mass_max) << ", \"stability\": " << jn(b.stability) << "}";
+      << ", \"mass_max\": " << jn(b.mass_max) << ", \"stability\": " << jn(b.stability)
+      << ", \"bounce\": " << jn(b.bounce) << ", \"bounce_spread\": " << jn(b.bounce_spread) << "}";
   }
   o << (rep.bodies.empty() ? "]" : "\n  ]") << ",\n  \"contacts\": [";
   for (size_t i = 0; i < rep.contacts.size(); ++i) {

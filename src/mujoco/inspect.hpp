@@ -109,9 +109,10 @@ struct InspectRow {
   double omega = 0.0, zeta = 0.0;  // at d_rest
   double omega_max = 0.0, zeta_max = 0.0;  // at d_max
   double omega_dt = 0.0, limit = 0.0;      // ω·Δt at d_max and the integrator's limit
-  double restitution = 0.0;
-  double creep = 0.0;      // m/s at --slope (NaN: not computed)
-  std::string creep_note;  // why there is no creep number, or what it assumes
+  double restitution = 0.0;     // continuous time (Kelvin–Voigt, force clamped at zero)
+  double restitution_dt = 0.0;  // as MuJoCo steps it at the model's Δt (bounce.hpp), at 1 m/s
+  double creep = 0.0;           // m/s at --slope (NaN: not computed)
+  std::string creep_note;       // why there is no creep number, or what it assumes
 };
 
 // One body's contacts at a glance (the text's first table).
@@ -122,6 +123,10 @@ struct BodySummary {
   double deepest = 0.0;                   // the largest rest depth, m (NaN: none known)
   double mass_min = 0.0, mass_max = 0.0;  // effective masses 1/A over its contacts, kg
   double stability = 0.0;  // the largest ω·Δt / limit over its contacts (≥ 1: unstable)
+  // Its contacts hitting together at 1 m/s, stepped as MuJoCo steps them
+  // (bounce.hpp): the body's bounce, and how much it varies with where in
+  // a step the contacts begin (NaN: no contact its joints can move).
+  double bounce = 0.0, bounce_spread = 0.0;
 };
 
 struct InspectReport {
