@@ -93,6 +93,11 @@ struct Context {
   std::optional<double> slope;
 };
 
+// The speed the bounces are computed at, m/s.
+constexpr double kBounceSpeed = 1.0;
+
+BounceRow bounce_row(const InspectRow& r) { return {r.K, r.B, r.solimp, r.normal_weight}; }
+
 // Everything that follows from solref, solimp, condim, friction, A, Â and the load.
 void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warnings,
               const std::string& label) {
@@ -174,6 +179,12 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
   r.omega_dt = r.omega_max * s.timestep;
   r.limit = stability_limit(ctx.integrator, r.zeta_max);
   r.restitution = benchmarks::kelvin_voigt_restitution(r.zeta);
+  r.restitution_dt = kNaN;
+  if (r.A > 0.0) {
+    const Bounce b = mujoco_bounce({bounce_row(r)}, Eigen::MatrixXd::Constant(1, 1, r.A),
+                                   s.timestep, s.integrator == "RK4", kBounceSpeed);
+    if (b.left) r.restitution_dt = b.restitution;
+  }
   if (!(r.A > 0.0)) {  // the joints cannot move the contact along its normal
     r.zeta = r.zeta_max = r.limit = r.restitution = kNaN;
     r.omega = r.omega_max = r.omega_dt = 0.0;
@@ -571,22 +582,10 @@ std::vector<BodySummary> summarize(const ModelState& s, const std::vector<Inspec
   return out;
 }
 
-// The speed the bounces are computed at, m/s.
-constexpr double kBounceSpeed = 1.0;
-
-BounceRow bounce_row(const InspectRow& r) { return {r.K, r.B, r.solimp, r.normal_weight}; }
-
 // Each contact alone, then each body's contacts together, as MuJoCo steps
 // them at the model's timestep (bounce.hpp).
 void add_bounces(const ModelState& s, InspectReport& rep) {
   const bool rk4 = s.integrator == "RK4";
-  for (InspectRow& r : rep.contacts) {
-    r.restitution_dt = kNaN;
-    if (!(r.A > 0.0)) continue;
-    const Bounce b = mujoco_bounce({bounce_row(r)}, Eigen::MatrixXd::Constant(1, 1, r.A),
-                                   s.timestep, rk4, kBounceSpeed);
-    if (b.left) r.restitution_dt = b.restitution;
-  }
   for (BodySummary& body : rep.bodies) {
     body.bounce = body.bounce_spread = kNaN;
     std::vector<const InspectRow*> rows;
@@ -707,8 +706,9 @@ std::string no_contacts_hint(const InspectReport& rep) {
   std::string out;
   if (rep.settled <= 0.0)
     out +=
-        "--settle SECONDS lets MuJoCo drop the model onto what it rests on (3 s suits most "
-        "models)";
+        "--settle SECONDS lets MuJoCo drop the model onto what it rests on (a few seconds; a "
+        "body that creeps on its friction takes longer: Debian's humanoid sample is at rest "
+        "after about 50 s)";
   else
     out += "after " + format_number(rep.settled) +
            " s of settling nothing touches (the model may fly, hang, or fall past everything: "
