@@ -190,6 +190,28 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
     r.omega = r.omega_max = r.omega_dt = 0.0;
   }
 
+  // The friction rows (MuJoCo's effective law of a contact with friction).
+  r.impratio_cap = r.push = r.lift_off = kNaN;
+  if (r.condim >= 3 && mu > 0.0 && r.A > 0.0) {
+    // A friction row's step: its force f = (aref − J·a)/(A_t + R_t) with
+    // aref = −B·v, R_t = R'/impratio, R' = (1 − d)/d·Â (·(1 + μ²) for the
+    // pyramidal cone's edges), changes its slip by v·Δt·B·A_t/(A_t + R_t):
+    // beyond v itself (the slip reverses, MuJoCo chatters) once
+    // impratio > R'/(A_t·(Δt·B − 1)), and never when Δt·B ≤ 1. For a
+    // small d this is generate's cap 1/(Δt·A_t·c) (mapping.cpp).
+    const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
+    const double R = (1.0 - r.d_rest) / r.d_rest * r.inv_weight * shape;
+    const double excess = s.timestep * r.B - 1.0;
+    if (r.A_t > 0.0 && excess > 0.0) r.impratio_cap = R / (r.A_t * excess);
+    // The push law is exact as d·A/((1 − d)·Â) → 0 (solref's calibrated
+    // contact: 4e-4 on a box, MuJoCo 1.8e-4 off it); at MuJoCo's default
+    // d ≈ 0.9 the rows couple through A and it does not hold (11 % off).
+    if (r.d_rest * r.A < 1e-2 * (1.0 - r.d_rest) * r.normal_weight) {
+      r.push = mu * r.c;
+      if (!ctx.pyramidal && std::isfinite(r.load) && r.c > 0.0)
+        r.lift_off = r.load * (1.0 + mu * mu / std::max(mjMINVAL, s.impratio)) / (mu * r.c);
+    }
+  }
   r.creep = kNaN;
   r.creep_note.clear();
   if (ctx.slope) {
@@ -204,6 +226,11 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
       r.creep_note = "tanθ ≥ μ/(condim − 1) = " + format_number(mu / (r.condim - 1)) +
                      ": an edge of the pyramidal cone unloads; faster than the viscous creep "
                      "(slides at tanθ ≥ μ)";
+    } else if (std::isfinite(r.impratio_cap) && s.impratio > r.impratio_cap) {
+      r.creep_note = "impratio " + format_number(s.impratio) + " is above " +
+                     format_number(r.impratio_cap) +
+                     ", where the friction rows' damper reverses a slip within one step: "
+                     "MuJoCo chatters and creeps faster than the viscous formula";
     } else if (!std::isfinite(r.load)) {
       r.creep_note = "no static load known (not in contact now)";
     } else if (!(r.load > 0.0)) {
@@ -325,6 +352,7 @@ void collect_contacts(const ModelState& s, InspectReport& rep) {
     r.solref = con.solref;
     r.solimp = con.solimp;
     r.A = con.A;
+    r.A_t = con.A_t;
     r.A_measured = true;
     r.force = con.force;
     r.rows = con.rows;
@@ -464,6 +492,11 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
                                format_number(r.limit) + " (ζ = " + format_number(r.zeta_max) +
                                "): unstable; a timestep below " +
                                format_number(r.limit / r.omega_max) + " s is stable");
+      if (std::isfinite(r.impratio_cap) && rep.impratio > r.impratio_cap)
+        rep.warnings.push_back(label + ": impratio " + format_number(rep.impratio) + " exceeds " +
+                               format_number(r.impratio_cap) +
+                               ", above which the friction rows' damper reverses a slip within "
+                               "one step (Δt·B·A_t/(A_t + R/impratio) > 1): MuJoCo chatters");
       if (r.refsafe_changes)
         rep.warnings.push_back(
             label + ": refsafe raises the solref timeconst " + format_number(r.solref[0]) +
@@ -774,6 +807,19 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
       << "\n";
   else
     o << "  static load: not known (not in contact now)\n";
+  if (std::isfinite(r.push) || std::isfinite(r.impratio_cap)) {
+    o << "  friction:";
+    if (std::isfinite(r.push))
+      o << " sliding pushes the normal force up by μ·c·|v_t| = " << format_number(r.push)
+        << " N per m/s";
+    if (std::isfinite(r.lift_off))
+      o << ", lifting off above " << format_number(r.lift_off) << " m/s";
+    if (std::isfinite(r.impratio_cap))
+      o << (std::isfinite(r.push) ? ";" : "") << " impratio ≤ " << format_number(r.impratio_cap)
+        << " keeps its damper stable (" << (rep.impratio <= r.impratio_cap ? "ok" : "EXCEEDED")
+        << ")";
+    o << "\n";
+  }
   if (rep.slope) {
     o << "  slope " << format_number(*rep.slope) << "°: ";
     if (std::isfinite(r.creep))
@@ -834,7 +880,9 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
     << ", \"force\": " << (r.active ? jn(r.force) : "null") << ", \"estimate\": " << jn(r.estimate)
     << ", \"penetration\": " << jn(r.penetration)
     << ", \"normal_speed\": " << (r.active ? jn(r.normal_speed) : "null")
-    << ", \"depth_note\": " << json_string(r.depth_note) << ", \"creep\": " << jn(r.creep)
+    << ", \"depth_note\": " << json_string(r.depth_note) << ",\n     \"A_t\": " << jn(r.A_t)
+    << ", \"impratio_cap\": " << jn(r.impratio_cap) << ", \"push\": " << jn(r.push)
+    << ", \"lift_off\": " << jn(r.lift_off) << ", \"creep\": " << jn(r.creep)
     << ", \"creep_note\": " << json_string(r.creep_note) << "}";
 }
 

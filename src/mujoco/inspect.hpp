@@ -111,8 +111,16 @@ struct InspectRow {
   double omega_dt = 0.0, limit = 0.0;      // ω·Δt at d_max and the integrator's limit
   double restitution = 0.0;     // continuous time (Kelvin–Voigt, force clamped at zero)
   double restitution_dt = 0.0;  // as MuJoCo steps it at the model's Δt (bounce.hpp), at 1 m/s
-  double creep = 0.0;           // m/s at --slope (NaN: not computed)
-  std::string creep_note;       // why there is no creep number, or what it assumes
+  // Friction (condim ≥ 3): A_t, the larger tangent direction's inverse mass;
+  // the friction rows' viscous slope c_t = impratio·B·d/((1 − d)·Â) per
+  // contact (÷ (1 + μ²) for the pyramidal cone), explicit in MuJoCo's step:
+  // it reverses a slip within one step above impratio_cap = impratio/(Δt·A_t·c_t);
+  // sliding, MuJoCo pushes the normal force up by μ·c·|v_t| (push, N per m/s)
+  // and the contact leaves the surface at lift_off = f·(1 + μ²/impratio)/(μ·c)
+  // (elliptic cone; NaN for the pyramidal one and without friction).
+  double A_t = 0.0, impratio_cap = NAN, push = NAN, lift_off = NAN;
+  double creep = 0.0;      // m/s at --slope (NaN: not computed)
+  std::string creep_note;  // why there is no creep number, or what it assumes
 };
 
 // One body's contacts at a glance (the text's first table).

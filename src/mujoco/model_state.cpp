@@ -168,6 +168,14 @@ LoadedState load_model_state(const StateRequest& r) {
     c.jacobian = SparseRow::of(row);
     c.solved = SparseRow::of(solved);
     c.A = c.jacobian.dot(c.solved);
+    if (con.dim >= 3) {
+      for (size_t axis = 1; axis < 3; ++axis) {
+        const std::array<double, 3> t{con.frame[3 * axis], con.frame[3 * axis + 1],
+                                      con.frame[3 * axis + 2]};
+        c.A_t =
+            std::max(c.A_t, inverse_mass(m, d, normal_jacobian(m, d, c.body1, c.body2, c.pos, t)));
+      }
+    }
     double force[6] = {};
     mj_contactForce(m, d, i, force);
     c.force = force[0];

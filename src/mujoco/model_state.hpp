@@ -104,6 +104,7 @@ struct StateContact {
   std::array<double, 2> solref{};
   std::array<double, 5> solimp{};
   double A = 0.0;
+  double A_t = 0.0;  // the larger of the two tangent directions' (condim ≥ 3; else 0), 1/kg
   double force = 0.0;
   int rows = 0;        // its constraint rows (pyramidal: 2(condim − 1), or 1; elliptic: condim)
   int quadratic = 0;   // of them, in the solver's quadratic zone (efc_state)

@@ -96,6 +96,8 @@ SolrefReport solref_request(const SolrefRequest& options,
     in.joint = body.joint.value_or(Joint::Free);
     if (in.keep_friction) in.user_friction = body.friction;
     in.settled_contacts = body.contacts;
+    for (const SettledContact& c : body.contacts)
+      in.tangential_inv_mass = std::max(in.tangential_inv_mass, c.A_t);
     const std::string settled =
         "after settling " + format_number(body.settle_seconds, 6) + " s with mj_step" +
         (body.at_rest ? std::string()

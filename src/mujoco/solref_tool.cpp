@@ -99,6 +99,11 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
     }
     return o;
   }
+  // The measured contact turns the body: its tangential inverse mass, not
+  // 1/m, bounds calibrated's impratio (mapping.cpp's calibrated_impratio).
+  if (mapping == Mapping::Calibrated && o.condim > 1 && in.tangential_inv_mass > 0.0 && in.c > 0.0)
+    o.settings.impratio =
+        std::min(o.settings.impratio, 1.0 / (in.dt * in.tangential_inv_mass * in.c));
   if (o.condim == 1) o.settings.impratio = 1.0;  // no friction rows: not written, MuJoCo's 1
   if (o.condim == 0) o.settings.impratio = in.user_friction.impratio;  // not written: the user's
   SolverSettings& s = o.settings;
@@ -490,6 +495,7 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
     sc.geom1 = state.geom_names[static_cast<size_t>(c.geom1)];
     sc.geom2 = state.geom_names[static_cast<size_t>(c.geom2)];
     sc.A = c.A;
+    sc.A_t = c.A_t;
     sc.load = std::max(0.0, c.force);
     sc.penetration = -c.dist;
     out.contacts.push_back(sc);

@@ -77,6 +77,7 @@ struct ContactMechanics {
 struct SettledContact {
   std::string geom1, geom2;
   double A = 0.0;            // n·J·M⁻¹·Jᵀ·n at the contact, 1/kg
+  double A_t = 0.0;          // the same along its larger tangent direction (condim ≥ 3)
   double load = 0.0;         // MuJoCo's normal force, N
   double penetration = 0.0;  // −dist, m
 };
@@ -105,6 +106,9 @@ struct SolrefInput {
   std::optional<ContactMechanics> measured;
   std::string measured_source;
   std::vector<SettledContact> settled_contacts;
+  // The largest tangential inverse mass over the body's settled contacts:
+  // calibrated's impratio cap 1/(Δt·A_t·c) uses it in place of 1/m.
+  double tangential_inv_mass = 0.0;
   bool mujoco3 = false;   // Â by MuJoCo 3's rule (joint_inv_weight)
   double gravity = 9.81;  // m/s²
   // Where the numbers come from, for the text ("--mass 1" or "model.xml, body 'box'").

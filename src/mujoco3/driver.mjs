@@ -232,14 +232,33 @@ function readState(m, d, r) {
       const pos = Array.from(con.pos), normal = Array.from(con.frame).slice(0, 3);
       mj.mj_jac(m, d, jp1, jr, pos, b1);
       mj.mj_jac(m, d, jp2, jr, pos, b2);
-      const j1 = jp1.GetView(), j2 = jp2.GetView();
+      const j1 = Float64Array.from(jp1.GetView()), j2 = Float64Array.from(jp2.GetView());
       const row = new Array(nv).fill(0);
       for (let k = 0; k < 3; ++k)
         for (let c = 0; c < nv; ++c) row[c] += normal[k] * (j2[k * nv + c] - j1[k * nv + c]);
+      // A along a direction of the contact frame: n·J·M⁻¹·Jᵀ·n.
+      const along = (axis) => {
+        const out = new Array(nv).fill(0);
+        for (let k = 0; k < 3; ++k)
+          for (let c = 0; c < nv; ++c) out[c] += axis[k] * (j2[k * nv + c] - j1[k * nv + c]);
+        return out;
+      };
       mj.mj_solveM(m, d, x, row);
       const solved = Float64Array.from(x.GetView());
       let A = 0;
       for (let c = 0; c < nv; ++c) A += row[c] * solved[c];
+      let A_t = 0;
+      if (con.dim >= 3) {
+        const frame = Array.from(con.frame);
+        for (const axis of [frame.slice(3, 6), frame.slice(6, 9)]) {
+          const t = along(axis);
+          mj.mj_solveM(m, d, x, t);
+          const tx = x.GetView();
+          let a = 0;
+          for (let c = 0; c < nv; ++c) a += t[c] * tx[c];
+          A_t = Math.max(A_t, a);
+        }
+      }
       mj.mj_contactForce(m, d, i, force);
       const elliptic = m.opt.cone === mj.mjtCone.mjCONE_ELLIPTIC.value;
       const rows = elliptic || con.dim === 1 ? con.dim : 2 * (con.dim - 1);
@@ -273,6 +292,7 @@ function readState(m, d, r) {
         solref: Array.from(con.solref),
         solimp: Array.from(con.solimp),
         A,
+        A_t,
         force: force.GetView()[0],
         rows,
         quadratic,

@@ -272,6 +272,7 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
       fill("solimp", out.solimp);
       out.condim = static_cast<int>(number(c.get("condim")));
       out.A = number(c.get("A"));
+      out.A_t = number(c.get("A_t"));
       out.force = number(c.get("force"));
       out.rows = static_cast<int>(number(c.get("rows")));
       out.quadratic = static_cast<int>(number(c.get("quadratic")));

@@ -592,6 +592,91 @@ TEST_F(Inspect, BodyBounceIsMujocosFlatDropAtTheModelsTimestep) {
   }
 }
 
+// Friction, against MuJoCo on a box with solref's calibrated contact, an
+// elliptic cone, μ = 0.5, impratio 2: set sliding at its rest depth,
+// MuJoCo's normal force is (f + μ·c·|v_t|)/(1 + μ²/impratio) per corner —
+// the printed push μ·c on the rest load f; the printed lift-off speed is
+// where a sliding contact would need k·p ≤ 0 to carry f.
+TEST_F(Inspect, SlidingPushIsMujocosNormalForce) {
+  // The calibrated contact of solref (flat d = 1e-4), where the law holds.
+  const std::string xml =
+      R"(<mujoco><option timestep="0.002" cone="elliptic" impratio="2"/><worldbody>
+  <geom name="floor" type="plane" size="2 2 0.1"/>
+  <body name="box" pos="0 0 0.0999"><freejoint/>
+    <geom name="box" type="box" size="0.1 0.1 0.1" mass="1" friction="0.5"
+          solref="-13333.333 -33.333" solimp="0.0001 0.0001 0.001 0.5 2" priority="1"/>
+  </body></worldbody></mujoco>)";
+  const mj::InspectReport rep = report(xml, "", std::nullopt, false, 3.0);
+  ASSERT_EQ(rep.contacts.size(), 4u);
+  const mj::InspectRow& r = rep.contacts[0];
+  EXPECT_NEAR(r.push, 0.5 * r.c, 1e-12 * r.c);
+  EXPECT_NEAR(r.lift_off, r.load * (1.0 + 0.25 / 2.0) / r.push, 1e-12 * r.lift_off);
+  Sim s(xml);
+  for (int i = 0; i < 1500; ++i) mj_step(s.m(), s.d());
+  for (const double v : {0.02, 0.05, 0.1}) {
+    mjData* d = s.d();
+    d->qvel[0] = v;  // sliding along x, the box otherwise at rest
+    for (int i = 1; i < 6; ++i) d->qvel[i] = 0.0;
+    mj_forward(s.m(), d);
+    ASSERT_EQ(d->ncon, 4);
+    double total = 0.0, predicted = 0.0;
+    for (int i = 0; i < d->ncon; ++i) {
+      double f[6];
+      mj_contactForce(s.m(), d, i, f);
+      total += f[0];
+      const mj::InspectRow& c = rep.contacts[static_cast<size_t>(i)];
+      predicted += (c.load + c.push * v) / (1.0 + 0.25 / 2.0);
+    }
+    std::printf("v = %g: MuJoCo %.9f N, printed push %.9f N\n", v, total, predicted);
+    // Sliding (impratio·c·v above μ·f): the law holds as d·A/((1 − d)·Â)
+    // → 0, here 1e-4·4/1 = 4e-4; measured 1.8e-4 relative; bound 1e-3.
+    EXPECT_NEAR(total, predicted, 1e-3 * predicted) << v;
+  }
+}
+
+// The impratio cap, against MuJoCo: the calibrated box (elliptic, μ = 0.5)
+// on a 10° tilt creeps at the printed speed below the cap, and above it
+// MuJoCo's friction rows reverse the slip each step and it creeps faster
+// than the viscous formula, which inspect then does not print (a warning
+// says why).
+TEST_F(Inspect, ImpratioAboveTheCapChattersAndIsWarned) {
+  auto model = [](double impratio) {
+    return R"(<mujoco><option timestep="0.002" cone="elliptic" impratio=")" +
+           std::to_string(impratio) + R"("/><worldbody>
+  <geom name="floor" type="plane" size="2 2 0.1"/>
+  <body name="box" pos="0 0 0.0999"><freejoint/>
+    <geom name="box" type="box" size="0.1 0.1 0.1" mass="1" friction="0.5"
+          solref="-13333.333 -33.333" solimp="0.0001 0.0001 0.001 0.5 2" priority="1"/>
+  </body></worldbody></mujoco>)";
+  };
+  const double cap = report(model(1.0), "", 10.0, false, 3.0).contacts[0].impratio_cap;
+  ASSERT_TRUE(std::isfinite(cap));
+  // Below: printed and measured.
+  const std::string below = model(0.5 * cap);
+  const mj::InspectReport ok = report(below, "", 10.0, false, 3.0);
+  const auto [measured, printed] = box_creep(ok, below, 10.0);
+  std::printf("cap %.6g; at cap/2 MuJoCo %.6g m/s, printed %.6g\n", cap, measured, printed);
+  // Measured equal to 6 digits (0.00679904 m/s); bound 1e-3 relative.
+  EXPECT_NEAR(measured, printed, 1e-3 * printed);
+  // Above: no creep printed, a warning, and MuJoCo faster than the formula.
+  const std::string above = model(3.0 * cap);
+  const mj::InspectReport bad = report(above, "", 10.0, false, 3.0);
+  bool warned = false;
+  for (const std::string& w : bad.warnings)
+    warned |= w.find("MuJoCo chatters") != std::string::npos;
+  EXPECT_TRUE(warned);
+  const mj::InspectRow& r = bad.contacts[0];
+  EXPECT_FALSE(std::isfinite(r.creep));
+  double formula = 0.0;  // the viscous formula at 3× the cap, per corner, averaged
+  for (const mj::InspectRow& c : bad.contacts)
+    formula += c.load * std::sin(10.0 * kPiInspect / 180.0) * (1.0 - c.d_rest) * c.inv_weight /
+               (3.0 * cap * c.B * c.d_rest) / 4.0;
+  const auto [fast, none] = box_creep(bad, above, 10.0);
+  std::printf("at 3 cap MuJoCo %.6g m/s, the formula %.6g\n", fast, formula);
+  // Measured 4.3× the formula (0.00488 against 0.00113 m/s); bound 1.2×.
+  EXPECT_GT(fast, 1.2 * formula);
+}
+
 TEST_F(Inspect, KBImpedanceAndNormalWeightAreWhatMujocoComputes) {
   std::string elliptic = kBoxModel, rough = kBoxModel, refsafe = kBoxModel;
   elliptic.replace(elliptic.find("<worldbody>"), 11, "<option cone=\"elliptic\"/><worldbody>");
