@@ -140,6 +140,13 @@ SolrefReport solref_request(const SolrefRequest& options,
   const SolrefTargets& t = options.targets;
   if (t.restitution || t.contact_time || t.penetration || !options.k || !options.c)
     solve_targets(in, t, options.k.has_value(), options.c.has_value());
+  if (in.mujoco3 && (in.mu > 0.0 || (in.keep_friction && in.user_friction.condim > 1)))
+    tell("MuJoCo 3's friction damper (solreffriction on <pair>s, which removes the sliding "
+         "push) is not in these snippets: it needs a friction-row damper ratio φ of 1e-4 or "
+         "less of the normal one, which breaks over calibrated's d = 1e-4 (measured 1.8 cm to "
+         "1.95 m off on contact2d's scenes) and works over compensated, which only `contact2d "
+         "generate --engine mujoco3 --mapping compensated --friction damper` builds "
+         "(docs/mujoco3.md)");
   SolrefReport report = solref_report(in, mappings);
   // One mapping asked for by name and it cannot express k, c: bad input.
   if (report.mappings.size() == 1 && !report.mappings[0].unavailable.empty())
