@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mujoco/solref_tool.hpp"
 
@@ -51,7 +52,7 @@ Bounce mujoco_bounce(const std::vector<BounceRow>& rows, const Eigen::MatrixXd& 
                      bool rk4, double v0) {
   const auto n = static_cast<Eigen::Index>(rows.size());
   Bounce out;
-  double smallest = INFINITY, largest = -INFINITY;
+  double smallest = std::numeric_limits<double>::infinity(), largest = -smallest;
   for (int phase = 0; phase < kPhases; ++phase) {
     // One step before the first contact: RK4's stages may touch within it.
     Eigen::VectorXd x = Eigen::VectorXd::Constant(n, (phase + 0.5) / kPhases * v0 * dt);

@@ -98,6 +98,67 @@ constexpr double kBounceSpeed = 1.0;
 
 BounceRow bounce_row(const InspectRow& r) { return {r.K, r.B, r.solimp, r.normal_weight}; }
 
+// The friction rows' numbers and the creep at --slope (evaluate's last part).
+void friction_and_creep(const Context& ctx, InspectRow& r) {
+  const ModelState& s = *ctx.s;
+  const double mu = r.friction[0];
+  // The friction rows (MuJoCo's effective law of a contact with friction).
+  r.impratio_cap = r.push = r.lift_off = kNaN;
+  if (r.condim >= 3 && mu > 0.0 && r.A > 0.0) {
+    // A friction row's step: its force f = (aref − J·a)/(A_t + R_t) with
+    // aref = −B·v, R_t = R'/impratio, R' = (1 − d)/d·Â (·(1 + μ²) for the
+    // pyramidal cone's edges), changes its slip by v·Δt·B·A_t/(A_t + R_t):
+    // beyond v itself (the slip reverses, MuJoCo chatters) once
+    // impratio > R'/(A_t·(Δt·B − 1)), and never when Δt·B ≤ 1. For a
+    // small d this is generate's cap 1/(Δt·A_t·c) (mapping.cpp).
+    const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
+    const double R = (1.0 - r.d_rest) / r.d_rest * r.inv_weight * shape;
+    const double excess = s.timestep * r.B - 1.0;
+    if (r.A_t > 0.0 && excess > 0.0) r.impratio_cap = R / (r.A_t * excess);
+    // The push law is exact as d·A/((1 − d)·Â) → 0 (solref's calibrated
+    // contact: 4e-4 on a box, MuJoCo 1.8e-4 off it); at MuJoCo's default
+    // d ≈ 0.9 the rows couple through A and it does not hold (11 % off).
+    if (r.d_rest * r.A < 1e-2 * (1.0 - r.d_rest) * r.normal_weight) {
+      r.push = mu * r.c;
+      if (!ctx.pyramidal && std::isfinite(r.load) && r.c > 0.0)
+        r.lift_off = r.load * (1.0 + mu * mu / std::max(mjMINVAL, s.impratio)) / (mu * r.c);
+    }
+  }
+  r.creep = kNaN;
+  r.creep_note.clear();
+  if (ctx.slope) {
+    const double th = *ctx.slope * kPi / 180.0;
+    if (r.condim == 1) {
+      r.creep_note = "condim 1, no friction: slides";
+    } else if (std::tan(th) >= mu) {
+      r.creep_note = "tanθ ≥ μ = " + format_number(mu) + ": slides (Coulomb)";
+    } else if (ctx.pyramidal && std::tan(th) >= mu / (r.condim - 1)) {
+      // Each edge row carries f/(2(condim − 1)) ± f_t/(2μ): one unloads at
+      // f_t = μ·f/(condim − 1), and the solver leaves its quadratic zone.
+      r.creep_note = "tanθ ≥ μ/(condim − 1) = " + format_number(mu / (r.condim - 1)) +
+                     ": an edge of the pyramidal cone unloads; faster than the viscous creep "
+                     "(slides at tanθ ≥ μ)";
+    } else if (std::isfinite(r.impratio_cap) && s.impratio > r.impratio_cap) {
+      r.creep_note = "impratio " + format_number(s.impratio) + " is above " +
+                     format_number(r.impratio_cap) +
+                     ", where the friction rows' damper reverses a slip within one step: "
+                     "MuJoCo chatters and creeps faster than the viscous formula";
+    } else if (!std::isfinite(r.load)) {
+      r.creep_note = "no static load known (not in contact now)";
+    } else if (!(r.load > 0.0)) {
+      r.creep_note = "carries no load at rest";
+    } else if (th == 0.0) {
+      r.creep = 0.0;
+    } else {
+      const double p = static_penetration(r.solimp, r.K, r.normal_weight, r.load * std::cos(th));
+      const double dd = mujoco_impedance(r.solimp, -p);
+      const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
+      r.creep = r.load * std::sin(th) * (1.0 - dd) * r.inv_weight * shape /
+                (std::max(mjMINVAL, s.impratio) * r.B * dd);
+    }
+  }
+}
+
 // Everything that follows from solref, solimp, condim, friction, A, Â and the load.
 void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warnings,
               const std::string& label) {
@@ -190,61 +251,7 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
     r.omega = r.omega_max = r.omega_dt = 0.0;
   }
 
-  // The friction rows (MuJoCo's effective law of a contact with friction).
-  r.impratio_cap = r.push = r.lift_off = kNaN;
-  if (r.condim >= 3 && mu > 0.0 && r.A > 0.0) {
-    // A friction row's step: its force f = (aref − J·a)/(A_t + R_t) with
-    // aref = −B·v, R_t = R'/impratio, R' = (1 − d)/d·Â (·(1 + μ²) for the
-    // pyramidal cone's edges), changes its slip by v·Δt·B·A_t/(A_t + R_t):
-    // beyond v itself (the slip reverses, MuJoCo chatters) once
-    // impratio > R'/(A_t·(Δt·B − 1)), and never when Δt·B ≤ 1. For a
-    // small d this is generate's cap 1/(Δt·A_t·c) (mapping.cpp).
-    const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
-    const double R = (1.0 - r.d_rest) / r.d_rest * r.inv_weight * shape;
-    const double excess = s.timestep * r.B - 1.0;
-    if (r.A_t > 0.0 && excess > 0.0) r.impratio_cap = R / (r.A_t * excess);
-    // The push law is exact as d·A/((1 − d)·Â) → 0 (solref's calibrated
-    // contact: 4e-4 on a box, MuJoCo 1.8e-4 off it); at MuJoCo's default
-    // d ≈ 0.9 the rows couple through A and it does not hold (11 % off).
-    if (r.d_rest * r.A < 1e-2 * (1.0 - r.d_rest) * r.normal_weight) {
-      r.push = mu * r.c;
-      if (!ctx.pyramidal && std::isfinite(r.load) && r.c > 0.0)
-        r.lift_off = r.load * (1.0 + mu * mu / std::max(mjMINVAL, s.impratio)) / (mu * r.c);
-    }
-  }
-  r.creep = kNaN;
-  r.creep_note.clear();
-  if (ctx.slope) {
-    const double th = *ctx.slope * kPi / 180.0;
-    if (r.condim == 1) {
-      r.creep_note = "condim 1, no friction: slides";
-    } else if (std::tan(th) >= mu) {
-      r.creep_note = "tanθ ≥ μ = " + format_number(mu) + ": slides (Coulomb)";
-    } else if (ctx.pyramidal && std::tan(th) >= mu / (r.condim - 1)) {
-      // Each edge row carries f/(2(condim − 1)) ± f_t/(2μ): one unloads at
-      // f_t = μ·f/(condim − 1), and the solver leaves its quadratic zone.
-      r.creep_note = "tanθ ≥ μ/(condim − 1) = " + format_number(mu / (r.condim - 1)) +
-                     ": an edge of the pyramidal cone unloads; faster than the viscous creep "
-                     "(slides at tanθ ≥ μ)";
-    } else if (std::isfinite(r.impratio_cap) && s.impratio > r.impratio_cap) {
-      r.creep_note = "impratio " + format_number(s.impratio) + " is above " +
-                     format_number(r.impratio_cap) +
-                     ", where the friction rows' damper reverses a slip within one step: "
-                     "MuJoCo chatters and creeps faster than the viscous formula";
-    } else if (!std::isfinite(r.load)) {
-      r.creep_note = "no static load known (not in contact now)";
-    } else if (!(r.load > 0.0)) {
-      r.creep_note = "carries no load at rest";
-    } else if (th == 0.0) {
-      r.creep = 0.0;
-    } else {
-      const double p = static_penetration(r.solimp, r.K, r.normal_weight, r.load * std::cos(th));
-      const double dd = mujoco_impedance(r.solimp, -p);
-      const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
-      r.creep = r.load * std::sin(th) * (1.0 - dd) * r.inv_weight * shape /
-                (std::max(mjMINVAL, s.impratio) * r.B * dd);
-    }
-  }
+  friction_and_creep(ctx, r);
 }
 
 // MuJoCo's Euler and implicit integrators treat contacts as semi-implicit

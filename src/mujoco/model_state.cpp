@@ -47,6 +47,88 @@ int quadratic_rows(const double* force, int rows, bool elliptic, const double* m
   return force[0] > 0.0 && std::sqrt(t) < force[0] * (1.0 - 1e-9) ? rows : 0;
 }
 
+// <option>, the bodies and the geoms: what does not change with the state.
+void read_model_arrays(const mjModel* m, ModelState& s) {
+  s.timestep = m->opt.timestep;
+  s.integrator = integrator_name(m->opt.integrator);
+  s.elliptic = m->opt.cone == mjCONE_ELLIPTIC;
+  s.impratio = m->opt.impratio;
+  for (int i = 0; i < 3; ++i) s.gravity[static_cast<size_t>(i)] = m->opt.gravity[i];
+  s.refsafe = !(m->opt.disableflags & mjDSBL_REFSAFE);
+  if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT))
+    s.disabled = m->opt.disableflags & mjDSBL_CONTACT ? "contacts" : "constraints";
+  for (int b = 0; b < m->nbody; ++b) {
+    s.body_names.push_back(name_of(m, mjOBJ_BODY, b, "body"));
+    s.body_weld.push_back(m->body_weldid[b]);
+    s.body_mass.push_back(m->body_mass[b]);
+    s.body_invweight0.push_back(m->body_invweight0[2 * static_cast<std::ptrdiff_t>(b)]);
+    s.body_invweight0.push_back(m->body_invweight0[2 * static_cast<std::ptrdiff_t>(b) + 1]);
+  }
+  s.body_joints.assign(static_cast<size_t>(m->nbody), "");
+  for (int j = 0; j < m->njnt; ++j) {
+    std::string& list = s.body_joints[static_cast<size_t>(m->jnt_bodyid[j])];
+    const int type = m->jnt_type[j];
+    list += std::string(list.empty() ? "" : ", ") + (type == mjJNT_FREE    ? "free"
+                                                     : type == mjJNT_SLIDE ? "slide"
+                                                     : type == mjJNT_HINGE ? "hinge"
+                                                                           : "ball");
+  }
+  for (int b = 0; b < m->nbody; ++b) s.body_parent.push_back(m->body_parentid[b]);
+  for (int g = 0; g < m->ngeom; ++g) {
+    s.geom_names.push_back(name_of(m, mjOBJ_GEOM, g, "geom"));
+    s.geom_body.push_back(m->geom_bodyid[g]);
+    s.geom_mu.push_back(m->geom_friction[3 * static_cast<std::ptrdiff_t>(g)]);
+    s.geom_condim.push_back(m->geom_condim[g]);
+    s.geom_collides.push_back((m->geom_contype[g] | m->geom_conaffinity[g]) != 0);
+  }
+}
+
+// Every contact in the constraint problem, with its rows' numbers.
+void read_contacts(const mjModel* m, mjData* d, ModelState& s) {
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& con = d->contact[i];
+    StateContact c;
+    c.geom1 = con.geom1;
+    c.geom2 = con.geom2;
+    c.body1 = m->geom_bodyid[con.geom1];
+    c.body2 = m->geom_bodyid[con.geom2];
+    for (int p = 0; p < m->npair; ++p)
+      c.explicit_pair |= (m->pair_geom1[p] == con.geom1 && m->pair_geom2[p] == con.geom2) ||
+                         (m->pair_geom1[p] == con.geom2 && m->pair_geom2[p] == con.geom1);
+    c.dist = con.dist - con.includemargin;
+    for (size_t k = 0; k < 3; ++k) {
+      c.pos[k] = con.pos[k];
+      c.normal[k] = con.frame[k];
+    }
+    c.condim = con.dim;
+    for (size_t k = 0; k < 5; ++k) c.friction[k] = con.friction[k];
+    for (size_t k = 0; k < 2; ++k) c.solref[k] = con.solref[k];
+    for (size_t k = 0; k < 5; ++k) c.solimp[k] = con.solimp[k];
+    const std::vector<double> row = normal_jacobian(m, d, c.body1, c.body2, c.pos, c.normal);
+    std::vector<double> solved(row.size());
+    mj_solveM(m, d, solved.data(), row.data(), 1);
+    c.jacobian = SparseRow::of(row);
+    c.solved = SparseRow::of(solved);
+    c.A = c.jacobian.dot(c.solved);
+    if (con.dim >= 3) {
+      for (size_t axis = 1; axis < 3; ++axis) {
+        const std::array<double, 3> t{con.frame[3 * axis], con.frame[3 * axis + 1],
+                                      con.frame[3 * axis + 2]};
+        c.A_t =
+            std::max(c.A_t, inverse_mass(m, d, normal_jacobian(m, d, c.body1, c.body2, c.pos, t)));
+      }
+    }
+    double force[6] = {};
+    mj_contactForce(m, d, i, force);
+    c.force = force[0];
+    c.rows = m->opt.cone == mjCONE_ELLIPTIC || con.dim == 1 ? con.dim : 2 * (con.dim - 1);
+    if (con.efc_address >= 0)
+      c.quadratic = quadratic_rows(d->efc_force + con.efc_address, c.rows,
+                                   m->opt.cone == mjCONE_ELLIPTIC && con.dim > 1, con.friction);
+    s.contacts.push_back(c);
+  }
+}
+
 }  // namespace
 
 void check_state_request(const StateRequest& r) {
@@ -106,85 +188,13 @@ LoadedState load_model_state(const StateRequest& r) {
   s.settled = static_cast<double>(steps) * m->opt.timestep;
   for (const std::string& w : warning_counters(d)) messages.push_back(w);
 
-  s.timestep = m->opt.timestep;
-  s.integrator = integrator_name(m->opt.integrator);
-  s.elliptic = m->opt.cone == mjCONE_ELLIPTIC;
-  s.impratio = m->opt.impratio;
-  for (int i = 0; i < 3; ++i) s.gravity[static_cast<size_t>(i)] = m->opt.gravity[i];
-  s.refsafe = !(m->opt.disableflags & mjDSBL_REFSAFE);
-  if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT))
-    s.disabled = m->opt.disableflags & mjDSBL_CONTACT ? "contacts" : "constraints";
-  for (int b = 0; b < m->nbody; ++b) {
-    s.body_names.push_back(name_of(m, mjOBJ_BODY, b, "body"));
-    s.body_weld.push_back(m->body_weldid[b]);
-    s.body_mass.push_back(m->body_mass[b]);
-    s.body_invweight0.push_back(m->body_invweight0[2 * b]);
-    s.body_invweight0.push_back(m->body_invweight0[2 * b + 1]);
-  }
-  s.body_joints.assign(static_cast<size_t>(m->nbody), "");
-  for (int j = 0; j < m->njnt; ++j) {
-    std::string& list = s.body_joints[static_cast<size_t>(m->jnt_bodyid[j])];
-    const int type = m->jnt_type[j];
-    list += std::string(list.empty() ? "" : ", ") + (type == mjJNT_FREE    ? "free"
-                                                     : type == mjJNT_SLIDE ? "slide"
-                                                     : type == mjJNT_HINGE ? "hinge"
-                                                                           : "ball");
-  }
-  for (int b = 0; b < m->nbody; ++b) s.body_parent.push_back(m->body_parentid[b]);
-  for (int g = 0; g < m->ngeom; ++g) {
-    s.geom_names.push_back(name_of(m, mjOBJ_GEOM, g, "geom"));
-    s.geom_body.push_back(m->geom_bodyid[g]);
-    s.geom_mu.push_back(m->geom_friction[3 * g]);
-    s.geom_condim.push_back(m->geom_condim[g]);
-    s.geom_collides.push_back((m->geom_contype[g] | m->geom_conaffinity[g]) != 0);
-  }
+  read_model_arrays(m, s);
   s.nv = m->nv;
 
   s.qvel.assign(d->qvel, d->qvel + m->nv);
   s.qacc.assign(d->qacc, d->qacc + m->nv);
 
-  for (int i = 0; i < d->ncon; ++i) {
-    const mjContact& con = d->contact[i];
-    StateContact c;
-    c.geom1 = con.geom1;
-    c.geom2 = con.geom2;
-    c.body1 = m->geom_bodyid[con.geom1];
-    c.body2 = m->geom_bodyid[con.geom2];
-    for (int p = 0; p < m->npair; ++p)
-      c.explicit_pair |= (m->pair_geom1[p] == con.geom1 && m->pair_geom2[p] == con.geom2) ||
-                         (m->pair_geom1[p] == con.geom2 && m->pair_geom2[p] == con.geom1);
-    c.dist = con.dist - con.includemargin;
-    for (size_t k = 0; k < 3; ++k) {
-      c.pos[k] = con.pos[k];
-      c.normal[k] = con.frame[k];
-    }
-    c.condim = con.dim;
-    for (size_t k = 0; k < 5; ++k) c.friction[k] = con.friction[k];
-    for (size_t k = 0; k < 2; ++k) c.solref[k] = con.solref[k];
-    for (size_t k = 0; k < 5; ++k) c.solimp[k] = con.solimp[k];
-    const std::vector<double> row = normal_jacobian(m, d, c.body1, c.body2, c.pos, c.normal);
-    std::vector<double> solved(row.size());
-    mj_solveM(m, d, solved.data(), row.data(), 1);
-    c.jacobian = SparseRow::of(row);
-    c.solved = SparseRow::of(solved);
-    c.A = c.jacobian.dot(c.solved);
-    if (con.dim >= 3) {
-      for (size_t axis = 1; axis < 3; ++axis) {
-        const std::array<double, 3> t{con.frame[3 * axis], con.frame[3 * axis + 1],
-                                      con.frame[3 * axis + 2]};
-        c.A_t =
-            std::max(c.A_t, inverse_mass(m, d, normal_jacobian(m, d, c.body1, c.body2, c.pos, t)));
-      }
-    }
-    double force[6] = {};
-    mj_contactForce(m, d, i, force);
-    c.force = force[0];
-    c.rows = m->opt.cone == mjCONE_ELLIPTIC || con.dim == 1 ? con.dim : 2 * (con.dim - 1);
-    if (con.efc_address >= 0)
-      c.quadratic = quadratic_rows(d->efc_force + con.efc_address, c.rows,
-                                   m->opt.cone == mjCONE_ELLIPTIC && con.dim > 1, con.friction);
-    s.contacts.push_back(c);
-  }
+  read_contacts(m, d, s);
   // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0,
   // in the same mjData (a second one would double MuJoCo's memory: 0.88 GB
   // for the particle sample); positions and contacts stay as read above.

@@ -22,6 +22,68 @@ std::vector<Mapping> chosen_mappings(const std::string& name) {
   return {*parsed};
 }
 
+namespace {
+
+// --model's body, settled by `read` (2.2.2 when empty), into `in`: its
+// mass, Â, joints, friction and the contacts MuJoCo rests it on.
+void read_body_into(const SolrefRequest& options, SolrefInput& in,
+                    const std::function<void(const std::string&)>& tell, const StateReader& read) {
+  StateRequest request;
+  request.path = options.model;
+  request.key = options.key;
+  request.settle = options.settle;
+  request.option = "--model";
+  const ModelBody body = read_model_body(read ? read(request) : read_model_state(request),
+                                         options.model, options.body);
+  if (!body.load_warning.empty())
+    tell("MuJoCo warns while loading " + options.model + ": " + body.load_warning);
+  in.mass = body.mass;
+  in.inv_weight = body.inv_weight;
+  in.body_source = options.model + ", body '" + options.body +
+                   "' (joints: " + (body.joints.empty() ? std::string("none") : body.joints) +
+                   "), MuJoCo " + body.version;
+  in.joint = body.joint.value_or(Joint::Free);
+  if (in.keep_friction) in.user_friction = body.friction;
+  in.settled_contacts = body.contacts;
+  for (const SettledContact& c : body.contacts)
+    in.tangential_inv_mass = std::max(in.tangential_inv_mass, c.A_t);
+  const std::string settled =
+      "after settling " + format_number(body.settle_seconds, 6) + " s with mj_step" +
+      (body.at_rest ? std::string()
+                    : " (not at rest: |qvel| up to " + format_number(body.rest_speed, 3) +
+                          "; a longer --settle)");
+  if (!body.contacts.empty()) {
+    // The contact that carries the most: its A and MuJoCo's load at it.
+    const SettledContact* most = &body.contacts.front();
+    for (const SettledContact& c : body.contacts)
+      if (c.load > most->load) most = &c;
+    in.measured = ContactMechanics{most->A, most->load};
+    in.measured_source = "measured in the model " + settled + ": contact " + most->geom1 + " – " +
+                         most->geom2 + ", the most loaded of the body's " +
+                         std::to_string(body.contacts.size());
+    if (!(most->A > 0.0))
+      throw InputError("--body " + options.body +
+                       ": its joints cannot move its contact along the normal (A = 0)");
+  } else if (!body.joint) {
+    tell("body '" + options.body + "' has no contacts " + settled +
+         " and is not on one of the joint sets free, planar, slide, hinge; A is taken as 1/m + "
+         "r²/I");
+  }
+  if (options.contacts) {
+    in.contacts_source = "--contacts " + std::to_string(in.contacts) + "; MuJoCo makes " +
+                         std::to_string(body.rest_contacts) + " " + settled;
+  } else if (body.rest_contacts > 0) {
+    in.contacts = body.rest_contacts;
+    in.contacts_source =
+        "counted: MuJoCo makes " + std::to_string(body.rest_contacts) + " for the body " + settled;
+  } else {
+    in.contacts_source =
+        "MuJoCo makes none for the body " + settled + ", so 1 is assumed; give --contacts N";
+  }
+}
+
+}  // namespace
+
 SolrefReport solref_request(const SolrefRequest& options,
                             const std::function<void(const std::string&)>& note,
                             const StateReader& read) {
@@ -79,58 +141,7 @@ SolrefReport solref_request(const SolrefRequest& options,
       if (probe.joint == Joint::Hinge && !(probe.lever > 0.0)) probe.lever = 1.0;
       return probe;
     }());
-    StateRequest request;
-    request.path = options.model;
-    request.key = options.key;
-    request.settle = options.settle;
-    request.option = "--model";
-    const ModelBody body = read_model_body(read ? read(request) : read_model_state(request),
-                                           options.model, options.body);
-    if (!body.load_warning.empty())
-      tell("MuJoCo warns while loading " + options.model + ": " + body.load_warning);
-    in.mass = body.mass;
-    in.inv_weight = body.inv_weight;
-    in.body_source = options.model + ", body '" + options.body +
-                     "' (joints: " + (body.joints.empty() ? std::string("none") : body.joints) +
-                     "), MuJoCo " + body.version;
-    in.joint = body.joint.value_or(Joint::Free);
-    if (in.keep_friction) in.user_friction = body.friction;
-    in.settled_contacts = body.contacts;
-    for (const SettledContact& c : body.contacts)
-      in.tangential_inv_mass = std::max(in.tangential_inv_mass, c.A_t);
-    const std::string settled =
-        "after settling " + format_number(body.settle_seconds, 6) + " s with mj_step" +
-        (body.at_rest ? std::string()
-                      : " (not at rest: |qvel| up to " + format_number(body.rest_speed, 3) +
-                            "; a longer --settle)");
-    if (!body.contacts.empty()) {
-      // The contact that carries the most: its A and MuJoCo's load at it.
-      const SettledContact* most = &body.contacts.front();
-      for (const SettledContact& c : body.contacts)
-        if (c.load > most->load) most = &c;
-      in.measured = ContactMechanics{most->A, most->load};
-      in.measured_source = "measured in the model " + settled + ": contact " + most->geom1 + " – " +
-                           most->geom2 + ", the most loaded of the body's " +
-                           std::to_string(body.contacts.size());
-      if (!(most->A > 0.0))
-        throw InputError("--body " + options.body +
-                         ": its joints cannot move its contact along the normal (A = 0)");
-    } else if (!body.joint) {
-      tell("body '" + options.body + "' has no contacts " + settled +
-           " and is not on one of the joint sets free, planar, slide, hinge; A is taken as 1/m + "
-           "r²/I");
-    }
-    if (options.contacts) {
-      in.contacts_source = "--contacts " + std::to_string(in.contacts) + "; MuJoCo makes " +
-                           std::to_string(body.rest_contacts) + " " + settled;
-    } else if (body.rest_contacts > 0) {
-      in.contacts = body.rest_contacts;
-      in.contacts_source = "counted: MuJoCo makes " + std::to_string(body.rest_contacts) +
-                           " for the body " + settled;
-    } else {
-      in.contacts_source =
-          "MuJoCo makes none for the body " + settled + ", so 1 is assumed; give --contacts N";
-    }
+    read_body_into(options, in, tell, read);
   } else {
     if (!options.body.empty()) throw InputError("--body " + options.body + ": needs --model FILE");
     if (!options.mass) throw InputError("--mass or --model: one of them is required");
@@ -141,12 +152,13 @@ SolrefReport solref_request(const SolrefRequest& options,
   if (t.restitution || t.contact_time || t.penetration || !options.k || !options.c)
     solve_targets(in, t, options.k.has_value(), options.c.has_value());
   if (in.mujoco3 && (in.mu > 0.0 || (in.keep_friction && in.user_friction.condim > 1)))
-    tell("MuJoCo 3's friction damper (solreffriction on <pair>s, which removes the sliding "
-         "push) is not in these snippets: it needs a friction-row damper ratio φ of 1e-4 or "
-         "less of the normal one, which breaks over calibrated's d = 1e-4 (measured 1.8 cm to "
-         "1.95 m off on contact2d's scenes) and works over compensated, which only `contact2d "
-         "generate --engine mujoco3 --mapping compensated --friction damper` builds "
-         "(docs/mujoco3.md)");
+    tell(
+        "MuJoCo 3's friction damper (solreffriction on <pair>s, which removes the sliding "
+        "push) is not in these snippets: it needs a friction-row damper ratio φ of 1e-4 or "
+        "less of the normal one, which breaks over calibrated's d = 1e-4 (measured 1.8 cm to "
+        "1.95 m off on contact2d's scenes) and works over compensated, which only `contact2d "
+        "generate --engine mujoco3 --mapping compensated --friction damper` builds "
+        "(docs/mujoco3.md)");
   SolrefReport report = solref_report(in, mappings);
   // One mapping asked for by name and it cannot express k, c: bad input.
   if (report.mappings.size() == 1 && !report.mappings[0].unavailable.empty())

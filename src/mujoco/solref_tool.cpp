@@ -504,6 +504,38 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
   return out;
 }
 
+namespace {
+
+// solref --model: the body's contacts as MuJoCo settled them.
+void measured_text(std::ostringstream& o, const SolrefReport& r) {
+  const SolrefInput& in = r.input;
+  o << "at rest MuJoCo's contacts of the body (" << in.contacts_source << "):\n";
+  for (const SettledContact& c : in.settled_contacts)
+    o << "  " << c.geom1 << " – " << c.geom2 << ": load " << format_number(c.load) << " N, depth "
+      << format_number(c.penetration) << " m, A = " << format_number(c.A)
+      << " 1/kg (effective mass " << format_number(1.0 / c.A) << " kg)\n";
+  o << "the numbers below are for f = " << format_number(r.load)
+    << " N, A = " << format_number(r.inv_mass) << " 1/kg (" << in.measured_source
+    << "); f/k = " << format_number(r.load / in.k) << " m\n";
+}
+
+// solref --apply: the body's contacts in the applied model.
+void applied_text(std::ostringstream& o, const SolrefReport& r) {
+  if (!r.applied) return;
+  const Applied& a = *r.applied;
+  o << "\napplied: " << a.path << " is the model with " << a.mapping
+    << " on the body's geoms; MuJoCo settled it " << format_number(a.settled) << " s ("
+    << (a.at_rest ? "at rest" : "NOT at rest") << "):\n";
+  if (a.contacts.empty()) o << "  the body has no contacts there\n";
+  for (const AppliedContact& c : a.contacts)
+    o << "  " << c.geom1 << " – " << c.geom2 << ": load " << format_number(c.load) << " N, depth "
+      << format_number(c.penetration)
+      << " m (the mapping's at that load: " << format_number(c.predicted) << " m, "
+      << format_number(100.0 * (c.penetration - c.predicted) / c.predicted) << " %)\n";
+}
+
+}  // namespace
+
 std::string format_report_text(const SolrefReport& r) {
   const SolrefInput& in = r.input;
   std::ostringstream o;
@@ -538,14 +570,7 @@ std::string format_report_text(const SolrefReport& r) {
   }
   o << "\n";
   if (in.measured) {
-    o << "at rest MuJoCo's contacts of the body (" << in.contacts_source << "):\n";
-    for (const SettledContact& c : in.settled_contacts)
-      o << "  " << c.geom1 << " – " << c.geom2 << ": load " << format_number(c.load) << " N, depth "
-        << format_number(c.penetration) << " m, A = " << format_number(c.A)
-        << " 1/kg (effective mass " << format_number(1.0 / c.A) << " kg)\n";
-    o << "the numbers below are for f = " << format_number(r.load)
-      << " N, A = " << format_number(r.inv_mass) << " 1/kg (" << in.measured_source
-      << "); f/k = " << format_number(r.load / in.k) << " m\n";
+    measured_text(o, r);
   } else {
     o << "at rest each of " << in.contacts << " MuJoCo contact" << (in.contacts > 1 ? "s" : "")
       << " (" << in.contacts_source << ") carries f = "
@@ -620,18 +645,7 @@ std::string format_report_text(const SolrefReport& r) {
     std::istringstream b(m.pair_snippet);
     for (std::string line; std::getline(b, line);) o << "    " << line << "\n";
   }
-  if (r.applied) {
-    const Applied& a = *r.applied;
-    o << "\napplied: " << a.path << " is the model with " << a.mapping
-      << " on the body's geoms; MuJoCo settled it " << format_number(a.settled) << " s ("
-      << (a.at_rest ? "at rest" : "NOT at rest") << "):\n";
-    if (a.contacts.empty()) o << "  the body has no contacts there\n";
-    for (const AppliedContact& c : a.contacts)
-      o << "  " << c.geom1 << " – " << c.geom2 << ": load " << format_number(c.load) << " N, depth "
-        << format_number(c.penetration)
-        << " m (the mapping's at that load: " << format_number(c.predicted) << " m, "
-        << format_number(100.0 * (c.penetration - c.predicted) / c.predicted) << " %)\n";
-  }
+  applied_text(o, r);
   return o.str();
 }
 
