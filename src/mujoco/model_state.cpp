@@ -172,15 +172,32 @@ LoadedState load_model_state(const StateRequest& r) {
                        (m->nkey ? " (its keyframes: " + names + ")" : " (it has none)"));
     }
   }
+  if (!(m->opt.timestep > 0.0) || !std::isfinite(m->opt.timestep))
+    throw InputError(prefix(r) + "<option timestep> is " + format_number(m->opt.timestep) +
+                     " s: MuJoCo steps only with a finite timestep > 0");
   out.data = make_data(m);
   mjData* d = out.data.get();
   if (key >= 0)
     mj_resetDataKeyframe(m, d, key);
   else
     mj_resetData(m, d);
+  for (int i = 0; i < m->nq; ++i)
+    if (!std::isfinite(d->qpos[i]))
+      throw InputError((key >= 0 ? "--key " + r.key + ": its qpos" : prefix(r) + "qpos0") +
+                       " has a number that is not finite (" + format_number(d->qpos[i]) +
+                       " at qpos[" + std::to_string(i) + "])");
   const long steps = std::min(kMaxSettleSteps, std::lround(r.settle / m->opt.timestep));
   for (long i = 0; i < steps; ++i) mj_step(m, d);
   mj_forward(m, d);
+  // MuJoCo resets mjData when a state goes bad (autoreset): what is read
+  // then is qpos0 again, not a settled model.
+  for (const int w : {mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC}) {
+    if (d->warning[w].number == 0) continue;
+    std::string said;
+    for (const std::string& line : warning_counters(d)) said += (said.empty() ? "" : "; ") + line;
+    throw EngineError(prefix(r) + "MuJoCo diverged while settling (" + said +
+                      "): there is no settled state to read");
+  }
   for (int i = 0; i < m->nv; ++i) {
     s.speed = std::max(s.speed, std::abs(d->qvel[i]));
     s.accel = std::max(s.accel, std::abs(d->qacc[i]));

@@ -90,10 +90,18 @@ function restore(e) {
   d.qacc_warmstart.set(s.warm);
 }
 
-// The package cannot read the disk: a user's model folder (its includes,
-// meshes and textures beside it) is copied into MuJoCo's in-memory file
-// system, at most kStageBytes in all, and removed after the request.
+// The package cannot read the disk: the model file is copied into MuJoCo's
+// in-memory file system and, when MuJoCo cannot load it alone (an include,
+// a mesh, a texture beside it), its whole folder, at most kStageBytes in
+// all; removed after the request.
 const kStageBytes = 256 * 1024 * 1024;
+function stageFile(path) {
+  const root = '/model';
+  mj.FS.mkdirTree(root);
+  mj.FS.writeFile(root + '/' + basename(path), readFileSync(path));
+  return {root, file: root + '/' + basename(path)};
+}
+
 function stage(path) {
   const root = '/model';
   let bytes = 0;
@@ -167,9 +175,25 @@ function readState(m, d, r) {
   } else {
     mj.mj_resetData(m, d);
   }
+  const where = `${r.option ? r.option + ' ' : ''}${r.path}: `;
+  if (!(m.opt.timestep > 0) || !Number.isFinite(m.opt.timestep)) {
+    throw new Error(`${where}<option timestep> is ${m.opt.timestep} s: MuJoCo steps only with a ` +
+                    'finite timestep > 0');
+  }
+  for (let i = 0; i < m.nq; ++i) {
+    if (!Number.isFinite(d.qpos[i])) {
+      throw new Error((key >= 0 ? `--key ${r.key}: its qpos` : `${where}qpos0`) +
+                      ` has a number that is not finite (${d.qpos[i]} at qpos[${i}])`);
+    }
+  }
   const steps = Math.min(1000000, Math.round(r.settle / m.opt.timestep));
   for (let i = 0; i < steps; ++i) mj.mj_step(m, d);
   mj.mj_forward(m, d);
+  if (badCounters(d) > 0) {
+    // Marked so the C++ side makes it an engine failure (exit 3), not bad input.
+    throw new Error(`diverged: ${where}MuJoCo diverged while settling: there is no settled ` +
+                    'state to read');
+  }
   let speed = 0, accel = 0;
   for (let i = 0; i < nv; ++i) {
     speed = Math.max(speed, Math.abs(d.qvel[i]));
@@ -389,15 +413,24 @@ const ops = {
     return {};
   },
   state: (r) => {
-    const {root, file} = stage(r.path);
+    let {root, file} = stageFile(r.path);
     try {
       const before = messages.length;
       let m;
       try {
         m = mj.MjModel.from_xml_path(file);
-      } catch (e) {
-        throw new Error(`${r.option ? r.option + ' ' : ''}${r.path}: MuJoCo ` +
-                        `${mj.mj_versionString()} cannot load the model: ${oneLine(e)}`);
+      } catch {
+        // Alone it does not load: with its folder (includes, meshes), or
+        // MuJoCo's message about the model itself.
+        messages.splice(before);
+        unstage(root);
+        ({root, file} = stage(r.path));
+        try {
+          m = mj.MjModel.from_xml_path(file);
+        } catch (e) {
+          throw new Error(`${r.option ? r.option + ' ' : ''}${r.path}: MuJoCo ` +
+                          `${mj.mj_versionString()} cannot load the model: ${oneLine(e)}`);
+        }
       }
       const loadWarning = messages.splice(before).map(oneLine).join('; ');
       const d = new mj.MjData(m);

@@ -147,6 +147,7 @@ Node::Answer Node::request(const std::string& line, const std::string& origin, b
     for (const json::Value& m : said->items) messages_.push_back(m.text);
   if (text_of(a.get("ok")) != "true") {
     const std::string error = text_of(a.get("error"));
+    if (verbatim && error.rfind("diverged: ", 0) == 0) throw EngineError(error.substr(10));
     if (verbatim) throw InputError(error);
     if (!origin.empty())
       throw InputError(origin + ": MuJoCo " + std::string(kVersion) +

@@ -11,6 +11,7 @@
 #include <functional>
 #include <string>
 
+#include "core/input_error.hpp"
 #include "mujoco/inspect.hpp"
 #include "mujoco/model_state.hpp"
 #include "mujoco/solref_request.hpp"
@@ -335,6 +336,64 @@ TEST(OwnModels, SolrefOnTheHumanoidsFootRestsWhereItSays) {
     expect_rests_as_printed(report, false);
   }
   fs::remove_all(dir);
+}
+
+// Bad states are one line on both versions: a timestep of 0 (MuJoCo would
+// not step; the settle would divide by it) and a keyframe with a NaN.
+TEST_F(OwnArticulated, ATimestepOfZeroAndANanKeyframeAreRefused) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const std::string zero = write(R"(<mujoco><option timestep="0"/><worldbody>
+  <geom type="plane" size="1 1 0.1"/>
+  <body pos="0 0 0.0999"><freejoint/><geom type="sphere" size="0.1"/></body>
+</worldbody></mujoco>
+)");
+  for (const Version& v : kVersions) {
+    SCOPED_TRACE(v.name);
+    try {
+      v.read({zero, "", 1.0, ""});
+      ADD_FAILURE() << "a timestep of 0 was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("<option timestep> is 0 s"), std::string::npos)
+          << e.what();
+    }
+  }
+  const std::string nan = write(R"(<mujoco><worldbody>
+  <geom type="plane" size="1 1 0.1"/>
+  <body pos="0 0 0.0999"><freejoint/><geom type="sphere" size="0.1"/></body>
+</worldbody><keyframe><key name="bad" qpos="0 0 nan 1 0 0 0"/></keyframe></mujoco>
+)");
+  for (const Version& v : kVersions) {
+    SCOPED_TRACE(v.name);
+    try {
+      v.read({nan, "bad", 0.0, ""});
+      ADD_FAILURE() << "a NaN keyframe was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("--key bad: its qpos has a number that is not finite"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+// MuJoCo 3 reads the disk through a copy: a model whose floor is in an
+// <include>d file beside it loads and settles as on 2.2.2.
+TEST_F(OwnArticulated, AnIncludeBesideTheModelIsFound) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  std::ofstream(dir_ / "floor.xml") << R"(<mujoco><worldbody>
+  <geom name="floor" type="plane" size="2 2 0.1"/></worldbody></mujoco>
+)";
+  const std::string path = write(R"(<mujoco><include file="floor.xml"/><worldbody>
+  <body name="ball" pos="0 0 0.0999"><freejoint/><geom type="sphere" size="0.1" mass="1"/></body>
+</worldbody></mujoco>
+)");
+  for (const Version& v : kVersions) {
+    SCOPED_TRACE(v.name);
+    const mj::InspectReport rep = inspect_with(v, path, 1.0);
+    ASSERT_EQ(rep.contacts.size(), 1u);
+    EXPECT_EQ(rep.contacts[0].geom1_name, "floor");
+    // The ball's weight (1 kg) on the floor at rest, within the rest criterion.
+    EXPECT_NEAR(rep.contacts[0].load, 9.81, 0.01 * 9.81);
+  }
 }
 
 }  // namespace
