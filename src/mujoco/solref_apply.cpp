@@ -93,27 +93,18 @@ Applied apply_solref(const SolrefReport& report, const MappingOutcome& o, const 
   StateRequest request = settle;
   request.path = out;
   request.option = "--apply";
-  const ModelState state = read(request);
-  int id = -1;
-  for (size_t i = 0; i < state.body_names.size(); ++i)
-    if (state.body_names[i] == body) id = static_cast<int>(i);
+  const ModelBody applied_body = read_model_body(read(request), out, body);
   Applied applied;
   applied.path = out;
   applied.mapping = std::string(mapping_name(o.mapping));
-  applied.settled = state.settled;
-  applied.at_rest = at_rest(state);
-  for (const StateContact& c : state.contacts) {
-    if (c.body1 != id && c.body2 != id) continue;
+  applied.settled = applied_body.settle_seconds;
+  applied.at_rest = applied_body.at_rest;
+  for (const SettledContact& c : applied_body.contacts) {
     AppliedContact a;
-    a.geom1 = state.geom_names[static_cast<size_t>(c.geom1)];
-    a.geom2 = state.geom_names[static_cast<size_t>(c.geom2)];
-    a.load = std::max(0.0, c.force);
-    a.penetration = -c.dist;
-    // Â of the contact: both bodies' (the world's is 0), with the cone's φ.
-    const double inv_weight = state.body_invweight0[2 * static_cast<size_t>(c.body1)] +
-                              state.body_invweight0[2 * static_cast<size_t>(c.body2)];
-    a.predicted =
-        static_penetration(s.solimp, o.K, inv_weight * o.normal_weight / report.inv_weight, a.load);
+    static_cast<SettledContact&>(a) = c;
+    // The contact's Â (both bodies'), with the cone's φ as the report has it.
+    a.predicted = static_penetration(s.solimp, o.K,
+                                     c.inv_weight * o.normal_weight / report.inv_weight, a.load);
     applied.contacts.push_back(a);
   }
   return applied;

@@ -498,6 +498,8 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
     sc.A_t = c.A_t;
     sc.load = std::max(0.0, c.force);
     sc.penetration = -c.dist;
+    sc.inv_weight = state.body_invweight0[2 * static_cast<size_t>(c.body1)] +
+                    state.body_invweight0[2 * static_cast<size_t>(c.body2)];
     out.contacts.push_back(sc);
   }
   out.rest_contacts = static_cast<int>(out.contacts.size());

@@ -80,6 +80,7 @@ struct SettledContact {
   double A_t = 0.0;          // the same along its larger tangent direction (condim ≥ 3)
   double load = 0.0;         // MuJoCo's normal force, N
   double penetration = 0.0;  // −dist, m
+  double inv_weight = 0.0;   // Â of the contact: both bodies' body_invweight0, 1/kg
 };
 
 struct SolrefInput {
@@ -166,11 +167,8 @@ struct MappingOutcome {
 
 // solref --apply: the model with the recommended mapping written into it
 // (mujoco/solref_apply.hpp), settled again: the body's contacts there.
-struct AppliedContact {
-  std::string geom1, geom2;
-  double load = 0.0;         // MuJoCo's normal force in OUT.xml, N
-  double penetration = 0.0;  // MuJoCo's depth there, m
-  double predicted = 0.0;    // the mapping's rest depth at that load, m
+struct AppliedContact : SettledContact {
+  double predicted = 0.0;  // the mapping's rest depth at its load, m
 };
 
 struct Applied {

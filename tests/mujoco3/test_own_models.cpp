@@ -176,6 +176,23 @@ TEST(OwnModels, MujocoThreeRefusingASampleIsOneLine) {
   }
 }
 
+// A rod hinged to the world (axis y at the origin), horizontal, its tip — a
+// sphere of radius 0.03 m at x = 0.6 m — on the floor; the shaft (2 kg)
+// does not collide, the tip weighs 0.5 kg.
+const char* const kRod = R"(<mujoco>
+  <option timestep="0.002"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="2 2 0.1"/>
+    <body name="rod" pos="0 0 0.03">
+      <joint name="hinge" type="hinge" axis="0 1 0"/>
+      <geom name="shaft" type="cylinder" fromto="0 0 0 0.6 0 0" size="0.01" mass="2"
+            contype="0" conaffinity="0"/>
+      <geom name="tip" type="sphere" pos="0.6 0 0" size="0.03" mass="0.5"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+
 class OwnArticulated : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -201,19 +218,7 @@ class OwnArticulated : public ::testing::Test {
 TEST_F(OwnArticulated, RodHingedToTheWorldCarriesItsMomentBalance) {
   CONTACT2D_NEEDS_MUJOCO3();
   const double L = 0.6, r = 0.03, m_rod = 2.0, m_tip = 0.5;
-  const std::string path = write(R"(<mujoco>
-  <option timestep="0.002"/>
-  <worldbody>
-    <geom name="floor" type="plane" size="2 2 0.1"/>
-    <body name="rod" pos="0 0 0.03">
-      <joint name="hinge" type="hinge" axis="0 1 0"/>
-      <geom name="shaft" type="cylinder" fromto="0 0 0 0.6 0 0" size="0.01" mass="2"
-            contype="0" conaffinity="0"/>
-      <geom name="tip" type="sphere" pos="0.6 0 0" size="0.03" mass="0.5"/>
-    </body>
-  </worldbody>
-</mujoco>
-)");
+  const std::string path = write(kRod);
   for (const Version& v : kVersions) {
     SCOPED_TRACE(v.name);
     const mj::InspectReport rep = inspect_with(v, path, 3.0);
@@ -290,19 +295,7 @@ TEST_F(OwnArticulated, TwoLinkLegCarriesItsStaticLoads) {
 // recommendation applied rests where the report says.
 TEST_F(OwnArticulated, SolrefOnAHingedRodIsInspectsContactAndRestsWhereItSays) {
   CONTACT2D_NEEDS_MUJOCO3();
-  const std::string path = write(R"(<mujoco>
-  <option timestep="0.002"/>
-  <worldbody>
-    <geom name="floor" type="plane" size="2 2 0.1"/>
-    <body name="rod" pos="0 0 0.03">
-      <joint name="hinge" type="hinge" axis="0 1 0"/>
-      <geom name="shaft" type="cylinder" fromto="0 0 0 0.6 0 0" size="0.01" mass="2"
-            contype="0" conaffinity="0"/>
-      <geom name="tip" type="sphere" pos="0.6 0 0" size="0.03" mass="0.5"/>
-    </body>
-  </worldbody>
-</mujoco>
-)");
+  const std::string path = write(kRod);
   for (const Version& v : kVersions) {
     SCOPED_TRACE(v.name);
     const mj::InspectReport seen = inspect_with(v, path, 3.0);
