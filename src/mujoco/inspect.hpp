@@ -1,8 +1,9 @@
 // `contact2d inspect`: what the contacts of a user's own MJCF model are in
-// physical units, as MuJoCo 2.2.2 resolves and integrates them.
+// physical units, as MuJoCo 2.2.2 (or 3.14) resolves and integrates them.
 //
-// The model is loaded from its file with mj_loadXML (so <include>s and
-// meshes resolve next to it) and mj_forward runs at a keyframe or at qpos0.
+// The model is read at one state (mujoco/model_state.hpp: its keyframe or
+// qpos0, settled by mj_step for `settle` seconds, then mj_forward) by either
+// version; everything below is computed from those plain numbers.
 // For every contact d->contact[i] (and, with `pairs`, every geom pair that
 // can collide: explicit <pair>s, and default collisions filtered as
 // mj_collision filters them: contype/conaffinity, the same weld body, the
@@ -29,10 +30,14 @@
 //   ω·Δt at d_max (the stiffest the contact gets) against the limit of the
 //   model's integrator (Euler and implicit: semi-implicit Euler's, RK4: RK4's;
 //   core stability_limit);
-//   the static load f: the normal forces that hold the model against gravity
-//   at qvel = 0, the least-squares (minimum-norm) solution of Jₙᵀ·f = qfrc_bias
-//   over every contact, and the static penetration p solving
-//   p·K·d(p)² = f·Â·(1 − d(p)) (mujoco/solref_tool.hpp);
+//   the load f: MuJoCo's own normal force (mj_contactForce) at that state,
+//   or with estimate_loads the least-squares (minimum-norm) solution of
+//   Jₙᵀ·f = qfrc_bias over every contact, and the rest depth p solving
+//   p·K·d(p)² = f·Â·(1 − d(p)) (mujoco/solref_tool.hpp), with a note where
+//   MuJoCo is not at it (a row out of the quadratic zone, or (B·v + J·qacc)/R
+//   over 1 % of the force);
+//   each body's bounce: its contacts hitting together, stepped as MuJoCo
+//   steps them (mujoco/bounce.hpp), and each contact's alone;
 //   the restitution of the Kelvin–Voigt oscillator at (ω, ζ) with its force
 //   clamped at zero (the contact lets go when k·x + c·ẋ = 0, before x = 0;
 //   benchmarks/impact.hpp);
