@@ -71,6 +71,8 @@ Command add_solref(CLI::App& app) {
   cmd->add_option("--settle", options->request.settle,
                   "--model: seconds of mj_step before reading the body's contacts (>= 0; "
                   "default 3)");
+  cmd->add_option("--slope", options->request.slope,
+                  "Slope in degrees, [0, 90): each mapping's creep speed under friction");
   cmd->add_option("--apply", options->request.apply,
                   "--model: write the model with the recommended mapping on the body's geoms to "
                   "this file (in the model's folder), settle it and list the body's contacts "

@@ -369,6 +369,18 @@ void collect_contacts(const ModelState& s, InspectReport& rep) {
     r.load = std::max(0.0, con.force);
     rep.contacts.push_back(r);
   }
+  // A friction row's slip couples to the other rows of its body (a box's
+  // corners yawing together): each contact's A_t is at least its bodies'
+  // coupled one, which sets the impratio cap.
+  std::map<int, std::vector<int>> by_body;
+  for (size_t i = 0; i < s.contacts.size(); ++i)
+    for (const int b : {s.contacts[i].body1, s.contacts[i].body2})
+      if (s.body_weld[static_cast<size_t>(b)] != 0) by_body[b].push_back(static_cast<int>(i));
+  std::map<int, double> coupled;
+  for (const auto& [b, list] : by_body) coupled[b] = coupled_tangential_inverse_mass(s, list);
+  for (InspectRow& r : rep.contacts)
+    for (const int b : {r.body1, r.body2})
+      if (coupled.count(b) != 0) r.A_t = std::max(r.A_t, coupled[b]);
 }
 
 // The least-squares loads: Jₙᵀ·f = qfrc_bias (qvel = 0) over every

@@ -1,6 +1,8 @@
 // A user's model at one state, from MuJoCo 2.2.2 (mujoco/model_state.hpp).
 #include "mujoco/model_state.hpp"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -114,8 +116,12 @@ void read_contacts(const mjModel* m, mjData* d, ModelState& s) {
       for (size_t axis = 1; axis < 3; ++axis) {
         const std::array<double, 3> t{con.frame[3 * axis], con.frame[3 * axis + 1],
                                       con.frame[3 * axis + 2]};
-        c.A_t =
-            std::max(c.A_t, inverse_mass(m, d, normal_jacobian(m, d, c.body1, c.body2, c.pos, t)));
+        const std::vector<double> trow = normal_jacobian(m, d, c.body1, c.body2, c.pos, t);
+        std::vector<double> tsolved(trow.size());
+        mj_solveM(m, d, tsolved.data(), trow.data(), 1);
+        c.tangent[axis - 1] = SparseRow::of(trow);
+        c.tangent_solved[axis - 1] = SparseRow::of(tsolved);
+        c.A_t = std::max(c.A_t, c.tangent[axis - 1].dot(c.tangent_solved[axis - 1]));
       }
     }
     double force[6] = {};
@@ -130,6 +136,25 @@ void read_contacts(const mjModel* m, mjData* d, ModelState& s) {
 }
 
 }  // namespace
+
+double coupled_tangential_inverse_mass(const ModelState& state, const std::vector<int>& contacts) {
+  std::vector<std::pair<const SparseRow*, const SparseRow*>> rows;
+  for (const int i : contacts) {
+    const StateContact& c = state.contacts[static_cast<size_t>(i)];
+    for (size_t k = 0; k < 2; ++k)
+      if (!c.tangent[k].index.empty()) rows.emplace_back(&c.tangent[k], &c.tangent_solved[k]);
+  }
+  if (rows.empty()) return 0.0;
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd A(n, n);
+  for (Eigen::Index a = 0; a < n; ++a)
+    for (Eigen::Index b = 0; b < n; ++b)
+      A(a, b) = rows[static_cast<size_t>(a)].first->dot(*rows[static_cast<size_t>(b)].second);
+  const Eigen::MatrixXd symmetric = 0.5 * (A + A.transpose());
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(symmetric, Eigen::EigenvaluesOnly)
+      .eigenvalues()
+      .maxCoeff();
+}
 
 void check_state_request(const StateRequest& r) {
   if (!(r.settle >= 0.0 && std::isfinite(r.settle)))

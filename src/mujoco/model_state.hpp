@@ -105,6 +105,9 @@ struct StateContact {
   std::array<double, 5> solimp{};
   double A = 0.0;
   double A_t = 0.0;  // the larger of the two tangent directions' (condim ≥ 3; else 0), 1/kg
+  // condim ≥ 3: the two tangent rows of the contact frame and M⁻¹ times
+  // them (the coupling of friction rows across contacts).
+  std::array<SparseRow, 2> tangent, tangent_solved;
   double force = 0.0;
   int rows = 0;        // its constraint rows (pyramidal: 2(condim − 1), or 1; elliptic: condim)
   int quadratic = 0;   // of them, in the solver's quadratic zone (efc_state)
@@ -163,6 +166,12 @@ LoadedState load_model_state(const StateRequest& request);
 
 // A version's reader: read_model_state here, mujoco3::read_model_state.
 using StateReader = std::function<ModelState(const StateRequest&)>;
+
+// The largest eigenvalue of the friction rows' J·M⁻¹·Jᵀ over these
+// contacts (indices into state.contacts; two tangent rows each, condim ≥ 3):
+// the tangential inverse mass of the stiffest way they slip together. A
+// box's four corners yawing together see more than any corner alone.
+double coupled_tangential_inverse_mass(const ModelState& state, const std::vector<int>& contacts);
 
 // The request's checks shared by both versions (InputError naming the option).
 void check_state_request(const StateRequest& request);

@@ -45,8 +45,7 @@ void read_body_into(const SolrefRequest& options, SolrefInput& in,
   in.joint = body.joint.value_or(Joint::Free);
   if (in.keep_friction) in.user_friction = body.friction;
   in.settled_contacts = body.contacts;
-  for (const SettledContact& c : body.contacts)
-    in.tangential_inv_mass = std::max(in.tangential_inv_mass, c.A_t);
+  in.tangential_inv_mass = body.tangential_inv_mass;
   const std::string settled =
       "after settling " + format_number(body.settle_seconds, 6) + " s with mj_step" +
       (body.at_rest ? std::string()
@@ -98,6 +97,7 @@ SolrefReport solref_request(const SolrefRequest& options,
     throw InputError("--engine mujoco3: MuJoCo 3 is not available in this build");
   SolrefInput in;
   in.mujoco3 = options.engine == "mujoco3";
+  in.slope = options.slope;
   in.k = options.k.value_or(1.0);  // a placeholder until solve_targets when a target gives it
   in.c = options.c.value_or(0.0);
   in.dt = options.dt;

@@ -33,6 +33,7 @@ struct SolrefRequest {
   double settle = kSettleSeconds;    // --settle: s of mj_step before reading --model's contacts
   std::string key;                   // --key: the keyframe the settling starts from
   std::string apply;                 // --apply OUT.xml: the model with the recommendation
+  std::optional<double> slope;       // --slope DEG: each mapping's creep
 };
 
 // The mappings --mapping names, in the order the report gives them. Throws

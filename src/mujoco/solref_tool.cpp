@@ -63,6 +63,35 @@ std::string contact_attributes(const SolrefInput& in, const MappingOutcome& o, b
          "\"";
 }
 
+// The creep at --slope θ under this mapping: inside the cone MuJoCo's
+// friction rows have no spring (aref = −B·v) and R_t = R/impratio, so at
+// steady creep a contact carries impratio·B·d·v/((1 − d)·Â) tangentially
+// (÷ (1 + μ²) for the pyramidal cone's edges); with the load f·sinθ along
+// the slope and d at the depth under f·cosθ (inspect.hpp, where it is
+// measured against MuJoCo).
+void creep_on_slope(const SolrefInput& in, double inv_weight, MappingOutcome& o, bool elliptic,
+                    int condim) {
+  if (!in.slope) return;
+  const double th = *in.slope * std::acos(-1.0) / 180.0;
+  const double mu = o.condim == 0 ? in.user_friction.mu : in.mu;
+  if (condim <= 1) {
+    o.creep_note = "condim 1, no friction: slides";
+  } else if (std::tan(th) >= mu) {
+    o.creep_note = "tanθ ≥ μ = " + format_number(mu) + ": slides (Coulomb)";
+  } else if (!elliptic && std::tan(th) >= mu / (condim - 1)) {
+    o.creep_note = "tanθ ≥ μ/(condim − 1): an edge of the pyramidal cone unloads";
+  } else if (th == 0.0) {
+    o.creep = 0.0;
+  } else {
+    const double f = contact_mechanics(in).load;
+    const double p = static_penetration(o.settings.solimp, o.K, o.normal_weight, f * std::cos(th));
+    const double d = mujoco_impedance(o.settings.solimp, -p);
+    const double shape = elliptic ? 1.0 : 1.0 + mu * mu;
+    o.creep = f * std::sin(th) * (1.0 - d) * inv_weight * shape /
+              (std::max(kMinVal, o.settings.impratio) * o.B * d);
+  }
+}
+
 MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
   const SolrefInput& in = report.input;
   MappingOutcome o;
@@ -141,6 +170,7 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
   o.static_penetration = static_penetration(s.solimp, o.K, Ahat, report.load);
   o.impedance_at_rest = mujoco_impedance(s.solimp, -o.static_penetration);
   o.nominal_penetration = report.load / in.k;
+  creep_on_slope(in, report.inv_weight, o, elliptic, condim);
   const std::string options = option_line(o);
   o.default_snippet = options + "<default>\n  <default class=\"contact2d\">\n    <geom" +
                       contact_attributes(in, o, false) +
@@ -256,6 +286,8 @@ void validate(const SolrefInput& in) {
   if (in.mu_roll > 0.0 && !(in.lever > 0.0))
     throw InputError("--mu-roll " + format_number(in.mu_roll) +
                      ": needs --inertia and --lever > 0 (the rolling radius)");
+  if (in.slope && !(*in.slope >= 0.0 && *in.slope < 90.0))
+    throw InputError("--slope " + format_number(*in.slope) + ": must be in [0, 90) degrees");
   if (in.contacts < 1)
     throw InputError("--contacts " + std::to_string(in.contacts) + ": must be an integer >= 1");
   require(finite(in.inv_weight) && in.inv_weight >= 0.0, "body_invweight0", in.inv_weight,
@@ -489,6 +521,11 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
   out.settle_seconds = state.settled;
   out.rest_speed = state.speed;
   out.at_rest = at_rest(state);
+  std::vector<int> own;
+  for (size_t i = 0; i < state.contacts.size(); ++i)
+    if (state.contacts[i].body1 == id || state.contacts[i].body2 == id)
+      own.push_back(static_cast<int>(i));
+  out.tangential_inv_mass = coupled_tangential_inverse_mass(state, own);
   for (const StateContact& c : state.contacts) {
     if (c.body1 != id && c.body2 != id) continue;
     SettledContact sc;
@@ -639,6 +676,10 @@ std::string format_report_text(const SolrefReport& r) {
     o << "  static penetration = " << format_number(m.static_penetration)
       << " m = " << format_number(m.static_penetration / m.nominal_penetration)
       << " × f/k (per contact)\n";
+    if (in.slope)
+      o << "  slope " << format_number(*in.slope) << "°: "
+        << (std::isfinite(m.creep) ? "creep " + format_number(m.creep) + " m/s" : m.creep_note)
+        << "\n";
     o << "  MJCF, a default class (put class=\"contact2d\" on the body's contact geoms; "
          "priority 1 makes its values win over the ground's):\n";
     std::istringstream a(m.default_snippet);
@@ -710,6 +751,8 @@ std::string format_report_json(const SolrefReport& r) {
       << ",\n      \"euler_limit\": " << json::number(m.euler_limit)
       << ",\n      \"rk4_limit\": " << json::number(m.rk4_limit)
       << ",\n      \"static_penetration\": " << json::number(m.static_penetration)
+      << ",\n      \"creep\": " << (std::isfinite(m.creep) ? json::number(m.creep) : "null")
+      << ",\n      \"creep_note\": " << json::string(m.creep_note)
       << ",\n      \"default_snippet\": " << json::string(m.default_snippet)
       << ",\n      \"pair_snippet\": " << json::string(m.pair_snippet) << "\n    }";
   }

@@ -107,11 +107,13 @@ struct SolrefInput {
   std::optional<ContactMechanics> measured;
   std::string measured_source;
   std::vector<SettledContact> settled_contacts;
-  // The largest tangential inverse mass over the body's settled contacts:
+  // The tangential inverse mass of the body's settled contacts slipping
+  // together (their friction rows' J·M⁻¹·Jᵀ, largest eigenvalue):
   // calibrated's impratio cap 1/(Δt·A_t·c) uses it in place of 1/m.
   double tangential_inv_mass = 0.0;
-  bool mujoco3 = false;   // Â by MuJoCo 3's rule (joint_inv_weight)
-  double gravity = 9.81;  // m/s²
+  bool mujoco3 = false;         // Â by MuJoCo 3's rule (joint_inv_weight)
+  std::optional<double> slope;  // --slope, degrees in [0, 90)
+  double gravity = 9.81;        // m/s²
   // Where the numbers come from, for the text ("--mass 1" or "model.xml, body 'box'").
   std::string body_source;
   // How k and c were found when targets gave them (solve_targets), for the
@@ -159,7 +161,12 @@ struct MappingOutcome {
   double omega_dt = 0.0;
   double euler_limit = 0.0;  // MuJoCo Euler and implicit (contacts explicit): semi-implicit Euler
   double rk4_limit = 0.0;
-  double static_penetration = 0.0;   // m, per contact at rest
+  double static_penetration = 0.0;  // m, per contact at rest
+  // --slope θ: the speed the contact creeps at under friction (inspect.hpp's
+  // formula with this mapping's K, B, solimp, impratio and cone), NaN with
+  // creep_note saying why when there is no such number.
+  double creep = NAN;
+  std::string creep_note;
   double nominal_penetration = 0.0;  // f/k, m
   std::string default_snippet;       // <option> + <default class>
   std::string pair_snippet;          // <option> + <contact><pair>
@@ -221,6 +228,8 @@ struct ModelBody {
   UserFriction friction;       // of the body's first colliding geom, and the model's cone
   int rest_contacts = 0;       // MuJoCo contacts of the body after settling
   std::vector<SettledContact> contacts;
+  double tangential_inv_mass =
+      0.0;  // its contacts' friction rows slipping together (model_state.hpp)
   double settle_seconds = 0.0;
   double rest_speed = 0.0;   // largest |qvel| of the model at the end of the settling
   bool at_rest = false;      // model_state.hpp's criterion

@@ -272,17 +272,23 @@ function readState(m, d, r) {
       let A = 0;
       for (let c = 0; c < nv; ++c) A += row[c] * solved[c];
       let A_t = 0;
+      const tangents = [];
       if (con.dim >= 3) {
         const frame = Array.from(con.frame);
         for (const axis of [frame.slice(3, 6), frame.slice(6, 9)]) {
           const t = along(axis);
           mj.mj_solveM(m, d, x, t);
-          const tx = x.GetView();
+          const tx = Float64Array.from(x.GetView());
           let a = 0;
           for (let c = 0; c < nv; ++c) a += t[c] * tx[c];
           A_t = Math.max(A_t, a);
+          tangents.push({row: t, solved: Array.from(tx)});
         }
       }
+      const sparse = (dense) => ({
+        index: dense.flatMap((v, c) => v !== 0 ? [c] : []),
+        value: dense.filter((v) => v !== 0)
+      });
       mj.mj_contactForce(m, d, i, force);
       const elliptic = m.opt.cone === mj.mjtCone.mjCONE_ELLIPTIC.value;
       const rows = elliptic || con.dim === 1 ? con.dim : 2 * (con.dim - 1);
@@ -317,6 +323,7 @@ function readState(m, d, r) {
         solimp: Array.from(con.solimp),
         A,
         A_t,
+        tangents: tangents.map((t) => ({row: sparse(t.row), solved: sparse(t.solved)})),
         force: force.GetView()[0],
         rows,
         quadratic,

@@ -287,12 +287,29 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
       };
       out.jacobian = sparse("jacobian_index", "jacobian_value");
       out.solved = sparse("solved_index", "solved_value");
-      bool columns = out.jacobian.index.size() == out.jacobian.value.size() &&
-                     out.solved.index.size() == out.solved.value.size();
-      for (const mujoco::SparseRow* row : {&out.jacobian, &out.solved})
+      if (const json::Value* tangents = c.get("tangents")) {
+        for (size_t k = 0; k < 2 && k < tangents->items.size(); ++k) {
+          const json::Value& t = tangents->items[k];
+          auto read_row = [&](const char* key) {
+            mujoco::SparseRow row;
+            if (const json::Value* r = t.get(key)) {
+              for (const double i : numbers_of(r->get("index")))
+                row.index.push_back(static_cast<int>(i));
+              row.value = numbers_of(r->get("value"));
+            }
+            return row;
+          };
+          out.tangent[k] = read_row("row");
+          out.tangent_solved[k] = read_row("solved");
+        }
+      }
+      bool columns = true;
+      for (const mujoco::SparseRow* row :
+           {&out.jacobian, &out.solved, &out.tangent[0], &out.tangent[1], &out.tangent_solved[0],
+            &out.tangent_solved[1]})
         for (size_t i = 0; i < row->index.size(); ++i)
-          columns = columns && row->index[i] >= 0 && row->index[i] < s.nv &&
-                    (i == 0 || row->index[i] > row->index[i - 1]);
+          columns = columns && row->index.size() == row->value.size() && row->index[i] >= 0 &&
+                    row->index[i] < s.nv && (i == 0 || row->index[i] > row->index[i - 1]);
       if (!columns) {
         failed_ = true;
         throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +

@@ -710,9 +710,12 @@ TEST_F(Inspect, WarnsWhenRefsafeChangesTheTimeconst) {
   ASSERT_FALSE(rep.contacts.empty());
   EXPECT_TRUE(rep.contacts[0].refsafe_changes);
   EXPECT_DOUBLE_EQ(rep.contacts[0].timeconst_used, 0.004);
-  ASSERT_FALSE(rep.warnings.empty());
-  EXPECT_NE(rep.warnings[0].find("refsafe raises the solref timeconst 0.001 s"), std::string::npos)
-      << rep.warnings[0];
+  // (Its friction rows also pass their impratio cap at this timeconst: a
+  // warning of its own, before this one.)
+  bool found = false;
+  for (const std::string& w : rep.warnings)
+    found |= w.find("refsafe raises the solref timeconst 0.001 s") != std::string::npos;
+  EXPECT_TRUE(found);
   EXPECT_TRUE(report(kBoxModel).warnings.empty());
 }
 
