@@ -42,6 +42,8 @@ struct BounceRow {
   double weight = 0.0;  // Â·φ, 1/kg
 };
 
+// `left` false: some row had not left after 20,000 steps (rows pushing
+// against each other, such as a body between two walls).
 struct Bounce {
   double restitution = 0.0;   // mean outgoing / approach normal speed
   double spread = 0.0;        // largest minus smallest over the phases
