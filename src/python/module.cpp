@@ -434,7 +434,7 @@ void bind_commands(py::module_& m) {
            const std::string& model, const std::string& body, std::optional<int> contacts,
            std::optional<double> restitution, std::optional<double> contact_time,
            std::optional<double> penetration, const std::string& engine, double settle,
-           const std::string& key, const std::string& apply) {
+           const std::string& key, const std::string& apply, std::optional<double> slope) {
           mujoco::SolrefRequest r;
           r.k = k;
           r.c = c;
@@ -457,6 +457,7 @@ void bind_commands(py::module_& m) {
           r.settle = settle;
           r.key = key;
           r.apply = apply;
+          r.slope = slope;
           return py_solref(r);
         });
   m.attr("mujoco_available") = engines::mujoco_available();

@@ -155,6 +155,8 @@ SOLREF_CASES = [
       "--body", "box", "--engine", "mujoco3", "--settle", "1"],
      dict(k=2e4, c=50, dt=2e-3, model="docs/examples/box_on_plane.xml", body="box",
           engine="mujoco3", settle=1)),
+    (["--k", "2e4", "--c", "50", "--dt", "2e-3", "--mass", "1.5", "--mu", "0.5", "--slope", "10"],
+     dict(k=2e4, c=50, dt=2e-3, mass=1.5, mu=0.5, slope=10)),
 ]
 
 

@@ -114,13 +114,13 @@ def solref(k: Optional[float] = None, c: Optional[float] = None, *, dt: float,
            contacts: Optional[int] = None, restitution: Optional[float] = None,
            contact_time: Optional[float] = None,
            penetration: Optional[float] = None, engine: str = "mujoco", settle: float = 3.0,
-           key: str = "", apply: str = "") -> dict:
+           key: str = "", apply: str = "", slope: Optional[float] = None) -> dict:
     """solref, solimp, impratio and what MuJoCo does with them, per mapping,
     as ``contact2d solref --json`` (each keyword is that option; ``engine``
     is ``"mujoco"`` for 2.2.2 or ``"mujoco3"`` for 3.14)."""
     run = _contact2d._solref(k, c, dt, mass, mapping, joint, inertia, lever, pivot, mu, mu_roll,
                              model, body, contacts, restitution, contact_time, penetration,
-                             engine, settle, key, apply)
+                             engine, settle, key, apply, slope)
     _notes(run["notes"])
     return json.loads(run["json"])
 
