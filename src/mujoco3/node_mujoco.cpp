@@ -204,6 +204,91 @@ void Node::rewind(int id, int n) {
   request(R"({"op":"rewind","id":)" + std::to_string(id) + R"(,"n":)" + std::to_string(n) + "}");
 }
 
+namespace {
+
+// One contact of the driver's "state" answer (mujoco/model_state.hpp).
+mujoco::StateContact contact_of(const json::Value& c) {
+  auto number_of = [](const json::Value* v) { return v ? v->number : 0.0; };
+  mujoco::StateContact out;
+  out.geom1 = static_cast<int>(number_of(c.get("geom1")));
+  out.geom2 = static_cast<int>(number_of(c.get("geom2")));
+  out.body1 = static_cast<int>(number_of(c.get("body1")));
+  out.body2 = static_cast<int>(number_of(c.get("body2")));
+  out.explicit_pair = text_of(c.get("explicit_pair")) == "true";
+  out.dist = number_of(c.get("dist"));
+  auto fill = [&](const char* key, auto& array) {
+    const std::vector<double> v = numbers_of(c.get(key));
+    for (size_t i = 0; i < array.size() && i < v.size(); ++i) array[i] = v[i];
+  };
+  fill("pos", out.pos);
+  fill("normal", out.normal);
+  fill("friction", out.friction);
+  fill("solref", out.solref);
+  fill("solimp", out.solimp);
+  out.condim = static_cast<int>(number_of(c.get("condim")));
+  out.A = number_of(c.get("A"));
+  out.A_t = number_of(c.get("A_t"));
+  out.force = number_of(c.get("force"));
+  out.rows = static_cast<int>(number_of(c.get("rows")));
+  out.quadratic = static_cast<int>(number_of(c.get("quadratic")));
+  // The normal row and M⁻¹ times it arrive sparse: non-zero columns and values.
+  auto sparse = [&](const char* index_key, const char* value_key) {
+    mujoco::SparseRow row;
+    const std::vector<double> index = numbers_of(c.get(index_key));
+    row.value = numbers_of(c.get(value_key));
+    for (const double i : index) row.index.push_back(static_cast<int>(i));
+    return row;
+  };
+  out.jacobian = sparse("jacobian_index", "jacobian_value");
+  out.solved = sparse("solved_index", "solved_value");
+  if (const json::Value* tangents = c.get("tangents")) {
+    for (size_t k = 0; k < 2 && k < tangents->items.size(); ++k) {
+      const json::Value& t = tangents->items[k];
+      auto read_row = [&](const char* key) {
+        mujoco::SparseRow row;
+        if (const json::Value* r = t.get(key)) {
+          for (const double i : numbers_of(r->get("index")))
+            row.index.push_back(static_cast<int>(i));
+          row.value = numbers_of(r->get("value"));
+        }
+        return row;
+      };
+      out.tangent[k] = read_row("row");
+      out.tangent_solved[k] = read_row("solved");
+    }
+  }
+  return out;
+}
+
+// Every index the contact math reads is in range and every sparse row is
+// ascending columns of the model: the driver is this program's own, but a
+// model is anybody's.
+bool fits_together(const mujoco::ModelState& s) {
+  const size_t nbody = s.body_names.size(), ngeom = s.geom_names.size();
+  const auto nv = static_cast<size_t>(s.nv);
+  bool sound = s.body_weld.size() == nbody && s.body_mass.size() == nbody &&
+               s.body_invweight0.size() == 2 * nbody && s.geom_body.size() == ngeom &&
+               s.body_parent.size() == nbody && s.body_joints.size() == nbody &&
+               s.geom_mu.size() == ngeom && s.geom_condim.size() == ngeom &&
+               s.geom_collides.size() == ngeom && s.bias.size() == nv && s.qvel.size() == nv &&
+               s.qacc.size() == nv;
+  for (const int b : s.geom_body) sound = sound && b >= 0 && static_cast<size_t>(b) < nbody;
+  auto in = [](int i, size_t n) { return i >= 0 && static_cast<size_t>(i) < n; };
+  for (const mujoco::StateContact& c : s.contacts) {
+    sound = sound && in(c.geom1, ngeom) && in(c.geom2, ngeom) && in(c.body1, nbody) &&
+            in(c.body2, nbody);
+    for (const mujoco::SparseRow* row : {&c.jacobian, &c.solved, &c.tangent[0], &c.tangent[1],
+                                         &c.tangent_solved[0], &c.tangent_solved[1]}) {
+      sound = sound && row->index.size() == row->value.size();
+      for (size_t i = 0; i < row->index.size(); ++i)
+        sound = sound && in(row->index[i], nv) && (i == 0 || row->index[i] > row->index[i - 1]);
+    }
+  }
+  return sound;
+}
+
+}  // namespace
+
 mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
   const std::string path = std::filesystem::absolute(r.path).string();
   const Answer a = request(R"({"op":"state","path":)" + json::string(path) + R"(,"key":)" +
@@ -253,87 +338,9 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
   s.bias = numbers_of(a.get("bias"));
   s.qvel = numbers_of(a.get("qvel"));
   s.qacc = numbers_of(a.get("qacc"));
-  if (const json::Value* list = a.get("contacts")) {
-    for (const json::Value& c : list->items) {
-      mujoco::StateContact out;
-      out.geom1 = static_cast<int>(number(c.get("geom1")));
-      out.geom2 = static_cast<int>(number(c.get("geom2")));
-      out.body1 = static_cast<int>(number(c.get("body1")));
-      out.body2 = static_cast<int>(number(c.get("body2")));
-      out.explicit_pair = text_of(c.get("explicit_pair")) == "true";
-      out.dist = number(c.get("dist"));
-      auto fill = [&](const char* key, auto& array) {
-        const std::vector<double> v = numbers_of(c.get(key));
-        for (size_t i = 0; i < array.size() && i < v.size(); ++i) array[i] = v[i];
-      };
-      fill("pos", out.pos);
-      fill("normal", out.normal);
-      fill("friction", out.friction);
-      fill("solref", out.solref);
-      fill("solimp", out.solimp);
-      out.condim = static_cast<int>(number(c.get("condim")));
-      out.A = number(c.get("A"));
-      out.A_t = number(c.get("A_t"));
-      out.force = number(c.get("force"));
-      out.rows = static_cast<int>(number(c.get("rows")));
-      out.quadratic = static_cast<int>(number(c.get("quadratic")));
-      // The normal row and M⁻¹ times it arrive sparse: non-zero columns and values.
-      auto sparse = [&](const char* index_key, const char* value_key) {
-        mujoco::SparseRow row;
-        const std::vector<double> index = numbers_of(c.get(index_key));
-        row.value = numbers_of(c.get(value_key));
-        for (const double i : index) row.index.push_back(static_cast<int>(i));
-        return row;
-      };
-      out.jacobian = sparse("jacobian_index", "jacobian_value");
-      out.solved = sparse("solved_index", "solved_value");
-      if (const json::Value* tangents = c.get("tangents")) {
-        for (size_t k = 0; k < 2 && k < tangents->items.size(); ++k) {
-          const json::Value& t = tangents->items[k];
-          auto read_row = [&](const char* key) {
-            mujoco::SparseRow row;
-            if (const json::Value* r = t.get(key)) {
-              for (const double i : numbers_of(r->get("index")))
-                row.index.push_back(static_cast<int>(i));
-              row.value = numbers_of(r->get("value"));
-            }
-            return row;
-          };
-          out.tangent[k] = read_row("row");
-          out.tangent_solved[k] = read_row("solved");
-        }
-      }
-      bool columns = true;
-      for (const mujoco::SparseRow* row :
-           {&out.jacobian, &out.solved, &out.tangent[0], &out.tangent[1], &out.tangent_solved[0],
-            &out.tangent_solved[1]})
-        for (size_t i = 0; i < row->index.size(); ++i)
-          columns = columns && row->index.size() == row->value.size() && row->index[i] >= 0 &&
-                    row->index[i] < s.nv && (i == 0 || row->index[i] > row->index[i - 1]);
-      if (!columns) {
-        failed_ = true;
-        throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
-                          " answered a contact row that is not sparse columns of the model (" +
-                          fix_command() + ")");
-      }
-      s.contacts.push_back(out);
-    }
-  }
-  // Every index the contact math reads must be in range: the driver is
-  // this program's own, but a model is anybody's.
-  const size_t nbody = s.body_names.size(), ngeom = s.geom_names.size();
-  bool sound = s.body_weld.size() == nbody && s.body_mass.size() == nbody &&
-               s.body_invweight0.size() == 2 * nbody && s.geom_body.size() == ngeom &&
-               s.body_parent.size() == nbody && s.body_joints.size() == nbody &&
-               s.geom_mu.size() == ngeom && s.geom_condim.size() == ngeom &&
-               s.geom_collides.size() == ngeom && s.bias.size() == static_cast<size_t>(s.nv) &&
-               s.qvel.size() == static_cast<size_t>(s.nv) &&
-               s.qacc.size() == static_cast<size_t>(s.nv);
-  for (const int b : s.geom_body) sound = sound && b >= 0 && static_cast<size_t>(b) < nbody;
-  for (const mujoco::StateContact& c : s.contacts)
-    sound = sound && c.geom1 >= 0 && static_cast<size_t>(c.geom1) < ngeom && c.geom2 >= 0 &&
-            static_cast<size_t>(c.geom2) < ngeom;
-  if (!sound) {
+  if (const json::Value* list = a.get("contacts"))
+    for (const json::Value& c : list->items) s.contacts.push_back(contact_of(c));
+  if (!fits_together(s)) {
     failed_ = true;
     throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
                       " answered a state whose arrays do not fit together (" + fix_command() + ")");
