@@ -733,6 +733,9 @@ InspectReport inspect(const InspectOptions& options) {
   const ModelState& s = loaded.state;
   InspectReport rep = begin_report(s, options);
   if (options.pairs) {
+    // The probes' own messages are not the model's (a collision function
+    // at a margin raised to reach across the gap): kept off the terminal
+    // and MUJOCO_LOG.TXT, and an mju_error becomes an exception.
     std::vector<std::string> messages;
     WarningCapture capture(messages);
     const Context ctx{&s, integrator_of(s), !s.elliptic, options.slope};
