@@ -77,16 +77,28 @@ std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
 
 }  // namespace
 
-double energy_rise_tolerance(const Model& model, Integrator integrator, double available_energy,
-                             double dt) {
-  const double wdt = contact_stiffness(model).omega * dt;
-  const double oscillation = wdt < 1.0 ? 2.0 * (0.5 * wdt) / (1.0 - 0.5 * wdt) : 1.0;
+StepStability reference_stability(const Model& model, Integrator integrator, double dt) {
+  const ContactStiffness cs = contact_stiffness(model);
+  StepStability s;
+  s.scheme = integrator;
+  s.omega_dt = cs.omega * dt;
+  s.limit = stability_limit(integrator, cs.zeta);
+  if (model.contact.damping == DampingLaw::Compression && integrator != Integrator::ExplicitEuler)
+    s.limit = std::min(s.limit, stability_limit(integrator, 0.0));
+  return s;
+}
+
+double energy_rise_tolerance(const StepStability& stability, double available_energy) {
+  const double rounding = 1e-9 * available_energy;
+  const double wdt = stability.omega_dt;
   // Explicit Euler's growth over one undamped contact: π/(ω·Δt) steps of 1 + (ω·Δt)².
   const double growth =
-      integrator == Integrator::ExplicitEuler
+      stability.scheme == Integrator::ExplicitEuler
           ? std::expm1(std::log1p(wdt * wdt) * std::acos(-1.0) / std::max(wdt, 1e-300))
           : 0.0;
-  return available_energy * (std::min(1.0, oscillation + growth) + 1e-9);
+  if (stability.beyond()) return available_energy * std::min(1.0, growth) + rounding;
+  const double oscillation = wdt < 1.0 ? 2.0 * (0.5 * wdt) / (1.0 - 0.5 * wdt) : 1.0;
+  return available_energy * std::min(1.0, oscillation + growth) + rounding;
 }
 
 double free_flight_gain(const Model& model, Integrator integrator, double dt, long long steps) {
@@ -116,6 +128,16 @@ std::string describe_energy_rise(const EnergyBalance& b, double available_energy
   } else if (!b.rise_in_contact) {
     cause = std::string(integrator_title(scene.sim.integrator)) +
             " does not gain energy in free flight, and nothing touched during this rise";
+  } else if (b.stability.beyond()) {
+    const std::string scheme(integrator_title(b.stability.scheme));
+    cause = "ω·Δt = " + format("%.3g", b.stability.omega_dt) + " on the contact is beyond the " +
+            scheme + " limit " + format("%.3g", b.stability.limit) +
+            (b.stability.scheme != scene.sim.integrator
+                 ? " (the engine integrates the contact force with " + scheme + ")"
+                 : std::string()) +
+            ", where every step in contact adds energy (no oscillation bound holds, only "
+            "rounding is allowed); try --dt " +
+            format("%.2g", 0.5 * scene.sim.dt * b.stability.limit / b.stability.omega_dt);
   } else {
     cause = "the contact is resolved with ω·Δt = " + format("%.3g", wdt) +
             "; a smaller --dt shrinks the rise";

@@ -64,6 +64,25 @@ class DivergenceMonitor {
   double max_depth_ = 0.0;
 };
 
+// An engine's contact in its linear regime at its step (Stepper::stability()):
+// the scheme that integrates the contact force, ω·Δt, and that scheme's
+// stability limit on ω·Δt (core/integrators.hpp, stability_limit) at the
+// contact's damping.
+struct StepStability {
+  Integrator scheme = Integrator::SemiImplicitEuler;
+  double omega_dt = 0.0;
+  double limit = 0.0;
+  bool beyond() const { return omega_dt > limit; }
+};
+
+// The reference's: ω = √(k_max/m_eff) and ζ of contact_stiffness(). The
+// compression law damps only while the point moves in, so its rebound is an
+// undamped oscillator and the limit is the smaller of those at ζ and at 0 —
+// except for explicit Euler, which has no stable step on an undamped
+// oscillator: its rebound gain is an allowance of its own (the growth term
+// below), and its limit is the one at ζ.
+StepStability reference_stability(const Model& model, Integrator integrator, double dt);
+
 // The energy balance of a run without applied forces. A passive system's
 // mechanical energy never rises: E(t₂) ≤ E(t₁) for t₂ > t₁. An integrator
 // makes it oscillate: semi-implicit Euler on the contact oscillator of
@@ -78,8 +97,9 @@ class DivergenceMonitor {
 // growing over several bounces or a long rest exceeds it. The tolerance on
 // the rise is therefore
 //   rise_tolerance = E_avail·min(1, 2·(ω·Δt/2)/(1 − ω·Δt/2) + growth) + 1e-9·E_avail
-// (E_avail: the monitor's available energy; the 1e-9 covers rounding), plus,
-// for explicit Euler, its own gain in free flight (free_flight_gain()). A rise
+// (E_avail: the monitor's available energy; the 1e-9 covers rounding) below
+// the scheme's stability limit, the rounding term alone beyond it, plus, for
+// explicit Euler, its own gain in free flight (free_flight_gain()). A rise
 // beyond it is not physics: the command line fails the run (exit 3) unless
 // --allow-nonphysical keeps it with a warning; beyond E_avail itself the
 // divergence rule stops the run.
@@ -91,13 +111,19 @@ struct EnergyBalance {
   double tolerance = 0.0;         // rise_tolerance above, J
   double free_flight_gain = 0.0;  // the part of it that is explicit Euler's free flight, J
   bool rise_in_contact = false;   // a contact was active during the largest rise
+  StepStability stability;        // the engine's contact at its step
   bool exceeded() const { return max_rise > tolerance; }
 };
 
-// The tolerance of the rise for the model at time step dt (the oscillation
-// in contact; without the free-flight term).
-double energy_rise_tolerance(const Model& model, Integrator integrator, double available_energy,
-                             double dt);
+// The tolerance of the rise (the oscillation in contact; without the
+// free-flight term). Beyond the limit the oscillation bound does not hold:
+// the contact's linear update has an eigenvalue of modulus above one, so the
+// energy in contact grows every step and no rise is the integrator's
+// bounded error — the tolerance is the rounding term (1e-9·E_avail) and,
+// for explicit Euler, one contact's growth (below; it has no stable step on
+// an undamped rebound, so that growth is its every contact's, derived, and
+// a rise beyond it is not). A run that gains more there is not physics.
+double energy_rise_tolerance(const StepStability& stability, double available_energy);
 
 // An integrator's own energy gain in free flight under gravity, over `steps`
 // steps of dt (all of them in flight, at most). Explicit Euler moves the body

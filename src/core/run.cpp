@@ -29,9 +29,9 @@ RunResult run(Stepper& stepper, const SimParams& sim,
   result.available_energy = monitor.available_energy();
   balance.initial = balance.final = energy(stepper.model(), stepper.contacts(), stepper.state());
   balance.free_flight_gain = free_flight_gain(stepper.model(), sim.integrator, sim.dt, steps);
-  balance.tolerance =
-      energy_rise_tolerance(stepper.model(), sim.integrator, monitor.available_energy(), sim.dt) +
-      balance.free_flight_gain;
+  balance.stability = stepper.stability();
+  balance.tolerance = energy_rise_tolerance(balance.stability, monitor.available_energy()) +
+                      balance.free_flight_gain;
   // Where the run ended (DepthRecord), also when it stops early.
   auto record_end = [&](double t) {
     result.depth.size = body_size(stepper.model().body);

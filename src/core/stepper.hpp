@@ -49,6 +49,10 @@ class Stepper {
   virtual const ContactSet& contacts() const = 0;  // at state().q
   // The scene's model (the divergence rule and energies use it).
   virtual const Model& model() const = 0;
+  // Its contact in the linear regime at its step: the scheme that integrates
+  // the contact force, ω·Δt and that scheme's limit (core/divergence.hpp);
+  // the run loop allows an energy rise by it.
+  virtual StepStability stability() const = 0;
   // "ref semi_implicit_euler", "mujoco calibrated Euler", …
   virtual std::string describe() const = 0;
   // Why a run on this engine diverged, and what to try, in the engine's own
@@ -71,6 +75,9 @@ class ReferenceStepper final : public Stepper {
   const State& state() const override { return state_; }
   const ContactSet& contacts() const override { return ws_.contacts; }
   const Model& model() const override { return model_; }
+  StepStability stability() const override {
+    return reference_stability(model_, integrator_, dt_);
+  }
   std::string describe() const override;
 
  private:

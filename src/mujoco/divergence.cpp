@@ -22,8 +22,22 @@ Integrator contact_scheme(Integrator integrator) {
 
 MujocoContactRegime mujoco_contact_regime(const Scene& scene, const SolverSettings& settings,
                                           double inv_weight) {
+  return mujoco_contact_regime(make_model(scene), settings, inv_weight);
+}
+
+StepStability mujoco_stability(const Model& model, Integrator integrator, double dt,
+                               const SolverSettings& settings, double inv_weight) {
+  const MujocoContactRegime r = mujoco_contact_regime(model, settings, inv_weight);
+  StepStability s;
+  s.scheme = contact_scheme(integrator);
+  s.omega_dt = r.omega * dt;
+  s.limit = stability_limit(s.scheme, r.zeta);
+  return s;
+}
+
+MujocoContactRegime mujoco_contact_regime(const Model& model, const SolverSettings& settings,
+                                          double inv_weight) {
   MujocoContactRegime r;
-  const Model model = make_model(scene);
   r.inv_mass = 1.0 / contact_stiffness(model).m_eff;
   r.inv_weight = inv_weight > 0.0 ? inv_weight : r.inv_mass;
   r.impedance = settings.solimp[1];
@@ -34,7 +48,7 @@ MujocoContactRegime mujoco_contact_regime(const Scene& scene, const SolverSettin
   const double omega2 = r.inv_mass * gains.stiffness / denominator;
   r.omega = std::sqrt(std::max(0.0, omega2));
   r.zeta = r.omega > 0.0 ? r.inv_mass * gains.damping / denominator / (2.0 * r.omega) : 0.0;
-  if (scene.contact.mu > 0.0 || scene.contact.mu_roll > 0.0) {
+  if (model.contact.mu > 0.0 || model.contact.mu_roll > 0.0) {
     // Tangential rows: R_t = R/impratio, no spring.
     const double tangential =
         d * r.inv_mass + (1.0 - d) * r.inv_weight / std::max(settings.impratio, 1e-300);

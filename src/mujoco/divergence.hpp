@@ -37,8 +37,17 @@ struct MujocoContactRegime {
   double friction_rate =
       0.0;  // 1/s: impratio·(damping) on the tangential rows (0 without friction)
 };
+MujocoContactRegime mujoco_contact_regime(const Model& model, const SolverSettings& settings,
+                                          double inv_weight);
 MujocoContactRegime mujoco_contact_regime(const Scene& scene, const SolverSettings& settings,
                                           double inv_weight);
+
+// The regime as the run loop's energy rule sees it (Stepper::stability()):
+// ω·Δt of the oscillator above and the limit of the scheme MuJoCo integrates
+// the contact force with — semi-implicit Euler for its Euler and implicit
+// integrators, RK4 for its RK4 — at its ζ (MuJoCo's damping acts both ways).
+StepStability mujoco_stability(const Model& model, Integrator integrator, double dt,
+                               const SolverSettings& settings, double inv_weight);
 
 // One paragraph: when and what (core divergence_event), MuJoCo's integrator
 // and Δt, the model's solref/solimp/impratio, ω and ζ as MuJoCo sees them,

@@ -26,6 +26,7 @@ MujocoStepper::MujocoStepper(const Scene& scene, const GeneratedModel& generated
 MujocoStepper::MujocoStepper(const Scene& scene, const std::string& xml, const std::string& origin)
     : model_(make_model(scene)),
       integrator_(scene.sim.integrator),
+      dt_(scene.sim.dt),
       model_ptr_(load_model(xml, origin)),
       data_(make_data(model_ptr_.get())),
       contacts_(model_) {
@@ -83,9 +84,19 @@ std::string MujocoStepper::describe() const {
          std::string(mujoco_integrator(integrator_));
 }
 
+double MujocoStepper::contact_inv_weight() const {
+  // Â of the body the contact geoms are on: the mapping's (compensated moves
+  // them onto a body of its own), else body 1's body_invweight0
+  // (translational, rotational: Â is the first).
+  return settings_.inv_mass > 0.0 ? settings_.inv_mass : model_ptr_->body_invweight0[2];
+}
+
+StepStability MujocoStepper::stability() const {
+  return mujoco_stability(model_, integrator_, dt_, settings_, contact_inv_weight());
+}
+
 std::string MujocoStepper::explain(const Divergence& d, const Scene& scene) const {
-  // body_invweight0 of body 1: (translational, rotational); Â is the first.
-  return describe_mujoco_divergence(d, scene, settings_, model_ptr_->body_invweight0[2]);
+  return describe_mujoco_divergence(d, scene, settings_, contact_inv_weight());
 }
 
 std::vector<std::string> MujocoStepper::warnings() const {

@@ -43,6 +43,8 @@ class MujocoStepper final : public Stepper {
   const State& state() const override { return state_; }
   const ContactSet& contacts() const override { return contacts_; }
   const Model& model() const override { return model_; }
+  // MuJoCo's soft constraint under its integrator (mujoco/divergence.hpp).
+  StepStability stability() const override;
   std::string describe() const override;
   // MuJoCo's terms (mujoco/divergence.hpp).
   std::string explain(const Divergence& d, const Scene& scene) const override;
@@ -55,11 +57,13 @@ class MujocoStepper final : public Stepper {
   std::vector<std::string> warnings() const;
 
  private:
+  double contact_inv_weight() const;  // Â of the contact geoms' body
   MujocoStepper(const Scene& scene, const GeneratedModel& generated, const std::string& source);
   void read_state();
 
   Model model_;
   Integrator integrator_;
+  double dt_;
   SolverSettings settings_;
   ModelPtr model_ptr_;
   DataPtr data_;

@@ -40,6 +40,7 @@ Mujoco3Stepper::Mujoco3Stepper(const Scene& scene, const std::string& xml,
                                const std::string& origin, const mujoco::SolverSettings& settings)
     : model_(make_model(scene)),
       integrator_(scene.sim.integrator),
+      dt_(scene.sim.dt),
       settings_(settings),
       xml_(xml),
       node_(Node::of_this_thread()),
@@ -128,8 +129,18 @@ std::string Mujoco3Stepper::describe() const {
          std::string(mujoco::mujoco_integrator(integrator_));
 }
 
+double Mujoco3Stepper::contact_inv_weight() const {
+  // As MujocoStepper's: the mapping's Â, else body 1's.
+  return settings_.inv_mass > 0.0 ? settings_.inv_mass : loaded_.body_invweight0.at(2);
+}
+
+StepStability Mujoco3Stepper::stability() const {
+  return mujoco::mujoco_stability(model_, integrator_, dt_, settings_,
+                                  contact_inv_weight());
+}
+
 std::string Mujoco3Stepper::explain(const Divergence& d, const Scene& scene) const {
-  return mujoco::describe_mujoco_divergence(d, scene, settings_, loaded_.body_invweight0.at(2));
+  return mujoco::describe_mujoco_divergence(d, scene, settings_, contact_inv_weight());
 }
 
 std::vector<std::string> Mujoco3Stepper::warnings() const {

@@ -49,6 +49,8 @@ class Mujoco3Stepper final : public Stepper {
   const State& state() const override { return state_; }
   const ContactSet& contacts() const override { return contacts_; }
   const Model& model() const override { return model_; }
+  // MuJoCo's soft constraint under its integrator (mujoco/divergence.hpp).
+  StepStability stability() const override;
   std::string describe() const override;
   std::string explain(const Divergence& d, const Scene& scene) const override;
   RunFacts facts(const Scene& scene) const override;
@@ -59,6 +61,7 @@ class Mujoco3Stepper final : public Stepper {
   std::vector<std::string> warnings() const;
 
  private:
+  double contact_inv_weight() const;  // Â of the contact geoms' body
   Mujoco3Stepper(const Scene& scene, const mujoco::GeneratedModel& generated,
                  const std::string& source);
   void fetch();
@@ -66,6 +69,7 @@ class Mujoco3Stepper final : public Stepper {
 
   Model model_;
   Integrator integrator_;
+  double dt_;
   mujoco::SolverSettings settings_;
   std::string xml_;
   std::shared_ptr<Node> node_;  // this thread's, kept alive while the model is loaded

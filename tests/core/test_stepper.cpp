@@ -120,6 +120,7 @@ class FailingStepper final : public Stepper {
   const State& state() const override { return state_; }
   const ContactSet& contacts() const override { return contacts_; }
   const Model& model() const override { return model_; }
+  StepStability stability() const override { return {}; }
   std::string describe() const override { return "failing"; }
 
  private:

@@ -79,6 +79,22 @@ class Mujoco3Cli : public ::testing::Test {
   fs::path dir_;
 };
 
+// Energy gained beyond the stability limit fails on 3.14 as on 2.2.2
+// (tests/cli/test_nonphysical.cpp, MujocoBeyondItsLimitFailsToo: the same
+// box, ω = 200 rad/s, ζ = 0.5, limit 1.236 at ω·Δt = 1.4).
+TEST_F(Mujoco3Cli, EnergyGainedBeyondTheStabilityLimitFails) {
+  std::ofstream(dir_ / "work" / "tilted.toml")
+      << "scene = \"box\"\n[body]\nmass = 1.0\nwidth = 0.4\nheight = 0.2\n[contact]\n"
+         "k = 1e4\nc = 50.0\nmu = 0.5\nalpha = 100.0\ndamping = \"compression\"\n"
+         "[initial]\ny = 0.6\ntheta = 0.3\nvx = 1.0\n[sim]\ndt = 0.007\nduration = 2.0\n"
+         "integrator = \"implicit_euler\"\n";
+  const Result r = run("simulate tilted.toml --engine mujoco3 --csv out.csv");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("not physics: energy rose by"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("beyond the semi-implicit Euler limit 1.24"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "work" / "out.csv"));
+}
+
 void expect_one_line(const std::string& err, const std::string& needle) {
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   EXPECT_NE(err.find(needle), std::string::npos) << err;
