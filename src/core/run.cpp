@@ -1,5 +1,7 @@
 #include "core/run.hpp"
 
+#include "core/cancel.hpp"
+
 #include <algorithm>
 #include <limits>
 
@@ -44,6 +46,7 @@ RunResult run(Stepper& stepper, const SimParams& sim,
   on_sample({0.0, stepper.state()});
   stepper.plan(steps);
   for (long long i = 1; i <= steps; ++i) {
+    if ((i & 1023) == 0) throw_if_cancelled();  // a Python Ctrl-C (core/cancel.hpp)
     const double t = static_cast<double>(i) * sim.dt;
     double e = balance.final;
     result.divergence = check_step(stepper.step(), stepper, monitor, t, 0.0, &e);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "core/cancel.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 
@@ -212,7 +213,10 @@ LoadedState load_model_state(const StateRequest& r) {
                        " has a number that is not finite (" + format_number(d->qpos[i]) +
                        " at qpos[" + std::to_string(i) + "])");
   const long steps = std::min(kMaxSettleSteps, std::lround(r.settle / m->opt.timestep));
-  for (long i = 0; i < steps; ++i) mj_step(m, d);
+  for (long i = 0; i < steps; ++i) {
+    if ((i & 1023) == 0) throw_if_cancelled();  // a Python Ctrl-C (core/cancel.hpp)
+    mj_step(m, d);
+  }
   mj_forward(m, d);
   // MuJoCo resets mjData when a state goes bad (autoreset): what is read
   // then is qpos0 again, not a settled model.

@@ -14,7 +14,8 @@
 // Errors become Python exceptions with the program's one-line message:
 // InputError (bad input) → ValueError, a file that does not exist →
 // FileNotFoundError, a divergence or a run that is not physics →
-// RuntimeError. The GIL is released while engines run.
+// RuntimeError. The engines run on a worker thread with the GIL released,
+// and Ctrl-C stops them with KeyboardInterrupt (python/interruptible.hpp).
 //
 // Enumerations cross as their names (the scene file's words: "box",
 // "kelvin_voigt", "rk4"), through the core's name and parse functions.
@@ -38,6 +39,7 @@
 #include "mujoco/mjcf.hpp"
 #include "mujoco/solref_request.hpp"
 #include "mujoco3/own_model.hpp"
+#include "python/interruptible.hpp"
 
 namespace py = pybind11;
 using namespace contact2d;
@@ -169,11 +171,8 @@ py::dict py_simulate(const py::object& scene_object, const std::string& engine,
   const engines::EngineSpec spec = engines::engine_with_options(
       engine, {{"mapping", mapping}, {"geometry", geometry}, {"friction", friction}}, model_dt,
       source, python_keyword);
-  engines::EngineRun run;
-  {
-    py::gil_scoped_release release;
-    run = engines::run_engine(spec, scene);
-  }
+  const engines::EngineRun run =
+      python::interruptible([&] { return engines::run_engine(spec, scene); });
   if (run.trajectory.divergence) throw RunFailed(source + ": " + run.divergence_message);
   std::vector<std::string> warnings = run.warnings;
   if (const std::string reason = nonphysical(run.trajectory, scene); !reason.empty()) {
@@ -208,10 +207,10 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
           engine_names, {{"mapping", mapping}, {"geometry", geometry}, {"friction", friction}},
           model_dt, source, python_keyword));
   std::vector<std::string> warnings;
-  {
-    py::gil_scoped_release release;
+  python::interruptible([&] {
     analysis::run_engines(c);
-  }
+    return true;
+  });
   for (const analysis::ComparedRun& r : c.runs)
     for (const std::string& w : r.run.warnings) warnings.push_back(r.label + " warning: " + w);
   for (const analysis::RunProblem& p : analysis::run_problems(c)) {
@@ -219,10 +218,10 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
     if (!allow_nonphysical) throw RunFailed(not_physics(source, p.engine, p.message, false));
     warnings.push_back(not_physics(source, p.engine, p.message, true));
   }
-  {
-    py::gil_scoped_release release;
+  python::interruptible([&] {
     analysis::measure(c, converged_tol, diagnosis);
-  }
+    return true;
+  });
   py::dict out;
   out["json"] = analysis::comparison_json(c, source);
   for (const analysis::ComparedRun& r : c.runs)
@@ -250,11 +249,8 @@ py::dict py_generate(const py::object& scene_object, const std::optional<std::st
     throw InputError("friction = " + friction + ": unknown (shared, damper)");
   options.friction_damper = friction == "damper";
   if (engine == "mujoco3") options.version = mujoco::Version::V3;
-  mujoco::GeneratedModel model;
-  {
-    py::gil_scoped_release release;
-    model = mujoco::generate_mjcf(scene, options);
-  }
+  const mujoco::GeneratedModel model =
+      python::interruptible([&] { return mujoco::generate_mjcf(scene, options); });
   std::vector<std::string> notes;
   if (model.settings.refsafe_clamped)
     notes.push_back("timeconst " + format_number(model.settings.solref[0]) +
@@ -268,13 +264,11 @@ py::dict py_generate(const py::object& scene_object, const std::optional<std::st
 
 py::dict py_solref(const mujoco::SolrefRequest& request) {
   std::vector<std::string> notes;
-  mujoco::SolrefReport report;
-  {
-    py::gil_scoped_release release;
-    report = reading(request.model, [&] {
+  const mujoco::SolrefReport report = python::interruptible([&] {
+    return reading(request.model, [&] {
       return mujoco3::solref(request, [&notes](const std::string& line) { notes.push_back(line); });
     });
-  }
+  });
   py::dict out;
   out["json"] = mujoco::format_report_json(report);
   out["notes"] = notes;
@@ -291,11 +285,8 @@ py::dict py_inspect(const std::string& path, const std::string& key, bool pairs,
   options.slope = slope;
   options.settle = settle;
   options.estimate_loads = estimate_loads;
-  mujoco::InspectReport report;
-  {
-    py::gil_scoped_release release;
-    report = reading(path, [&] { return mujoco3::inspect(options, engine); });
-  }
+  const mujoco::InspectReport report = python::interruptible(
+      [&] { return reading(path, [&] { return mujoco3::inspect(options, engine); }); });
   std::vector<std::string> notes;
   if (!report.load_warning.empty())
     notes.push_back("MuJoCo warns while loading " + path + ": " + report.load_warning);

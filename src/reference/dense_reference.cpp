@@ -1,5 +1,7 @@
 #include "reference/dense_reference.hpp"
 
+#include "core/cancel.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -488,6 +490,7 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
   };
 
   while (t < duration) {
+    throw_if_cancelled();  // a Python Ctrl-C (core/cancel.hpp)
     if (stats.accepted + stats.rejected >= options.max_steps) {
       return fail("more than " + std::to_string(options.max_steps) + " steps");
     }
