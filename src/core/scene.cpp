@@ -1,5 +1,6 @@
 #include "core/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace contact2d {
@@ -200,7 +201,13 @@ long long step_count(const SimParams& sim) {
 }
 
 long long sample_stride(const SimParams& sim) {
-  const long long stride = std::llround(sim.output_dt / sim.dt);
+  // A stride of the run's steps or more samples only t = 0 and the end, so
+  // it is clamped there: llround's result is unspecified beyond long long's
+  // range (output_dt above ~9.2e18·dt sampled every step).
+  const double ratio = sim.output_dt / sim.dt;
+  const long long steps = step_count(sim);
+  if (!(ratio < static_cast<double>(steps))) return std::max(steps, 1LL);
+  const long long stride = std::llround(ratio);
   return stride < 1 ? 1 : stride;
 }
 

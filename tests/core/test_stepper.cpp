@@ -96,6 +96,22 @@ TEST(RunLoop, SamplesEveryOutputDtAndTheEnd) {
     EXPECT_NEAR(t.samples[i].t, 0.01 * static_cast<double>(i), 1e-12);
 }
 
+// An output_dt longer than the run samples t = 0 and the end only, however
+// long: 1e300 s (1e304 steps of 1e-4 s) overflowed llround, whose result
+// then made the stride 1 and sampled all 1001 steps.
+TEST(RunLoop, AnOutputDtBeyondTheRunSamplesTheStartAndTheEnd) {
+  Scene scene = tumbling_box(Integrator::RK4);
+  scene.sim.duration = 0.1;
+  for (const double output_dt : {0.2, 1e15, 1e300}) {
+    scene.sim.output_dt = output_dt;
+    EXPECT_EQ(sample_stride(scene.sim), step_count(scene.sim)) << output_dt;
+    const Trajectory t = simulate(scene);
+    ASSERT_EQ(t.samples.size(), 2u) << output_dt;
+    EXPECT_EQ(t.samples[0].t, 0.0);
+    EXPECT_NEAR(t.samples[1].t, 0.1, 1e-12);
+  }
+}
+
 TEST(RunLoop, StopsAtTheFirstDivergence) {
   // Explicit Euler on an undamped stiff contact gains energy every bounce.
   Scene scene = default_scene(Shape::PointMass);
