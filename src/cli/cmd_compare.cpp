@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -25,6 +26,7 @@
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/json.hpp"
+#include "io/interrupt.hpp"
 #include "io/plot.hpp"
 #include "io/table.hpp"
 #ifdef CONTACT2D_WITH_WINDOW
@@ -292,7 +294,10 @@ int compare(const CompareOptions& options) {
   }
   if (stop) return kExitDiverged;
   analysis::measure(c, options.converged_tol, !options.no_diagnosis);
-  if (csv) write_csv(*csv, c);  // committed last: a plot or video that fails leaves no CSV
+  // Every output is made first and committed at the end, together: a plot
+  // or video that fails, or an interrupt, leaves none of them.
+  if (csv) write_csv(*csv, c);
+  std::unique_ptr<AtomicFile> plot, video;
   if (!options.plot.empty()) {
     const ComparedRun& a = c.runs[0];
     const ComparedRun& b = c.runs[1];  // the plot draws the first two
@@ -304,7 +309,8 @@ int compare(const CompareOptions& options) {
         (options_first.empty() ? "" : options_first + ", ") +
         (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
         " damping";
-    plot_comparison(options.plot, title, a.run.trajectory, b.run.trajectory, a.label, b.label);
+    plot = std::make_unique<AtomicFile>(options.plot);
+    plot_comparison(*plot, title, a.run.trajectory, b.run.trajectory, a.label, b.label);
   }
 #ifdef CONTACT2D_WITH_WINDOW
   if (!options.video.empty()) {
@@ -321,10 +327,20 @@ int compare(const CompareOptions& options) {
                (options_first.empty() ? "" : ", " + options_first);
     in.reference_label = a.label;
     in.second_label = b.label;
-    game::write_comparison_video(options.video, in);
+    video = game::render_comparison_video(options.video, in);
   }
 #endif
-  if (csv) csv->commit();
+  {
+    // Renames are instant: with interrupts held they happen all or none. A
+    // FIFO or device is written through and may wait for its reader, so
+    // with one among them Ctrl-C stays possible (and may come between).
+    std::optional<InterruptsHeld> held;
+    if ((!csv || !csv->streams()) && (!plot || !plot->streams()) && (!video || !video->streams()))
+      held.emplace();
+    if (csv) csv->commit();
+    if (plot) plot->commit();
+    if (video) video->commit();
+  }
   if (options.json) {
     std::cout << analysis::comparison_json(c, options.scene.path);
   } else {

@@ -341,6 +341,19 @@ void check_video_path(const std::string& path) {
 
 void write_comparison_video(const std::string& path, const ComparisonVideoInput& in, int fps,
                             int width, int height, OffscreenBackend backend) {
+  const std::unique_ptr<AtomicFile> video =
+      render_comparison_video(path, in, fps, width, height, backend);
+  try {
+    video->commit();
+  } catch (const InputError& e) {
+    throw InputError(std::string("--video ") + e.what());
+  }
+}
+
+std::unique_ptr<AtomicFile> render_comparison_video(const std::string& path,
+                                                    const ComparisonVideoInput& in, int fps,
+                                                    int width, int height,
+                                                    OffscreenBackend backend) {
   check_video_path(path);
   if (!in.scene || !in.reference || !in.second)
     throw InputError("--video " + path + ": needs a scene, a reference and a second trajectory");
@@ -368,7 +381,7 @@ void write_comparison_video(const std::string& path, const ComparisonVideoInput&
     context.read_pixels(pixels);
     if (!video.write(pixels)) break;  // ffmpeg is gone; finish() says why
   }
-  video.finish();
+  return video.finish_uncommitted();
 }
 
 }  // namespace contact2d::game

@@ -30,11 +30,13 @@
 // "--video needs a display: run under xvfb-run, or set DISPLAY (...)".
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "core/run.hpp"
 #include "core/scene.hpp"
 #include "game/offscreen.hpp"
+#include "io/atomic_file.hpp"
 #include "reference/dense_reference.hpp"
 
 namespace contact2d::game {
@@ -69,11 +71,19 @@ void check_video_path(const std::string& path);
 
 // Writes the video. Throws InputError for a bad path (see check_video_path),
 // a missing input, fps outside [1, 240], a size that is odd or outside
-// [64, 4096], no offscreen context (see above), or ffmpeg failing; nothing
-// is left at `path` (nor "<path>.tmp") then. `backend` chooses the
-// offscreen context (tests pin one; a command leaves it at Auto).
+// [64, 4096], no offscreen context (see above), or ffmpeg failing or
+// leaving a file that does not decode with every frame (game/video.hpp);
+// nothing is left at `path` then. `backend` chooses the offscreen context
+// (tests pin one; a command leaves it at Auto).
 void write_comparison_video(const std::string& path, const ComparisonVideoInput& input,
                             int fps = 30, int width = 960, int height = 540,
                             OffscreenBackend backend = OffscreenBackend::Auto);
+
+// The same video, finished and checked but not yet in place: a command
+// commits it together with its other outputs, so that an interrupt leaves
+// all of them or none.
+std::unique_ptr<AtomicFile> render_comparison_video(
+    const std::string& path, const ComparisonVideoInput& input, int fps = 30, int width = 960,
+    int height = 540, OffscreenBackend backend = OffscreenBackend::Auto);
 
 }  // namespace contact2d::game

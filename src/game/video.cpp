@@ -1,16 +1,13 @@
 #include "game/video.hpp"
 
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <cerrno>
 #include <csignal>
-#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <utility>
+#include <variant>
 
 #include "core/input_error.hpp"
-#include "io/interrupt.hpp"
 
 namespace contact2d::game {
 namespace {
@@ -24,13 +21,7 @@ const char* const kGifFilter =
 VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps,
                          VideoFormat format, std::string option)
     : path_(path), option_(std::move(option)), out_(std::make_unique<AtomicFile>(path)) {
-  // A write to a dead ffmpeg must fail with EPIPE, not kill the game.
-  std::signal(SIGPIPE, SIG_IGN);
   const std::string& temporary = out_->temp_path();
-  int fds[2];
-  if (pipe(fds) != 0)
-    throw InputError(option_ + " " + path + ": cannot create a pipe (" + std::strerror(errno) +
-                     ")");
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   const std::string rate = std::to_string(fps);
   std::vector<std::string> args = {
@@ -43,78 +34,92 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, int fps
                                      "veryfast",  "-crf",       "20",   "-pix_fmt", "yuv420p",
                                      "-movflags", "+faststart", "-f",   "mp4",      temporary};
   args.insert(args.end(), encoding.begin(), encoding.end());
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
-  posix_spawn_file_actions_addclose(&actions, fds[1]);
-  posix_spawn_file_actions_addclose(&actions, fds[0]);
-  // No interrupt between starting ffmpeg and registering it and its file
-  // (io/interrupt.hpp); ffmpeg itself starts with no signal blocked.
-  const InterruptsHeld held;
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  sigset_t none;
-  sigemptyset(&none);
-  posix_spawnattr_setsigmask(&attributes, &none);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
-  const int rc = posix_spawnp(&pid_, "ffmpeg", &actions, &attributes, argv.data(), environ);
-  posix_spawnattr_destroy(&attributes);
-  posix_spawn_file_actions_destroy(&actions);
-  close(fds[0]);
-  if (rc != 0) {
-    close(fds[1]);
-    throw InputError(option_ + " " + path + ": cannot start ffmpeg (" + std::strerror(rc) +
+  try {
+    ffmpeg_ = std::make_unique<ChildProcess>(args, std::string(), /*writes_output=*/true);
+  } catch (const ChildProcessError& e) {
+    throw InputError(option_ + " " + path + ": cannot start ffmpeg (" +
+                     std::strerror(e.spawn_error ? e.spawn_error : EIO) +
                      "); install Debian's ffmpeg package");
   }
-  pipe_ = fdopen(fds[1], "wb");
-  register_child(pid_);
 }
 
 VideoWriter::~VideoWriter() { abandon(); }
 
 void VideoWriter::abandon() {
-  if (pid_ < 0) return;
-  if (pipe_) std::fclose(pipe_);
-  pipe_ = nullptr;
-  kill(pid_, SIGTERM);
-  int status = 0;
-  waitpid(pid_, &status, 0);
-  register_child(0);
-  pid_ = -1;
-  out_.reset();  // removes the temporary
+  if (!ffmpeg_) return;
+  ::kill(ffmpeg_->pid(), SIGTERM);
+  ffmpeg_.reset();  // waits for it (and kills it if it lingers)
+  out_.reset();     // removes the temporary
 }
 
 bool VideoWriter::write(const std::vector<unsigned char>& rgb) {
-  if (!pipe_) return false;
-  return std::fwrite(rgb.data(), 1, rgb.size(), pipe_) == rgb.size();
+  if (!ffmpeg_) return false;
+  try {
+    ffmpeg_->write(reinterpret_cast<const char*>(rgb.data()), rgb.size());
+  } catch (const ChildProcessError&) {
+    return false;  // finish() says why
+  }
+  ++frames_;
+  return true;
+}
+
+namespace {
+
+// The frames of the video at `file` as ffprobe decodes them, or the reason
+// it cannot.
+std::variant<long long, std::string> decoded_frames(const std::string& file) {
+  try {
+    ChildProcess probe({"ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0",
+                        "-show_entries", "stream=nb_read_frames", "-of",
+                        "default=noprint_wrappers=1:nokey=1", file});
+    const ChildEnding end = probe.finish();
+    char* rest = nullptr;
+    const long long n = std::strtoll(end.output.c_str(), &rest, 10);
+    if (end.status != 0 || rest == end.output.c_str()) return "ffprobe " + end.description;
+    return n;
+  } catch (const ChildProcessError& e) {
+    return std::string(e.what());
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<AtomicFile> VideoWriter::finish_uncommitted() {
+  if (!ffmpeg_) throw InputError(option_ + " " + path_ + ": the video was abandoned");
+  const ChildEnding end = ffmpeg_->finish();
+  ffmpeg_.reset();
+  if (end.status != 0) {
+    out_.reset();
+    throw InputError(option_ + " " + path_ + ": ffmpeg failed (" +
+                     (end.status > 0 ? "exit status " + std::to_string(end.status)
+                                     : end.description) +
+                     "); no video written");
+  }
+  // ffmpeg exits 0 on some write errors (a full disk: it cannot write an
+  // MP4's index or the end of a GIF): decode what it wrote.
+  const auto frames = decoded_frames(out_->temp_path());
+  if (const auto* why = std::get_if<std::string>(&frames)) {
+    out_.reset();
+    throw InputError(option_ + " " + path_ + ": ffmpeg's file does not decode (" + *why +
+                     "; a full disk?); no video written");
+  }
+  if (const long long n = std::get<long long>(frames); n != frames_) {
+    out_.reset();
+    throw InputError(option_ + " " + path_ + ": ffmpeg's file has " + std::to_string(n) +
+                     " of the " + std::to_string(frames_) +
+                     " frames written (a full disk?); no video written");
+  }
+  return std::move(out_);
 }
 
 void VideoWriter::finish() {
-  if (pid_ < 0) return;
-  if (pipe_) std::fclose(pipe_);
-  pipe_ = nullptr;
-  int status = 0;
-  waitpid(pid_, &status, 0);
-  register_child(0);
-  pid_ = -1;
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    out_.reset();
-    throw InputError(option_ + " " + path_ + ": ffmpeg failed (exit status " +
-                     std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-                     "); no video written");
-  }
+  const std::unique_ptr<AtomicFile> video = finish_uncommitted();
   // Like every output of contact2d: the file appears only when complete.
   try {
-    out_->commit();
+    video->commit();
   } catch (const InputError& e) {
-    out_.reset();
     throw InputError(option_ + " " + e.what());
   }
-  out_.reset();
 }
 
 }  // namespace contact2d::game

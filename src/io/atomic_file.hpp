@@ -40,6 +40,8 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   std::FILE* get() const { return file_; }
+  const std::string& path() const { return path_; }  // the output path, as given
+  bool streams() const { return target_.stream; }    // written through at commit
   // The temporary file's path, for a writer that opens it by name (gnuplot);
   // flush get() first if it was written through too.
   const std::string& temp_path() const { return temp_path_; }

@@ -11,7 +11,10 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <optional>
 #include <thread>
+
+#include "io/interrupt.hpp"
 
 extern char** environ;  // NOLINT(readability-redundant-declaration): POSIX, not in a header
 
@@ -38,7 +41,8 @@ bool wait_for(pid_t pid, int& status, double seconds) {
 
 }  // namespace
 
-ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::string& directory) {
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::string& directory,
+                           bool writes_output) {
   int in[2] = {-1, -1}, out[2] = {-1, -1}, err[2] = {-1, -1};
   if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, in) != 0 ||
       ::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, out) != 0 ||
@@ -71,7 +75,17 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
   args.reserve(argv.size() + 1);
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
-  const int spawned = ::posix_spawnp(&pid_, args[0], &actions, &attributes, args.data(), environ);
+  int spawned = 0;
+  {
+    // No interrupt between starting it and registering it.
+    std::optional<InterruptsHeld> held;
+    if (writes_output) held.emplace();
+    spawned = ::posix_spawnp(&pid_, args[0], &actions, &attributes, args.data(), environ);
+    if (spawned == 0 && writes_output) {
+      register_child(pid_);
+      registered_ = true;
+    }
+  }
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
   ::close(in[1]);
@@ -85,7 +99,8 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
     close_fd(in_);
     close_fd(out_);
     close_fd(err_);
-    throw ChildProcessError("cannot start " + argv[0] + " (" + error_text(spawned) + ")");
+    throw ChildProcessError("cannot start " + argv[0] + " (" + error_text(spawned) + ")",
+                            spawned);
   }
 }
 
@@ -96,13 +111,57 @@ ChildProcess::~ChildProcess() {
     ::kill(pid_, SIGKILL);
     wait_for(pid_, status_, 5.0);
   }
+  if (registered_) register_child(0);
   close_fd(err_);
 }
 
-void ChildProcess::write(const std::string& text) {
+ChildEnding ChildProcess::finish() {
+  close_fd(in_);
+  ChildEnding end;
+  end.output = buffer_.substr(start_);
+  buffer_.clear();
+  start_ = 0;
+  // Both streams at once: a child blocked on a full standard error pipe
+  // would never close its output.
+  char chunk[1 << 16];
+  while (out_ >= 0 || err_ >= 0) {
+    pollfd p[2] = {{out_, POLLIN, 0}, {err_, POLLIN, 0}};
+    if (::poll(p, 2, -1) < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    for (int i = 0; i < 2; ++i) {
+      int& fd = i == 0 ? out_ : err_;
+      if (fd < 0 || (p[i].revents & (POLLIN | POLLHUP | POLLERR)) == 0) continue;
+      const ssize_t n = ::read(fd, chunk, sizeof chunk);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        close_fd(fd);
+      } else {
+        (i == 0 ? end.output : end.standard_error).append(chunk, static_cast<size_t>(n));
+      }
+    }
+  }
+  while (!reaped_) {
+    if (::waitpid(pid_, &status_, 0) == pid_ || errno != EINTR) reaped_ = true;
+  }
+  if (registered_) {
+    register_child(0);
+    registered_ = false;
+  }
+  end.status = WIFEXITED(status_) ? WEXITSTATUS(status_) : -1;
+  end.description = ending();  // its standard error was read above: add its last line
+  std::string said = end.standard_error;
+  while (!said.empty() && (said.back() == '\n' || said.back() == '\r')) said.pop_back();
+  if (const size_t last = said.rfind('\n'); last != std::string::npos) said.erase(0, last + 1);
+  if (!said.empty()) end.description += ": " + said;
+  return end;
+}
+
+void ChildProcess::write(const char* data, size_t size) {
   size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::send(in_, text.data() + done, text.size() - done, MSG_NOSIGNAL);
+  while (done < size) {
+    const ssize_t n = ::send(in_, data + done, size - done, MSG_NOSIGNAL);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0)
       throw ChildProcessError("cannot write to process " + std::to_string(pid_) + ": " + ending());

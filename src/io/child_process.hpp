@@ -22,25 +22,49 @@ namespace contact2d {
 // A child that could not be started, or that died or broke the protocol:
 // the message is one line.
 struct ChildProcessError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  ChildProcessError(const std::string& what, int error = 0)
+      : std::runtime_error(what), spawn_error(error) {}
+  int spawn_error;  // errno of a child that could not be started, else 0
+};
+
+// How it ended (finish()): its exit status, or -1 when a signal ended it,
+// the ending() line, and what it wrote to its standard output (the part not
+// read before) and to its standard error.
+struct ChildEnding {
+  int status = -1;
+  std::string description;
+  std::string output;
+  std::string standard_error;
 };
 
 class ChildProcess {
  public:
   // Starts argv[0] (looked up in PATH) with the arguments in `directory`
-  // (empty: this one). Throws ChildProcessError when it cannot be started.
-  ChildProcess(const std::vector<std::string>& argv, const std::string& directory = {});
+  // (empty: this one). Throws ChildProcessError when it cannot be started
+  // (`spawn_error()` then holds the errno, ENOENT for a program not found).
+  // A child that writes one of the program's output files (gnuplot,
+  // ffmpeg) is started with `writes_output`: it is registered with the
+  // interrupt handler (io/interrupt.hpp, register_child) from the moment it
+  // exists, so an interrupt kills it before removing the files, and it
+  // cannot create one after.
+  ChildProcess(const std::vector<std::string>& argv, const std::string& directory = {},
+               bool writes_output = false);
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
 
   // Writes all of `text` to its input; throws ChildProcessError when it
   // cannot (the child is gone).
-  void write(const std::string& text);
+  void write(const std::string& text) { write(text.data(), text.size()); }
+  void write(const char* data, size_t size);
   // The next line of its output without the '\n'; throws at end of output.
   std::string read_line();
   // Exactly `size` bytes of its output; throws at end of output.
   void read_bytes(void* out, size_t size);
+
+  // Closes its input, reads its output and its standard error to the end,
+  // and waits for it to exit.
+  ChildEnding finish();
 
   pid_t pid() const { return pid_; }
   // Why it ended, once its output ended: "exited with status 1", "killed
@@ -57,6 +81,7 @@ class ChildProcess {
   size_t start_ = 0;  // the unread part of buffer_ begins here
   bool reaped_ = false;
   int status_ = 0;
+  bool registered_ = false;  // with the interrupt handler (writes_output)
 };
 
 }  // namespace contact2d

@@ -1,15 +1,10 @@
 #include "io/plot.hpp"
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -18,6 +13,7 @@
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/child_process.hpp"
 
 namespace contact2d {
 namespace {
@@ -122,47 +118,50 @@ void plot_comparison(const std::string& png_path, const std::string& title, cons
                      const Trajectory& second, const std::string& ref_label,
                      const std::string& second_label) {
   require_quotable(png_path, "--plot");
-  AtomicFile png(png_path);             // gnuplot writes here; renamed on success
-  AtomicFile data(png_path + ".data");  // never committed: removed on return
+  AtomicFile png(png_path);  // gnuplot writes here; renamed on success
+  plot_comparison(png, title, ref, second, ref_label, second_label);
+  png.commit();
+}
+
+void plot_comparison(AtomicFile& png, const std::string& title, const Trajectory& ref,
+                     const Trajectory& second, const std::string& ref_label,
+                     const std::string& second_label) {
+  require_quotable(png.path(), "--plot");
+  AtomicFile data(png.path() + ".data");  // never committed: removed on return
   write_data(data.get(), ref, second);
   if (std::fflush(data.get()) != 0) throw InputError(data.temp_path() + ": cannot write plot data");
   run_gnuplot(
       script(data.temp_path(), png.temp_path(), title, ref, second, ref_label, second_label),
-      png_path);
-  png.commit();
+      png.path());
 }
 
 void run_gnuplot(const std::string& script, const std::string& png_path) {
-  // gnuplot's stdout is dropped; its stderr goes to a temporary file, read
-  // back and passed on below.
-  const char* dir = std::getenv("TMPDIR");
-  std::string errors_path = std::string(dir && *dir ? dir : "/tmp") + "/contact2d_gnuplot_XXXXXX";
-  const int fd = ::mkstemp(errors_path.data());
-  if (fd < 0)
-    throw InputError(png_path + ": cannot create a temporary file for gnuplot's messages");
-  ::close(fd);
-  std::FILE* pipe = ::popen(("gnuplot >/dev/null 2>" + gnuplot_quoted(errors_path)).c_str(), "w");
-  if (!pipe) {
-    std::remove(errors_path.c_str());
-    throw InputError(png_path + ": cannot start gnuplot");
+  // gnuplot is started directly (no shell), registered with the interrupt
+  // handler (it writes an output file), fed the script on its input; its
+  // output is dropped and its standard error read back and passed on below.
+  ChildEnding end;
+  try {
+    ChildProcess gnuplot({"gnuplot"}, {}, /*writes_output=*/true);
+    gnuplot.write(script);
+    end = gnuplot.finish();
+  } catch (const ChildProcessError& e) {
+    if (e.spawn_error == ENOENT)
+      throw InputError(png_path + ": gnuplot not found (install Debian package gnuplot-nox)");
+    throw InputError(png_path + ": gnuplot " + e.what());
   }
-  std::fwrite(script.data(), 1, script.size(), pipe);
-  const int raw = ::pclose(pipe);
   std::vector<std::string> messages;
   {
-    std::ifstream in(errors_path);
+    std::istringstream in(end.standard_error);
     std::string line;
     while (std::getline(in, line)) {
       // gnuplot marks the place in the script with "^" lines and blanks.
       if (line.find_first_not_of(" \t^") != std::string::npos) messages.push_back(line);
     }
   }
-  std::remove(errors_path.c_str());
-  const int status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 1;
-  if (status == 127)
-    throw InputError(png_path + ": gnuplot not found (install Debian package gnuplot-nox)");
-  if (status != 0) {
-    throw InputError(png_path + ": gnuplot failed (exit status " + std::to_string(status) + ")" +
+  if (end.status != 0) {
+    const std::string how =
+        end.status >= 0 ? "exit status " + std::to_string(end.status) : end.description;
+    throw InputError(png_path + ": gnuplot failed (" + how + ")" +
                      (messages.empty() ? "" : ": " + messages.front()));
   }
   for (const std::string& m : messages)

@@ -19,6 +19,7 @@
 
 #include "core/integrators.hpp"
 #include "core/run.hpp"
+#include "io/atomic_file.hpp"
 
 namespace contact2d {
 
@@ -85,6 +86,11 @@ inline constexpr const char* kColourSecond = "rgb '#D55E00'";  // vermillion
 // only when gnuplot succeeded. Throws InputError when the path cannot be
 // written or gnuplot fails.
 void plot_comparison(const std::string& png_path, const std::string& title, const Trajectory& ref,
+                     const Trajectory& second, const std::string& ref_label,
+                     const std::string& second_label);
+// The same drawn into `png` (its temporary), which the caller commits with
+// its other outputs.
+void plot_comparison(AtomicFile& png, const std::string& title, const Trajectory& ref,
                      const Trajectory& second, const std::string& ref_label,
                      const std::string& second_label);
 

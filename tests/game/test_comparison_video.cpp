@@ -7,8 +7,11 @@
 // the two bodies never overlap and both colours must be visible.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
+
 #include <algorithm>
+#include <csignal>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -297,5 +300,136 @@ TEST(ComparisonVideo, CompareWritesTheVideoThroughTheProgram) {
   EXPECT_FALSE(fs::exists(bad));
   EXPECT_FALSE(fs::exists(bad.string() + ".tmp"));
   fs::remove(scene);
+}
+#endif
+
+// A full disk: ffmpeg cannot write all of its file, and may still exit 0
+// (an MP4 without its index, "moov atom not found", or a GIF cut short).
+// The equivalent here is a file-size limit the test sets on the program
+// alone (ulimit -f; SIGXFSZ ignored, so a write past it fails with EFBIG as
+// on a full disk): 16 KiB, below the 37 KiB (MP4) and 41 KiB (GIF) the
+// 15-frame video takes. ffmpeg exits 0 on both (measured), leaving an MP4
+// that does not decode and a GIF of 4 frames; compare must fail with one
+// line and leave nothing at the path.
+#ifdef CONTACT2D_EXE_WITH_MUJOCO
+TEST(ComparisonVideo, AVideoThatCannotBeWrittenWhollyIsAnErrorWithNoFile) {
+  const fs::path dir = temp("full");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "scene.toml") << "scene = \"box\"\n[contact]\nk = 1e4\nc = 200\nmu = 0.5\n"
+                                       "damping = \"kelvin_voigt\"\n[initial]\ny = 0.5\n"
+                                       "theta = 0.3\n[sim]\ndt = 1e-4\nduration = 0.5\n";
+  const std::string exe = CONTACT2D_EXE_WITH_MUJOCO;
+  for (const std::string name : {"full.mp4", "full.gif"}) {
+    const int status =
+        sh("cd '" + dir.string() + "' && bash -c \"ulimit -f 16; trap '' XFSZ; exec '" + exe +
+           "' compare scene.toml --no-diagnosis --video " + name + "\" >out.txt 2>err.txt");
+    const std::string err = read_file(dir / "err.txt");
+    std::printf("%s under a 16 KiB file limit: exit %d: %s", name.c_str(), status, err.c_str());
+    EXPECT_NE(status, 0) << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find("no video written"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(dir / name));
+    EXPECT_EQ(test::temporary_size(dir / name), -1);
+  }
+  fs::remove_all(dir);
+}
+#endif
+
+namespace {
+
+// A stand-in for ffmpeg or gnuplot, first on PATH: a shell script.
+void fake_tool(const fs::path& bin, const std::string& name, const std::string& body) {
+  fs::create_directories(bin);
+  std::ofstream(bin / name) << "#!/bin/sh\n" << body;
+  fs::permissions(bin / name, fs::perms::owner_all);
+}
+
+}  // namespace
+
+// ffmpeg that exits 0 having written a file with fewer frames than it was
+// given (here: it drops its input and writes a one-frame video): the frame
+// count is checked, the file is not a video of the run.
+TEST(ComparisonVideo, AFileWithMissingFramesIsRefusedThoughFfmpegSucceeded) {
+  const fs::path dir = temp("short");
+  fs::remove_all(dir);
+  const std::string real = capture("command -v ffmpeg");
+  ASSERT_FALSE(real.empty());
+  // Writes one grey frame to the last argument (the output), ignores stdin.
+  fake_tool(dir / "bin", "ffmpeg",
+            "for last; do :; done\ncat >/dev/null\nexec '" + real +
+                "' -loglevel error -y -f lavfi -i color=c=gray:s=64x64:d=0.04 -frames:v 1 "
+                "-f mp4 \"$last\"\n");
+  const char* old_path = std::getenv("PATH");
+  const std::string saved = old_path ? old_path : "";
+  ::setenv("PATH", ((dir / "bin").string() + ":" + saved).c_str(), 1);
+  const fs::path video = dir / "short.mp4";
+  try {
+    game::VideoWriter writer(video.string(), 64, 64, kFps, game::VideoFormat::Mp4, "--video");
+    const std::vector<unsigned char> grey(64 * 64 * 3, 128);
+    for (int i = 0; i < 5; ++i) ASSERT_TRUE(writer.write(grey));
+    writer.finish();
+    ADD_FAILURE() << "a one-frame file was taken for five frames";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("ffmpeg's file has 1 of the 5 frames written"), std::string::npos)
+        << what;
+  }
+  ::setenv("PATH", saved.c_str(), 1);
+  EXPECT_FALSE(fs::exists(video));
+  EXPECT_EQ(test::temporary_size(video), -1);
+  fs::remove_all(dir);
+}
+
+// An interrupt while the video is being made: compare's CSV and plot are
+// finished by then, and must go with the video, not stay as the outputs of
+// a run that did not end (they were once committed as each was done). The
+// ffmpeg here is a stand-in first on PATH that notes its PID and waits.
+#ifdef CONTACT2D_EXE_WITH_MUJOCO
+TEST(ComparisonVideo, AnInterruptedCompareLeavesNoneOfItsOutputs) {
+  const fs::path root = temp("interrupted");
+  fs::remove_all(root);
+  const fs::path dir = root / "work";
+  fs::create_directories(dir);
+  const fs::path mark = root / "ffmpeg.pid";
+  fake_tool(root / "bin", "ffmpeg",
+            "echo $$ > '" + mark.string() + ".tmp'\nmv '" + mark.string() + ".tmp' '" +
+                mark.string() + "'\nexec sleep 60\n");
+  std::ofstream(dir / "scene.toml") << "scene = \"box\"\n[contact]\nk = 1e4\nc = 200\nmu = 0.5\n"
+                                       "damping = \"kelvin_voigt\"\n[initial]\ny = 0.5\n"
+                                       "theta = 0.3\n[sim]\ndt = 1e-4\nduration = 0.5\n";
+  const std::string path = (root / "bin").string() + ":" + std::getenv("PATH");
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (::chdir(dir.c_str()) != 0) ::_exit(120);
+    ::setenv("PATH", path.c_str(), 1);
+    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
+      ::_exit(121);
+    ::execl(CONTACT2D_EXE_WITH_MUJOCO, CONTACT2D_EXE_WITH_MUJOCO, "compare", "scene.toml",
+            "--no-diagnosis", "--csv", "out.csv", "--plot", "out.png", "--video", "out.mp4",
+            static_cast<char*>(nullptr));
+    ::_exit(122);
+  }
+  int status = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(mark) && std::chrono::steady_clock::now() < deadline) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(fs::exists(mark)) << "ffmpeg was not started";
+  const pid_t ffmpeg = std::stoi(read_file(mark));
+  ::kill(pid, SIGINT);
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT);
+  const bool alive = ::kill(ffmpeg, 0) == 0;
+  EXPECT_FALSE(alive) << "ffmpeg " << ffmpeg << " still runs";
+  if (alive) ::kill(ffmpeg, SIGKILL);
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().filename() != "scene.toml") left.push_back(entry.path().filename());
+  EXPECT_TRUE(left.empty()) << "left behind: " << left.front();
+  fs::remove_all(root);
 }
 #endif
