@@ -25,8 +25,8 @@
 #include "engines/engines.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
-#include "io/json.hpp"
 #include "io/interrupt.hpp"
+#include "io/json.hpp"
 #include "io/plot.hpp"
 #include "io/table.hpp"
 #ifdef CONTACT2D_WITH_WINDOW

@@ -75,9 +75,7 @@ class ReferenceStepper final : public Stepper {
   const State& state() const override { return state_; }
   const ContactSet& contacts() const override { return ws_.contacts; }
   const Model& model() const override { return model_; }
-  StepStability stability() const override {
-    return reference_stability(model_, integrator_, dt_);
-  }
+  StepStability stability() const override { return reference_stability(model_, integrator_, dt_); }
   std::string describe() const override;
 
  private:

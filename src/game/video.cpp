@@ -90,10 +90,10 @@ std::unique_ptr<AtomicFile> VideoWriter::finish_uncommitted() {
   ffmpeg_.reset();
   if (end.status != 0) {
     out_.reset();
-    throw InputError(option_ + " " + path_ + ": ffmpeg failed (" +
-                     (end.status > 0 ? "exit status " + std::to_string(end.status)
-                                     : end.description) +
-                     "); no video written");
+    throw InputError(
+        option_ + " " + path_ + ": ffmpeg failed (" +
+        (end.status > 0 ? "exit status " + std::to_string(end.status) : end.description) +
+        "); no video written");
   }
   // ffmpeg exits 0 on some write errors (a full disk: it cannot write an
   // MP4's index or the end of a GIF): decode what it wrote.

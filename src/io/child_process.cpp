@@ -99,8 +99,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
     close_fd(in_);
     close_fd(out_);
     close_fd(err_);
-    throw ChildProcessError("cannot start " + argv[0] + " (" + error_text(spawned) + ")",
-                            spawned);
+    throw ChildProcessError("cannot start " + argv[0] + " (" + error_text(spawned) + ")", spawned);
   }
 }
 

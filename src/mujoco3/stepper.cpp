@@ -135,8 +135,7 @@ double Mujoco3Stepper::contact_inv_weight() const {
 }
 
 StepStability Mujoco3Stepper::stability() const {
-  return mujoco::mujoco_stability(model_, integrator_, dt_, settings_,
-                                  contact_inv_weight());
+  return mujoco::mujoco_stability(model_, integrator_, dt_, settings_, contact_inv_weight());
 }
 
 std::string Mujoco3Stepper::explain(const Divergence& d, const Scene& scene) const {

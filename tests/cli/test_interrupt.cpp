@@ -8,8 +8,8 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -190,9 +190,9 @@ TEST(InterruptDuringAPlot, KillsGnuplotAndLeavesNothing) {
   const fs::path dir = root / "work", tmp = root / "tmp", bin = root / "bin";
   for (const fs::path& d : {dir, tmp, bin}) fs::create_directories(d);
   const fs::path mark = root / "gnuplot.pid";
-  std::ofstream(bin / "gnuplot") << "#!/bin/sh\necho $$ > '" << mark.string()
-                                 << ".tmp'\nmv '" << mark.string() << ".tmp' '"
-                                 << mark.string() << "'\nexec sleep 60\n";
+  std::ofstream(bin / "gnuplot") << "#!/bin/sh\necho $$ > '" << mark.string() << ".tmp'\nmv '"
+                                 << mark.string() << ".tmp' '" << mark.string()
+                                 << "'\nexec sleep 60\n";
   fs::permissions(bin / "gnuplot", fs::perms::owner_all);
   const std::string path = bin.string() + ":" + std::getenv("PATH");
   const pid_t pid = ::fork();

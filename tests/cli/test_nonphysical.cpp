@@ -114,9 +114,10 @@ TEST(Nonphysical, EnergyGainedBeyondTheStabilityLimitFails) {
     double dt;  // ω·Δt = 200·dt
     std::string limit;
   };
-  for (const Case& c : {Case{"rk4", 0.015, "beyond the RK4 limit 2.62"},
-                        Case{"semi_implicit_euler", 0.0065, "beyond the semi-implicit Euler "
-                                                            "limit 1.24"}}) {
+  for (const Case& c :
+       {Case{"rk4", 0.015, "beyond the RK4 limit 2.62"}, Case{"semi_implicit_euler", 0.0065,
+                                                              "beyond the semi-implicit Euler "
+                                                              "limit 1.24"}}) {
     std::ofstream(dir / "box.toml") << tilted_box(c.integrator, c.dt);
     const Ran r = run_in(dir, "simulate box.toml --csv out.csv");
     EXPECT_EQ(r.status, 3) << c.integrator << r.err;

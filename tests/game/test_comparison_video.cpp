@@ -11,8 +11,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <csignal>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -372,8 +372,7 @@ TEST(ComparisonVideo, AFileWithMissingFramesIsRefusedThoughFfmpegSucceeded) {
     ADD_FAILURE() << "a one-frame file was taken for five frames";
   } catch (const InputError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("ffmpeg's file has 1 of the 5 frames written"), std::string::npos)
-        << what;
+    EXPECT_NE(what.find("ffmpeg's file has 1 of the 5 frames written"), std::string::npos) << what;
   }
   ::setenv("PATH", saved.c_str(), 1);
   EXPECT_FALSE(fs::exists(video));
