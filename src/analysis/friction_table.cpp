@@ -239,6 +239,13 @@ Scene conformance_scene(const Scene& scene, FrictionLaw law, const std::string& 
   out.contact.friction = law;
   out.contact.cone_ratio = g.settings.impratio;
   out.contact.mu_roll = mujoco::cone_mu_roll(scene, g.settings);
+  // An obstacle with a law of its own has a coefficient of its own; one
+  // without takes the scene's, set above.
+  for (size_t i = 0; i < out.obstacles.size(); ++i) {
+    ContactOverride& own = out.obstacles[i].contact;
+    if (own.mu || own.mu_roll)
+      own.mu_roll = mujoco::cone_mu_roll(scene, own.apply(scene.contact), g.settings);
+  }
   return out;
 }
 

@@ -15,17 +15,20 @@ namespace {
 constexpr size_t kBatch = 16;
 
 // One contact under a cone law (core/contact.hpp); `fn` is the normal law's
-// force. Under soft_cone on the ground the force acts halfway into the
-// penetration, where MuJoCo puts the contact point: lever r + (0, d/2), so
-// v_t = v_x − ω·(r_y + d/2) (v_n is the same as at the point). viscous_cone,
-// and either law on an obstacle, keep the contact's own point.
-void add_cone(const Contact& c, const ContactParams& law, bool on_ground, double fn, const Vec3& v,
-              double omega, bool rolls, Vec2& force, double& torque) {
+// force. Under soft_cone the force acts halfway into the penetration, where
+// MuJoCo puts every contact point (midway between the two surfaces), on
+// the ground and on an obstacle alike: the body's point r moved back out
+// along the normal by d/2, lever r + (d/2)·n, so that
+// v_t = t·(v + ω × (r + (d/2)·n)) (v_n is the same as at the point, n × n
+// being 0). viscous_cone keeps the contact's own point.
+void add_cone(const Contact& c, const ContactParams& law, double fn, const Vec3& v, double omega,
+              bool rolls, Vec2& force, double& torque) {
   const bool soft = law.friction == FrictionLaw::SoftCone;
-  const double rx = c.rx;
-  const double ry = soft && on_ground ? c.ry + 0.5 * c.depth : c.ry;
-  const Vec2 vc(v.x() - omega * ry, v.y() + omega * rx);  // v + ω × r
   const Vec2 n = c.normal();
+  const double shift = soft ? 0.5 * c.depth : 0.0;
+  const double rx = c.rx + shift * n.x();
+  const double ry = c.ry + shift * n.y();
+  const Vec2 vc(v.x() - omega * ry, v.y() + omega * rx);  // v + ω × r
   const Vec2 t(n.y(), -n.x());
   const double spin = rolls ? v.z() : 0.0;
   const ConeForce f =
@@ -162,7 +165,7 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
       if (law.friction != FrictionLaw::Tanh) {
         const bool rolls = features.rolls && law.mu_roll > 0.0;
         if (rolls) ++rolling;  // its tanh argument was computed and is not used
-        add_cone(c, law, i < ground, fn[i - from], v, omega, rolls, force, torque);
+        add_cone(c, law, fn[i - from], v, omega, rolls, force, torque);
         continue;
       }
       const double f_n = fn[i - from];

@@ -227,7 +227,10 @@ int condim_of(const Scene& scene, const MjcfOptions& options) {
 // μ_roll' = μ_roll/√(1 − q²) gives back μ_roll·F_n. q ≥ 1 (the disc cannot
 // roll steadily: it slides) or no rolling: μ_roll as it is.
 double cone_mu_roll(const Scene& scene, const SolverSettings& s) {
-  const ContactParams& p = scene.contact;
+  return cone_mu_roll(scene, scene.contact, s);
+}
+
+double cone_mu_roll(const Scene& scene, const ContactParams& p, const SolverSettings& s) {
   if (s.mapping != Mapping::Compensated || !shape_features(scene.shape).rolls ||
       !(p.mu_roll > 0.0) || !(p.mu > 0.0))
     return p.mu_roll;
@@ -421,7 +424,11 @@ std::string obstacle_lines(const Scene& scene, const SolverSettings& s) {
              : s.mapping == Mapping::Compensated ? " = (-k D/n, -c D/n)"
                                                  : "") +
             ", condim " + std::to_string(os.condim) +
-            ", friction (mu, mu, mu_torsion, mu_roll, mu_roll)\n";
+            (cone_mu_roll(scene, p, s) != p.mu_roll
+                 ? ", friction (mu, mu, mu_torsion, mu_roll', mu_roll'), mu_roll' = " +
+                       format_exact(cone_mu_roll(scene, p, s)) + " m as above"
+                 : std::string(", friction (mu, mu, mu_torsion, mu_roll, mu_roll)")) +
+            "\n";
   }
   return text;
 }
@@ -682,7 +689,9 @@ void add_pairs(XMLDocument& doc, XMLElement* root, const Scene& scene, const Sol
                              {{"geom1", g.name},
                               {"geom2", "obstacle" + std::to_string(i)},
                               {"condim", std::to_string(os.condim)},
-                              {"friction", join({p.mu, p.mu, p.mu_torsion, p.mu_roll, p.mu_roll})},
+                              {"friction", join({p.mu, p.mu, p.mu_torsion,
+                                                 cone_mu_roll(scene, p, s),
+                                                 cone_mu_roll(scene, p, s)})},
                               {"solref", join(os.solref)},
                               {"solimp", join(s.solimp)}});
       // compensated: as the corner geoms' own gap (add_body); a pair uses its own

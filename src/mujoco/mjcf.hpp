@@ -138,8 +138,10 @@ GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options);
 // The rolling coefficient the model writes for the scene under `s`:
 // compensated's μ_roll' = μ_roll/√(1 − q²) for a rolling disc (MuJoCo's
 // elliptic cone shares one budget between sliding and rolling,
-// docs/mujoco.md), otherwise the scene's μ_roll.
+// docs/mujoco.md), otherwise the scene's μ_roll. The second form for one
+// law of the scene (an obstacle's own): its pairs write that law's.
 double cone_mu_roll(const Scene& scene, const SolverSettings& s);
+double cone_mu_roll(const Scene& scene, const ContactParams& law, const SolverSettings& s);
 
 // The MJCF with given solver settings (no MuJoCo involved).
 std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
