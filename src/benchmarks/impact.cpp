@@ -17,7 +17,7 @@ struct KelvinVoigtExit {
   double speed = 0.0;
 };
 KelvinVoigtExit kelvin_voigt_exit(double zeta) {
-  if (std::abs(zeta - 1.0) < 1e-6) zeta = 1.0 + 1e-6;  // the critical case as its limit
+  if (zeta == 1.0) return {2.0, -std::exp(-2.0)};  // x = t·e^(−t), force (2 − t)·e^(−t)
   if (zeta < 1.0) {
     const double wd = std::sqrt(1.0 - zeta * zeta);
     const double theta = std::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta);

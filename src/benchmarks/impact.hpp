@@ -38,7 +38,11 @@ double compression_contact_time(double zeta);
 // force 0 = (1 + 2ζλ₁)·e^(λ₁τ) − (1 + 2ζλ₂)·e^(λ₂τ) at
 //   τ = ln((1 + 2ζλ₂)/(1 + 2ζλ₁))/(λ₁ − λ₂),
 //   e = −(λ₁·e^(λ₁τ) − λ₂·e^(λ₂τ))/(λ₁ − λ₂).
-// Within 1e-6 of ζ = 1 the critical case is taken as its limit from above.
+// At ζ = 1 (critical), x = t·e^(−t): the force (2 − t)·e^(−t) returns to
+// zero at τ = 2, and e = e^(−2) = 0.1353353 (x' = (1 − t)·e^(−t)). Near it
+// both forms above tend to it, as e(1 + ε) = e^(−2)·(1 − 4ε/3) + O(ε²) and
+// τ(1 + ε) = 2 − 2ε/3 + O(ε²) (first order in ε: ∂x/∂ζ solves
+// y'' + 2y' + y = −2x', y = (t³/3 − t²)·e^(−t); tests/benchmarks checks it).
 // The clamped law rebounds more than the dashpot: 0.744 against 0.729 at
 // ζ = 0.1. NaN for ζ < 0 or NaN.
 double kelvin_voigt_restitution(double zeta);

@@ -121,14 +121,39 @@ TEST(Impact, KelvinVoigtMatchesTheIntegratedOscillator) {
     EXPECT_NEAR(kelvin_voigt_restitution(zeta), n.e, 1e-8) << "ζ = " << zeta;
     EXPECT_NEAR(kelvin_voigt_contact_time(zeta), n.time, 1e-8) << "ζ = " << zeta;
   }
-  // Critical damping, taken as its limit from ζ = 1 + 1e-6: de/dζ is O(1).
+  // Critical damping, its own closed form: e = e^(−2), τ = 2 (it was the
+  // limit from ζ = 1 + 1e-6 and printed 0.1353351), and the integrated
+  // oscillator at the integrator's tolerance.
   const Exit crit = kelvin_voigt_numeric(1.0);
-  EXPECT_NEAR(kelvin_voigt_restitution(1.0), crit.e, 1e-5);
-  EXPECT_NEAR(kelvin_voigt_contact_time(1.0), crit.time, 1e-5);
+  EXPECT_NEAR(kelvin_voigt_restitution(1.0), std::exp(-2.0), 1e-16);
+  EXPECT_EQ(kelvin_voigt_contact_time(1.0), 2.0);
+  EXPECT_NEAR(kelvin_voigt_restitution(1.0), crit.e, 1e-8);
+  EXPECT_NEAR(kelvin_voigt_contact_time(1.0), crit.time, 1e-8);
   // docs/closed-forms.md's table.
   EXPECT_NEAR(kelvin_voigt_restitution(0.1), 0.744079, 5e-7);
   EXPECT_NEAR(kelvin_voigt_restitution(0.3), 0.450975, 5e-7);
   EXPECT_TRUE(std::isnan(kelvin_voigt_restitution(-0.1)));
+}
+
+// Both sides of ζ = 1 tend to the critical case along its first-order
+// expansion (benchmarks/impact.hpp): e(1 + ε) = e^(−2)·(1 − 4ε/3) + O(ε²),
+// τ(1 + ε) = 2 − 2ε/3 + O(ε²), with ε of either sign. The remainder is
+// second order: at ε = ±1e-2 it is 6e-6 (e) and 1.7e-5 (τ), i.e. below
+// 0.2·ε²; the bound 0.5·ε² + 1e-11 holds it from ε = 1e-2 down to 1e-8,
+// where the 1e-11 is the rounding of the two general forms near ζ = 1
+// (ω_d or √(ζ² − 1) → 0: about 1e-16/√(2|ε|) relative, measured ≤ 2e-12).
+TEST(Impact, KelvinVoigtIsContinuousThroughCriticalDamping) {
+  const double e0 = std::exp(-2.0);
+  for (const double eps : {1e-2, 1e-3, 1e-4, 1e-6, 1e-8}) {
+    for (const double sign : {-1.0, 1.0}) {
+      const double d = sign * eps;
+      const double bound = 0.5 * eps * eps + 1e-11;
+      EXPECT_NEAR(kelvin_voigt_restitution(1.0 + d), e0 * (1.0 - 4.0 * d / 3.0), bound)
+          << "ζ = 1 + " << d;
+      EXPECT_NEAR(kelvin_voigt_contact_time(1.0 + d), 2.0 - 2.0 * d / 3.0, bound)
+          << "ζ = 1 + " << d;
+    }
+  }
 }
 
 TEST(Impact, CompressionOnlyDamperMatchesTheIntegratedOscillator) {
