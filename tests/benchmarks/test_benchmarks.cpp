@@ -138,10 +138,10 @@ TEST(Impact, KelvinVoigtMatchesTheIntegratedOscillator) {
 // Both sides of ζ = 1 tend to the critical case along its first-order
 // expansion (benchmarks/impact.hpp): e(1 + ε) = e^(−2)·(1 − 4ε/3) + O(ε²),
 // τ(1 + ε) = 2 − 2ε/3 + O(ε²), with ε of either sign. The remainder is
-// second order: at ε = ±1e-2 it is 6e-6 (e) and 1.7e-5 (τ), i.e. below
-// 0.2·ε²; the bound 0.5·ε² + 1e-11 holds it from ε = 1e-2 down to 1e-8,
-// where the 1e-11 is the rounding of the two general forms near ζ = 1
-// (ω_d or √(ζ² − 1) → 0: about 1e-16/√(2|ε|) relative, measured ≤ 2e-12).
+// second order: 0.17·ε² (e) and 0.27·ε² (τ), measured from ε = ±1e-2 to
+// ±1e-6; the bound 0.5·ε² + 1e-11 holds it down to ε = 1e-8, where the
+// 1e-11 is the rounding of the two general forms near ζ = 1 (ω_d or
+// √(ζ² − 1) → 0: about 1e-16/√(2|ε|) relative, measured ≤ 4.4e-13).
 TEST(Impact, KelvinVoigtIsContinuousThroughCriticalDamping) {
   const double e0 = std::exp(-2.0);
   for (const double eps : {1e-2, 1e-3, 1e-4, 1e-6, 1e-8}) {
