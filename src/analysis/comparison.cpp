@@ -426,6 +426,10 @@ void explain_friction(Finding& f, const std::string& falls, const DiagnosisInput
 void explain_friction_law(Finding& f, const Rerun& r, const std::string& falls,
                           const DiagnosisInputs& in) {
   const bool soft = r.cause == "friction_law";
+  // Round-trip numbers (at least 6 digits, more where the value needs
+  // them): pasted, they are MuJoCo's impratio and μ_roll' to the bit, and
+  // the model writes a cone law's ratio and μ_roll as given
+  // (mujoco/mjcf.hpp), so compare then runs both engines as this re-run did.
   f.fix = std::string("--set contact.friction_law=") + (soft ? "soft_cone" : "viscous_cone") +
           " --set contact.cone_ratio=" + format_shortest(r.scene.contact.cone_ratio, 6);
   if (r.scene.contact.mu_roll != in.scene.contact.mu_roll)
@@ -493,7 +497,9 @@ void explain_mapping(Finding& f, const std::string& falls, const DiagnosisInputs
 // MuJoCo's model is held at its Δt values instead of following.
 void explain_dt_dependent_model(Finding& f, const Rerun& r, const DiagnosisInputs& in,
                                 const FollowingModel& follow) {
-  f.fix = "--model-dt " + format_shortest(in.scene.sim.dt);
+  // The re-run's step and the held model both: pasted, compare runs it.
+  f.fix = "--dt " + format_shortest(r.scene.sim.dt, 6) + " --model-dt " +
+          format_shortest(in.scene.sim.dt, 6);
   if (r.failure.empty() && std::isfinite(follow.after)) {
     f.share = (f.after - follow.after) / f.before;
     f.named = std::abs(f.share) >= kNamedShare;
@@ -509,7 +515,8 @@ void explain_dt_dependent_model(Finding& f, const Rerun& r, const DiagnosisInput
                   " m with it held at its Δt values (" + f.fix +
                   "): the model's dependence on Δt moves the difference by " +
                   percent(std::isfinite(f.share) ? std::abs(f.share) : 0.0) +
-                  " of its size at Δt. Hold the model with " + f.fix +
+                  " of its size at Δt. Hold the model with --model-dt " +
+                  format_shortest(in.scene.sim.dt, 6) +
                   " to see the step's effect alone when changing --dt.";
 }
 

@@ -48,6 +48,10 @@ double max_tangential_inverse_mass(const RigidBody& body) {
 // with no friction rows at all, and does not write impratio.
 double calibrated_impratio(const ContactParams& p, const RigidBody& body, double dt,
                            double largest_c) {
+  // A scene under a cone law is MuJoCo's own friction: its ratio is the
+  // impratio (core/contact.hpp), so that a diagnosis's fix, pasted, runs
+  // both engines as the diagnosis did.
+  if (p.friction != FrictionLaw::Tanh) return std::clamp(p.cone_ratio, kMinImpratio, kMaxImpratio);
   const bool rolls = shape_features(body.shape).rolls && p.mu_roll > 0.0;
   if (!(p.c > 0.0)) return 1.0;  // no damper: MuJoCo's friction has no velocity term at all
   if (p.mu <= 0.0 && !rolls) return kMinImpratio;

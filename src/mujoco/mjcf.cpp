@@ -231,6 +231,9 @@ double cone_mu_roll(const Scene& scene, const SolverSettings& s) {
 }
 
 double cone_mu_roll(const Scene& scene, const ContactParams& p, const SolverSettings& s) {
+  // Under a cone law the scene's μ_roll is already MuJoCo's (the law is
+  // MuJoCo's cone; what the diagnosis prints is μ_roll').
+  if (p.friction != FrictionLaw::Tanh) return p.mu_roll;
   if (s.mapping != Mapping::Compensated || !shape_features(scene.shape).rolls ||
       !(p.mu_roll > 0.0) || !(p.mu > 0.0))
     return p.mu_roll;
@@ -349,6 +352,12 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
             format_exact(s.friction_ratio) +
             " (R = (1-d)/d A: R_t >= 1e3 A_t); impratio = b/(phi c) = " + format_exact(s.impratio) +
             "; solreffriction = (solref[0], phi solref[1]) per pair\n";
+    return text;
+  }
+  if (p.friction != FrictionLaw::Tanh) {
+    text += in + "impratio = contact.cone_ratio = " + format_exact(s.impratio) +
+            " (the scene's friction law is MuJoCo's cone: its ratio is MuJoCo's impratio, and "
+            "mu_roll is written as given)\n";
     return text;
   }
   text +=

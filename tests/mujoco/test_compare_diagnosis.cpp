@@ -103,7 +103,8 @@ TEST(CompareDiagnosis, ModelDtHoldsTheDtDependentImpratioAndIsDiagnosed) {
   const Diagnosed d = diagnosed(scene, spec, 1e-10);
   const analysis::Finding* model = test::finding(d.diagnosis, "dt_dependent_model");
   ASSERT_NE(model, nullptr);
-  EXPECT_EQ(model->fix, "--model-dt 0.0001");
+  // The re-run itself, pasteable: Δt/10 with the model held at Δt.
+  EXPECT_EQ(model->fix, "--dt 1e-05 --model-dt 0.0001");
   EXPECT_TRUE(std::isfinite(model->share));
   std::printf("dt_dependent_model: share %.3f (%s)\n", model->share,
               model->named ? "named" : "ruled out");
