@@ -414,6 +414,7 @@ void bind_scene(py::module_& m) {
 
 // The commands, run by the Python half.
 void bind_commands(py::module_& m) {
+  m.attr("__version__") = CONTACT2D_VERSION;  // CMake's project(VERSION)
   m.def("_simulate", &py_simulate);
   m.def("_compare", &py_compare);
   m.def("_generate", &py_generate);

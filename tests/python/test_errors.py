@@ -4,6 +4,7 @@ program's stderr line without "contact2d: "), never a crash."""
 import threading
 import time
 
+import numpy as np
 import pytest
 
 import contact2d
@@ -158,3 +159,38 @@ def test_model_dt_takes_the_cli_range(value):
         with pytest.raises(ValueError, match=r"model_dt = .* is out of range: must be in \(0, 1\] s"):
             call()
     assert contact2d.generate(scene, model_dt=1e-3).startswith("<!--")
+
+
+def test_a_scene_file_path_is_a_scene():
+    """simulate, compare and generate take a path (str or pathlib) as
+    Scene.load would read it: the same numbers ("Unable to cast Python
+    instance to C++ type" before)."""
+    from pathlib import Path
+    path = "validation/scenes/box.toml"
+    by_scene = contact2d.simulate(contact2d.Scene.load(path), duration=0.1)
+    for given in (path, Path(path)):
+        by_path = contact2d.simulate(given, duration=0.1)
+        assert np.array_equal(by_path.trajectory, by_scene.trajectory)
+    assert contact2d.generate(path) == contact2d.generate(contact2d.Scene.load(path))
+
+
+def test_a_wrong_type_names_the_function_and_the_keyword():
+    """A string for a number, or a number for the scene, is a TypeError of
+    the public function with the keyword and its unit (it named the
+    internal _simulate())."""
+    scene = contact2d.Scene.load("validation/scenes/box.toml")
+    with pytest.raises(TypeError, match=r"^simulate\(\): dt must be a number \(s\), not str '1e-3'"):
+        contact2d.simulate(scene, dt="1e-3")
+    with pytest.raises(TypeError, match=r"^simulate\(\): duration must be a number"):
+        contact2d.simulate(scene, duration=True)
+    with pytest.raises(TypeError, match=r"^compare\(\): scene must be a contact2d.Scene or the "
+                                        r"path of a scene file, not int"):
+        contact2d.compare(5)
+    with pytest.raises(FileNotFoundError):
+        contact2d.simulate("no/such/scene.toml")
+
+
+def test_version_is_the_programs():
+    """__version__ is the project's version, as `contact2d --version` prints it."""
+    out, _ = run_program("--version")
+    assert out.split()[1] == contact2d.__version__

@@ -15,19 +15,44 @@ are issued as Python warnings (``Contact2dNote``).
 """
 
 import json
+import numbers
+import os
 import warnings
 from dataclasses import dataclass, field
-from typing import List, Optional, Sequence
+from typing import List, Optional, Sequence, Union
 
 import numpy as np
 
 from ._contact2d import BoxPart, Contact, Scene, Sim, State, mujoco_available
+from ._contact2d import __version__
 from . import _contact2d
 
 __all__ = [
     "BoxPart", "COLUMNS", "Contact", "Contact2dNote", "Scene", "Sim", "Simulation", "State",
-    "compare", "generate", "inspect", "mujoco_available", "simulate", "solref",
+    "__version__", "compare", "generate", "inspect", "mujoco_available", "simulate", "solref",
 ]
+
+SceneLike = Union[Scene, str, os.PathLike]
+
+
+def _scene(scene, function):
+    """A Scene, or the Scene a scene file path loads (as Scene.load)."""
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, (str, os.PathLike)):
+        return Scene.load(os.fspath(scene))
+    raise TypeError(f"{function}(): scene must be a contact2d.Scene or the path of a scene "
+                    f"file, not {type(scene).__name__}")
+
+
+def _number(value, name, function, unit):
+    """None or a real number (not a bool, not a string), as a float."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{function}(): {name} must be a number ({unit}), not "
+                        f"{type(value).__name__} {value!r}")
+    return float(value)
 
 COLUMNS = ("t", "x", "y", "theta", "vx", "vy", "omega")
 
@@ -59,19 +84,42 @@ class Simulation:
         return self.trajectory[:, self.columns.index(name)]
 
 
-def simulate(scene: Scene, engine: str = "ref", integrator: Optional[str] = None,
+def simulate(scene: SceneLike, engine: str = "ref", integrator: Optional[str] = None,
              dt: Optional[float] = None, duration: Optional[float] = None, mapping: str = "",
              geometry: str = "", model_dt: Optional[float] = None,
              allow_nonphysical: bool = False, friction: str = "") -> Simulation:
-    """Runs one engine on the scene, as ``contact2d simulate``: engine "ref",
-    "mujoco" (2.2.2) or "mujoco3" (3.14, docs/mujoco3.md); friction "shared"
-    or "damper" is MuJoCo 3's option (``--friction``)."""
-    run = _contact2d._simulate(scene, engine, integrator, dt, duration, mapping, geometry,
-                               friction, model_dt, allow_nonphysical)
+    """Runs one engine on the scene, as ``contact2d simulate``.
+
+    scene: a Scene, or the path of a scene file (docs/scenes.md).
+    engine: "ref" (the reference solver), "mujoco" (MuJoCo 2.2.2) or
+        "mujoco3" (MuJoCo 3.14, docs/mujoco3.md).
+    integrator: "explicit_euler", "semi_implicit_euler", "implicit_euler" or
+        "rk4"; None keeps the scene's. MuJoCo runs them as Euler, implicit, RK4.
+    dt, duration: the time step and the simulated time, in seconds; None
+        keeps the scene's.
+    mapping, geometry: MuJoCo's model (``--mapping``: seed, exact, calibrated,
+        compensated; ``--geometry``: corners, boxes); "" is the default.
+    model_dt: the Δt MuJoCo's Δt-dependent model values are computed for
+        (``--model-dt``), in (0, 1] s; None: the time step.
+    allow_nonphysical: keep a run that is not physics (its reason then is in
+        ``warnings``) instead of raising RuntimeError.
+    friction: MuJoCo 3's "shared" or "damper" (``--friction``).
+
+    Returns a Simulation: the trajectory (one row per sample, columns
+    COLUMNS: s, m, m, rad, m/s, m/s, rad/s), warnings, notes and the summary
+    line. Raises ValueError for bad input, FileNotFoundError for a missing
+    scene file, RuntimeError when the run diverged or is not physics, and
+    KeyboardInterrupt on Ctrl-C.
+    """
+    run = _contact2d._simulate(_scene(scene, "simulate"), engine, integrator,
+                               _number(dt, "dt", "simulate", "s"),
+                               _number(duration, "duration", "simulate", "s"), mapping, geometry,
+                               friction, _number(model_dt, "model_dt", "simulate", "s"),
+                               allow_nonphysical)
     return Simulation(**run)
 
 
-def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: Optional[float] = None,
+def compare(scene: SceneLike, mapping: str = "", geometry: str = "", model_dt: Optional[float] = None,
             integrator: Optional[str] = None, dt: Optional[float] = None,
             duration: Optional[float] = None, converged_tol: float = 1e-12,
             diagnosis: bool = True, allow_nonphysical: bool = False,
@@ -85,8 +133,13 @@ def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: Optio
     (names with their options, "mujoco:exact:boxes"; not together with
     mapping or geometry): every engine adds its keys and its
     "KEY_trajectory" ("mujoco_exact_trajectory" when two share a kind)."""
-    run = _contact2d._compare(scene, integrator, dt, duration, mapping, geometry, friction,
-                              model_dt, list(engines), converged_tol, diagnosis, allow_nonphysical)
+    run = _contact2d._compare(_scene(scene, "compare"), integrator,
+                              _number(dt, "dt", "compare", "s"),
+                              _number(duration, "duration", "compare", "s"), mapping, geometry,
+                              friction, _number(model_dt, "model_dt", "compare", "s"),
+                              list(engines),
+                              _number(converged_tol, "converged_tol", "compare", "m"), diagnosis,
+                              allow_nonphysical)
     result = json.loads(run["json"])
     for key, value in run.items():
         if key != "json":
@@ -94,15 +147,17 @@ def compare(scene: Scene, mapping: str = "", geometry: str = "", model_dt: Optio
     return result
 
 
-def generate(scene: Scene, mapping: str = "", geometry: str = "", model_dt: Optional[float] = None,
+def generate(scene: SceneLike, mapping: str = "", geometry: str = "", model_dt: Optional[float] = None,
              integrator: Optional[str] = None, dt: Optional[float] = None,
              duration: Optional[float] = None, engine: str = "mujoco",
              friction: str = "") -> str:
     """The MuJoCo MJCF of the scene, as ``contact2d generate``: for MuJoCo
     2.2.2 (engine "mujoco") or MuJoCo 3 ("mujoco3", with friction "damper"
     if asked; not checked by MuJoCo 3 here, the engine loads it)."""
-    run = _contact2d._generate(scene, integrator, dt, duration, mapping, geometry, friction,
-                               engine, model_dt)
+    run = _contact2d._generate(_scene(scene, "generate"), integrator,
+                               _number(dt, "dt", "generate", "s"),
+                               _number(duration, "duration", "generate", "s"), mapping, geometry,
+                               friction, engine, _number(model_dt, "model_dt", "generate", "s"))
     _notes(run["notes"])
     return run["xml"]
 
