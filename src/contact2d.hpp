@@ -11,11 +11,16 @@
 //
 // or step it yourself:
 //
-//   contact2d::Model model = contact2d::make_model(scene);
+//   const contact2d::Model model = contact2d::make_model(scene);
 //   contact2d::State s = contact2d::initial_state(scene);
-//   contact2d::step(model, contact2d::Integrator::RK4, 1e-4, s);
+//   contact2d::StepWorkspace ws(model);  // the step's scratch, made once
+//   for (int i = 0; i < 1000; ++i)
+//     if (contact2d::step(model, contact2d::Integrator::RK4, 1e-4, s, ws) !=
+//         contact2d::StepStatus::Ok) break;
 //
-// The library does no I/O and allocates nothing per step.
+// Both examples are compiled, as written here, by the install test's
+// consumer (tests/consumer/main.cpp). The library does no I/O and allocates
+// nothing per step.
 #pragma once
 
 #include "core/body.hpp"
@@ -25,3 +30,4 @@
 #include "core/integrators.hpp"
 #include "core/run.hpp"
 #include "core/scene.hpp"
+#include "core/stepper.hpp"
