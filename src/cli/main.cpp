@@ -47,20 +47,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    // "contact2d frob": CLI11 would only say that a subcommand is required.
-    if (argc > 1 && argv[1][0] != '-') {
-      std::string names;
-      bool known = false;
-      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-        names += (names.empty() ? "" : ", ") + sub->get_name();
-        known = known || sub->get_name() == argv[1];
-      }
-      if (!known) {
-        std::cerr << "contact2d: " << argv[1] << ": unknown subcommand (one of " << names
-                  << "; see contact2d --help)\n";
-        return kExitBadInput;
-      }
-    }
+    // (An unknown subcommand was named above, before parsing.)
     std::cerr << "contact2d: " << e.what() << " (see contact2d --help)\n";
     return kExitBadInput;
   }
