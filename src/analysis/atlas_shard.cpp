@@ -197,8 +197,8 @@ std::string atlas_csv_header() {
 }
 
 std::string atlas_csv_row(const AtlasPoint& p, const AtlasResult& r) {
-  std::string row =
-      std::to_string(p.index) + "," + p.body + "," + p.mapping + "," + damping_law_name(p.damping);
+  std::string row = std::to_string(p.index) + "," + p.body + "," + p.mapping + "," +
+                    std::string(damping_law_name(p.damping));
   for (double v : {p.mass, p.k, p.zeta, p.c, p.mu, p.mu_roll, p.dt, p.scene.sim.duration})
     row += "," + (std::isnan(v) ? std::string() : format_shortest(v, 6));
   row += "," + std::string(integrator_name(p.scene.sim.integrator)) + "," + r.status;

@@ -218,8 +218,9 @@ RestitutionTolerance sie_restitution_tolerance(double (*e_of)(double), double ze
 ClosedFormCase rebound_case(DampingLaw law, double zeta) {
   const bool kv = law == DampingLaw::KelvinVoigt;
   ClosedFormCase cs;
-  cs.id = std::string("rebound.") + (kv ? "kelvin_voigt" : "compression") + ".zeta" +
-          format_number(zeta, 2);
+  cs.id = "rebound." +
+          std::string(damping_law_name(kv ? DampingLaw::KelvinVoigt : DampingLaw::Compression)) +
+          ".zeta" + format_number(zeta, 2);
   cs.name = std::string("rebound, ") + (kv ? "Kelvin–Voigt" : "compression-only damper") +
             ", ζ = " + format_number(zeta, 2);
   const double k = 1e4, m = 1.0;

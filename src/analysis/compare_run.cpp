@@ -216,8 +216,7 @@ std::string comparison_json(const Comparison& c, const std::string& scene_label)
         << engines::option_value(runs[i].spec, option.name) << "\"";
     }
   }
-  o << ", \"damping\": \""
-    << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") << "\""
+  o << ", \"damping\": \"" << damping_law_name(c.scene.contact.damping) << "\""
     << ", \"friction_law\": \"" << friction_law_name(c.scene.contact.friction) << "\""
     << ", \"integrators\": {";
   for (size_t i = 0; i < runs.size(); ++i)

@@ -507,17 +507,16 @@ void explain_dt_dependent_model(Finding& f, const Rerun& r, const DiagnosisInput
     f.share = kNaN;
     f.named = false;
   }
-  f.explanation = "MuJoCo's model depends on Δt: the calibrated impratio = 1/(c·Δt·A_t) is " +
-                  format_number(in.mujoco_run.impratio, 3) + " at Δt and " +
-                  format_number(follow.impratio, 3) +
-                  " at Δt/10. Both engines at Δt/10 differ by " + format_number(follow.after, 3) +
-                  " m with MuJoCo's model following Δt, and by " + format_number(f.after, 3) +
-                  " m with it held at its Δt values (" + f.fix +
-                  "): the model's dependence on Δt moves the difference by " +
-                  percent(std::isfinite(f.share) ? std::abs(f.share) : 0.0) +
-                  " of its size at Δt. Hold the model with --model-dt " +
-                  format_shortest(in.scene.sim.dt, 6) +
-                  " to see the step's effect alone when changing --dt.";
+  f.explanation =
+      "MuJoCo's model depends on Δt: the calibrated impratio = 1/(c·Δt·A_t) is " +
+      format_number(in.mujoco_run.impratio, 3) + " at Δt and " + format_number(follow.impratio, 3) +
+      " at Δt/10. Both engines at Δt/10 differ by " + format_number(follow.after, 3) +
+      " m with MuJoCo's model following Δt, and by " + format_number(f.after, 3) +
+      " m with it held at its Δt values (" + f.fix +
+      "): the model's dependence on Δt moves the difference by " +
+      percent(std::isfinite(f.share) ? std::abs(f.share) : 0.0) +
+      " of its size at Δt. Hold the model with --model-dt " + format_shortest(in.scene.sim.dt, 6) +
+      " to see the step's effect alone when changing --dt.";
 }
 
 void explain_refsafe(Finding& f, const std::string& falls, const DiagnosisInputs& in) {

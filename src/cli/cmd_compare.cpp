@@ -115,7 +115,7 @@ std::string engines_text(const Comparison& c) {
 void print_table(const Comparison& c) {
   const analysis::ConvergedSolution& conv = c.converged;
   std::cout << shape_name(c.scene.shape) << ": " << engines_text(c) << ", "
-            << (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt")
+            << std::string(damping_law_title(c.scene.contact.damping))
             << " damping, dt = " << format_number(c.scene.sim.dt, 4) << " s, "
             << c.runs[1].vs_first.samples << " samples over "
             << format_number(c.scene.sim.duration, 4) << " s\n";
@@ -302,13 +302,12 @@ int compare(const CompareOptions& options) {
     const ComparedRun& a = c.runs[0];
     const ComparedRun& b = c.runs[1];  // the plot draws the first two
     const std::string options_first = option_text(b, false);
-    const std::string title =
-        std::string(shape_name(c.scene.shape)) + ": " + a.label + " vs " + b.label + ", " +
-        engines::integrator_label(b.spec.kind, c.scene.sim.integrator) +
-        ", Δt = " + format_number(c.scene.sim.dt) + " s, " +
-        (options_first.empty() ? "" : options_first + ", ") +
-        (c.scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
-        " damping";
+    const std::string title = std::string(shape_name(c.scene.shape)) + ": " + a.label + " vs " +
+                              b.label + ", " +
+                              engines::integrator_label(b.spec.kind, c.scene.sim.integrator) +
+                              ", Δt = " + format_number(c.scene.sim.dt) + " s, " +
+                              (options_first.empty() ? "" : options_first + ", ") +
+                              std::string(damping_law_title(c.scene.contact.damping)) + " damping";
     plot = std::make_unique<AtomicFile>(options.plot);
     plot_comparison(*plot, title, a.run.trajectory, b.run.trajectory, a.label, b.label);
   }

@@ -55,6 +55,24 @@ namespace contact2d {
 enum class DampingLaw { Compression, KelvinVoigt };
 enum class FrictionLaw { Tanh, ViscousCone, SoftCone };
 
+// "compression", "kelvin_voigt" (the scene files' damping): the one name
+// table of the damping law; damping_law_title is its name in prose.
+inline std::string_view damping_law_name(DampingLaw law) {
+  switch (law) {
+    case DampingLaw::Compression: return "compression";
+    case DampingLaw::KelvinVoigt: return "kelvin_voigt";
+  }
+  return "compression";
+}
+inline std::string_view damping_law_title(DampingLaw law) {
+  return law == DampingLaw::Compression ? "compression" : "Kelvin-Voigt";
+}
+inline std::optional<DampingLaw> parse_damping_law(std::string_view name) {
+  for (DampingLaw law : {DampingLaw::Compression, DampingLaw::KelvinVoigt})
+    if (damping_law_name(law) == name) return law;
+  return std::nullopt;
+}
+
 // "tanh", "viscous_cone", "soft_cone" (the scene files' friction_law).
 inline std::string_view friction_law_name(FrictionLaw law) {
   switch (law) {

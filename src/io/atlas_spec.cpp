@@ -122,10 +122,6 @@ std::vector<std::string> string_list(const toml::table* atlas, const char* key,
 
 }  // namespace
 
-std::string damping_law_name(DampingLaw law) {
-  return law == DampingLaw::Compression ? "compression" : "kelvin_voigt";
-}
-
 namespace {
 
 // The [atlas] table: sample, bodies, mappings, damping laws, integrator,
@@ -178,10 +174,8 @@ void read_atlas_table(AtlasSpec& spec, const toml::table* atlas, const std::stri
   if (atlas->get("damping")) {
     for (const std::string& d :
          string_list(atlas, "damping", origin, "kelvin_voigt, compression")) {
-      if (d == "kelvin_voigt")
-        spec.damping.push_back(DampingLaw::KelvinVoigt);
-      else if (d == "compression")
-        spec.damping.push_back(DampingLaw::Compression);
+      if (const auto law = parse_damping_law(d))
+        spec.damping.push_back(*law);
       else
         fail(origin, "atlas.damping",
              "'" + d + "' is not a damping law: kelvin_voigt or compression");

@@ -84,6 +84,5 @@ AtlasSpec load_atlas_spec(const std::string& path);
 // list's length; random: count × bodies × mappings × damping laws).
 long long atlas_point_count(const AtlasSpec& spec);
 
-std::string damping_law_name(DampingLaw law);  // "compression", "kelvin_voigt"
 
 }  // namespace contact2d

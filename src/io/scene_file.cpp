@@ -80,16 +80,14 @@ void read_contact(const toml::table* table, Scene& scene, const std::string& ori
   contact.number("alpha", p.alpha);
   contact.number("mu_roll", p.mu_roll);
   contact.number("mu_torsion", p.mu_torsion);
-  std::string damping = p.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt";
+  std::string damping(damping_law_name(p.damping));
   contact.string("damping", damping);
   std::string friction(friction_law_name(p.friction));
   contact.string("friction_law", friction);
   contact.number("cone_ratio", p.cone_ratio);
   contact.reject_unknown("k, c, mu, alpha, mu_roll, mu_torsion, damping, friction_law, cone_ratio");
-  if (damping == "compression") {
-    p.damping = DampingLaw::Compression;
-  } else if (damping == "kelvin_voigt") {
-    p.damping = DampingLaw::KelvinVoigt;
+  if (const auto law = parse_damping_law(damping)) {
+    p.damping = *law;
   } else {
     contact.fail("damping", "= \"" + damping +
                                 "\" is not a damping law: use \"compression\" or \"kelvin_voigt\"");
@@ -153,10 +151,8 @@ void read_obstacle_contact(TableReader& reader, const toml::table& table, Contac
   if (table.contains("damping")) {
     std::string damping;
     reader.string("damping", damping);
-    if (damping == "compression") {
-      out.damping = DampingLaw::Compression;
-    } else if (damping == "kelvin_voigt") {
-      out.damping = DampingLaw::KelvinVoigt;
+    if (const auto law = parse_damping_law(damping)) {
+      out.damping = *law;
     } else {
       reader.fail(
           "damping",

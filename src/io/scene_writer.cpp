@@ -42,7 +42,7 @@ std::string scene_to_toml(const Scene& s, const std::string& comment) {
     << "\nmu = " << format_shortest(c.mu) << "\nalpha = " << format_shortest(c.alpha)
     << "\nmu_roll = " << format_shortest(c.mu_roll)
     << "\nmu_torsion = " << format_shortest(c.mu_torsion) << "\ndamping = \""
-    << (c.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") << "\"\n";
+    << damping_law_name(c.damping) << "\"\n";
   if (c.friction != FrictionLaw::Tanh)
     o << "friction_law = \"" << friction_law_name(c.friction)
       << "\"\ncone_ratio = " << format_shortest(c.cone_ratio) << "\n";

@@ -425,10 +425,9 @@ std::string obstacle_lines(const Scene& scene, const SolverSettings& s) {
     text += "    obstacle" + std::to_string(i) + " (" + std::string(obstacle_shape_name(o.shape)) +
             (o.contact.any() ? ", own law" : ", the scene's law") + "): k " + format_exact(p.k) +
             " N/m, c " + format_exact(p.c) + " N s/m, damping " +
-            (p.damping == DampingLaw::Compression ? "compression" : "kelvin_voigt") + ", mu " +
-            format_exact(p.mu) + ", mu_roll " + format_exact(p.mu_roll) + " m, mu_torsion " +
-            format_exact(p.mu_torsion) + "; solref = (" + format_exact(os.solref[0]) + ", " +
-            format_exact(os.solref[1]) + ")" +
+            std::string(damping_law_name(p.damping)) + ", mu " + format_exact(p.mu) + ", mu_roll " +
+            format_exact(p.mu_roll) + " m, mu_torsion " + format_exact(p.mu_torsion) +
+            "; solref = (" + format_exact(os.solref[0]) + ", " + format_exact(os.solref[1]) + ")" +
             (s.mapping == Mapping::Calibrated    ? " = (-k A/n, -c A/n)"
              : s.mapping == Mapping::Compensated ? " = (-k D/n, -c D/n)"
                                                  : "") +
@@ -459,9 +458,8 @@ std::string header(const Scene& scene, const MjcfOptions& options, const SolverS
             " (3.11's early exits off), compensated corners start at margin -eps (3.9's "
             "margin/gap), a point mass has the hinge \"spin\" (3.0's slide-only invweight)\n";
   text += "  contact: k " + format_exact(p.k) + " N/m, c " + format_exact(p.c) +
-          " N s/m, damping " +
-          (p.damping == DampingLaw::Compression ? "compression (MuJoCo's damper is Kelvin-Voigt)"
-                                                : "kelvin_voigt") +
+          " N s/m, damping " + std::string(damping_law_name(p.damping)) +
+          (p.damping == DampingLaw::Compression ? " (MuJoCo's damper is Kelvin-Voigt)" : "") +
           ", mu " + format_exact(p.mu) + ", alpha " + format_exact(p.alpha) + " s/m, mu_roll " +
           format_exact(p.mu_roll) + " m, mu_torsion " + format_exact(p.mu_torsion) + "\n";
   text += "  sim: dt " + format_exact(scene.sim.dt) + " s (the timestep), duration " +
@@ -694,15 +692,15 @@ void add_pairs(XMLDocument& doc, XMLElement* root, const Scene& scene, const Sol
     const ContactParams& p = os.law;
     for (const Geom& g : l.geoms) {
       if (g.visual) continue;
-      XMLElement* pair = add(doc, contact, "pair",
-                             {{"geom1", g.name},
-                              {"geom2", "obstacle" + std::to_string(i)},
-                              {"condim", std::to_string(os.condim)},
-                              {"friction", join({p.mu, p.mu, p.mu_torsion,
-                                                 cone_mu_roll(scene, p, s),
-                                                 cone_mu_roll(scene, p, s)})},
-                              {"solref", join(os.solref)},
-                              {"solimp", join(s.solimp)}});
+      XMLElement* pair = add(
+          doc, contact, "pair",
+          {{"geom1", g.name},
+           {"geom2", "obstacle" + std::to_string(i)},
+           {"condim", std::to_string(os.condim)},
+           {"friction",
+            join({p.mu, p.mu, p.mu_torsion, cone_mu_roll(scene, p, s), cone_mu_roll(scene, p, s)})},
+           {"solref", join(os.solref)},
+           {"solimp", join(s.solimp)}});
       // compensated: as the corner geoms' own gap (add_body); a pair uses its own
       if (l.lever > 0.0 && g.corner) set_start(pair, l);
       set_damper(pair, os.solref, p.c);

@@ -70,12 +70,9 @@ auto reading(const std::string& path, F&& f) {
 
 // The scene file's words for the enumerations; a bad word is the scene
 // reader's message for that key.
-std::string damping_name(DampingLaw law) {
-  return law == DampingLaw::Compression ? "compression" : "kelvin_voigt";
-}
+std::string damping_name(DampingLaw law) { return std::string(damping_law_name(law)); }
 DampingLaw parse_damping(const std::string& name) {
-  if (name == "compression") return DampingLaw::Compression;
-  if (name == "kelvin_voigt") return DampingLaw::KelvinVoigt;
+  if (const auto law = parse_damping_law(name)) return *law;
   throw InputError("contact.damping = \"" + name +
                    "\" is not a damping law: use \"compression\" or \"kelvin_voigt\"");
 }

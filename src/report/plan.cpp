@@ -36,10 +36,13 @@ Scene load(const std::string& path, const std::vector<Override>& overrides = {})
 }
 
 // --set contact.damping=kelvin_voigt
-const std::vector<Override> kKelvinVoigt{{"contact.damping", "kelvin_voigt"}};
+const std::vector<Override> kKelvinVoigt{
+    {"contact.damping", std::string(damping_law_name(DampingLaw::KelvinVoigt))}};
 // The agreement goal's runs: --dt 1e-4 --set contact.damping=kelvin_voigt --set contact.c=C
 std::vector<Override> goal(const std::string& c) {
-  return {{"contact.damping", "kelvin_voigt"}, {"contact.c", c}, {"sim.dt", "1e-4"}};
+  return {{"contact.damping", std::string(damping_law_name(DampingLaw::KelvinVoigt))},
+          {"contact.c", c},
+          {"sim.dt", "1e-4"}};
 }
 std::vector<Override> with(std::vector<Override> a, const std::vector<Override>& b) {
   a.insert(a.end(), b.begin(), b.end());
@@ -322,7 +325,9 @@ void write_report(const ReportRequest& o) {
   std::vector<analysis::NamedScene> version_scenes;
   version_scenes.reserve(kScenes.size());
   for (const std::string& s : kScenes)
-    version_scenes.push_back({s, load(scene_path(s), {{"contact.damping", "kelvin_voigt"}})});
+    version_scenes.push_back(
+        {s, load(scene_path(s),
+                 {{"contact.damping", std::string(damping_law_name(DampingLaw::KelvinVoigt))}})});
   const analysis::VersionTable versions =
       mujoco ? version_rows(version_scenes) : analysis::VersionTable{{}, "built without MuJoCo"};
   // atlas.md: the small default atlas (its rows in OUT/atlas/).

@@ -92,13 +92,11 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
   const auto [ref, mujoco] = run_both(spec, scene, source);
   const analysis::TrajectoryError e = analysis::error_between(ref.trajectory, mujoco.trajectory);
   if (!plot_png.empty()) {
-    const std::string title =
-        std::string(shape_name(scene.shape)) + ": ref vs MuJoCo, " +
-        engines::integrator_label("mujoco", scene.sim.integrator) +
-        ", Δt = " + format_number(scene.sim.dt) + " s, " +
-        std::string(mj::mapping_name(options.mapping)) + " mapping, " +
-        (scene.contact.damping == DampingLaw::Compression ? "compression" : "Kelvin-Voigt") +
-        " damping";
+    const std::string title = std::string(shape_name(scene.shape)) + ": ref vs MuJoCo, " +
+                              engines::integrator_label("mujoco", scene.sim.integrator) +
+                              ", Δt = " + format_number(scene.sim.dt) + " s, " +
+                              std::string(mj::mapping_name(options.mapping)) + " mapping, " +
+                              std::string(damping_law_title(scene.contact.damping)) + " damping";
     plot_comparison(plot_png, title, ref.trajectory, mujoco.trajectory, "ref", "MuJoCo");
   }
   c.shape = std::string(shape_name(scene.shape));
