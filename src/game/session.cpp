@@ -1,6 +1,7 @@
 #include "game/session.hpp"
 
 #include "core/format.hpp"
+#include "io/json.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -82,7 +83,8 @@ std::optional<double> parting_time(const ReplayRun& a, const ReplayRun& b, doubl
 
 namespace {
 
-std::string number(double v) { return format_number(v, 9); }
+// Nine digits, null when not finite (io/json.hpp: the one JSON writer).
+std::string number(double v) { return json::number(v, 9); }
 
 }  // namespace
 
@@ -92,7 +94,7 @@ std::string report_json(const Game& game) {
   std::string out = "{";
   out += "\"goal\":" + std::string(game.goals() > 0 ? "true" : "false");
   out += ",\"goals\":" + std::to_string(game.goals());
-  out += ",\"outcome\":\"" + std::string(outcome_name(last.outcome)) + "\"";
+  out += ",\"outcome\":" + json::string(std::string(outcome_name(last.outcome)));
   out += ",\"kicks\":[";
   bool first = true;
   for (const KickRecord& k : game.kicks()) {
@@ -109,12 +111,13 @@ std::string report_json(const Game& game) {
     out += first ? "" : ",";
     first = false;
     out += "{\"round\":" + std::to_string(r.round) + ",\"pass_speed\":" + number(r.pass_speed) +
-           ",\"pass_spin\":" + number(r.pass_spin) + ",\"outcome\":\"" +
-           std::string(outcome_name(r.outcome)) + "\",\"end_time\":" + number(r.end_time) + "}";
+           ",\"pass_spin\":" + number(r.pass_spin) +
+           ",\"outcome\":" + json::string(std::string(outcome_name(r.outcome))) +
+           ",\"end_time\":" + number(r.end_time) + "}";
   }
   out += "],\"time\":" + number(game.time());
   out += ",\"steps\":" + std::to_string(game.steps());
-  out += ",\"engine\":\"" + std::string(game.engine_name()) + "\"";
+  out += ",\"engine\":" + json::string(std::string(game.engine_name()));
   out += ",\"seed\":" + std::to_string(game.seed());
   out += ",\"ball\":{\"x\":" + number(s.q.x()) + ",\"y\":" + number(s.q.y()) +
          ",\"vx\":" + number(s.v.x()) + ",\"vy\":" + number(s.v.y()) +

@@ -14,6 +14,7 @@
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/integrators.hpp"
+#include "io/json.hpp"
 #include "mujoco/bounce.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/model.hpp"
@@ -851,37 +852,21 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
   }
 }
 
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (char ch : text) {
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (ch == '\n') {
-      out += "\\n";
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
-std::string jn(double v) { return std::isfinite(v) ? format_exact(v) : "null"; }
-
 std::string json_array(const double* v, int n) {
   std::string out = "[";
-  for (int i = 0; i < n; ++i) out += (i ? ", " : "") + jn(v[i]);
+  for (int i = 0; i < n; ++i) out += (i ? ", " : "") + json::number(v[i]);
   return out + "]";
 }
 
 void json_row(std::ostringstream& o, const InspectRow& r) {
   o << "    {\"contact\": " << (r.active ? std::to_string(r.contact) : "null")
-    << ", \"body1\": " << json_string(r.body1_name) << ", \"body2\": " << json_string(r.body2_name)
-    << ", \"geom1\": " << json_string(r.geom1_name) << ", \"geom2\": " << json_string(r.geom2_name)
-    << ", \"source\": " << json_string(r.source);
+    << ", \"body1\": " << json::string(r.body1_name)
+    << ", \"body2\": " << json::string(r.body2_name)
+    << ", \"geom1\": " << json::string(r.geom1_name)
+    << ", \"geom2\": " << json::string(r.geom2_name) << ", \"source\": " << json::string(r.source);
   if (!r.active) o << ", \"contacts_now\": " << r.contacts_now;
   const bool point = r.active || r.contacts_now > 0 || r.closest;
-  o << ",\n     \"dist\": " << (point ? jn(r.dist) : "null")
+  o << ",\n     \"dist\": " << (point ? json::number(r.dist) : "null")
     << ", \"pos\": " << (point ? json_array(r.pos.data(), 3) : "null")
     << ", \"normal\": " << (point ? json_array(r.normal.data(), 3) : "null")
     << ", \"closest_points\": " << (r.closest ? "true" : "false") << ", \"condim\": " << r.condim
@@ -889,23 +874,31 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
     << ",\n     \"solref\": " << json_array(r.solref.data(), 2)
     << ", \"solimp\": " << json_array(r.solimp.data(), 5)
     << ", \"refsafe_changes\": " << (r.refsafe_changes ? "true" : "false")
-    << ", \"timeconst_used\": " << (r.timeconst_used > 0.0 ? jn(r.timeconst_used) : "null")
-    << ",\n     \"K\": " << jn(r.K) << ", \"B\": " << jn(r.B) << ", \"dmax\": " << jn(r.dmax)
-    << ", \"d_rest\": " << jn(r.d_rest) << ", \"A\": " << jn(r.A)
-    << ", \"A_measured\": " << (r.A_measured ? "true" : "false")
-    << ", \"invweight\": " << jn(r.inv_weight) << ", \"normal_weight\": " << jn(r.normal_weight)
-    << ",\n     \"k\": " << jn(r.k) << ", \"c\": " << jn(r.c) << ", \"omega\": " << jn(r.omega)
-    << ", \"zeta\": " << jn(r.zeta) << ", \"omega_max\": " << jn(r.omega_max)
-    << ", \"zeta_max\": " << jn(r.zeta_max) << ", \"omega_dt\": " << jn(r.omega_dt)
-    << ", \"limit\": " << jn(r.limit) << ",\n     \"restitution\": " << jn(r.restitution)
-    << ", \"restitution_dt\": " << jn(r.restitution_dt) << ", \"load\": " << jn(r.load)
-    << ", \"force\": " << (r.active ? jn(r.force) : "null") << ", \"estimate\": " << jn(r.estimate)
-    << ", \"penetration\": " << jn(r.penetration)
-    << ", \"normal_speed\": " << (r.active ? jn(r.normal_speed) : "null")
-    << ", \"depth_note\": " << json_string(r.depth_note) << ",\n     \"A_t\": " << jn(r.A_t)
-    << ", \"impratio_cap\": " << jn(r.impratio_cap) << ", \"push\": " << jn(r.push)
-    << ", \"lift_off\": " << jn(r.lift_off) << ", \"creep\": " << jn(r.creep)
-    << ", \"creep_note\": " << json_string(r.creep_note) << "}";
+    << ", \"timeconst_used\": "
+    << (r.timeconst_used > 0.0 ? json::number(r.timeconst_used) : "null")
+    << ",\n     \"K\": " << json::number(r.K) << ", \"B\": " << json::number(r.B)
+    << ", \"dmax\": " << json::number(r.dmax) << ", \"d_rest\": " << json::number(r.d_rest)
+    << ", \"A\": " << json::number(r.A) << ", \"A_measured\": " << (r.A_measured ? "true" : "false")
+    << ", \"invweight\": " << json::number(r.inv_weight)
+    << ", \"normal_weight\": " << json::number(r.normal_weight)
+    << ",\n     \"k\": " << json::number(r.k) << ", \"c\": " << json::number(r.c)
+    << ", \"omega\": " << json::number(r.omega) << ", \"zeta\": " << json::number(r.zeta)
+    << ", \"omega_max\": " << json::number(r.omega_max)
+    << ", \"zeta_max\": " << json::number(r.zeta_max)
+    << ", \"omega_dt\": " << json::number(r.omega_dt) << ", \"limit\": " << json::number(r.limit)
+    << ",\n     \"restitution\": " << json::number(r.restitution)
+    << ", \"restitution_dt\": " << json::number(r.restitution_dt)
+    << ", \"load\": " << json::number(r.load)
+    << ", \"force\": " << (r.active ? json::number(r.force) : "null")
+    << ", \"estimate\": " << json::number(r.estimate)
+    << ", \"penetration\": " << json::number(r.penetration)
+    << ", \"normal_speed\": " << (r.active ? json::number(r.normal_speed) : "null")
+    << ", \"depth_note\": " << json::string(r.depth_note)
+    << ",\n     \"A_t\": " << json::number(r.A_t)
+    << ", \"impratio_cap\": " << json::number(r.impratio_cap)
+    << ", \"push\": " << json::number(r.push) << ", \"lift_off\": " << json::number(r.lift_off)
+    << ", \"creep\": " << json::number(r.creep)
+    << ", \"creep_note\": " << json::string(r.creep_note) << "}";
 }
 
 }  // namespace
@@ -1003,28 +996,34 @@ std::string format_inspect_text(const InspectReport& rep) {
 
 std::string format_inspect_json(const InspectReport& rep) {
   std::ostringstream o;
-  o << "{\n  \"model\": " << json_string(rep.path)
-    << ",\n  \"key\": " << (rep.key.empty() ? "null" : json_string(rep.key))
-    << ",\n  \"mujoco\": " << json_string(rep.version) << ",\n  \"settled\": " << jn(rep.settled)
-    << ",\n  \"speed\": " << jn(rep.speed) << ",\n  \"accel\": " << jn(rep.accel)
+  o << "{\n  \"model\": " << json::string(rep.path)
+    << ",\n  \"key\": " << (rep.key.empty() ? "null" : json::string(rep.key))
+    << ",\n  \"mujoco\": " << json::string(rep.version)
+    << ",\n  \"settled\": " << json::number(rep.settled)
+    << ",\n  \"speed\": " << json::number(rep.speed)
+    << ",\n  \"accel\": " << json::number(rep.accel)
     << ",\n  \"at_rest\": " << (rep.at_rest ? "true" : "false")
-    << ",\n  \"loads\": " << json_string(rep.loads_estimated ? "estimate" : "mujoco")
-    << ",\n  \"load_warning\": " << json_string(rep.load_warning)
-    << ",\n  \"integrator\": " << json_string(rep.integrator) << ",\n  \"timestep\": " << jn(rep.dt)
-    << ",\n  \"cone\": " << json_string(rep.cone) << ",\n  \"impratio\": " << jn(rep.impratio)
+    << ",\n  \"loads\": " << json::string(rep.loads_estimated ? "estimate" : "mujoco")
+    << ",\n  \"load_warning\": " << json::string(rep.load_warning)
+    << ",\n  \"integrator\": " << json::string(rep.integrator)
+    << ",\n  \"timestep\": " << json::number(rep.dt) << ",\n  \"cone\": " << json::string(rep.cone)
+    << ",\n  \"impratio\": " << json::number(rep.impratio)
     << ",\n  \"gravity\": " << json_array(rep.gravity.data(), 3)
-    << ",\n  \"slope\": " << (rep.slope ? jn(*rep.slope) : "null")
+    << ",\n  \"slope\": " << (rep.slope ? json::number(*rep.slope) : "null")
     << ",\n  \"balanced\": " << (rep.balanced ? "true" : "false")
-    << ",\n  \"residual\": " << jn(rep.residual)
-    << ",\n  \"body\": " << (rep.body.empty() ? "null" : json_string(rep.body))
+    << ",\n  \"residual\": " << json::number(rep.residual)
+    << ",\n  \"body\": " << (rep.body.empty() ? "null" : json::string(rep.body))
     << ",\n  \"bodies\": [";
   for (size_t i = 0; i < rep.bodies.size(); ++i) {
     const BodySummary& b = rep.bodies[i];
-    o << (i ? ",\n    " : "\n    ") << "{\"name\": " << json_string(b.name)
-      << ", \"contacts\": " << b.contacts << ", \"load\": " << jn(b.load)
-      << ", \"deepest\": " << jn(b.deepest) << ", \"mass_min\": " << jn(b.mass_min)
-      << ", \"mass_max\": " << jn(b.mass_max) << ", \"stability\": " << jn(b.stability)
-      << ", \"bounce\": " << jn(b.bounce) << ", \"bounce_spread\": " << jn(b.bounce_spread) << "}";
+    o << (i ? ",\n    " : "\n    ") << "{\"name\": " << json::string(b.name)
+      << ", \"contacts\": " << b.contacts << ", \"load\": " << json::number(b.load)
+      << ", \"deepest\": " << json::number(b.deepest)
+      << ", \"mass_min\": " << json::number(b.mass_min)
+      << ", \"mass_max\": " << json::number(b.mass_max)
+      << ", \"stability\": " << json::number(b.stability)
+      << ", \"bounce\": " << json::number(b.bounce)
+      << ", \"bounce_spread\": " << json::number(b.bounce_spread) << "}";
   }
   o << (rep.bodies.empty() ? "]" : "\n  ]") << ",\n  \"contacts\": [";
   for (size_t i = 0; i < rep.contacts.size(); ++i) {
@@ -1045,7 +1044,7 @@ std::string format_inspect_json(const InspectReport& rep) {
   }
   o << ",\n  \"warnings\": [";
   for (size_t i = 0; i < rep.warnings.size(); ++i)
-    o << (i ? ",\n    " : "\n    ") << json_string(rep.warnings[i]);
+    o << (i ? ",\n    " : "\n    ") << json::string(rep.warnings[i]);
   o << (rep.warnings.empty() ? "]" : "\n  ]") << "\n}\n";
   return o.str();
 }

@@ -690,6 +690,21 @@ TEST_F(Inspect, KBImpedanceAndNormalWeightAreWhatMujocoComputes) {
   expect_impedance_as_mujoco(report(kArmModel, "touch"), kArmModel, "touch");
 }
 
+// inspect's JSON goes through the one JSON writer (io/json.hpp): a geom
+// name with a tab and a carriage return (&#9; and &#13; in the MJCF) is
+// escaped, never written raw (inspect had an escaper of its own that passed
+// both).
+TEST_F(Inspect, JsonEscapesControlCharactersInNames) {
+  std::string model = kBoxModel;
+  const std::string floor = "name=\"floor\"";
+  ASSERT_NE(model.find(floor), std::string::npos);
+  model.replace(model.find(floor), floor.size(), "name=\"the&#9;floor&#13;\"");
+  const std::string json = mj::format_inspect_json(report(model, "", std::nullopt, false, 0.0));
+  EXPECT_NE(json.find("the\\tfloor\\r"), std::string::npos) << json.substr(0, 600);
+  EXPECT_EQ(json.find('\t'), std::string::npos);
+  EXPECT_EQ(json.find('\r'), std::string::npos);
+}
+
 TEST_F(Inspect, KelvinVoigtRestitutionClampedAtZeroMatchesItsKnownValues) {
   // Undamped: no loss. Light damping: the clamp lets go before x = 0, so e
   // is below the unclamped exp(−ζπ/√(1 − ζ²)).
