@@ -84,5 +84,4 @@ AtlasSpec load_atlas_spec(const std::string& path);
 // list's length; random: count × bodies × mappings × damping laws).
 long long atlas_point_count(const AtlasSpec& spec);
 
-
 }  // namespace contact2d

@@ -28,7 +28,8 @@ int main() {
   contact2d::StepWorkspace ws(model);  // the step's scratch, made once
   for (int i = 0; i < 1000; ++i)
     if (contact2d::step(model, contact2d::Integrator::RK4, 1e-4, s, ws) !=
-        contact2d::StepStatus::Ok) break;
+        contact2d::StepStatus::Ok)
+      break;
   const contact2d::Trajectory run = contact2d::simulate(scene);
   if (run.samples.empty() || run.samples.back().state.q != s.q) return 4;
   std::printf("1000 steps by hand = simulate's last sample: y = %.9g m\n", s.q.y());

@@ -65,8 +65,8 @@ void check_fixes(const std::string& name, const Scene& scene, const std::string&
     const engines::EngineRun mj = engines::run_engine(p.spec, p.scene);
     ASSERT_FALSE(ref.trajectory.divergence || mj.trajectory.divergence) << name << " " << f.fix;
     const double pasted = analysis::error_between(ref.trajectory, mj.trajectory).max_pos;
-    std::printf("%s (%s) %s: reported %.6g m, pasted %.6g m  [%s]\n", name.c_str(),
-                mapping.c_str(), f.cause.c_str(), f.after, pasted, f.fix.c_str());
+    std::printf("%s (%s) %s: reported %.6g m, pasted %.6g m  [%s]\n", name.c_str(), mapping.c_str(),
+                f.cause.c_str(), f.after, pasted, f.fix.c_str());
     EXPECT_NEAR(pasted, f.after, 1e-12 + 1e-9 * f.after)
         << name << " (" << mapping << "): " << f.cause << ": " << f.fix;
   }

@@ -99,9 +99,9 @@ TEST(SoftCone, FollowsMuJoCoOnASlope) {
     Shape shape;
     double mu, mu_roll;
   };
-  for (const Case& c : {Case{"box", Shape::Box, 0.3, 0.0}, Case{"disc_rolling", Shape::Circle,
-                                                                0.5, 0.005},
-                        Case{"disc_slipping", Shape::Circle, 0.1, 0.0}}) {
+  for (const Case& c :
+       {Case{"box", Shape::Box, 0.3, 0.0}, Case{"disc_rolling", Shape::Circle, 0.5, 0.005},
+        Case{"disc_slipping", Shape::Circle, 0.1, 0.0}}) {
     Scene scene = default_scene(c.shape);
     scene.contact.k = 1e4;
     scene.contact.c = 100.0;
