@@ -141,7 +141,7 @@ GeneratedModel generate_mjcf(const Scene& scene, const MjcfOptions& options);
 // docs/mujoco.md), otherwise the scene's μ_roll. The second form for one
 // law of the scene (an obstacle's own): its pairs write that law's.
 double cone_mu_roll(const Scene& scene, const SolverSettings& s);
-double cone_mu_roll(const Scene& scene, const ContactParams& law, const SolverSettings& s);
+double cone_mu_roll(const Scene& scene, const ContactParams& p, const SolverSettings& s);
 
 // The MJCF with given solver settings (no MuJoCo involved).
 std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
