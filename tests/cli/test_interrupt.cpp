@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "support/files.hpp"
+#include "support/stand_in.hpp"
 
 namespace fs = std::filesystem;
 
@@ -187,42 +188,17 @@ TEST(InterruptDuringAPlot, KillsGnuplotAndLeavesNothing) {
   const fs::path root =
       fs::temp_directory_path() / ("contact2d_interrupt_gnuplot_" + std::to_string(::getpid()));
   fs::remove_all(root);
-  const fs::path dir = root / "work", tmp = root / "tmp", bin = root / "bin";
-  for (const fs::path& d : {dir, tmp, bin}) fs::create_directories(d);
-  const fs::path mark = root / "gnuplot.pid";
-  std::ofstream(bin / "gnuplot") << "#!/bin/sh\necho $$ > '" << mark.string() << ".tmp'\nmv '"
-                                 << mark.string() << ".tmp' '" << mark.string()
-                                 << "'\nexec sleep 60\n";
-  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
-  const std::string path = bin.string() + ":" + std::getenv("PATH");
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    if (::chdir(dir.c_str()) != 0) ::_exit(120);
-    ::setenv("PATH", path.c_str(), 1);
-    ::setenv("TMPDIR", tmp.c_str(), 1);
-    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
-      ::_exit(121);
-    const std::string scene = CONTACT2D_SCENES_DIR "/box.toml";
-    ::execl(CONTACT2D_EXE, CONTACT2D_EXE, "compare", scene.c_str(), "--no-diagnosis", "--plot",
-            "out.png", "--duration", "0.1", static_cast<char*>(nullptr));
-    ::_exit(122);
-  }
-  int status = 0;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(mark) && std::chrono::steady_clock::now() < deadline) {
-    if (::waitpid(pid, &status, WNOHANG) == pid) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ASSERT_TRUE(fs::exists(mark)) << "gnuplot was not started";
-  const pid_t gnuplot = std::stoi(read_file(mark));
-  ::kill(pid, SIGINT);
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT);
-  const bool alive = ::kill(gnuplot, 0) == 0;
-  EXPECT_FALSE(alive) << "gnuplot " << gnuplot << " still runs";
-  if (alive) ::kill(gnuplot, SIGKILL);
+  const fs::path dir = root / "work", tmp = root / "tmp";
+  for (const fs::path& d : {dir, tmp}) fs::create_directories(d);
+  const fs::path mark = contact2d::test::write_stand_in(root, "gnuplot");
+  const contact2d::test::Interrupted r = contact2d::test::interrupt_while_tool_runs(
+      root, dir, mark, CONTACT2D_EXE,
+      {"compare", CONTACT2D_SCENES_DIR "/box.toml", "--no-diagnosis", "--plot", "out.png",
+       "--duration", "0.1"},
+      {{"TMPDIR", tmp.string()}});
+  ASSERT_TRUE(r.tool_started) << "gnuplot was not started";
+  EXPECT_EQ(r.exit_status, 128 + SIGINT);
+  EXPECT_FALSE(r.tool_outlived) << "gnuplot still ran after the program ended";
   EXPECT_TRUE(fs::is_empty(dir)) << "left behind: " << fs::directory_iterator(dir)->path();
   EXPECT_TRUE(fs::is_empty(tmp)) << "left behind: " << fs::directory_iterator(tmp)->path();
   fs::remove_all(root);

@@ -28,6 +28,7 @@
 #include "game/video.hpp"
 #include "reference/dense_reference.hpp"
 #include "support/files.hpp"
+#include "support/stand_in.hpp"
 
 namespace fs = std::filesystem;
 using namespace contact2d;
@@ -390,41 +391,17 @@ TEST(ComparisonVideo, AnInterruptedCompareLeavesNoneOfItsOutputs) {
   fs::remove_all(root);
   const fs::path dir = root / "work";
   fs::create_directories(dir);
-  const fs::path mark = root / "ffmpeg.pid";
-  fake_tool(root / "bin", "ffmpeg",
-            "echo $$ > '" + mark.string() + ".tmp'\nmv '" + mark.string() + ".tmp' '" +
-                mark.string() + "'\nexec sleep 60\n");
+  const fs::path mark = test::write_stand_in(root, "ffmpeg");
   std::ofstream(dir / "scene.toml") << "scene = \"box\"\n[contact]\nk = 1e4\nc = 200\nmu = 0.5\n"
                                        "damping = \"kelvin_voigt\"\n[initial]\ny = 0.5\n"
                                        "theta = 0.3\n[sim]\ndt = 1e-4\nduration = 0.5\n";
-  const std::string path = (root / "bin").string() + ":" + std::getenv("PATH");
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    if (::chdir(dir.c_str()) != 0) ::_exit(120);
-    ::setenv("PATH", path.c_str(), 1);
-    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr))
-      ::_exit(121);
-    ::execl(CONTACT2D_EXE_WITH_MUJOCO, CONTACT2D_EXE_WITH_MUJOCO, "compare", "scene.toml",
-            "--no-diagnosis", "--csv", "out.csv", "--plot", "out.png", "--video", "out.mp4",
-            static_cast<char*>(nullptr));
-    ::_exit(122);
-  }
-  int status = 0;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(mark) && std::chrono::steady_clock::now() < deadline) {
-    if (::waitpid(pid, &status, WNOHANG) == pid) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  ASSERT_TRUE(fs::exists(mark)) << "ffmpeg was not started";
-  const pid_t ffmpeg = std::stoi(read_file(mark));
-  ::kill(pid, SIGINT);
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT);
-  const bool alive = ::kill(ffmpeg, 0) == 0;
-  EXPECT_FALSE(alive) << "ffmpeg " << ffmpeg << " still runs";
-  if (alive) ::kill(ffmpeg, SIGKILL);
+  const test::Interrupted r =
+      test::interrupt_while_tool_runs(root, dir, mark, CONTACT2D_EXE_WITH_MUJOCO,
+                                      {"compare", "scene.toml", "--no-diagnosis", "--csv",
+                                       "out.csv", "--plot", "out.png", "--video", "out.mp4"});
+  ASSERT_TRUE(r.tool_started) << "ffmpeg was not started";
+  EXPECT_EQ(r.exit_status, 128 + SIGINT);
+  EXPECT_FALSE(r.tool_outlived) << "ffmpeg still ran after the program ended";
   std::vector<std::string> left;
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.path().filename() != "scene.toml") left.push_back(entry.path().filename());
