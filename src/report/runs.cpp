@@ -2,11 +2,6 @@
 // file of the report that runs anything.
 #include "report/runs.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -31,6 +26,7 @@
 #include "game/session.hpp"
 #include "io/atlas_spec.hpp"
 #include "io/atomic_file.hpp"
+#include "io/child_process.hpp"
 #include "io/csv.hpp"
 #include "io/exit_status.hpp"
 #include "io/plot.hpp"
@@ -382,40 +378,29 @@ void run_atlas(const std::string& spec_path, const std::string& out_dir,
 }
 
 Bench run_bench(const std::string& executable, const std::string& min_time) {
-  char json_path[] = "/tmp/contact2d-bench-XXXXXX";
-  const int fd = ::mkstemp(json_path);
-  if (fd < 0) throw std::runtime_error("cannot create a temporary file for the bench's JSON");
-  ::close(fd);
   // Only what the report reads: the reference's default tanh path, mj_step
   // and the libm floors section 6 sets against the budgets (not the other
-  // tanh path's timings, which docs/speed.md reads from a full run).
-  std::vector<std::string> args{executable, "--benchmark_min_time=" + min_time,
-                                "--benchmark_filter=^(ref|mj_step)/|^floor/(libm_|step_)",
-                                std::string("--benchmark_out=") + json_path,
-                                "--benchmark_out_format=json"};
-  std::vector<char*> argv;
-  argv.reserve(args.size() + 1);
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int spawned =
-      ::posix_spawn(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  int status = 0;
-  if (spawned != 0 || ::waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) ||
-      WEXITSTATUS(status) != 0) {
-    std::remove(json_path);
-    throw std::runtime_error(executable + " failed (exit " +
-                             std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+  // tanh path's timings, which docs/speed.md reads from a full run). Its
+  // JSON goes to a temporary of this process in $TMPDIR (an AtomicFile never
+  // committed: removed on return and on an interrupt), and the bench runs
+  // through the one process launcher, registered so that an interrupt stops
+  // it before the file is removed.
+  const char* tmp = std::getenv("TMPDIR");
+  const AtomicFile json(std::string(tmp && *tmp ? tmp : "/tmp") + "/contact2d-bench.json");
+  ChildEnding end;
+  try {
+    ChildProcess bench({executable, "--benchmark_min_time=" + min_time,
+                        "--benchmark_filter=^(ref|mj_step)/|^floor/(libm_|step_)",
+                        "--benchmark_out=" + json.temp_path(), "--benchmark_out_format=json"},
+                       {}, /*writes_output=*/true);
+    end = bench.finish();
+  } catch (const ChildProcessError& e) {
+    throw std::runtime_error(executable + ": " + e.what());
   }
-  std::ifstream in(json_path);
+  if (end.status != 0) throw std::runtime_error(executable + " failed (" + end.description + ")");
+  std::ifstream in(json.temp_path());
   std::ostringstream text;
   text << in.rdbuf();
-  std::remove(json_path);
   Bench bench = parse_bench_json(text.str());
   const size_t slash = executable.rfind('/');
   bench.command = (slash == std::string::npos ? executable : executable.substr(slash + 1)) +
