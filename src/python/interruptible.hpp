@@ -83,13 +83,21 @@ class Worker {
   std::thread thread_;  // last: started once the members above exist
 };
 
+// The calling thread's worker: one for every call of interruptible() on
+// this thread, whatever the work (a thread_local inside the template would
+// be one per instantiation, each with its own Node process).
+inline Worker& this_threads_worker() {
+  thread_local Worker worker;
+  return worker;
+}
+
 // work() on the calling thread's worker, with Python's signals polled while
 // it runs; returns its result or rethrows its exception. Call with the GIL
 // held.
 template <typename F>
 auto interruptible(F&& work) -> decltype(work()) {
   namespace py = pybind11;
-  thread_local Worker worker;
+  Worker& worker = this_threads_worker();
   std::optional<decltype(work())> result;
   std::exception_ptr error;
   bool interrupted = false;
