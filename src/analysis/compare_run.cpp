@@ -110,7 +110,7 @@ std::vector<RunProblem> run_problems(const Comparison& c) {
   return problems;
 }
 
-void measure(Comparison& c, double converged_tol, bool diagnosis) {
+void measure(Comparison& c, double converged_tol, bool diagnosis, const DiagnosisOptions& options) {
   c.converged = converged_solution(c.scene, converged_tol);
   const Trajectory& first = c.runs[0].run.trajectory;
   for (size_t i = 0; i < c.runs.size(); ++i) {
@@ -133,7 +133,8 @@ void measure(Comparison& c, double converged_tol, bool diagnosis) {
     return;
   }
   const size_t i = c.diagnosed;
-  c.diagnosis = diagnose(c.scene, c.runs[i].spec, c.runs[0].run, c.runs[i].run, pair(c, i));
+  c.diagnosis = diagnose(c.scene, c.runs[i].spec, c.runs[0].run, c.runs[i].run, pair(c, i),
+                         registry_runner(), options);
 }
 
 ThreeWay pair(const Comparison& c, size_t i) {
@@ -193,7 +194,10 @@ void json_diagnosis(std::ostringstream& o, const Diagnosis& d) {
       << ", \"after\": " << json::number(f.after, 10) << "}";
     first = false;
   }
-  o << "]";
+  o << "], \"not_rerun\": [";
+  for (size_t i = 0; i < d.not_rerun.size(); ++i)
+    o << (i ? ", " : "") << json::string(d.not_rerun[i]);
+  o << "], \"not_rerun_why\": " << json::string(d.not_rerun_why);
 }
 
 }  // namespace

@@ -96,8 +96,10 @@ std::vector<RunProblem> run_problems(const Comparison& c);
 
 // The distances at `converged_tol` and, when `diagnosis`, the diagnosis of
 // runs[0] ↔ runs[diagnosed] (re-runs of both engines); when no engine has
-// soft constraints, a summary that says why there is none.
-void measure(Comparison& c, double converged_tol, bool diagnosis);
+// soft constraints, a summary that says why there is none. `options`: how
+// far the diagnosis goes (analysis/comparison.hpp).
+void measure(Comparison& c, double converged_tol, bool diagnosis,
+             const DiagnosisOptions& options = {});
 
 // runs[0] ↔ runs[i] with the converged solution, as the diagnosis takes it.
 ThreeWay pair(const Comparison& c, size_t i);

@@ -52,6 +52,12 @@ struct Rerun {
   // Only the reference changes (its friction law): the base MuJoCo run is
   // reused.
   bool mujoco_unchanged = false;
+  // The reference scene is the base scene at another Δt (time_step,
+  // dt_dependent_model, refsafe): re-runs at the same Δt share one
+  // reference run.
+  bool ref_dt_only = false;
+  // The re-run whose reference run this one reuses (-1: its own).
+  int ref_from = -1;
   // Results.
   std::optional<EngineRun> ref_run;
   EngineRun mujoco_run;
@@ -229,6 +235,7 @@ std::vector<Rerun> plan_reruns(const DiagnosisInputs& in) {
   {
     Rerun r = rerun("time_step", scene, true, mj);
     r.scene.sim.dt = dt / 10.0;
+    r.ref_dt_only = true;
     reruns.push_back(r);
   }
   if (in.friction) {
@@ -264,37 +271,60 @@ std::vector<Rerun> plan_reruns(const DiagnosisInputs& in) {
     engines::EngineSpec held = in.mujoco;
     held.model_dt = dt;
     r.mujoco_spec = held;
+    r.ref_dt_only = true;
     reruns.push_back(r);
   }
   if (in.refsafe_dt > 0.0) {
     Rerun r = rerun("refsafe", scene, true, mj);
     r.scene.sim.dt = in.refsafe_dt;
+    r.ref_dt_only = true;
     reruns.push_back(r);
   }
+  // One reference run per Δt among the re-runs that change only Δt.
+  for (size_t i = 0; i < reruns.size(); ++i)
+    for (size_t j = 0; j < i && reruns[i].ref_dt_only; ++j)
+      if (reruns[j].ref_dt_only && reruns[j].ref_from < 0 &&
+          reruns[j].scene.sim.dt == reruns[i].scene.sim.dt) {
+        reruns[i].ref_from = static_cast<int>(j);
+        break;
+      }
   return reruns;
 }
 
-// Every re-run on `threads` threads, each with its ref ↔ MuJoCo distance;
-// an engine that throws or diverges leaves the re-run's failure.
-void run_reruns(std::vector<Rerun>& reruns, const DiagnosisInputs& in, const EngineRunner& runner,
-                unsigned threads) {
-  parallel_for(reruns.size(), threads, [&](size_t i) {
-    Rerun& r = reruns[i];
+// The re-runs at a smaller step than the scene's: 10–1000 times the steps.
+bool fine_step(const Rerun& r, const Scene& scene) { return r.scene.sim.dt < scene.sim.dt; }
+
+// The re-runs `which` on `threads` threads, each with its ref ↔ MuJoCo
+// distance; an engine that throws or diverges leaves the re-run's failure.
+// A re-run that shares another's reference run (ref_from) takes it after
+// both ran, so it is computed once.
+void run_reruns(std::vector<Rerun>& reruns, const std::vector<size_t>& which,
+                const DiagnosisInputs& in, const EngineRunner& runner, unsigned threads) {
+  parallel_for(which.size(), threads, [&](size_t k) {
+    Rerun& r = reruns[which[k]];
     try {
-      if (r.ref) r.ref_run = runner("ref", r.scene);
+      if (r.ref && r.ref_from < 0) r.ref_run = runner("ref", r.scene);
       r.mujoco_run = r.mujoco_unchanged ? in.mujoco_run
                      : r.mujoco_spec    ? engines::run_engine(*r.mujoco_spec, r.scene)
                                         : runner(r.mujoco, r.scene);
     } catch (const std::exception& e) {
       r.failure = e.what();
-      return;
     }
+  });
+  for (const size_t i : which) {
+    Rerun& r = reruns[i];
+    if (r.ref_from >= 0) {
+      const Rerun& from = reruns[static_cast<size_t>(r.ref_from)];
+      if (!from.ref_run && r.failure.empty()) r.failure = from.failure;
+      r.ref_run = from.ref_run;
+    }
+    if (!r.failure.empty()) continue;
     const Trajectory& a = r.ref_run ? r.ref_run->trajectory : in.ref.trajectory;
     const EngineRun* ref_side = r.ref_run ? &*r.ref_run : &in.ref;
     for (const EngineRun* run : {ref_side, static_cast<const EngineRun*>(&r.mujoco_run)})
       if (run->trajectory.divergence) r.failure = run->engine + " diverged";
     r.between = error_between(a, r.mujoco_run.trajectory);
-  });
+  }
 }
 
 // The time_step re-run (Δt/10, MuJoCo's model following Δt), against which
@@ -588,7 +618,7 @@ std::string diagnosis_summary(const std::vector<Finding>& findings, double befor
 
 Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const EngineRun& ref,
                    const EngineRun& mujoco_run, const ThreeWay& base, const EngineRunner& runner,
-                   unsigned threads) {
+                   const DiagnosisOptions& options) {
   Diagnosis dg;
   dg.ran = true;
   const TrajectoryError& d0 = base.ref_vs_mujoco;
@@ -600,12 +630,39 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
   }
   const DiagnosisInputs in = diagnosis_inputs(scene, mujoco, ref, mujoco_run, base);
   std::vector<Rerun> reruns = plan_reruns(in);
-  run_reruns(reruns, in, runner, threads);
-  const FollowingModel follow = following_model(reruns);
   const double before = d0.max_pos;
-  for (const Rerun& r : reruns) {
-    Finding f = measured_finding(r, before);
-    explain(f, r, in, follow);
+  // First tier: the re-runs at the scene's Δt.
+  std::vector<size_t> first, fine;
+  for (size_t i = 0; i < reruns.size(); ++i)
+    (fine_step(reruns[i], scene) ? fine : first).push_back(i);
+  run_reruns(reruns, first, in, runner, options.threads);
+  const Rerun* explains = nullptr;  // the first tier's largest share, if it explains
+  for (const size_t i : first) {
+    const Finding f = measured_finding(reruns[i], before);
+    if (f.named && f.share >= kExplainedShare &&
+        (!explains || f.share > measured_finding(*explains, before).share))
+      explains = &reruns[i];
+  }
+  std::vector<bool> ran(reruns.size(), true);
+  if (explains && !options.full) {
+    for (const size_t i : fine) {
+      ran[i] = false;
+      dg.not_rerun.push_back(reruns[i].cause);
+    }
+    if (!fine.empty())
+      dg.not_rerun_why = explains->cause + " already takes away " +
+                         percent(measured_finding(*explains, before).share) +
+                         " of the difference, so the re-runs at a smaller step (" +
+                         format_shortest(reruns[fine.front()].scene.sim.dt) + " s and below, " +
+                         "ten times the steps or more) were not made; --full-diagnosis makes them.";
+  } else {
+    run_reruns(reruns, fine, in, runner, options.threads);
+  }
+  const FollowingModel follow = following_model(reruns);
+  for (size_t i = 0; i < reruns.size(); ++i) {
+    if (!ran[i]) continue;
+    Finding f = measured_finding(reruns[i], before);
+    explain(f, reruns[i], in, follow);
     dg.findings.push_back(f);
   }
   rank_findings(dg.findings);

@@ -1,5 +1,6 @@
 // contact2d compare SCENE [--engines LIST | --mapping NAME --geometry NAME] [--csv FILE]
-// [--json] [--plot FILE.png] [--video FILE.mp4|.gif] [--converged-tol TOL] [--no-diagnosis]
+// [--json] [--plot FILE.png] [--video FILE.mp4|.gif] [--converged-tol TOL]
+// [--no-diagnosis | --full-diagnosis]
 // [overrides]
 //
 // Runs the reference solver and every other engine (by default each one
@@ -46,6 +47,7 @@ struct CompareOptions {
   bool json = false;
   double converged_tol = 1e-12;
   bool no_diagnosis = false;
+  bool full_diagnosis = false;
   OutputOptions outputs;  // --csv, --plot, --video
   bool allow_nonphysical = false;
 };
@@ -225,6 +227,11 @@ void print_table(const Comparison& c) {
   }
   if (!ruled_out.empty())
     std::cout << "\n" << wrapped("Measured and ruled out: " + ruled_out + ".", "  ");
+  if (!d.not_rerun.empty()) {
+    std::string causes;
+    for (const std::string& cause : d.not_rerun) causes += (causes.empty() ? "" : ", ") + cause;
+    std::cout << "\n" << wrapped("Not re-run: " + causes + ". " + d.not_rerun_why, "  ");
+  }
 }
 
 // t, then x_KEY … omega_KEY for every run in order, then the converged
@@ -293,7 +300,9 @@ int compare(const CompareOptions& options) {
     }
   }
   if (stop) return kExitDiverged;
-  analysis::measure(c, options.converged_tol, !options.no_diagnosis);
+  analysis::DiagnosisOptions how;
+  how.full = options.full_diagnosis;
+  analysis::measure(c, options.converged_tol, !options.no_diagnosis, how);
   // Every output is made first and committed at the end, together: a plot
   // or video that fails, or an interrupt, leaves none of them.
   if (csv) write_csv(*csv, c);
@@ -384,6 +393,11 @@ Command add_compare(CLI::App& app) {
   add_allow_nonphysical(*cmd, options->allow_nonphysical);
   cmd->add_flag("--no-diagnosis", options->no_diagnosis,
                 "Skip the diagnosis (the re-runs that remove each cause of the difference)");
+  cmd->add_flag("--full-diagnosis", options->full_diagnosis,
+                "Also make the diagnosis's re-runs at a smaller step (time_step, "
+                "dt_dependent_model, refsafe: ten times the steps or more) when the others "
+                "already explain the difference")
+      ->excludes("--no-diagnosis");
   return {cmd, [options] { return compare(*options); }};
 }
 

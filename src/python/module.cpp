@@ -192,7 +192,7 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
                     const std::string& mapping, const std::string& geometry,
                     const std::string& friction, const std::optional<double>& model_dt_given,
                     const std::vector<std::string>& engine_names, double converged_tol,
-                    bool diagnosis, bool allow_nonphysical) {
+                    bool diagnosis, bool full_diagnosis, bool allow_nonphysical) {
   const double model_dt = checked_model_dt(model_dt_given);
   const std::string source = source_of(scene_object);
   if (!(converged_tol >= 1e-14 && converged_tol <= 1e-6))
@@ -216,7 +216,9 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
     warnings.push_back(not_physics(source, p.engine, p.message, true));
   }
   python::interruptible([&] {
-    analysis::measure(c, converged_tol, diagnosis);
+    analysis::DiagnosisOptions how;
+    how.full = full_diagnosis;
+    analysis::measure(c, converged_tol, diagnosis, how);
     return true;
   });
   py::dict out;

@@ -2,8 +2,10 @@
 // and the diagnosis's bookkeeping with runners of the test's own.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "analysis/comparison.hpp"
 #include "benchmarks/oscillator.hpp"
@@ -122,7 +124,7 @@ TEST(Diagnosis, NamesOnlyTheCauseThatTheReRunsRemove) {
   const engines::EngineRun ref = runner("ref", scene);
   const engines::EngineRun kv = runner(spec.name(), scene);
   const analysis::ThreeWay three = analysis::three_way(scene, ref.trajectory, kv.trajectory, 1e-10);
-  const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, kv, three, runner, 1);
+  const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, kv, three, runner, {false, 1});
   ASSERT_FALSE(d.agrees);
   ASSERT_FALSE(d.findings.empty());
   EXPECT_EQ(d.findings[0].cause, "damping_law");
@@ -148,10 +150,54 @@ TEST(Diagnosis, AgreeingEnginesAreNotReRun) {
   spec.kind = "mujoco";
   const analysis::ThreeWay three =
       analysis::three_way(scene, ref.trajectory, ref.trajectory, 1e-10);
-  const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, ref, three, runner, 1);
+  const analysis::Diagnosis d =
+      analysis::diagnose(scene, spec, ref, ref, three, runner, {false, 1});
   EXPECT_TRUE(d.agrees);
   EXPECT_TRUE(d.findings.empty());
   EXPECT_EQ(runs, 0);
+}
+
+// The two tiers with the damping-law stand-in of the test above, whose
+// first tier explains the whole difference: the re-run at Δt/10 is made
+// only when asked (full), and otherwise listed as not re-run with the
+// share that explained the difference.
+TEST(Diagnosis, TheFineStepReRunIsMadeOnlyWhenTheFirstTierLeavesTheDifferenceUnexplained) {
+  Scene scene = bouncing_point();
+  scene.contact.c = 20.0;
+  scene.contact.damping = DampingLaw::Compression;
+  std::vector<double> steps;  // the Δt of every run the diagnosis asked for
+  const analysis::EngineRunner runner = [&steps](const std::string& engine, const Scene& s) {
+    steps.push_back(s.sim.dt);
+    Scene t = s;
+    if (engine != "ref") t.contact.damping = DampingLaw::KelvinVoigt;
+    engines::EngineRun run = engines::run_engine("ref", t);
+    run.engine = engine;
+    return run;
+  };
+  engines::EngineSpec spec;
+  spec.kind = "mujoco";
+  spec.set("mapping", "calibrated");
+  const engines::EngineRun ref = runner("ref", scene);
+  const engines::EngineRun kv = runner(spec.name(), scene);
+  const analysis::ThreeWay three = analysis::three_way(scene, ref.trajectory, kv.trajectory, 1e-10);
+  steps.clear();
+  const analysis::Diagnosis screened =
+      analysis::diagnose(scene, spec, ref, kv, three, runner, {false, 1});
+  for (const double dt : steps) EXPECT_EQ(dt, scene.sim.dt);
+  EXPECT_EQ(screened.not_rerun, std::vector<std::string>{"time_step"});
+  EXPECT_NE(screened.not_rerun_why.find("damping_law already takes away 100 %"), std::string::npos)
+      << screened.not_rerun_why;
+  for (const analysis::Finding& f : screened.findings) EXPECT_NE(f.cause, "time_step");
+  const size_t first_tier_runs = steps.size();
+
+  steps.clear();
+  const analysis::Diagnosis full =
+      analysis::diagnose(scene, spec, ref, kv, three, runner, {true, 1});
+  EXPECT_TRUE(full.not_rerun.empty());
+  EXPECT_EQ(full.findings.size(), screened.findings.size() + 1);
+  // The first tier's runs again, and the Δt/10 re-run's two.
+  ASSERT_EQ(steps.size(), first_tier_runs + 2);
+  EXPECT_EQ(std::count(steps.begin(), steps.end(), scene.sim.dt / 10.0), 2);
 }
 
 TEST(SlidingPhases, ABoxSlidingToRestIsOnePhaseAndARestingOneNone) {

@@ -16,14 +16,17 @@ struct Diagnosed {
 
 // Both engines on the scene (MuJoCo as `spec`: the default mapping unless
 // given), the three-way distances at converged tolerance `tol`, and the
-// diagnosis, as `compare` runs them.
-inline Diagnosed diagnosed(const Scene& scene, engines::EngineSpec spec = {}, double tol = 1e-12) {
+// diagnosis, as `compare` runs them (`full`: as compare --full-diagnosis).
+inline Diagnosed diagnosed(const Scene& scene, engines::EngineSpec spec = {}, double tol = 1e-12,
+                           bool full = false) {
   spec.kind = "mujoco";
   const engines::EngineRun ref = engines::run_engine("ref", scene);
   const engines::EngineRun mj = engines::run_engine(spec, scene);
   Diagnosed d;
   d.three = analysis::three_way(scene, ref.trajectory, mj.trajectory, tol);
-  d.diagnosis = analysis::diagnose(scene, spec, ref, mj, d.three);
+  analysis::DiagnosisOptions how;
+  how.full = full;
+  d.diagnosis = analysis::diagnose(scene, spec, ref, mj, d.three, analysis::registry_runner(), how);
   return d;
 }
 

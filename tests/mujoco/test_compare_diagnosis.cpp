@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "analysis/comparison.hpp"
@@ -100,7 +101,7 @@ TEST(CompareDiagnosis, ModelDtHoldsTheDtDependentImpratioAndIsDiagnosed) {
   EXPECT_DOUBLE_EQ(fine_held.impratio, at_coarse.impratio);
   EXPECT_NEAR(own.impratio, 10.0 * at_coarse.impratio, 1e-12 * own.impratio);
 
-  const Diagnosed d = diagnosed(scene, spec, 1e-10);
+  const Diagnosed d = diagnosed(scene, spec, 1e-10, true);
   const analysis::Finding* model = test::finding(d.diagnosis, "dt_dependent_model");
   ASSERT_NE(model, nullptr);
   // The re-run itself, pasteable: Δt/10 with the model held at Δt.
@@ -108,6 +109,44 @@ TEST(CompareDiagnosis, ModelDtHoldsTheDtDependentImpratioAndIsDiagnosed) {
   EXPECT_TRUE(std::isfinite(model->share));
   std::printf("dt_dependent_model: share %.3f (%s)\n", model->share,
               model->named ? "named" : "ruled out");
+}
+
+// No run is computed twice: the full diagnosis of a box with friction on
+// the calibrated mapping (every tier: damping law, Δt/10, friction, the
+// friction laws, the mapping, the held model) asks the runner for each
+// engine on each scene once. time_step and dt_dependent_model both step
+// the reference at Δt/10; it runs once (the held model's MuJoCo run goes
+// through the registry directly, not the runner).
+TEST(CompareDiagnosis, NoRunIsComputedTwice) {
+  Scene scene = test::drop_scene(Shape::Box, 200.0, 0.5);
+  scene.sim.duration = 0.5;
+  scene.contact.damping = DampingLaw::Compression;
+  engines::EngineSpec spec;
+  spec.kind = "mujoco";
+  const engines::EngineRun ref = engines::run_engine("ref", scene);
+  const engines::EngineRun mj = engines::run_engine(spec, scene);
+  const analysis::ThreeWay three = analysis::three_way(scene, ref.trajectory, mj.trajectory, 1e-10);
+  std::map<std::string, int> asked;  // engine and what distinguishes the scene → runs
+  const analysis::EngineRunner count = [&asked](const std::string& engine, const Scene& s) {
+    ++asked[engine + " dt " + std::to_string(s.sim.dt) + " " +
+            std::string(damping_law_name(s.contact.damping)) + " mu " +
+            std::to_string(s.contact.mu) + " roll " + std::to_string(s.contact.mu_roll) + " " +
+            std::string(friction_law_name(s.contact.friction)) + " ratio " +
+            std::to_string(s.contact.cone_ratio)];
+    return analysis::registry_runner()(engine, s);
+  };
+  const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, mj, three, count, {true, 0});
+  ASSERT_NE(test::finding(d, "time_step"), nullptr);
+  ASSERT_NE(test::finding(d, "dt_dependent_model"), nullptr);
+  int runs = 0;
+  for (const auto& [key, n] : asked) {
+    EXPECT_EQ(n, 1) << key;
+    runs += n;
+  }
+  // damping_law 2, time_step 2, friction 2, friction_law 1, friction_shape
+  // 1, mapping 1, dt_dependent_model 0 through the runner (its reference is
+  // time_step's).
+  EXPECT_EQ(runs, 9);
 }
 
 }  // namespace

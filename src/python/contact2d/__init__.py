@@ -122,7 +122,7 @@ def simulate(scene: SceneLike, engine: str = "ref", integrator: Optional[str] = 
 def compare(scene: SceneLike, mapping: str = "", geometry: str = "", model_dt: Optional[float] = None,
             integrator: Optional[str] = None, dt: Optional[float] = None,
             duration: Optional[float] = None, converged_tol: float = 1e-12,
-            diagnosis: bool = True, allow_nonphysical: bool = False,
+            diagnosis: Union[bool, str] = True, allow_nonphysical: bool = False,
             engines: Sequence[str] = (), friction: str = "") -> dict:
     """The reference and MuJoCo against the converged solution and each
     other, as ``contact2d compare --json``: that JSON object as a dict, with
@@ -132,14 +132,23 @@ def compare(scene: SceneLike, mapping: str = "", geometry: str = "", model_dt: O
     ``--engines``, compares the reference with each engine of the list
     (names with their options, "mujoco:exact:boxes"; not together with
     mapping or geometry): every engine adds its keys and its
-    "KEY_trajectory" ("mujoco_exact_trajectory" when two share a kind)."""
+    "KEY_trajectory" ("mujoco_exact_trajectory" when two share a kind).
+    ``diagnosis``: True (the default) re-runs without each cause, the ones
+    at a smaller step only when the others leave the difference
+    unexplained; "full" makes those too (``--full-diagnosis``); False skips
+    the diagnosis (``--no-diagnosis``)."""
+    if isinstance(diagnosis, str) and diagnosis != "full":
+        raise ValueError(f"compare(): diagnosis={diagnosis!r}: must be True, False or \"full\"")
+    if not isinstance(diagnosis, (bool, str)):
+        raise TypeError(f"compare(): diagnosis must be True, False or \"full\", "
+                        f"not {type(diagnosis).__name__}")
     run = _contact2d._compare(_scene(scene, "compare"), integrator,
                               _number(dt, "dt", "compare", "s"),
                               _number(duration, "duration", "compare", "s"), mapping, geometry,
                               friction, _number(model_dt, "model_dt", "compare", "s"),
                               list(engines),
-                              _number(converged_tol, "converged_tol", "compare", "m"), diagnosis,
-                              allow_nonphysical)
+                              _number(converged_tol, "converged_tol", "compare", "m"),
+                              diagnosis is not False, diagnosis == "full", allow_nonphysical)
     result = json.loads(run["json"])
     for key, value in run.items():
         if key != "json":
