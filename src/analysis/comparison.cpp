@@ -230,6 +230,10 @@ std::vector<Rerun> plan_reruns(const DiagnosisInputs& in) {
   if (scene.contact.damping == DampingLaw::Compression) {
     Rerun r = rerun("damping_law", scene, true, mj);
     r.scene.contact.damping = DampingLaw::KelvinVoigt;
+    // MuJoCo's damper is Kelvin–Voigt whatever the scene's law: its model
+    // and run are the base ones (tests/mujoco/test_compare_diagnosis.cpp,
+    // CompareDiagnosis.MujocoRunsTheSameModelUnderEitherDampingLaw).
+    r.mujoco_unchanged = true;
     reruns.push_back(r);
   }
   {
@@ -296,21 +300,41 @@ bool fine_step(const Rerun& r, const Scene& scene) { return r.scene.sim.dt < sce
 
 // The re-runs `which` on `threads` threads, each with its ref ↔ MuJoCo
 // distance; an engine that throws or diverges leaves the re-run's failure.
-// A re-run that shares another's reference run (ref_from) takes it after
-// both ran, so it is computed once.
+// Each re-run's two engines are separate jobs, MuJoCo's first: a MuJoCo run
+// costs 36–60 reference runs (docs/speed.md), so the longest jobs start
+// first and the short ones fill the gaps. A re-run that shares another's
+// reference run (ref_from) takes it after all ran, so it is computed once.
 void run_reruns(std::vector<Rerun>& reruns, const std::vector<size_t>& which,
                 const DiagnosisInputs& in, const EngineRunner& runner, unsigned threads) {
-  parallel_for(which.size(), threads, [&](size_t k) {
-    Rerun& r = reruns[which[k]];
+  struct Job {
+    size_t rerun;
+    bool mujoco;
+  };
+  std::vector<Job> jobs;
+  for (const bool mujoco : {true, false})
+    for (const size_t i : which) {
+      const Rerun& r = reruns[i];
+      if (mujoco ? !r.mujoco_unchanged : r.ref && r.ref_from < 0) jobs.push_back({i, mujoco});
+    }
+  std::vector<std::string> failures(jobs.size());
+  parallel_for(jobs.size(), threads, [&](size_t k) {
+    Rerun& r = reruns[jobs[k].rerun];
     try {
-      if (r.ref && r.ref_from < 0) r.ref_run = runner("ref", r.scene);
-      r.mujoco_run = r.mujoco_unchanged ? in.mujoco_run
-                     : r.mujoco_spec    ? engines::run_engine(*r.mujoco_spec, r.scene)
-                                        : runner(r.mujoco, r.scene);
+      if (!jobs[k].mujoco)
+        r.ref_run = runner("ref", r.scene);
+      else
+        r.mujoco_run = r.mujoco_spec ? engines::run_engine(*r.mujoco_spec, r.scene)
+                                     : runner(r.mujoco, r.scene);
     } catch (const std::exception& e) {
-      r.failure = e.what();
+      failures[k] = e.what();
     }
   });
+  for (size_t k = 0; k < jobs.size(); ++k) {
+    Rerun& r = reruns[jobs[k].rerun];
+    if (!failures[k].empty() && r.failure.empty()) r.failure = failures[k];
+  }
+  for (const size_t i : which)
+    if (reruns[i].mujoco_unchanged) reruns[i].mujoco_run = in.mujoco_run;
   for (const size_t i : which) {
     Rerun& r = reruns[i];
     if (r.ref_from >= 0) {
