@@ -302,7 +302,13 @@ py::object copy_scene(const py::object& self) {
   return copy;
 }
 
-py::object load(const std::string& path, const std::vector<std::string>& sets) {
+// Scene.load(path, set): the path as str or os.PathLike.
+py::object load(const py::object& given, const std::vector<std::string>& sets) {
+  if (!py::isinstance<py::str>(given) &&
+      !py::isinstance(given, py::module_::import("os").attr("PathLike")))
+    throw py::type_error("Scene.load(): path must be a path (str or os.PathLike), not " +
+                         py::str(py::type::of(given).attr("__name__")).cast<std::string>());
+  const std::string path = py::module_::import("os").attr("fspath")(given).cast<std::string>();
   std::vector<Override> overrides;
   overrides.reserve(sets.size());
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
@@ -333,27 +339,31 @@ void bind_scene_parts(py::module_& m) {
              return BoxPart{width, height, x, y, mass};
            }),
            py::arg("width"), py::arg("height"), py::arg("x"), py::arg("y"), py::arg("mass"))
-      .def_readwrite("width", &BoxPart::width)
-      .def_readwrite("height", &BoxPart::height)
-      .def_readwrite("x", &BoxPart::x)
-      .def_readwrite("y", &BoxPart::y)
-      .def_readwrite("mass", &BoxPart::mass);
+      .def_readwrite("width", &BoxPart::width, "m")
+      .def_readwrite("height", &BoxPart::height, "m")
+      .def_readwrite("x", &BoxPart::x, "centre x in the body frame, m")
+      .def_readwrite("y", &BoxPart::y, "centre y in the body frame, m")
+      .def_readwrite("mass", &BoxPart::mass, "kg");
 
   py::class_<ContactParams>(m, "Contact", "[contact]: the contact law (docs/scenes.md)")
-      .def_readwrite("k", &ContactParams::k)
-      .def_readwrite("c", &ContactParams::c)
-      .def_readwrite("mu", &ContactParams::mu)
-      .def_readwrite("alpha", &ContactParams::alpha)
-      .def_readwrite("mu_roll", &ContactParams::mu_roll)
-      .def_readwrite("mu_torsion", &ContactParams::mu_torsion)
-      .def_readwrite("cone_ratio", &ContactParams::cone_ratio)
+      .def_readwrite("k", &ContactParams::k, "stiffness, N/m")
+      .def_readwrite("c", &ContactParams::c, "damping, N·s/m")
+      .def_readwrite("mu", &ContactParams::mu, "sliding friction coefficient (dimensionless)")
+      .def_readwrite("alpha", &ContactParams::alpha, "tanh regularisation of friction, s/m")
+      .def_readwrite("mu_roll", &ContactParams::mu_roll, "rolling resistance, m")
+      .def_readwrite("mu_torsion", &ContactParams::mu_torsion,
+                     "torsional friction, m (MuJoCo only; 2D has no torsion)")
+      .def_readwrite("cone_ratio", &ContactParams::cone_ratio,
+                     "the cone laws' ratio (MuJoCo's impratio, dimensionless)")
       .def_property(
           "damping", [](const ContactParams& p) { return damping_name(p.damping); },
-          [](ContactParams& p, const std::string& name) { p.damping = parse_damping(name); })
+          [](ContactParams& p, const std::string& name) { p.damping = parse_damping(name); },
+          "\"compression\" (damps only while a point moves in) or \"kelvin_voigt\"")
       .def_property(
           "friction_law",
           [](const ContactParams& p) { return std::string(friction_law_name(p.friction)); },
-          [](ContactParams& p, const std::string& name) { p.friction = parse_friction(name); });
+          [](ContactParams& p, const std::string& name) { p.friction = parse_friction(name); },
+          "\"tanh\", \"viscous_cone\" or \"soft_cone\" (docs/physics.md)");
 
   // [initial]: q = (x, y, θ), v = (vx, vy, ω), by the scene file's keys.
   auto component = [](Vec3 State::*vector, int i) {
@@ -362,22 +372,24 @@ void bind_scene_parts(py::module_& m) {
   };
   py::class_<State> state(m, "State", "[initial]: the initial state (docs/scenes.md)");
   const char* names[] = {"x", "y", "theta", "vx", "vy", "omega"};
+  const char* units[] = {"m", "m", "rad", "m/s", "m/s", "rad/s"};
   for (int i = 0; i < 6; ++i) {
     const auto [get, set] = component(i < 3 ? &State::q : &State::v, i % 3);
-    state.def_property(names[i], get, set);
+    state.def_property(names[i], get, set, units[i]);
   }
 
   py::class_<SimParams>(m, "Sim", "[sim]: time stepping (docs/scenes.md)")
-      .def_readwrite("dt", &SimParams::dt)
-      .def_readwrite("duration", &SimParams::duration)
-      .def_readwrite("output_dt", &SimParams::output_dt)
-      .def_readwrite("gravity", &SimParams::gravity)
+      .def_readwrite("dt", &SimParams::dt, "time step, s")
+      .def_readwrite("duration", &SimParams::duration, "simulated time, s")
+      .def_readwrite("output_dt", &SimParams::output_dt, "sample spacing of the trajectory, s")
+      .def_readwrite("gravity", &SimParams::gravity, "m/s²")
       .def_property(
           "integrator",
           [](const SimParams& s) { return std::string(integrator_name(s.integrator)); },
           [](SimParams& s, const std::string& name) {
             s.integrator = parse_integrator_or_throw(name);
-          });
+          },
+          "\"explicit_euler\", \"semi_implicit_euler\", \"implicit_euler\" or \"rk4\"");
 }
 
 void bind_scene(py::module_& m) {
@@ -385,22 +397,30 @@ void bind_scene(py::module_& m) {
       .def(py::init(
                [](const std::string& shape) { return default_scene(parse_shape_or_throw(shape)); }),
            py::arg("shape") = "point_mass")
-      .def_static("load", &load, py::arg("path"), py::arg("set") = std::vector<std::string>{})
+      .def_static("load", &load, py::arg("path"), py::arg("set") = std::vector<std::string>{},
+                  "The scene of a TOML scene file (str or os.PathLike), with overrides "
+                  "\"KEY=VALUE\" as --set (docs/scenes.md)")
       .def_property(
           "shape", [](const Scene& s) { return std::string(shape_name(s.shape)); },
-          [](Scene& s, const std::string& name) { s.shape = parse_shape_or_throw(name); })
-      .def_readwrite("mass", &Scene::mass)
-      .def_readwrite("half_height", &Scene::half_height)
-      .def_readwrite("width", &Scene::width)
-      .def_readwrite("height", &Scene::height)
-      .def_readwrite("radius", &Scene::radius)
-      .def_readwrite("parts", &Scene::parts)
-      .def_readwrite("contact", &Scene::contact)
-      .def_readwrite("initial", &Scene::initial)
-      .def_readwrite("sim", &Scene::sim)
-      .def_property_readonly("obstacles", [](const Scene& s) { return s.obstacles.size(); })
-      .def("validate", [](const py::object& self) { checked_scene(self, {}, {}, {}); })
-      .def("copy", &copy_scene)
+          [](Scene& s, const std::string& name) { s.shape = parse_shape_or_throw(name); },
+          "\"point_mass\", \"box\", \"tshape\" or \"circle\"")
+      .def_readwrite("mass", &Scene::mass, "body mass, kg (not a tshape: its parts carry theirs)")
+      .def_readwrite("half_height", &Scene::half_height,
+                     "point_mass: the contact point's distance below the centre, m")
+      .def_readwrite("width", &Scene::width, "box width, m")
+      .def_readwrite("height", &Scene::height, "box height, m")
+      .def_readwrite("radius", &Scene::radius, "circle radius, m")
+      .def_readwrite("parts", &Scene::parts, "tshape: the body's rectangles (list of BoxPart)")
+      .def_readwrite("contact", &Scene::contact, "[contact] (Contact)")
+      .def_readwrite("initial", &Scene::initial, "[initial]: the initial state (State)")
+      .def_readwrite("sim", &Scene::sim, "[sim] (Sim)")
+      .def_property_readonly(
+          "obstacles", [](const Scene& s) { return s.obstacles.size(); },
+          "the number of obstacles (set in the scene file: [[obstacle]])")
+      .def(
+          "validate", [](const py::object& self) { checked_scene(self, {}, {}, {}); },
+          "Raises ValueError naming the first key out of its range, as the program does")
+      .def("copy", &copy_scene, "An independent copy (the scene file it came from kept)")
       .def("__copy__", &copy_scene)
       .def("__deepcopy__", [](const py::object& self, const py::dict&) { return copy_scene(self); })
       .def("__repr__", [](const py::object& self) {

@@ -171,30 +171,69 @@ def generate(scene: SceneLike, mapping: str = "", geometry: str = "", model_dt: 
     return run["xml"]
 
 
+def _path(value, name, function, optional=False):
+    """A path given as str or os.PathLike, as str; "" stays "" when optional."""
+    if isinstance(value, (str, os.PathLike)):
+        return os.fspath(value)
+    raise TypeError(f"{function}(): {name} must be a path (str or os.PathLike"
+                    f"{', or empty' if optional else ''}), not {type(value).__name__}")
+
+
 def solref(k: Optional[float] = None, c: Optional[float] = None, *, dt: float,
            mass: Optional[float] = None, mapping: str = "all", joint: Optional[str] = None,
            inertia: float = 0.0, lever: float = 0.0, pivot: float = 0.0,
-           mu: Optional[float] = None, mu_roll: float = 0.0, model: str = "", body: str = "",
+           mu: Optional[float] = None, mu_roll: float = 0.0,
+           model: Union[str, os.PathLike] = "", body: str = "",
            contacts: Optional[int] = None, restitution: Optional[float] = None,
            contact_time: Optional[float] = None,
            penetration: Optional[float] = None, engine: str = "mujoco", settle: float = 3.0,
-           key: str = "", apply: str = "", slope: Optional[float] = None) -> dict:
+           key: str = "", apply: Union[str, os.PathLike] = "",
+           slope: Optional[float] = None) -> dict:
     """solref, solimp, impratio and what MuJoCo does with them, per mapping,
-    as ``contact2d solref --json`` (each keyword is that option; ``engine``
-    is ``"mujoco"`` for 2.2.2 or ``"mujoco3"`` for 3.14)."""
-    run = _contact2d._solref(k, c, dt, mass, mapping, joint, inertia, lever, pivot, mu, mu_roll,
-                             model, body, contacts, restitution, contact_time, penetration,
-                             engine, settle, key, apply, slope)
+    as ``contact2d solref --json`` (docs/cli.md): that JSON object as a dict.
+
+    Each keyword is the option of the same name, in its unit: ``k`` N/m and
+    ``c`` N·s/m per MuJoCo contact; ``dt`` s (MuJoCo's timestep, required);
+    ``mass`` kg; ``inertia`` kg·m²; ``lever`` and ``pivot`` m; ``mu``
+    (dimensionless) and ``mu_roll`` m; ``restitution`` in (0, 1);
+    ``contact_time`` s; ``penetration`` m (a static depth per contact);
+    ``contacts`` a count; ``settle`` s; ``slope`` degrees in [0, 90).
+    ``joint``: "free", "planar", "slide" or "hinge"; ``mapping``: a mapping
+    or "all". ``model`` (an MJCF path) reads the body ``body`` from a model;
+    ``apply`` (a path) writes that model with the recommendation. ``engine``
+    is ``"mujoco"`` for 2.2.2 or ``"mujoco3"`` for 3.14."""
+    def number(value, name, unit):
+        return _number(value, name, "solref", unit)
+    run = _contact2d._solref(number(k, "k", "N/m"), number(c, "c", "N·s/m"),
+                             number(dt, "dt", "s"), number(mass, "mass", "kg"), mapping, joint,
+                             number(inertia, "inertia", "kg·m²"), number(lever, "lever", "m"),
+                             number(pivot, "pivot", "m"), number(mu, "mu", "dimensionless"),
+                             number(mu_roll, "mu_roll", "m"),
+                             _path(model, "model", "solref", True), body, contacts,
+                             number(restitution, "restitution", "dimensionless"),
+                             number(contact_time, "contact_time", "s"),
+                             number(penetration, "penetration", "m"), engine,
+                             number(settle, "settle", "s"), key,
+                             _path(apply, "apply", "solref", True),
+                             number(slope, "slope", "degrees"))
     _notes(run["notes"])
     return json.loads(run["json"])
 
 
-def inspect(path: str, key: str = "", pairs: bool = False,
+def inspect(path: Union[str, os.PathLike], key: str = "", pairs: bool = False,
             slope: Optional[float] = None, settle: float = 0.0, estimate_loads: bool = False,
             engine: str = "mujoco") -> dict:
     """Any MJCF model's contacts in physical units, as
-    ``contact2d inspect --json`` (``settle``: seconds MuJoCo steps the model
-    first; ``engine``: ``"mujoco"`` for 2.2.2 or ``"mujoco3"`` for 3.14)."""
-    run = _contact2d._inspect(path, key, pairs, slope, settle, estimate_loads, engine)
+    ``contact2d inspect --json`` (docs/inspect.md): that JSON object as a
+    dict. ``path``: the MJCF file (str or os.PathLike); ``key``: the
+    keyframe to start from (default qpos0); ``settle``: seconds MuJoCo steps
+    the model first, so it comes to rest on what it touches; ``slope``:
+    degrees in [0, 90), each contact's creep speed under friction;
+    ``pairs``: every geom pair's distance; ``estimate_loads``: loads from a
+    body's weight where MuJoCo has none; ``engine``: ``"mujoco"`` for 2.2.2
+    or ``"mujoco3"`` for 3.14."""
+    run = _contact2d._inspect(_path(path, "path", "inspect"), key, pairs,
+                              _number(slope, "slope", "inspect", "degrees"),
+                              _number(settle, "settle", "inspect", "s"), estimate_loads, engine)
     _notes(run["notes"])
     return json.loads(run["json"])
