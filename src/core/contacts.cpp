@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/dynamics.hpp"
-
 namespace contact2d {
 
 ContactSet::ContactSet(const Model& model) {

@@ -42,25 +42,9 @@
 
 #include <vector>
 
-#include "core/body.hpp"
-#include "core/obstacles.hpp"
+#include "core/model.hpp"
 
 namespace contact2d {
-
-struct Model;
-
-// Plain doubles, read and written one at a time: as two-lane vectors they
-// were stored in halves and loaded whole (or the reverse) between the two
-// stages, which the CPU cannot forward from its store buffer — a stall that
-// cost 10–15 ns a step.
-struct Contact {
-  double depth = 0.0;         // penetration d > 0, m
-  double nx = 0.0, ny = 1.0;  // unit normal out of the touched surface
-  double rx = 0.0, ry = 0.0;  // lever arm: contact point − COM, world frame
-  int obstacle = -1;          // index of the obstacle touched; −1: the ground
-  Vec2 normal() const { return {nx, ny}; }
-  Vec2 r() const { return {rx, ry}; }
-};
 
 class ContactSet {
  public:

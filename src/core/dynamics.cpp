@@ -299,25 +299,6 @@ double energy(const Model& model, const ContactSet& contacts, const State& s) {
   return e;
 }
 
-bool Model::uses_cone_law() const {
-  if (contact.friction != FrictionLaw::Tanh) return true;
-  for (const ContactParams& p : obstacle_laws)
-    if (p.friction != FrictionLaw::Tanh) return true;
-  return false;
-}
-
-double Model::min_k() const {
-  double k = contact.k;
-  for (const ContactParams& p : obstacle_laws) k = std::min(k, p.k);
-  return k;
-}
-
-double Model::max_k() const {
-  double k = contact.k;
-  for (const ContactParams& p : obstacle_laws) k = std::max(k, p.k);
-  return k;
-}
-
 Vec3 acceleration(const Model& model, const Vec3& q, const Vec3& v) {
   ContactSet contacts(model);
   find_contacts(model, q, contacts);

@@ -14,40 +14,10 @@
 
 #include <Eigen/Core>
 
-#include "core/body.hpp"
-#include "core/contact.hpp"
 #include "core/contacts.hpp"
-#include "core/obstacles.hpp"
+#include "core/model.hpp"
 
 namespace contact2d {
-
-struct State {
-  Vec3 q = Vec3::Zero();  // x, y, θ
-  Vec3 v = Vec3::Zero();  // vx, vy, ω
-};
-
-struct Model {
-  RigidBody body;
-  ContactParams contact;
-  double gravity = 9.81;
-  Vec3 applied = Vec3::Zero();      // external (Fx, Fy, τ), e.g. from a player
-  std::vector<Obstacle> obstacles;  // static geometry
-  // The law of each obstacle (its ContactOverride applied to `contact`);
-  // an obstacle without an entry uses `contact`. make_model fills it.
-  std::vector<ContactParams> obstacle_laws;
-
-  // The law a contact is computed with.
-  const ContactParams& law(const Contact& c) const {
-    return c.obstacle >= 0 && static_cast<size_t>(c.obstacle) < obstacle_laws.size()
-               ? obstacle_laws[static_cast<size_t>(c.obstacle)]
-               : contact;
-  }
-  // Smallest and largest k of the ground's and the obstacles' laws.
-  double min_k() const;
-  double max_k() const;
-  // Whether any contact law uses a cone friction law (core/contact.hpp).
-  bool uses_cone_law() const;
-};
 
 // a = M⁻¹·F(q, v) with `contacts` found at q (q enters only through them).
 // Allocation-free.
