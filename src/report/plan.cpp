@@ -7,11 +7,13 @@
 #include <glob.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <mutex>
 #include <thread>
 
 #include "io/atomic_file.hpp"
@@ -69,18 +71,55 @@ void write_page(const std::string& path, const std::string& text) {
 
 void progress(const std::string& what) { std::cerr << "report: " << what << "\n"; }
 
+// The report's sections timed (plan.hpp, ReportTimings): each call of
+// time() adds one task's wall-clock seconds to its section.
+class SectionClock {
+ public:
+  template <class Task>
+  void time(const std::string& section, Task&& task) {
+    const double start = seconds_since(origin_);
+    task();
+    const double end = seconds_since(origin_);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (SectionTime& s : timings_.sections) {
+      if (s.name != section) continue;
+      s.seconds += end - start;
+      s.start = std::min(s.start, start);
+      s.end = std::max(s.end, end);
+      return;
+    }
+    timings_.sections.push_back({section, end - start, start, end});
+  }
+  ReportTimings done() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    timings_.total = seconds_since(origin_);
+    std::sort(timings_.sections.begin(), timings_.sections.end(),
+              [](const SectionTime& a, const SectionTime& b) { return a.start < b.start; });
+    return timings_;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point origin_ = std::chrono::steady_clock::now();
+  std::mutex mutex_;
+  ReportTimings timings_;
+};
+
 // ------------------------------------------------------------ README.md
 
 // The models, and every scene under every mapping as shipped and with the
 // Kelvin–Voigt law (sections 1 and 8); a scene whose two laws agree to the
 // bit keeps one plot.
-void mapping_runs(const ReportRequest& o, ReadmeData& d) {
-  progress("models and README.md");
+void write_models(const ReportRequest& o) {
+  progress("models");
   for (const std::string& s : kScenes) {
     for (const std::string& m : kMappings) {
       write_model(load(scene_path(s)), scene_path(s), m, o.models + "/" + s + "." + m + ".xml");
     }
   }
+}
+
+void mapping_runs(const ReportRequest& o, ReadmeData& d) {
+  progress("README.md: every scene under every mapping");
   for (const std::string& s : kScenes) {
     for (const std::string& m : kMappings) {
       const bool plotted = m == "calibrated";  // the plots of section 8: the default mapping
@@ -175,16 +214,25 @@ void random_runs(const ReportRequest& o, ReadmeData& d) {
   compare_random_scenes(randoms, d.random, d.random_compensated);
 }
 
-ReadmeData readme_runs(const ReportRequest& o) {
+ReadmeData readme_runs(const ReportRequest& o, SectionClock& clock) {
   ReadmeData d;
   d.scenes = kScenes;
   d.mappings = kMappings;
-  mapping_runs(o, d);
-  progress("the goal replay on both engines");
-  d.replay = replay_on_both("validation/replays/goal.replay", o.out + "/goal_replay.png");
-  three_way_runs(o, d);
-  goal_runs(d);
-  random_runs(o, d);
+  clock.time("models", [&] { write_models(o); });
+  clock.time("mappings", [&] { mapping_runs(o, d); });
+  clock.time("goal replay", [&] {
+    progress("the goal replay on both engines");
+    d.replay = replay_on_both("validation/replays/goal.replay", o.out + "/goal_replay.png");
+  });
+  clock.time("three-way", [&] { three_way_runs(o, d); });
+  clock.time("goals", [&] {
+    progress("the agreement goals, geometries and integrators");
+    goal_runs(d);
+  });
+  clock.time("random scenes", [&] {
+    progress("random scenes");
+    random_runs(o, d);
+  });
   return d;
 }
 
@@ -302,38 +350,50 @@ const std::vector<std::string>& page_names() {
   return names;
 }
 
-void write_report(const ReportRequest& o) {
+ReportTimings write_report(const ReportRequest& o) {
+  SectionClock clock;
   const bool mujoco = mujoco_built();
-  const ReadmeData readme = readme_runs(o);
+  const ReadmeData readme = readme_runs(o, clock);
 
   const auto start = std::chrono::steady_clock::now();
   SweepData sweep;
-  sweep_runs(o, mujoco, sweep);
+  clock.time("sweeps", [&] { sweep_runs(o, mujoco, sweep); });
   const double sweep_seconds = seconds_since(start);
   StabilityData stability;
-  stability_runs(o, mujoco, stability);
+  clock.time("stability", [&] { stability_runs(o, mujoco, stability); });
   const double stability_seconds = seconds_since(start) - sweep_seconds;
-  bench_runs(o, sweep);
-  const ExtremeData extreme = extreme_runs(mujoco);
-  progress("closed forms");
-  const analysis::ClosedFormTable closed_forms = closed_form_rows();
-  progress("friction");
-  const std::vector<analysis::FrictionRow> friction = friction_rows();
+  clock.time("bench", [&] { bench_runs(o, sweep); });
+  ExtremeData extreme;
+  clock.time("extreme", [&] { extreme = extreme_runs(mujoco); });
+  analysis::ClosedFormTable closed_forms;
+  clock.time("closed forms", [&] {
+    progress("closed forms");
+    closed_forms = closed_form_rows();
+  });
+  std::vector<analysis::FrictionRow> friction;
+  clock.time("friction", [&] {
+    progress("friction");
+    friction = friction_rows();
+  });
   // versions.md: MuJoCo 3.14 beside 2.2.2 on the four bodies with the
   // Kelvin–Voigt damper both have.
-  progress("versions");
-  std::vector<analysis::NamedScene> version_scenes;
-  version_scenes.reserve(kScenes.size());
-  for (const std::string& s : kScenes)
-    version_scenes.push_back(
-        {s, load(scene_path(s),
-                 {{"contact.damping", std::string(damping_law_name(DampingLaw::KelvinVoigt))}})});
-  const analysis::VersionTable versions =
-      mujoco ? version_rows(version_scenes) : analysis::VersionTable{{}, "built without MuJoCo"};
+  analysis::VersionTable versions;
+  clock.time("versions", [&] {
+    progress("versions");
+    std::vector<analysis::NamedScene> version_scenes;
+    version_scenes.reserve(kScenes.size());
+    for (const std::string& s : kScenes)
+      version_scenes.push_back({s, load(scene_path(s), kKelvinVoigt)});
+    versions =
+        mujoco ? version_rows(version_scenes) : analysis::VersionTable{{}, "built without MuJoCo"};
+  });
   // atlas.md: the small default atlas (its rows in OUT/atlas/).
-  progress("atlas validation/atlas/default.toml");
   AtlasRun atlas;
-  run_atlas("validation/atlas/default.toml", o.out + "/atlas", o.out, "atlas.", atlas);
+  clock.time("atlas", [&] {
+    progress("atlas validation/atlas/default.toml");
+    run_atlas("validation/atlas/default.toml", o.out + "/atlas", atlas);
+  });
+  clock.time("atlas plots", [&] { draw_atlas(atlas, o.out, "atlas."); });
   sweep.info.cores = std::thread::hardware_concurrency();
   sweep.info.load = load_average();
   sweep.info.sweep_seconds = static_cast<long long>(sweep_seconds);
@@ -341,15 +401,18 @@ void write_report(const ReportRequest& o) {
   sweep.info.total_seconds = static_cast<long long>(seconds_since(start));
 
   // Each page written as soon as it is made, in the order of page_names().
-  const std::vector<std::string>& names = page_names();
-  write_page(o.out + "/" + names[0], readme_page(readme));
-  write_page(o.out + "/" + names[1], sweep_page(sweep));
-  write_page(o.out + "/" + names[2], stability_page(stability, sweep.bench));
-  write_page(o.out + "/" + names[3], extreme_page(extreme));
-  write_page(o.out + "/" + names[4], closed_forms_page(closed_forms));
-  write_page(o.out + "/" + names[5], friction_page(friction, 1e-3));
-  write_page(o.out + "/" + names[6], atlas_page(atlas.summary, atlas.info));
-  write_page(o.out + "/" + names[7], versions_page(versions));
+  clock.time("pages", [&] {
+    const std::vector<std::string>& names = page_names();
+    write_page(o.out + "/" + names[0], readme_page(readme));
+    write_page(o.out + "/" + names[1], sweep_page(sweep));
+    write_page(o.out + "/" + names[2], stability_page(stability, sweep.bench));
+    write_page(o.out + "/" + names[3], extreme_page(extreme));
+    write_page(o.out + "/" + names[4], closed_forms_page(closed_forms));
+    write_page(o.out + "/" + names[5], friction_page(friction, 1e-3));
+    write_page(o.out + "/" + names[6], atlas_page(atlas.summary, atlas.info));
+    write_page(o.out + "/" + names[7], versions_page(versions));
+  });
+  return clock.done();
 }
 
 }  // namespace contact2d::report

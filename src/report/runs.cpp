@@ -364,17 +364,19 @@ analysis::VersionTable version_rows(const std::vector<analysis::NamedScene>& sce
   return analysis::version_table(scenes);
 }
 
-void run_atlas(const std::string& spec_path, const std::string& out_dir,
-               const std::string& plot_dir, const std::string& png_prefix, AtlasRun& run) {
+void run_atlas(const std::string& spec_path, const std::string& out_dir, AtlasRun& run) {
   const AtlasSpec spec = load_atlas_spec(spec_path);
   analysis::AtlasRunOptions options;
   options.threads = analysis::default_threads();
   const analysis::AtlasRunStats stats = analysis::run_atlas(spec, out_dir, options);
   run.data = analysis::read_atlas_shards({out_dir});
   run.summary = analysis::summarize_atlas(run.data);
-  analysis::draw_atlas_heatmaps(run.data, run.summary, plot_dir, png_prefix);
   run.info = {spec_path,          stats.points,          options.threads,
               stats.wall_seconds, stats.cpu_per_point(), stats.points_per_core()};
+}
+
+void draw_atlas(AtlasRun& run, const std::string& plot_dir, const std::string& png_prefix) {
+  analysis::draw_atlas_heatmaps(run.data, run.summary, plot_dir, png_prefix);
 }
 
 Bench run_bench(const std::string& executable, const std::string& min_time) {

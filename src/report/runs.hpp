@@ -108,10 +108,9 @@ std::vector<analysis::FrictionRow> friction_rows();
 // not_run says why when MuJoCo 3 cannot run here).
 analysis::VersionTable version_rows(const std::vector<analysis::NamedScene>& scenes);
 
-// `contact2d atlas SPEC --out OUT_DIR` on every core, then its summary and
-// heat maps (PNG_PREFIX*.png under PLOT_DIR) into `run`. The summary points
-// into the rows of `run.data` (its worst and failed points), so `run` is
-// filled in place and is not copied.
+// `contact2d atlas SPEC --out OUT_DIR` on every core, then its summary into
+// `run`. The summary points into the rows of `run.data` (its worst and
+// failed points), so `run` is filled in place and is not copied.
 struct AtlasRun {
   analysis::AtlasData data;
   analysis::AtlasSummary summary;
@@ -120,8 +119,9 @@ struct AtlasRun {
   AtlasRun(const AtlasRun&) = delete;
   AtlasRun& operator=(const AtlasRun&) = delete;
 };
-void run_atlas(const std::string& spec_path, const std::string& out_dir,
-               const std::string& plot_dir, const std::string& png_prefix, AtlasRun& run);
+void run_atlas(const std::string& spec_path, const std::string& out_dir, AtlasRun& run);
+// Its heat maps, PNG_PREFIX*.png under PLOT_DIR.
+void draw_atlas(AtlasRun& run, const std::string& plot_dir, const std::string& png_prefix);
 
 // `contact2d_bench --benchmark_min_time=MIN --benchmark_out=…
 // --benchmark_out_format=json`, run as a subprocess from the current
