@@ -1,4 +1,5 @@
-// contact2d report [--out DIR] [--models DIR | --snapshot] [--bench PATH] [--seed N] [--timings]
+// contact2d report [--out DIR] [--models DIR | --snapshot] [--bench PATH] [--seed N] [--jobs N]
+//                  [--timings]
 //
 // Writes every page of validation/report/ — README.md (the reference against
 // MuJoCo), sweep.md, stability.md, extreme.md, closed_forms.md, friction.md,
@@ -38,6 +39,7 @@ struct ReportOptions {
   std::string bench;  // default: bench/contact2d_bench beside this program
   std::uint64_t seed = 20260101;
   bool timings = false;   // where the wall-clock time went, on stderr
+  unsigned jobs = 0;      // threads of the report's pool (0: one per core)
   OutputOptions outputs;  // --out, --models
 };
 
@@ -80,7 +82,7 @@ int report(const ReportOptions& o) {
   if (!rp::mujoco_built())
     throw InputError("contact2d report needs MuJoCo (built with CONTACT2D_WITH_MUJOCO=OFF)");
 
-  const rp::ReportTimings timings = rp::write_report({o.out, o.models, bench, o.seed});
+  const rp::ReportTimings timings = rp::write_report({o.out, o.models, bench, o.seed, o.jobs});
   if (o.timings) print_timings(timings);
   std::string pages;
   for (const std::string& name : rp::page_names()) pages += (pages.empty() ? "" : ", ") + name;
@@ -111,6 +113,9 @@ Command add_report(CLI::App& app) {
                   "the cost section is left out when there is none)")
       ->type_name("PATH");
   cmd->add_option("--seed", o->seed, "Seed of the random scenes (default 20260101)")
+      ->type_name("N");
+  cmd->add_option("--jobs", o->jobs,
+                  "Threads that run the report's sections side by side (default 0: one per core)")
       ->type_name("N");
   cmd->add_flag("--timings", o->timings,
                 "Print the wall-clock seconds of each section of the run to standard error");

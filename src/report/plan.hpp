@@ -26,6 +26,7 @@ struct ReportRequest {
   // an executable file.
   std::string bench;
   std::uint64_t seed = 0;  // of the random scenes
+  unsigned jobs = 0;       // threads of the report's pool (0: one per core)
 };
 
 // The pages write_report() writes into `out`, in the order it writes them.
