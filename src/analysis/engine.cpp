@@ -28,8 +28,8 @@ void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>&
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
-  auto worker = [&] {
-    for (size_t i = next++; i < n; i = next++) {
+  auto worker = [&](size_t i) {
+    for (; i < n; i = next++) {
       try {
         task(i);
       } catch (...) {
@@ -38,9 +38,10 @@ void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>&
       }
     }
   };
+  const size_t first = next++;  // taken before any other thread starts
   std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back([&] { worker(next++); });
+  worker(first);
   for (std::thread& t : pool) t.join();
   if (error) std::rethrow_exception(error);
 }

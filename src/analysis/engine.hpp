@@ -27,8 +27,9 @@ EngineRunner registry_runner();
 double nominal_order(Integrator integrator);
 
 // Runs task(i) for every i in [0, n) on `threads` threads (0: one per core);
-// indices are handed out in order. The first exception thrown by a task is
-// rethrown after all threads have finished.
+// indices are handed out in order, and task(0) runs on the calling thread
+// (the report's animations, which a GLFW window must draw there). The first
+// exception thrown by a task is rethrown after all threads have finished.
 void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& task);
 unsigned default_threads();
 

@@ -1,4 +1,5 @@
-// contact2d report [--out DIR] [--models DIR | --snapshot] [--bench PATH] [--seed N]
+// contact2d report [--out DIR] [--models DIR | --snapshot] [--bench PATH] [--seed N] [--jobs N]
+//                  [--timings]
 //
 // Writes every page of validation/report/ — README.md (the reference against
 // MuJoCo), sweep.md, stability.md, extreme.md, closed_forms.md, friction.md,
@@ -12,6 +13,7 @@
 // page is written then.
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -36,6 +38,8 @@ struct ReportOptions {
   bool snapshot = false;
   std::string bench;  // default: bench/contact2d_bench beside this program
   std::uint64_t seed = 20260101;
+  bool timings = false;   // where the wall-clock time went, on stderr
+  unsigned jobs = 0;      // threads of the report's pool (0: one per core)
   OutputOptions outputs;  // --out, --models
 };
 
@@ -43,6 +47,20 @@ std::string default_bench() {
   std::error_code ec;
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
   return ec ? std::string() : (self.parent_path() / "bench" / "contact2d_bench").string();
+}
+
+// One line per section (scripts/report-timings reads them): its tasks'
+// seconds added up, then from when to when it ran, in seconds since the
+// report began.
+void print_timings(const rp::ReportTimings& t) {
+  char line[200];
+  for (const rp::SectionTime& s : t.sections) {
+    std::snprintf(line, sizeof line, "report: timing %-14s %7.2f s  (%.2f to %.2f s)\n",
+                  (s.name + ":").c_str(), s.seconds, s.start, s.end);
+    std::cerr << line;
+  }
+  std::snprintf(line, sizeof line, "report: timing %-14s %7.2f s\n", "total:", t.total);
+  std::cerr << line;
 }
 
 int report(const ReportOptions& o) {
@@ -64,7 +82,8 @@ int report(const ReportOptions& o) {
   if (!rp::mujoco_built())
     throw InputError("contact2d report needs MuJoCo (built with CONTACT2D_WITH_MUJOCO=OFF)");
 
-  rp::write_report({o.out, o.models, bench, o.seed});
+  const rp::ReportTimings timings = rp::write_report({o.out, o.models, bench, o.seed, o.jobs});
+  if (o.timings) print_timings(timings);
   std::string pages;
   for (const std::string& name : rp::page_names()) pages += (pages.empty() ? "" : ", ") + name;
   std::cout << "report written to " << o.out << "/ (" << pages << ")\n";
@@ -95,6 +114,11 @@ Command add_report(CLI::App& app) {
       ->type_name("PATH");
   cmd->add_option("--seed", o->seed, "Seed of the random scenes (default 20260101)")
       ->type_name("N");
+  cmd->add_option("--jobs", o->jobs,
+                  "Threads that run the report's sections side by side (default 0: one per core)")
+      ->type_name("N");
+  cmd->add_flag("--timings", o->timings,
+                "Print the wall-clock seconds of each section of the run to standard error");
   return {cmd, [o] {
             if (o->snapshot) {
               o->out = "validation/report";

@@ -81,10 +81,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
     std::optional<InterruptsHeld> held;
     if (writes_output) held.emplace();
     spawned = ::posix_spawnp(&pid_, args[0], &actions, &attributes, args.data(), environ);
-    if (spawned == 0 && writes_output) {
-      register_child(pid_);
-      registered_ = true;
-    }
+    if (spawned == 0 && writes_output) child_slot_ = register_child(pid_);
   }
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
@@ -110,7 +107,8 @@ ChildProcess::~ChildProcess() {
     ::kill(pid_, SIGKILL);
     wait_for(pid_, status_, 5.0);
   }
-  if (registered_) register_child(0);
+  unregister_child(child_slot_);
+  child_slot_ = -1;
   close_fd(err_);
 }
 
@@ -144,10 +142,8 @@ ChildEnding ChildProcess::finish() {
   while (!reaped_) {
     if (::waitpid(pid_, &status_, 0) == pid_ || errno != EINTR) reaped_ = true;
   }
-  if (registered_) {
-    register_child(0);
-    registered_ = false;
-  }
+  unregister_child(child_slot_);
+  child_slot_ = -1;
   end.status = WIFEXITED(status_) ? WEXITSTATUS(status_) : -1;
   end.description = ending();  // its standard error was read above: add its last line
   std::string said = end.standard_error;

@@ -81,7 +81,7 @@ class ChildProcess {
   size_t start_ = 0;  // the unread part of buffer_ begins here
   bool reaped_ = false;
   int status_ = 0;
-  bool registered_ = false;  // with the interrupt handler (writes_output)
+  int child_slot_ = -1;  // with the interrupt handler (writes_output), else -1
 };
 
 }  // namespace contact2d

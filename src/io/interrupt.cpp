@@ -24,7 +24,8 @@ struct Slot {
 };
 Slot g_slots[kSlots];
 std::mutex g_register;  // between threads that register; never taken by the handler
-std::atomic<int> g_child{0};
+constexpr int kChildren = 16;
+std::atomic<int> g_children[kChildren];  // a pid, or 0: free
 
 void write_all(const char* text) {
   size_t left = std::strlen(text);
@@ -37,9 +38,11 @@ void write_all(const char* text) {
 }
 
 extern "C" void on_interrupt(int signal) {
-  if (const int child = g_child.load(); child > 0) {
-    ::kill(child, SIGKILL);
-    ::waitpid(child, nullptr, 0);
+  for (const std::atomic<int>& slot : g_children) {
+    if (const int child = slot.load(); child > 0) ::kill(child, SIGKILL);
+  }
+  for (const std::atomic<int>& slot : g_children) {
+    if (const int child = slot.load(); child > 0) ::waitpid(child, nullptr, 0);
   }
   for (Slot& slot : g_slots) {
     if (slot.in_use.load()) ::unlink(slot.path);
@@ -92,6 +95,16 @@ void unregister_temporary(int slot) {
   if (slot >= 0 && slot < kSlots) g_slots[slot].in_use.store(false);
 }
 
-void register_child(int pid) { g_child.store(pid); }
+int register_child(int pid) {
+  for (int i = 0; i < kChildren; ++i) {
+    int free = 0;
+    if (g_children[i].compare_exchange_strong(free, pid)) return i;
+  }
+  return -1;
+}
+
+void unregister_child(int slot) {
+  if (slot >= 0 && slot < kChildren) g_children[slot].store(0);
+}
 
 }  // namespace contact2d

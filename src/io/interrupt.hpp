@@ -41,9 +41,14 @@ int register_temporary(const std::string& path);
 // The file was renamed or removed: forget it (slot -1 is ignored).
 void unregister_temporary(int slot);
 
-// A child process writing one of those files (ffmpeg): on an interrupt it is
-// killed and reaped before the files are removed, so it cannot create one
-// after. One child at a time; 0 forgets it.
-void register_child(int pid);
+// A child process writing one of those files (gnuplot, ffmpeg, the bench):
+// on an interrupt it is killed and reaped before the files are removed, so
+// it cannot create one after. Several at a time (the report runs its
+// sections on several threads); returns its slot (-1 when all 16 are in
+// use: it is then not killed).
+int register_child(int pid);
+
+// The child was reaped: forget it (slot -1 is ignored).
+void unregister_child(int slot);
 
 }  // namespace contact2d

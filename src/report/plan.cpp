@@ -7,13 +7,19 @@
 #include <glob.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <memory>
+#include <mutex>
 #include <thread>
 
+#include "analysis/engine.hpp"
 #include "io/atomic_file.hpp"
 #include "io/scene_file.hpp"
 #include "io/scene_writer.hpp"
@@ -67,30 +73,113 @@ void write_page(const std::string& path, const std::string& text) {
   file.commit();
 }
 
-void progress(const std::string& what) { std::cerr << "report: " << what << "\n"; }
+// One line on stderr; whole lines from every thread of the pool.
+void progress(const std::string& what) {
+  static std::mutex mutex;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::cerr << "report: " << what << "\n";
+}
+
+// The report's sections timed (plan.hpp, ReportTimings): each call of
+// time() adds one task's wall-clock seconds to its section.
+class SectionClock {
+ public:
+  template <class Task>
+  void time(const std::string& section, Task&& task) {
+    const double start = seconds_since(origin_);
+    task();
+    const double end = seconds_since(origin_);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (SectionTime& s : timings_.sections) {
+      if (s.name != section) continue;
+      s.seconds += end - start;
+      s.start = std::min(s.start, start);
+      s.end = std::max(s.end, end);
+      return;
+    }
+    timings_.sections.push_back({section, end - start, start, end});
+  }
+  ReportTimings done() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    timings_.total = seconds_since(origin_);
+    std::sort(timings_.sections.begin(), timings_.sections.end(),
+              [](const SectionTime& a, const SectionTime& b) { return a.start < b.start; });
+    return timings_;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point origin_ = std::chrono::steady_clock::now();
+  std::mutex mutex_;
+  ReportTimings timings_;
+};
+
+// One piece of the report's work, run by run_tasks on the report's pool:
+// its section (for the timings), and what it runs. A task fills only its
+// own, already allocated, place in the results, so the pages come out the
+// same whichever thread ran it and in whichever order.
+struct Task {
+  std::string section;
+  std::function<void()> run;
+};
+using Tasks = std::vector<Task>;
+
+// Runs the tasks on `jobs` threads (analysis::parallel_for: 0 is one per
+// core), handed out in their order, task 0 on this thread; after a task
+// fails no other one starts, and the first failure is rethrown once the
+// running ones end.
+void run_tasks(const Tasks& tasks, unsigned jobs, SectionClock& clock) {
+  std::atomic<bool> failed{false};
+  analysis::parallel_for(tasks.size(), jobs, [&](size_t i) {
+    if (failed.load()) return;
+    try {
+      clock.time(tasks[i].section, tasks[i].run);
+    } catch (...) {
+      failed.store(true);
+      throw;
+    }
+  });
+}
 
 // ------------------------------------------------------------ README.md
 
 // The models, and every scene under every mapping as shipped and with the
-// Kelvin–Voigt law (sections 1 and 8); a scene whose two laws agree to the
-// bit keeps one plot.
-void mapping_runs(const ReportRequest& o, ReadmeData& d) {
-  progress("models and README.md");
+// Kelvin–Voigt law (sections 1 and 8).
+void mapping_tasks(const ReportRequest& o, ReadmeData& d, Tasks& tasks) {
+  tasks.push_back({"models", [&o] {
+                     progress("models");
+                     for (const std::string& s : kScenes) {
+                       for (const std::string& m : kMappings) {
+                         write_model(load(scene_path(s)), scene_path(s), m,
+                                     o.models + "/" + s + "." + m + ".xml");
+                       }
+                     }
+                   }});
   for (const std::string& s : kScenes) {
     for (const std::string& m : kMappings) {
-      write_model(load(scene_path(s)), scene_path(s), m, o.models + "/" + s + "." + m + ".xml");
+      d.shipped.push_back({s, m, {}});
+      d.kelvin_voigt.push_back({s, m, {}});
     }
   }
-  for (const std::string& s : kScenes) {
-    for (const std::string& m : kMappings) {
-      const bool plotted = m == "calibrated";  // the plots of section 8: the default mapping
-      d.shipped.push_back(
-          {s, m, compare(s, {}, m, "corners", plotted ? o.out + "/" + s + ".shipped.png" : "")});
-      d.kelvin_voigt.push_back({s, m,
-                                compare(s, kKelvinVoigt, m, "corners",
-                                        plotted ? o.out + "/" + s + ".kelvin_voigt.png" : "")});
+  for (size_t i = 0; i < d.shipped.size(); ++i) {
+    // The plots of section 8: the default mapping.
+    const bool plotted = d.shipped[i].mapping == "calibrated";
+    const std::string s = d.shipped[i].scene;
+    for (const bool kv : {false, true}) {
+      MappingCase& c = (kv ? d.kelvin_voigt : d.shipped)[i];
+      const std::string plot =
+          plotted ? o.out + "/" + s + (kv ? ".kelvin_voigt.png" : ".shipped.png") : "";
+      tasks.push_back({"mappings", [&c, plot, kv] {
+                         progress("README.md: " + c.scene + ", " + c.mapping + " mapping" +
+                                  (kv ? ", Kelvin–Voigt" : ""));
+                         c.result = compare(c.scene, kv ? kKelvinVoigt : std::vector<Override>{},
+                                            c.mapping, "corners", plot);
+                       }});
     }
   }
+}
+
+// A scene whose two laws agree to the bit keeps one plot.
+void drop_law_independent_plots(const ReportRequest& o, ReadmeData& d) {
   for (const std::string& s : kScenes) {
     const Comparison* shipped = nullptr;
     const Comparison* kv = nullptr;
@@ -107,63 +196,101 @@ void mapping_runs(const ReportRequest& o, ReadmeData& d) {
   }
 }
 
-// The three-way comparisons with their diagnoses; the first scene's
-// animation, or the reason there is none.
-void three_way_runs(const ReportRequest& o, ReadmeData& d) {
-  progress("three-way comparisons, diagnoses and animations");
+// The three-way comparisons with their diagnoses, as shipped (their runs
+// kept in `runs` for the animations) and with the Kelvin–Voigt law.
+void three_way_tasks(ReadmeData& d, std::vector<ThreeWayRuns>& runs, Tasks& tasks) {
   d.named_share = named_share();
-  for (const std::string& s : kScenes) {
-    std::string failure;
-    const std::string video = d.animation_note.empty() ? o.out + "/" + s + ".gif" : "";
-    d.three_way.push_back(compare_three_way(load(scene_path(s)), scene_path(s), "as shipped",
-                                            d.converged_tol, video, failure));
-    if (!failure.empty()) d.animation_note = failure;
-    d.three_way.push_back(compare_three_way(load(scene_path(s), kKelvinVoigt), scene_path(s),
-                                            "Kelvin–Voigt", d.converged_tol, "", failure));
+  d.three_way.resize(2 * kScenes.size());
+  runs.resize(kScenes.size());
+  for (size_t i = 0; i < 2 * kScenes.size(); ++i) {
+    tasks.push_back({"three-way", [&d, &runs, i] {
+                       const std::string& s = kScenes[i / 2];
+                       const bool kv = i % 2 == 1;
+                       progress("three-way comparison: " + s + (kv ? ", Kelvin–Voigt" : ""));
+                       d.three_way[i] = compare_three_way(
+                           load(scene_path(s), kv ? kKelvinVoigt : std::vector<Override>{}),
+                           scene_path(s), kv ? "Kelvin–Voigt" : "as shipped", d.converged_tol,
+                           kv ? nullptr : &runs[i / 2]);
+                     }});
   }
 }
 
-// The agreement goal at c = 200 and 1000, without and with friction; the
-// geometries of the box and the T; the integrators.
-void goal_runs(ReadmeData& d) {
+// Each scene's animation as shipped until one cannot be drawn, then the
+// reason there is none.
+void animations(const ReportRequest& o, const std::vector<ThreeWayRuns>& runs, ReadmeData& d) {
+  for (size_t i = 0; i < kScenes.size() && d.animation_note.empty(); ++i) {
+    progress("animation " + kScenes[i]);
+    d.animation_note =
+        animate_three_way(runs[i], o.out + "/" + kScenes[i] + ".gif", d.three_way[2 * i]);
+  }
+}
+
+// The agreement goal at c = 200 and 1000, without and with friction.
+void goal_tasks(ReadmeData& d, Tasks& tasks) {
   for (const std::string c : {"200", "1000"}) {
-    for (const std::string& s : kScenes) {
-      d.goals.push_back({s + ", c = " + c + ", frictionless", 1e-5, 1e-4,
-                         compare(s, with(goal(c), kFrictionless))});
-    }
+    for (const std::string& s : kScenes)
+      d.goals.push_back({s + ", c = " + c + ", frictionless", 1e-5, 1e-4, {}});
     for (const std::string& s : kScenes) {
       const double pos_goal = s == "point_mass" || s == "circle" ? 1e-3 : 3e-3;
-      GoalCase g{s + ", c = " + c + ", friction", pos_goal, std::nullopt, compare(s, goal(c))};
-      add_friction_parts(load(scene_path(s), goal(c)), "calibrated", g);
-      d.goals.push_back(g);
+      d.goals.push_back({s + ", c = " + c + ", friction", pos_goal, std::nullopt, {}});
     }
-    d.goals.push_back({"circle, c = " + c + ", friction, no rolling resistance", 1e-3, std::nullopt,
-                       compare("circle", with(goal(c), {{"contact.mu_roll", "0"}}))});
+    const std::string no_roll = "circle, c = " + c + ", friction, no rolling resistance";
+    d.goals.push_back({no_roll, 1e-3, std::nullopt, {}});
   }
-  for (const std::string s : {"box", "tshape"}) {
-    for (const bool friction : {false, true}) {
-      for (const std::string geometry : {"corners", "boxes"}) {
-        const auto overrides = friction ? goal("200") : with(goal("200"), kFrictionless);
-        d.geometry.push_back(
-            {s, friction, geometry, compare(s, overrides, "calibrated", geometry)});
-      }
+  size_t next = 0;
+  for (const std::string c : {"200", "1000"}) {
+    for (const std::string& s : kScenes) {
+      tasks.push_back({"goals", [&g = d.goals[next++], s, c] {
+                         progress("goal: " + g.label);
+                         g.result = compare(s, with(goal(c), kFrictionless));
+                       }});
     }
-  }
-  for (const std::string& s : kScenes) {
-    for (const std::string integrator : {"semi_implicit_euler", "rk4", "implicit_euler"}) {
-      const auto overrides =
-          with(with(goal("200"), kFrictionless), {{"sim.integrator", "\"" + integrator + "\""}});
-      d.integrators.push_back({s, integrator, compare(s, overrides)});
+    for (const std::string& s : kScenes) {
+      tasks.push_back({"goals", [&g = d.goals[next++], s, c] {
+                         progress("goal: " + g.label);
+                         g.result = compare(s, goal(c));
+                         add_friction_parts(load(scene_path(s), goal(c)), "calibrated", g);
+                       }});
     }
+    tasks.push_back({"goals", [&g = d.goals[next++], c] {
+                       progress("goal: " + g.label);
+                       g.result = compare("circle", with(goal(c), {{"contact.mu_roll", "0"}}));
+                     }});
   }
 }
 
-// The seeded random scenes, each also as a file (OUT/random/NAME.toml) so
-// that a row can be re-run on its own.
-void random_runs(const ReportRequest& o, ReadmeData& d) {
-  d.random_config = {o.seed, kRandomSceneCount, 1e-5, 1e-4};
-  const std::vector<RandomScene> randoms = draw_random_scenes(o.seed, d.random_config.count);
-  d.random_dir = o.out + "/random";
+// The geometries of the box and the T; the integrators.
+void geometry_and_integrator_tasks(ReadmeData& d, Tasks& tasks) {
+  for (const std::string s : {"box", "tshape"}) {
+    for (const bool friction : {false, true}) {
+      for (const std::string geometry : {"corners", "boxes"})
+        d.geometry.push_back({s, friction, geometry, {}});
+    }
+  }
+  for (GeometryCase& g : d.geometry) {
+    tasks.push_back({"goals", [&g] {
+                       progress("geometry: " + g.scene + ", " + g.geometry);
+                       const auto overrides =
+                           g.friction ? goal("200") : with(goal("200"), kFrictionless);
+                       g.result = compare(g.scene, overrides, "calibrated", g.geometry);
+                     }});
+  }
+  for (const std::string& s : kScenes) {
+    for (const std::string integrator : {"semi_implicit_euler", "rk4", "implicit_euler"})
+      d.integrators.push_back({s, integrator, {}});
+  }
+  for (IntegratorCase& c : d.integrators) {
+    tasks.push_back({"goals", [&c] {
+                       progress("integrator: " + c.scene + ", " + c.integrator);
+                       const auto overrides =
+                           with(with(goal("200"), kFrictionless),
+                                {{"sim.integrator", "\"" + c.integrator + "\""}});
+                       c.result = compare(c.scene, overrides);
+                     }});
+  }
+}
+
+void write_random_scenes(const ReportRequest& o, const std::vector<RandomScene>& randoms) {
   std::error_code ec;
   fs::create_directories(o.out + "/random", ec);
   for (const RandomScene& r : randoms) {
@@ -172,25 +299,52 @@ void random_runs(const ReportRequest& o, ReadmeData& d) {
                                           std::to_string(o.seed) +
                                           "). Without friction: --set contact.mu=0"));
   }
-  compare_random_scenes(randoms, d.random, d.random_compensated);
 }
 
-ReadmeData readme_runs(const ReportRequest& o) {
-  ReadmeData d;
+// The seeded random scenes, each also as a file (OUT/random/NAME.toml) so
+// that a row can be re-run on its own, under the calibrated and the
+// compensated mapping.
+void random_tasks(const ReportRequest& o, ReadmeData& d, Tasks& tasks) {
+  d.random_config = {o.seed, kRandomSceneCount, 1e-5, 1e-4};
+  auto randoms = std::make_shared<const std::vector<RandomScene>>(
+      draw_random_scenes(o.seed, d.random_config.count));
+  d.random_dir = o.out + "/random";
+  d.random.resize(randoms->size());
+  d.random_compensated.resize(randoms->size());
+  tasks.push_back({"random scenes", [&o, randoms] { write_random_scenes(o, *randoms); }});
+  for (size_t i = 0; i < randoms->size(); ++i) {
+    for (const bool compensated : {false, true}) {
+      RandomCase& out = (compensated ? d.random_compensated : d.random)[i];
+      tasks.push_back({"random scenes", [&out, randoms, i, compensated] {
+                         const RandomScene& r = (*randoms)[i];
+                         progress("random scene " + r.name);
+                         out = compare_random_scene(r, compensated ? "compensated" : "calibrated");
+                       }});
+    }
+  }
+}
+
+void readme_tasks(const ReportRequest& o, ReadmeData& d, std::vector<ThreeWayRuns>& runs,
+                  Tasks& tasks) {
   d.scenes = kScenes;
   d.mappings = kMappings;
-  mapping_runs(o, d);
-  progress("the goal replay on both engines");
-  d.replay = replay_on_both("validation/replays/goal.replay", o.out + "/goal_replay.png");
-  three_way_runs(o, d);
-  goal_runs(d);
-  random_runs(o, d);
-  return d;
+  mapping_tasks(o, d, tasks);
+  tasks.push_back({"goal replay", [&o, &d] {
+                     progress("the goal replay on both engines");
+                     d.replay = replay_on_both("validation/replays/goal.replay",
+                                               o.out + "/goal_replay.png");
+                   }});
+  three_way_tasks(d, runs, tasks);
+  goal_tasks(d, tasks);
+  geometry_and_integrator_tasks(d, tasks);
+  random_tasks(o, d, tasks);
 }
 
 // ------------------------------------------- sweep.md, stability.md, extreme.md
 
-void sweep_runs(const ReportRequest& o, bool mujoco, SweepData& sweep) {
+// Each sweep on one thread of the report's pool (the other runs beside it,
+// as the sweep's own two threads did).
+void sweep_tasks(const ReportRequest& o, bool mujoco, SweepData& sweep, Tasks& tasks) {
   sweep.mujoco = mujoco;
   sweep.engines = mujoco ? "ref,mujoco" : "ref";
   sweep.mujoco_dts = "1e-3,5e-4,2e-4,1e-4";
@@ -201,56 +355,68 @@ void sweep_runs(const ReportRequest& o, bool mujoco, SweepData& sweep) {
   request.mujoco_dts = {1e-3, 5e-4, 2e-4, 1e-4};
   request.mujoco_integrators = {"semi_implicit_euler", "rk4"};
   request.repeats = 2;
-  for (const std::string& s : kScenes) {
-    progress("sweep " + s);
+  request.threads = 1;
+  sweep.sweeps.resize(kScenes.size() + 1);
+  for (size_t i = 0; i < kScenes.size(); ++i) {
     request.study = true;
-    sweep.sweeps.push_back(
-        sweep_scene(load(scene_path(s)), s, request, o.out + "/sweep." + s + ".png"));
+    tasks.push_back({"sweeps", [&o, &sweep, request, i] {
+                       const std::string& s = kScenes[i];
+                       progress("sweep " + s);
+                       sweep.sweeps[i] = sweep_scene(load(scene_path(s)), s, request,
+                                                     o.out + "/sweep." + s + ".png");
+                     }});
   }
   // The point mass with the Kelvin–Voigt law and c = 200, where MuJoCo's
   // model can follow the reference's (README.md, section 2).
-  progress("sweep point_mass_kv");
   request.study = false;
   request.integrators = {"semi_implicit_euler", "rk4", "implicit_euler"};
-  sweep.sweeps.push_back(
-      sweep_scene(load(scene_path("point_mass"), with(kKelvinVoigt, {{"contact.c", "200"}})),
-                  "point_mass_kv", request, o.out + "/sweep.point_mass_kv.png"));
+  tasks.push_back({"sweeps", [&o, &sweep, request] {
+                     progress("sweep point_mass_kv");
+                     sweep.sweeps.back() = sweep_scene(
+                         load(scene_path("point_mass"), with(kKelvinVoigt, {{"contact.c", "200"}})),
+                         "point_mass_kv", request, o.out + "/sweep.point_mass_kv.png");
+                   }});
 }
 
-void stability_runs(const ReportRequest& o, bool mujoco, StabilityData& stability) {
+void stability_tasks(const ReportRequest& o, bool mujoco, StabilityData& stability, Tasks& tasks) {
   stability.mujoco = mujoco;
   stability.scenes = kScenes;
-  for (const std::string& s : kScenes) {
-    progress("stability " + s);
-    StabilityRequest r;
-    r.zeta = 1.0;
-    stability.reference.push_back(
-        stability_map(load(scene_path(s)), s, r, o.out + "/stability." + s + ".png"));
+  stability.reference.resize(kScenes.size());
+  for (size_t i = 0; i < kScenes.size(); ++i) {
+    tasks.push_back({"stability", [&o, &stability, i] {
+                       const std::string& s = kScenes[i];
+                       progress("stability " + s);
+                       StabilityRequest r;
+                       r.zeta = 1.0;
+                       r.threads = 1;
+                       stability.reference[i] = stability_map(load(scene_path(s)), s, r,
+                                                              o.out + "/stability." + s + ".png");
+                     }});
   }
-  stability.scene_c = stability_map(load(scene_path("point_mass")), "point_mass_scene_c", {},
-                                    o.out + "/stability.point_mass_scene_c.png");
-  if (mujoco) {
-    stability.mujoco_scenes = {"point_mass", "box"};
-    for (const std::string& s : stability.mujoco_scenes) {
-      progress("stability MuJoCo " + s);
-      StabilityRequest r;
-      r.engines = {"mujoco", "mujoco:exact"};
-      r.ks = {1e4, 1e6, 1e8};
-      r.zeta = 1.0;
-      stability.mujoco_maps.push_back(stability_map(load(scene_path(s), {{"sim.duration", "0.7"}}),
-                                                    "mujoco." + s, r,
-                                                    o.out + "/stability.mujoco." + s + ".png"));
-    }
-  }
-}
-
-// The per-step cost (stability.md, section 6), when there is a bench.
-void bench_runs(const ReportRequest& o, SweepData& sweep) {
-  if (o.bench.empty() || ::access(o.bench.c_str(), X_OK) != 0) return;
-  progress("bench");
-  sweep.bench = run_bench(o.bench, "0.2");
-  for (const std::string& s : kScenes) {
-    if (points_turn(load(scene_path(s)))) sweep.bench.turning.push_back(s);
+  tasks.push_back({"stability", [&o, &stability] {
+                     progress("stability point_mass_scene_c");
+                     StabilityRequest r;
+                     r.threads = 1;
+                     stability.scene_c =
+                         stability_map(load(scene_path("point_mass")), "point_mass_scene_c", r,
+                                       o.out + "/stability.point_mass_scene_c.png");
+                   }});
+  if (!mujoco) return;
+  stability.mujoco_scenes = {"point_mass", "box"};
+  stability.mujoco_maps.resize(stability.mujoco_scenes.size());
+  for (size_t i = 0; i < stability.mujoco_scenes.size(); ++i) {
+    tasks.push_back({"stability", [&o, &stability, i] {
+                       const std::string& s = stability.mujoco_scenes[i];
+                       progress("stability MuJoCo " + s);
+                       StabilityRequest r;
+                       r.engines = {"mujoco", "mujoco:exact"};
+                       r.ks = {1e4, 1e6, 1e8};
+                       r.zeta = 1.0;
+                       r.threads = 1;
+                       stability.mujoco_maps[i] = stability_map(
+                           load(scene_path(s), {{"sim.duration", "0.7"}}), "mujoco." + s, r,
+                           o.out + "/stability.mujoco." + s + ".png");
+                     }});
   }
 }
 
@@ -275,15 +441,30 @@ std::vector<std::string> expectations(const std::string& path) {
   return lines;
 }
 
-ExtremeData extreme_runs(bool mujoco) {
-  ExtremeData extreme;
-  for (const std::string& path : extreme_files()) {
-    progress("extreme " + path);
-    extreme.cases.push_back(
-        {path, expectations(path), simulate_outcome(path, "ref"),
-         mujoco ? std::optional(simulate_outcome(path, "mujoco")) : std::nullopt});
+void extreme_tasks(bool mujoco, ExtremeData& extreme, Tasks& tasks) {
+  for (const std::string& path : extreme_files())
+    extreme.cases.push_back({path, expectations(path), {}, std::nullopt});
+  for (ExtremeCase& c : extreme.cases) {
+    tasks.push_back({"extreme", [&c, mujoco] {
+                       progress("extreme " + c.path);
+                       c.ref = simulate_outcome(c.path, "ref");
+                       if (mujoco) c.mujoco = simulate_outcome(c.path, "mujoco");
+                     }});
   }
-  return extreme;
+}
+
+// The per-step cost (stability.md, section 6), when there is a bench: run
+// alone, after every other run, so that nothing of the report's shares the
+// machine with it; 0.05 s a benchmark bounds it to ~3 s (0.2 s took ~10 s
+// on one core while the other idled). Its ratios carry the shared
+// machine's ±30 % either way (docs/speed.md).
+void bench_runs(const ReportRequest& o, SweepData& sweep) {
+  if (o.bench.empty() || ::access(o.bench.c_str(), X_OK) != 0) return;
+  progress("bench");
+  sweep.bench = run_bench(o.bench, "0.05");
+  for (const std::string& s : kScenes) {
+    if (points_turn(load(scene_path(s)))) sweep.bench.turning.push_back(s);
+  }
 }
 
 std::string load_average() {
@@ -291,6 +472,91 @@ std::string load_average() {
   std::string a, b, c;
   in >> a >> b >> c;
   return a + " " + b + " " + c;
+}
+
+// Everything the pages show, filled by the tasks.
+struct Results {
+  ReadmeData readme;
+  SweepData sweep;
+  StabilityData stability;
+  ExtremeData extreme;
+  analysis::ClosedFormTable closed_forms;
+  std::vector<analysis::FrictionRow> friction;
+  std::vector<analysis::VersionTable> versions;  // one per scene
+  AtlasRun atlas;
+  std::vector<ThreeWayRuns> three_way;  // as shipped, for the animations
+};
+
+// closed_forms.md and friction.md.
+void table_tasks(Results& r, Tasks& tasks) {
+  tasks.push_back({"closed forms", [&r] {
+                     progress("closed forms");
+                     r.closed_forms = closed_form_rows(1);
+                   }});
+  tasks.push_back({"friction", [&r] {
+                     progress("friction");
+                     r.friction = friction_rows(1);
+                   }});
+}
+
+// After the three-way comparisons: their animations, the pool's first task,
+// on the thread that called write_report (a GLFW window must be drawn
+// there), beside versions.md and the atlas's heat maps.
+void last_tasks(const ReportRequest& o, bool mujoco, Results& r, Tasks& tasks) {
+  tasks.push_back({"animations", [&o, &r] { animations(o, r.three_way, r.readme); }});
+  // versions.md: MuJoCo 3.14 beside 2.2.2 on the four bodies with the
+  // Kelvin–Voigt damper both have; a scene a task, each on the one Node
+  // process of the thread that runs it.
+  r.versions.resize(kScenes.size(), analysis::VersionTable{{}, "built without MuJoCo"});
+  for (size_t i = 0; mujoco && i < kScenes.size(); ++i) {
+    tasks.push_back({"versions", [&r, i] {
+                       const std::string& s = kScenes[i];
+                       progress("versions " + s);
+                       r.versions[i] = version_rows({{s, load(scene_path(s), kKelvinVoigt)}}, 1);
+                     }});
+  }
+  tasks.push_back({"atlas plots", [&o, &r] {
+                     progress("atlas heat maps");
+                     draw_atlas(r.atlas, o.out, "atlas.");
+                   }});
+}
+
+analysis::VersionTable joined(const std::vector<analysis::VersionTable>& parts) {
+  analysis::VersionTable all;
+  for (const analysis::VersionTable& part : parts) {
+    if (!part.not_run.empty()) return part;
+    all.rows.insert(all.rows.end(), part.rows.begin(), part.rows.end());
+  }
+  return all;
+}
+
+// Longest first, so that the pool's threads end together: the tasks of the
+// sections that take longest (measured by scripts/report-timings) go to the
+// front, each section's own tasks in their order; the first task stays
+// first (it may have to run on this thread).
+void longest_first(Tasks& tasks) {
+  if (tasks.empty()) return;
+  const std::vector<std::string> order{"three-way", "sweeps",      "stability",   "friction",
+                                       "versions",  "atlas plots", "goals",       "random scenes",
+                                       "mappings",  "extreme",     "goal replay", "closed forms",
+                                       "models"};
+  auto rank = [&](const Task& t) {
+    return std::find(order.begin(), order.end(), t.section) - order.begin();
+  };
+  std::stable_sort(tasks.begin() + 1, tasks.end(),
+                   [&](const Task& a, const Task& b) { return rank(a) < rank(b); });
+}
+
+void write_pages(const ReportRequest& o, const Results& r) {
+  const std::vector<std::string>& names = page_names();
+  write_page(o.out + "/" + names[0], readme_page(r.readme));
+  write_page(o.out + "/" + names[1], sweep_page(r.sweep));
+  write_page(o.out + "/" + names[2], stability_page(r.stability, r.sweep.bench));
+  write_page(o.out + "/" + names[3], extreme_page(r.extreme));
+  write_page(o.out + "/" + names[4], closed_forms_page(r.closed_forms));
+  write_page(o.out + "/" + names[5], friction_page(r.friction, 1e-3));
+  write_page(o.out + "/" + names[6], atlas_page(r.atlas.summary, r.atlas.info));
+  write_page(o.out + "/" + names[7], versions_page(joined(r.versions)));
 }
 
 }  // namespace
@@ -302,54 +568,46 @@ const std::vector<std::string>& page_names() {
   return names;
 }
 
-void write_report(const ReportRequest& o) {
+// First the atlas on its own threads (its page states their number), then
+// every other run on the report's pool (the animations, versions.md and the
+// atlas's heat maps after the rest), then the bench alone (so that no run of
+// the report disturbs its timings), then the pages.
+ReportTimings write_report(const ReportRequest& o) {
+  SectionClock clock;
   const bool mujoco = mujoco_built();
-  const ReadmeData readme = readme_runs(o);
-
-  const auto start = std::chrono::steady_clock::now();
-  SweepData sweep;
-  sweep_runs(o, mujoco, sweep);
-  const double sweep_seconds = seconds_since(start);
-  StabilityData stability;
-  stability_runs(o, mujoco, stability);
-  const double stability_seconds = seconds_since(start) - sweep_seconds;
-  bench_runs(o, sweep);
-  const ExtremeData extreme = extreme_runs(mujoco);
-  progress("closed forms");
-  const analysis::ClosedFormTable closed_forms = closed_form_rows();
-  progress("friction");
-  const std::vector<analysis::FrictionRow> friction = friction_rows();
-  // versions.md: MuJoCo 3.14 beside 2.2.2 on the four bodies with the
-  // Kelvin–Voigt damper both have.
-  progress("versions");
-  std::vector<analysis::NamedScene> version_scenes;
-  version_scenes.reserve(kScenes.size());
-  for (const std::string& s : kScenes)
-    version_scenes.push_back(
-        {s, load(scene_path(s),
-                 {{"contact.damping", std::string(damping_law_name(DampingLaw::KelvinVoigt))}})});
-  const analysis::VersionTable versions =
-      mujoco ? version_rows(version_scenes) : analysis::VersionTable{{}, "built without MuJoCo"};
+  Results r;
   // atlas.md: the small default atlas (its rows in OUT/atlas/).
-  progress("atlas validation/atlas/default.toml");
-  AtlasRun atlas;
-  run_atlas("validation/atlas/default.toml", o.out + "/atlas", o.out, "atlas.", atlas);
-  sweep.info.cores = std::thread::hardware_concurrency();
-  sweep.info.load = load_average();
-  sweep.info.sweep_seconds = static_cast<long long>(sweep_seconds);
-  sweep.info.stability_seconds = static_cast<long long>(stability_seconds);
-  sweep.info.total_seconds = static_cast<long long>(seconds_since(start));
+  clock.time("atlas", [&] {
+    progress("atlas validation/atlas/default.toml");
+    run_atlas("validation/atlas/default.toml", o.out + "/atlas", r.atlas);
+  });
+  Tasks tasks;
+  readme_tasks(o, r.readme, r.three_way, tasks);
+  sweep_tasks(o, mujoco, r.sweep, tasks);
+  stability_tasks(o, mujoco, r.stability, tasks);
+  extreme_tasks(mujoco, r.extreme, tasks);
+  table_tasks(r, tasks);
+  longest_first(tasks);
+  run_tasks(tasks, o.jobs, clock);
+  Tasks last;
+  last_tasks(o, mujoco, r, last);
+  longest_first(last);
+  run_tasks(last, o.jobs, clock);
+  drop_law_independent_plots(o, r.readme);
+  clock.time("bench", [&] { bench_runs(o, r.sweep); });
 
+  const ReportTimings so_far = clock.done();
+  RunInfo& info = r.sweep.info;
+  info.cores = std::thread::hardware_concurrency();
+  info.load = load_average();
+  for (const SectionTime& s : so_far.sections) {
+    if (s.name == "sweeps") info.sweep_seconds = static_cast<long long>(s.seconds);
+    if (s.name == "stability") info.stability_seconds = static_cast<long long>(s.seconds);
+  }
+  info.total_seconds = static_cast<long long>(so_far.total);
   // Each page written as soon as it is made, in the order of page_names().
-  const std::vector<std::string>& names = page_names();
-  write_page(o.out + "/" + names[0], readme_page(readme));
-  write_page(o.out + "/" + names[1], sweep_page(sweep));
-  write_page(o.out + "/" + names[2], stability_page(stability, sweep.bench));
-  write_page(o.out + "/" + names[3], extreme_page(extreme));
-  write_page(o.out + "/" + names[4], closed_forms_page(closed_forms));
-  write_page(o.out + "/" + names[5], friction_page(friction, 1e-3));
-  write_page(o.out + "/" + names[6], atlas_page(atlas.summary, atlas.info));
-  write_page(o.out + "/" + names[7], versions_page(versions));
+  clock.time("pages", [&] { write_pages(o, r); });
+  return clock.done();
 }
 
 }  // namespace contact2d::report

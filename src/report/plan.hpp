@@ -26,15 +26,29 @@ struct ReportRequest {
   // an executable file.
   std::string bench;
   std::uint64_t seed = 0;  // of the random scenes
+  unsigned jobs = 0;       // threads of the report's pool (0: one per core)
 };
 
 // The pages write_report() writes into `out`, in the order it writes them.
 const std::vector<std::string>& page_names();
 
+// Where one run's wall-clock time went, section by section (`contact2d
+// report --timings`, scripts/report-timings): the seconds its tasks took,
+// added up, and when its first task began and its last ended, in seconds
+// since the run began.
+struct SectionTime {
+  std::string name;
+  double seconds = 0.0, start = 0.0, end = 0.0;
+};
+struct ReportTimings {
+  std::vector<SectionTime> sections;  // in the order they first began
+  double total = 0.0;                 // the whole run, its pages written
+};
+
 // Runs every case of the report and then writes its pages (no page when a
 // run fails). Throws InputError for a scene or spec that cannot be read,
 // std::runtime_error when a run fails (an engine diverged, gnuplot or the
 // bench failed).
-void write_report(const ReportRequest& o);
+ReportTimings write_report(const ReportRequest& o);
 
 }  // namespace contact2d::report

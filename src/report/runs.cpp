@@ -110,15 +110,15 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
 }
 
 ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
-                               const std::string& law, double tol, const std::string& video,
-                               std::string& video_failure) {
+                               const std::string& law, double tol, ThreeWayRuns* keep) {
   engines::EngineSpec spec;
   spec.kind = "mujoco";
   spec.source = source;
-  const auto [ref, mujoco] = run_both(spec, scene, source);
-  const analysis::ThreeWay three =
-      analysis::three_way(scene, ref.trajectory, mujoco.trajectory, tol);
-  const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, mujoco, three);
+  auto [ref, mujoco] = run_both(spec, scene, source);
+  analysis::ThreeWay three = analysis::three_way(scene, ref.trajectory, mujoco.trajectory, tol);
+  // Its re-runs on this thread: the report runs its cases on a pool of its own.
+  const analysis::Diagnosis d =
+      analysis::diagnose(scene, spec, ref, mujoco, three, analysis::registry_runner(), {false, 1});
   ThreeWayCase c;
   c.scene = std::string(shape_name(scene.shape));
   c.law = law;
@@ -130,28 +130,40 @@ ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
   c.agrees = d.agrees;
   for (const analysis::Finding& f : d.findings)
     if (f.named) c.causes.push_back({f.cause, f.share, f.fix});
-  if (!video.empty()) {
-#ifdef CONTACT2D_WITH_WINDOW
-    try {
-      game::ComparisonVideoInput in;
-      in.scene = &scene;
-      in.reference = &ref.trajectory;
-      in.second = &mujoco.trajectory;
-      in.converged = three.converged.available ? &three.converged.trajectory : nullptr;
-      in.title = c.scene + " (" + law + "): ref vs MuJoCo, " +
-                 engines::integrator_label("mujoco", scene.sim.integrator) + ", calibrated";
-      in.reference_label = "ref";
-      in.second_label = "MuJoCo";
-      game::write_comparison_video(video, in, 20, 640, 360);
-      c.animation = std::filesystem::path(video).filename().string();
-    } catch (const InputError& e) {
-      video_failure = e.what();
-    }
-#else
-    video_failure = "this contact2d was built without the game's window (GLFW, OpenGL)";
-#endif
+  if (keep) {
+    keep->scene = scene;
+    keep->reference = std::move(ref.trajectory);
+    keep->mujoco = std::move(mujoco.trajectory);
+    keep->converged_available = three.converged.available;
+    keep->converged = std::move(three.converged.trajectory);
   }
   return c;
+}
+
+std::string animate_three_way(const ThreeWayRuns& runs, const std::string& video, ThreeWayCase& c) {
+#ifdef CONTACT2D_WITH_WINDOW
+  try {
+    game::ComparisonVideoInput in;
+    in.scene = &runs.scene;
+    in.reference = &runs.reference;
+    in.second = &runs.mujoco;
+    in.converged = runs.converged_available ? &runs.converged : nullptr;
+    in.title = c.scene + " (" + c.law + "): ref vs MuJoCo, " +
+               engines::integrator_label("mujoco", runs.scene.sim.integrator) + ", calibrated";
+    in.reference_label = "ref";
+    in.second_label = "MuJoCo";
+    game::write_comparison_video(video, in, 20, 640, 360);
+    c.animation = std::filesystem::path(video).filename().string();
+    return "";
+  } catch (const InputError& e) {
+    return e.what();
+  }
+#else
+  (void)runs;
+  (void)video;
+  (void)c;
+  return "this contact2d was built without the game's window (GLFW, OpenGL)";
+#endif
 }
 
 ReplayComparison replay_on_both(const std::string& replay_path, const std::string& plot_png) {
@@ -208,6 +220,7 @@ SceneSweep sweep_scene(const Scene& scene, const std::string& name, const SweepR
     config.other_integrators = analysis::parse_integrators(request.mujoco_integrators);
   config.engines = request.engines;
   config.repeats = request.repeats;
+  config.threads = request.threads;
   const analysis::SweepResult result = analysis::run_sweep(scene, config);
   for (const analysis::SweepRow& row : result.rows) {
     SweepRun run;
@@ -254,6 +267,7 @@ StabilityMap stability_map(const Scene& scene, const std::string& name,
   if (!request.ks.empty()) config.ks = request.ks;
   config.engines = request.engines;
   config.zeta = request.zeta;
+  config.threads = request.threads;
   const analysis::StabilityResult result = analysis::run_stability(scene, config);
   StabilityMap map;
   map.name = name;
@@ -319,36 +333,25 @@ void add_friction_parts(const Scene& scene, const std::string& mapping, GoalCase
   g.friction_rest = parts.rest;
 }
 
-void compare_random_scenes(const std::vector<RandomScene>& scenes,
-                           std::vector<RandomCase>& calibrated,
-                           std::vector<RandomCase>& compensated) {
-  calibrated.resize(scenes.size());
-  compensated.resize(scenes.size());
-  analysis::parallel_for(2 * scenes.size(), 0, [&](size_t job) {
-    // Even jobs: calibrated (the default mapping); odd: compensated.
-    const size_t i = job / 2;
-    const bool is_compensated = job % 2 == 1;
-    const char* const mapping = is_compensated ? "compensated" : "calibrated";
-    const RandomScene& r = scenes[i];
-    Scene frictionless = r.scene;
-    frictionless.contact.mu = 0.0;
-    const std::string source = "random scene " + r.name;
-    const Comparison without = compare_engines(frictionless, source, mapping, "corners");
-    const Comparison friction = compare_engines(r.scene, source, mapping, "corners");
-    const analysis::FrictionParts parts = analysis::friction_parts(r.scene, mapping);
-    (is_compensated ? compensated : calibrated)[i] = {r.name,
-                                                      without.shape,
-                                                      r.mass,
-                                                      r.scene.contact.k,
-                                                      r.scene.contact.c,
-                                                      r.scene.contact.mu,
-                                                      without.max_pos,
-                                                      without.max_angle,
-                                                      friction.max_pos,
-                                                      parts.shape,
-                                                      parts.push,
-                                                      parts.rest};
-  });
+RandomCase compare_random_scene(const RandomScene& r, const std::string& mapping) {
+  Scene frictionless = r.scene;
+  frictionless.contact.mu = 0.0;
+  const std::string source = "random scene " + r.name;
+  const Comparison without = compare_engines(frictionless, source, mapping, "corners");
+  const Comparison friction = compare_engines(r.scene, source, mapping, "corners");
+  const analysis::FrictionParts parts = analysis::friction_parts(r.scene, mapping);
+  return {r.name,
+          without.shape,
+          r.mass,
+          r.scene.contact.k,
+          r.scene.contact.c,
+          r.scene.contact.mu,
+          without.max_pos,
+          without.max_angle,
+          friction.max_pos,
+          parts.shape,
+          parts.push,
+          parts.rest};
 }
 
 bool points_turn(const Scene& scene) {
@@ -356,25 +359,32 @@ bool points_turn(const Scene& scene) {
   return body.rotates && body.points_rotate;
 }
 
-analysis::ClosedFormTable closed_form_rows() { return analysis::closed_form_table(); }
-
-std::vector<analysis::FrictionRow> friction_rows() { return analysis::friction_table(); }
-
-analysis::VersionTable version_rows(const std::vector<analysis::NamedScene>& scenes) {
-  return analysis::version_table(scenes);
+analysis::ClosedFormTable closed_form_rows(unsigned threads) {
+  return analysis::closed_form_table(threads);
 }
 
-void run_atlas(const std::string& spec_path, const std::string& out_dir,
-               const std::string& plot_dir, const std::string& png_prefix, AtlasRun& run) {
+std::vector<analysis::FrictionRow> friction_rows(unsigned threads) {
+  return analysis::friction_table(threads);
+}
+
+analysis::VersionTable version_rows(const std::vector<analysis::NamedScene>& scenes,
+                                    unsigned threads) {
+  return analysis::version_table(scenes, threads);
+}
+
+void run_atlas(const std::string& spec_path, const std::string& out_dir, AtlasRun& run) {
   const AtlasSpec spec = load_atlas_spec(spec_path);
   analysis::AtlasRunOptions options;
   options.threads = analysis::default_threads();
   const analysis::AtlasRunStats stats = analysis::run_atlas(spec, out_dir, options);
   run.data = analysis::read_atlas_shards({out_dir});
   run.summary = analysis::summarize_atlas(run.data);
-  analysis::draw_atlas_heatmaps(run.data, run.summary, plot_dir, png_prefix);
   run.info = {spec_path,          stats.points,          options.threads,
               stats.wall_seconds, stats.cpu_per_point(), stats.points_per_core()};
+}
+
+void draw_atlas(AtlasRun& run, const std::string& plot_dir, const std::string& png_prefix) {
+  analysis::draw_atlas_heatmaps(run.data, run.summary, plot_dir, png_prefix);
 }
 
 Bench run_bench(const std::string& executable, const std::string& min_time) {

@@ -17,8 +17,10 @@
 
 #include "analysis/atlas.hpp"
 #include "analysis/closed_forms.hpp"
+#include "analysis/comparison.hpp"
 #include "analysis/friction_table.hpp"
 #include "analysis/version_table.hpp"
+#include "core/run.hpp"
 #include "core/scene.hpp"
 #include "report/pages.hpp"
 #include "report/random_scenes.hpp"
@@ -38,14 +40,24 @@ Comparison compare_engines(const Scene& scene, const std::string& source,
                            const std::string& mapping, const std::string& geometry,
                            const std::string& plot_png = "");
 
-// `contact2d compare SCENE [--video VIDEO]` under the calibrated mapping:
-// three-way distances at `tol` and the diagnosis (analysis/comparison.hpp).
-// With `video` not empty, draws the animation there; when it cannot
-// (no window built, no offscreen context), leaves `animation` empty and
-// puts the reason into `video_failure`.
+// `contact2d compare SCENE` under the calibrated mapping: three-way
+// distances at `tol` and the diagnosis (analysis/comparison.hpp), on this
+// thread. With `keep`, what it ran is kept there for its animation.
+struct ThreeWayRuns {
+  Scene scene;
+  Trajectory reference, mujoco;
+  DenseTrajectory converged;
+  bool converged_available = false;
+};
 ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
-                               const std::string& law, double tol, const std::string& video,
-                               std::string& video_failure);
+                               const std::string& law, double tol, ThreeWayRuns* keep = nullptr);
+
+// `contact2d compare SCENE --video VIDEO`: the case's animation drawn into
+// `video` and named in `c.animation`; when it cannot be drawn (no window
+// built, no offscreen context), returns the reason and leaves `animation`
+// empty. Run it on the program's main thread (a GLFW window is drawn
+// there).
+std::string animate_three_way(const ThreeWayRuns& runs, const std::string& video, ThreeWayCase& c);
 
 // `contact2d play --headless --replay REPLAY` on the reference and on
 // MuJoCo (the built-in pitch), where the two balls part, and both
@@ -64,6 +76,7 @@ struct SweepRequest {
   std::vector<std::string> mujoco_integrators;
   int repeats = 2;
   bool study = false;
+  unsigned threads = 0;  // as analysis::parallel_for (0: one per core)
 };
 SceneSweep sweep_scene(const Scene& scene, const std::string& name, const SweepRequest& request,
                        const std::string& plot_png);
@@ -73,6 +86,7 @@ struct StabilityRequest {
   std::vector<std::string> engines{"ref"};
   std::vector<double> ks;  // empty: the analysis default (1e3 … 1e9)
   std::optional<double> zeta;
+  unsigned threads = 0;  // as analysis::parallel_for (0: one per core)
 };
 StabilityMap stability_map(const Scene& scene, const std::string& name,
                            const StabilityRequest& request, const std::string& plot_png);
@@ -88,12 +102,10 @@ double named_share();
 // (analysis/friction_table.hpp: friction_parts) into `g`.
 void add_friction_parts(const Scene& scene, const std::string& mapping, GoalCase& g);
 
-// The random scenes on both engines without and with friction, under the
-// calibrated (`calibrated[i]`) and the compensated (`compensated[i]`)
-// mapping, two runs at a time (one per core; their run times are not shown).
-void compare_random_scenes(const std::vector<RandomScene>& scenes,
-                           std::vector<RandomCase>& calibrated,
-                           std::vector<RandomCase>& compensated);
+// A random scene on both engines without and with friction, under a
+// mapping ("calibrated", "compensated"), and its difference with friction
+// taken apart.
+RandomCase compare_random_scene(const RandomScene& scene, const std::string& mapping);
 
 // Whether the scene's force evaluations start with a sincos: a body that
 // turns, with contact points that turn with it.
@@ -101,17 +113,19 @@ bool points_turn(const Scene& scene);
 
 // Both engines and the converged solution against the closed forms
 // (analysis::closed_form_table), and MuJoCo's friction against the
-// reference (analysis::friction_table).
-analysis::ClosedFormTable closed_form_rows();
-std::vector<analysis::FrictionRow> friction_rows();
-// MuJoCo 3.14 beside 2.2.2 on these scenes (analysis::version_table; its
+// reference (analysis::friction_table); `threads` as
+// analysis::parallel_for.
+analysis::ClosedFormTable closed_form_rows(unsigned threads);
+std::vector<analysis::FrictionRow> friction_rows(unsigned threads);
+// MuJoCo 3.14 beside 2.2.2 on these scenes (analysis::version_table: one
+// Node process per thread that runs a row, kept for the thread's life; its
 // not_run says why when MuJoCo 3 cannot run here).
-analysis::VersionTable version_rows(const std::vector<analysis::NamedScene>& scenes);
+analysis::VersionTable version_rows(const std::vector<analysis::NamedScene>& scenes,
+                                    unsigned threads);
 
-// `contact2d atlas SPEC --out OUT_DIR` on every core, then its summary and
-// heat maps (PNG_PREFIX*.png under PLOT_DIR) into `run`. The summary points
-// into the rows of `run.data` (its worst and failed points), so `run` is
-// filled in place and is not copied.
+// `contact2d atlas SPEC --out OUT_DIR` on every core, then its summary into
+// `run`. The summary points into the rows of `run.data` (its worst and
+// failed points), so `run` is filled in place and is not copied.
 struct AtlasRun {
   analysis::AtlasData data;
   analysis::AtlasSummary summary;
@@ -120,8 +134,9 @@ struct AtlasRun {
   AtlasRun(const AtlasRun&) = delete;
   AtlasRun& operator=(const AtlasRun&) = delete;
 };
-void run_atlas(const std::string& spec_path, const std::string& out_dir,
-               const std::string& plot_dir, const std::string& png_prefix, AtlasRun& run);
+void run_atlas(const std::string& spec_path, const std::string& out_dir, AtlasRun& run);
+// Its heat maps, PNG_PREFIX*.png under PLOT_DIR.
+void draw_atlas(AtlasRun& run, const std::string& plot_dir, const std::string& png_prefix);
 
 // `contact2d_bench --benchmark_min_time=MIN --benchmark_out=…
 // --benchmark_out_format=json`, run as a subprocess from the current
