@@ -105,7 +105,7 @@ void add_friction_parts(const Scene& scene, const std::string& mapping, GoalCase
 // A random scene on both engines without and with friction, under a
 // mapping ("calibrated", "compensated"), and its difference with friction
 // taken apart.
-RandomCase compare_random_scene(const RandomScene& scene, const std::string& mapping);
+RandomCase compare_random_scene(const RandomScene& r, const std::string& mapping);
 
 // Whether the scene's force evaluations start with a sincos: a body that
 // turns, with contact points that turn with it.
