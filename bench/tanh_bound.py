@@ -21,7 +21,8 @@ order in 2⁻⁵³:
   exp branch (a ≥ 0.77), E = e^(2a), s = E + 1, q = 2/s: 0.511·ulp(E)·2/s²
     (glibc's exp), ulp(s)/2·2/s² (rounding s), ulp(q)/2, plus 1/2 for 1 − q.
 Each maximised over N points of the branch, its ends and both sides of
-tanh a = 1/2 (where ulp(tanh a) halves).
+tanh a = 1/2 (where ulp(tanh a) halves). Below 2⁻²⁷ the function returns x,
+the correctly rounded value (the header says why).
 """
 import sys
 

@@ -72,15 +72,19 @@ namespace contact2d {
 //   arithmetic, mpmath), the ends and
 //   the crossing of tanh a = 1/2 (where ulp(tanh a) halves) included; the
 //   cut 0.77 is where the two branches' bounds meet. Total: 1.27 ULP.
-//   For |x| < 2⁻⁵⁰⁰ (z underflows) the correction is below 2⁻¹⁰⁰⁰·|x|, the
-//   result is x, and tanh x rounds to x: exact.
+//   For |x| < 2⁻²⁷ the result is x itself, without arithmetic: tanh x =
+//   x·(1 − x²/3 + …) with x²/3 < 2⁻⁵⁴/3, less than half the spacing of the
+//   doubles next to x (≥ 2⁻⁵⁴·|x|), so x is the correctly rounded value
+//   (±0 and subnormals included). The first-order sum above is for the
+//   rational branch from there on, where no intermediate underflows.
 //
 // The arithmetic must be evaluated as written (no -ffast-math: it would
 // reassociate; FMA contraction would only remove roundings from the sum
-// above). 3 comparisons, no call on |x| < 0.77, one exp call beyond.
+// above). 4 comparisons, no call on |x| < 0.77, one exp call beyond.
 inline double bounded_tanh(double x) {
   const double a = std::fabs(x);
   if (a >= 22.0) return std::copysign(1.0, x);
+  if (a < 0x1p-27) return x;  // a contact at rest (v_t = 0) pays no arithmetic
   double t;
   if (a < 0.77) {
     const double z = a * a;
