@@ -159,9 +159,9 @@ constexpr double kBoundedBound = 1.27;
 
 // Positive arguments: a log-spaced sweep of [1e-300, 22] (2000 points per
 // decade), 2000 uniform samples in every binade [2^e, 2^(e+1)) from the
-// smallest subnormal's to [16, 32) (cut at 22; a fixed seed), the
-// neighbours of the branch cut 0.77, of tanh x = 1/2 and of 22, and the
-// largest subnormals; each is used with both signs.
+// smallest subnormal's to [16, 32) (cut at 22; a fixed seed) and 10⁶ more
+// in [0.5, 0.77], the neighbours of the branch cut 0.77, of tanh x = 1/2,
+// of 22 and of the smallest normal; each is used with both signs.
 std::vector<double> bounded_grid() {
   std::vector<double> x;
   for (double e = -300.0; e <= std::log10(22.0); e += 1.0 / 2000.0) x.push_back(std::pow(10.0, e));
@@ -173,6 +173,10 @@ std::vector<double> bounded_grid() {
       if (v < 22.0) x.push_back(v);
     }
   }
+  // … and 10⁶ uniform samples of [0.5, 0.77], where the rational branch's
+  // rounding is largest (its bound's maximum is at the cut).
+  std::uniform_real_distribution<double> peak(0.5, 0.77);
+  for (int i = 0; i < 1000000; ++i) x.push_back(peak(rng));
   for (double centre : {0.77, 0.54930614433405489, 22.0, std::numeric_limits<double>::min()}) {
     double v = centre;
     for (int i = 0; i < 5000; ++i) v = std::nextafter(v, 0.0);
