@@ -5,14 +5,20 @@
 // throughput. docs/speed.md ("The targets, and why they are left") sets
 // these against the 100× budget of a step: glibc's tanh and sin/cos (the
 // reference's), and SLEEF's scalar and vector alternatives with their
-// documented accuracy (u10: 1 ULP, u35: 3.5 ULP). The FMA variants run only
-// where the CPU has FMA (skipped otherwise), the AVX2 one only with AVX2.
+// documented accuracy (u10: 1 ULP, u35: 3.5 ULP), and contact2d's own
+// bounded_tanh (core/vector_math.hpp, ≤ 1.27 ULP). The "/exp_branch" pair
+// runs the chain x ← 0.8 + 0.5·f(x), which settles at x ≈ 1.14, where
+// bounded_tanh takes its exp branch (|x| ≥ 0.77); the plain chain settles
+// at x ≈ 0.19, its rational branch. The FMA variants run only where the
+// CPU has FMA (skipped otherwise), the AVX2 one only with AVX2.
 //
 //   build/bench/contact2d_libm_latency [--benchmark_min_time=0.5]
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <string_view>
+
+#include "core/vector_math.hpp"
 
 #ifdef CONTACT2D_BENCH_SLEEF
 #include <sleef.h>
@@ -52,6 +58,27 @@ bool cpu_has(const char* feature) {
 void glibc_tanh(benchmark::State& s) {
   chain(s, [](double x) { return std::tanh(x); });
 }
+template <typename F>
+void exp_branch_chain(benchmark::State& state, F f) {
+  double x = 1.0;
+  for (auto _ : state) {
+    x = 0.8 + 0.5 * f(x);
+    benchmark::DoNotOptimize(x);
+  }
+}
+
+void bounded_tanh(benchmark::State& s) {
+  chain(s, [](double x) { return contact2d::bounded_tanh(x); });
+}
+void bounded_tanh_exp_branch(benchmark::State& s) {
+  exp_branch_chain(s, [](double x) { return contact2d::bounded_tanh(x); });
+}
+void glibc_tanh_exp_branch(benchmark::State& s) {
+  exp_branch_chain(s, [](double x) { return std::tanh(x); });
+}
+void glibc_exp(benchmark::State& s) {  // e^(−x): the chain settles at x ≈ 0.50
+  chain(s, [](double x) { return std::exp(-x); });
+}
 void glibc_expm1(benchmark::State& s) {
   chain(s, [](double x) { return std::expm1(x); });
 }
@@ -90,6 +117,10 @@ void sleef_sincos_u35_fma(benchmark::State& s) {
 }  // namespace
 
 BENCHMARK(glibc_tanh);
+BENCHMARK(bounded_tanh);
+BENCHMARK(glibc_tanh_exp_branch);
+BENCHMARK(bounded_tanh_exp_branch);
+BENCHMARK(glibc_exp);
 BENCHMARK(glibc_expm1);
 BENCHMARK(glibc_sin_cos);
 #ifdef CONTACT2D_BENCH_SLEEF

@@ -1,6 +1,6 @@
 // The tanh perturbation study, shared by bench/tanh_perturbation.cpp (which
 // prints it for docs/speed.md) and tests/core/test_tanh_trajectories.cpp
-// (which asserts the vector path stays within it): one scene run on one tanh
+// (which asserts the vector and the bounded paths stay within it): one scene run on one tanh
 // path (core/vector_math.hpp), and the largest distance between two runs.
 #pragma once
 
@@ -48,12 +48,13 @@ inline Distance distance(const std::vector<State>& a, const std::vector<State>& 
 // How far one ulp of tanh moves the scene: the largest distance from the
 // unperturbed scalar run of the runs with every tanh one ulp up, one ulp
 // down, and up or down at random value by value (kRandomSeeds seeds); and
-// the vector path's distance from the same scalar run.
+// the vector and the bounded paths' distances from the same scalar run.
 constexpr int kRandomSeeds = 8;
 
 struct Perturbation {
-  Distance ulp;     // max over the perturbed runs vs scalar
-  Distance vector;  // vector vs scalar
+  Distance ulp;      // max over the perturbed runs vs scalar
+  Distance vector;   // vector vs scalar
+  Distance bounded;  // bounded (contact2d's own tanh) vs scalar
 };
 
 inline void widen(Distance& to, const Distance& d) {
@@ -72,6 +73,7 @@ inline Perturbation perturbation(const Scene& scene) {
     widen(p.ulp, distance(scalar, run_on_path(scene, TanhPath::ScalarUlpRandom)));
   }
   p.vector = distance(scalar, run_on_path(scene, TanhPath::Vector));
+  p.bounded = distance(scalar, run_on_path(scene, TanhPath::Bounded));
   return p;
 }
 

@@ -49,6 +49,7 @@
 #include <string_view>
 
 #include "core/body.hpp"
+#include "core/vector_math.hpp"
 
 namespace contact2d {
 
@@ -170,16 +171,12 @@ inline ConeForce soft_cone_force(const ContactParams& p, double aim, double v_t,
   return f;
 }
 
-// tanh(x), the regularised sign used by both friction laws. For |x| ≥ 22,
-// 1 − tanh|x| < 2·e⁻⁴⁴ ≈ 1.6e-19, far below half an ulp of 1 (1.1e-16), so
-// the correctly rounded result is exactly ±1 — glibc returns the same from
-// the same threshold. Returning it here skips a ~20 ns libm call for every
-// point that slides or spins faster than 22/α; results are bit-identical.
-inline double smooth_sign(double x) {
-  if (x >= 22.0) return 1.0;
-  if (x <= -22.0) return -1.0;
-  return std::tanh(x);
-}
+// tanh(x), the regularised sign used by both friction laws (the tanh law
+// and rolling resistance): contact2d's own bounded_tanh (core/vector_math.hpp,
+// ≤ 1.27 ULP, exactly ±1 from |x| = 22 on), the function the force stage's
+// default path evaluates too, so the converged solution
+// (reference/dense_reference.cpp) and the steppers share one law.
+inline double smooth_sign(double x) { return bounded_tanh(x); }
 
 // Tangential force −μ·Fn·tanh(α·v_t) for normal force Fn and slip speed v_t.
 inline double friction_force(const ContactParams& p, double fn, double v_t) {

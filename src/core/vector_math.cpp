@@ -19,20 +19,21 @@ namespace {
 // The saturation threshold of core/contact.hpp's smooth_sign: ±1 exactly.
 constexpr double kSaturated = 22.0;
 
-// The scalar path unless CONTACT2D_TANH=vector asks for SLEEF (and the CPU
-// has AVX2): a step is one chain of dependent operations, and on the
-// machine of docs/speed.md SLEEF's four-wide tanh has the longer latency
-// (bench: floor/vector_tanh4 against floor/libm_tanh), so the vector path
-// made every built-in scene slower. CONTACT2D_SCALAR_TANH=1 forces the
-// scalar path whatever CONTACT2D_TANH says.
+// The bounded path unless the environment asks for another: a step is one
+// chain of dependent operations, and on the machine of docs/speed.md
+// bounded_tanh has the shortest latency (bench: floor/bounded_tanh against
+// floor/libm_tanh and floor/vector_tanh4). CONTACT2D_SCALAR_TANH=1 forces
+// glibc's scalar tanh whatever CONTACT2D_TANH says; CONTACT2D_TANH=scalar
+// asks for it too, CONTACT2D_TANH=vector for SLEEF (when the CPU has AVX2).
 TanhPath initial_path() {
   const char* forced = std::getenv("CONTACT2D_SCALAR_TANH");
   if (forced != nullptr && *forced != '\0' && std::strcmp(forced, "0") != 0)
     return TanhPath::Scalar;
   const char* wanted = std::getenv("CONTACT2D_TANH");
+  if (wanted != nullptr && std::strcmp(wanted, "scalar") == 0) return TanhPath::Scalar;
   if (wanted != nullptr && std::strcmp(wanted, "vector") == 0 && vector_tanh_available())
     return TanhPath::Vector;
-  return TanhPath::Scalar;
+  return TanhPath::Bounded;
 }
 
 std::atomic<TanhPath>& path_slot() {
@@ -66,12 +67,13 @@ bool vector_tanh_available() {
 TanhPath tanh_path() { return path_slot().load(std::memory_order_relaxed); }
 
 TanhPath set_tanh_path(TanhPath path) {
-  if (path == TanhPath::Vector && !vector_tanh_available()) path = TanhPath::Scalar;
+  if (path == TanhPath::Vector && !vector_tanh_available()) path = TanhPath::Bounded;
   return path_slot().exchange(path);
 }
 
 const char* tanh_path_name(TanhPath path) {
   switch (path) {
+    case TanhPath::Bounded: return "bounded (contact2d's own tanh, <= 1.27 ULP)";
     case TanhPath::Scalar: return "scalar (glibc tanh)";
     case TanhPath::Vector: return "vector (SLEEF Sleef_tanhd4_u10avx2)";
     case TanhPath::ScalarUlpUp: return "scalar + 1 ulp";
@@ -82,6 +84,10 @@ const char* tanh_path_name(TanhPath path) {
 }
 
 void set_tanh_perturbation_seed(unsigned long long seed) { random_state = seed; }
+
+void tanh_bounded(double* x, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) x[i] = bounded_tanh(x[i]);
+}
 
 void tanh_scalar(double* x, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) x[i] = scalar_tanh(x[i]);
@@ -110,6 +116,7 @@ void tanh_vector(double* x, std::size_t n) {
 void tanh_batch(double* x, std::size_t n) {
   if (n == 0) return;
   switch (tanh_path()) {
+    case TanhPath::Bounded: tanh_bounded(x, n); return;
     case TanhPath::Vector: tanh_vector(x, n); return;
     case TanhPath::Scalar: tanh_scalar(x, n); return;
     case TanhPath::ScalarUlpUp:

@@ -6,8 +6,9 @@
 //
 // Benchmarks named "ref/SCENE/INTEGRATOR" and "mj_step/SCENE/INTEGRATOR"
 // become one row per scene and integrator (in the order the reference runs
-// appear); "floor/libm_sincos", "floor/libm_tanh", "floor/step_free_flight"
-// the floors. Times are per iteration, converted to ns.
+// appear); "floor/libm_sincos", "floor/bounded_tanh" (or "floor/libm_tanh"
+// when the bench has no bounded_tanh), "floor/step_free_flight" the floors.
+// Times are per iteration, converted to ns.
 #pragma once
 
 #include <string>

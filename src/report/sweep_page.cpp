@@ -245,12 +245,13 @@ std::string budget_against_floors(const Bench& b) {
              (list == &implicit ? "2 × (" + std::string(links) + ")" : std::string(links)) + " " +
              fixed(need, 1) + " ns)";
   }
-  std::string out = "In this run one glibc tanh takes " + fixed(b.tanh_ns, 1) +
+  std::string out = "In this run one tanh (contact2d's bounded_tanh) takes " + fixed(b.tanh_ns, 1) +
                     " ns and a sincos " + fixed(b.sincos_ns, 1) + " ns.";
-  out += semi.empty() ? " No scene's 100× budget is below its libm chain."
-                      : " The libm chain of a step whose contact slips slower than 22/α is alone "
-                        "longer than the whole 100× budget of " +
-                            semi + ".";
+  out += semi.empty()
+             ? " No scene's 100× budget is below its sincos and tanh chain."
+             : " The sincos and tanh chain of a step whose contact slips slower than 22/α is alone "
+               "longer than the whole 100× budget of " +
+                   semi + ".";
   out += implicit.empty()
              ? " No scene's 30× budget for implicit Euler (two force stages a step in contact: "
                "the Newton step from the predictor, then the residual its convergence test "
@@ -621,7 +622,7 @@ wall-clock times (section 2) include it.
 Why 100× is out of reach for an accurate step on every scene: a step is one
 chain of dependent operations (each step needs the previous state), so it
 costs the latency of that chain, and the last line of the table measures the
-links that libm puts on it, each call feeding the next. For 100× a
+links that sincos and tanh put on it, each call feeding the next. For 100× a
 semi-implicit step must fit in 1/100 of mj_step: )md" +
                     per_step_budget(d.bench) + R"md(.
 )md" + budget_against_floors(d.bench) +
@@ -630,15 +631,13 @@ A step with no contact point at all (call, gravity, state update) already
 takes the "empty step" time; the box and the T add a sincos and, on the
 ground, a tanh per slowly slipping corner; the disc adds a tanh for its slip,
 which stays near zero while it rolls. The step skips tanh where its
-correctly rounded value is ±1 (|α·v| ≥ 22; bit-identical, tested): one libm
-call less per evaluation for a fast-sliding corner or a fast-spinning disc,
-a saving about as large as the run-to-run noise of a shared machine (compare
-the empty-step time of two runs of the report). Going further
-would mean replacing libm's tanh and sincos with approximations of our own;
-the reference keeps libm, whose accuracy nobody has to re-validate. SLEEF's
-1-ULP four-wide tanh, the accurate vector alternative, is slower on this
-chain (about twice glibc's latency per call; docs/speed.md), so it is not the
-default either.
+correctly rounded value is ±1 (|α·v| ≥ 22, exactly ±1, tested): one tanh
+less per evaluation for a fast-sliding corner or a fast-spinning disc.
+The tanh is contact2d's own bounded_tanh (core/vector_math.hpp: error at
+most 1.27 ULP, derived at the code and tested over the whole range against
+long double), about half glibc's latency on this chain; glibc's tanh
+(CONTACT2D_SCALAR_TANH=1) and SLEEF's 1-ULP four-wide tanh, slower on this
+chain, remain as paths (docs/speed.md). The sincos is still glibc's.
 )md";
   return out;
 }

@@ -1,5 +1,6 @@
-// The vector tanh path (SLEEF, core/vector_math.hpp) against glibc's on the
-// built-in scenes: its trajectories must stay within what one ulp of tanh
+// The vector tanh path (SLEEF, core/vector_math.hpp) and the bounded one
+// (contact2d's own tanh, the default) against glibc's on the built-in
+// scenes: their trajectories must stay within what one ulp of tanh
 // does to them (the perturbation study, bench/tanh_study.hpp, printed by
 // build/bench/contact2d_tanh_perturbation and quoted in docs/speed.md).
 //
@@ -9,9 +10,12 @@
 // differs from glibc by at most 1 + 2.021 ≈ 3 ulps (SLEEF's bound plus
 // glibc's measured worst, tests/core/test_tanh.cpp), so for a trajectory
 // that responds linearly to tanh's errors the margin is 3: the check is
-// D ≤ 3·P, position and angle. Where no ulp of tanh moves a trajectory at
+// D ≤ 3·P, position and angle. The bounded path differs from glibc by at
+// most 1.27 + 2.021 < 3.3 ulps (its derived bound plus glibc's measured
+// worst), so its margin is 3.3. Where no ulp of tanh moves a trajectory at
 // all (P = 0: every difference rounds away), D must be 0 too. Measured
-// (docs/speed.md): D/P ≤ 1.0 on every scene and integrator.
+// (docs/speed.md): D/P ≤ 1.0 for the vector path on every scene and
+// integrator.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -39,6 +43,24 @@ TEST(TanhTrajectories, VectorPathWithinOneUlpPerturbation) {
     }
   }
   EXPECT_GT(moved, 0) << "one ulp of tanh must move some trajectory, or the check is empty";
+}
+
+TEST(TanhTrajectories, BoundedPathWithinOneUlpPerturbation) {
+  int moved = 0;
+  for (const char* name : {"point_mass", "box", "tshape", "circle"}) {
+    for (Integrator integrator :
+         {Integrator::SemiImplicitEuler, Integrator::RK4, Integrator::ImplicitEuler}) {
+      Scene scene = load_scene(std::string(CONTACT2D_SCENES_DIR) + "/" + name + ".toml");
+      scene.sim.integrator = integrator;
+      const study::Perturbation p = study::perturbation(scene);
+      SCOPED_TRACE(std::string(name) + " " + std::string(integrator_name(integrator)));
+      EXPECT_TRUE(p.bounded.same_length && p.ulp.same_length);
+      EXPECT_LE(p.bounded.position, 3.3 * p.ulp.position);
+      EXPECT_LE(p.bounded.angle, 3.3 * p.ulp.angle);
+      if (p.bounded.position > 0.0) ++moved;
+    }
+  }
+  EXPECT_GT(moved, 0) << "the bounded path must differ from glibc somewhere, or the check is empty";
 }
 
 }  // namespace

@@ -45,6 +45,17 @@ TEST(BenchJson, RowsFloorsAndUnits) {
   EXPECT_EQ(b.sincos_ns, -1.0);  // not in this run
 }
 
+// The tanh floor is the default path's (floor/bounded_tanh) when the bench
+// timed it, glibc's (floor/libm_tanh) otherwise (above).
+TEST(BenchJson, TanhFloorIsTheBoundedOneWhenTimed) {
+  const Bench b = parse_bench_json(R"({"benchmarks": [
+    {"name": "floor/libm_tanh", "run_type": "iteration", "real_time": 41.6, "cpu_time": 41.5,
+     "time_unit": "ns"},
+    {"name": "floor/bounded_tanh", "run_type": "iteration", "real_time": 12.6, "cpu_time": 12.5,
+     "time_unit": "ns"}]})");
+  EXPECT_DOUBLE_EQ(b.tanh_ns, 12.5);
+}
+
 TEST(BenchJson, MalformedJsonThrows) {
   EXPECT_THROW(parse_bench_json(""), std::runtime_error);
   EXPECT_THROW(parse_bench_json("{\"benchmarks\": [}"), std::runtime_error);

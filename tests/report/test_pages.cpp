@@ -325,17 +325,18 @@ TEST(ReportPages, ReadmeLinksEveryPage) {
 }
 
 // Section 6 sets each 100× (semi-implicit) and 30× (implicit) budget of the
-// run against the libm links of each scene's chain, from the floors of the
+// run against the sincos and tanh links of each scene's chain, from the floors of the
 // same run: in the fixture one tanh is 41.6 ns and a sincos 26.1 ns; mj_step
 // 1000 ns gives the point mass 10 ns (below one tanh) and 2000 ns implicit
 // 66.7 ns (below two tanh, 83.2 ns). A scene whose points turn carries a
 // sincos too (67.7 ns; twice: 135.4 ns).
 TEST(ReportPages, SweepBudgetsAgainstFloors) {
   const std::string page = sweep_page(fixtures::sweep());
-  EXPECT_NE(page.find("The libm chain of a step whose contact slips slower than 22/α is alone "
-                      "longer than the whole 100× budget of point_mass "
-                      "(budget 10 ns, tanh 41.6 ns)."),
-            std::string::npos);
+  EXPECT_NE(
+      page.find("The sincos and tanh chain of a step whose contact slips slower than 22/α is alone "
+                "longer than the whole 100× budget of point_mass "
+                "(budget 10 ns, tanh 41.6 ns)."),
+      std::string::npos);
   EXPECT_NE(page.find("twice the chain is longer than the 30× budget of point_mass (budget 67 ns, "
                       "2 × (tanh) 83.2 ns)."),
             std::string::npos);
@@ -347,7 +348,7 @@ TEST(ReportPages, SweepBudgetsAgainstFloors) {
             std::string::npos);
   SweepData untimed = fixtures::sweep();
   untimed.bench.tanh_ns = -1.0;  // floors not timed: no sentence
-  EXPECT_EQ(sweep_page(untimed).find("libm chain"), std::string::npos);
+  EXPECT_EQ(sweep_page(untimed).find("tanh chain"), std::string::npos);
 }
 
 TEST(ReportPages, SweepProseNumbers) {
