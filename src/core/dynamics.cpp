@@ -108,8 +108,8 @@ void add_contact_jacobian(const Contact& c, const ContactParams& law, bool on_gr
 // The contact forces and torques of contacts [first, last) of `contacts`
 // added to `force` and `torque`, in the order of the list — the order and
 // the arithmetic of every sum are those of the one-contact-at-a-time loop
-// this replaced, so that on the scalar tanh path the result is bit for bit
-// the same. In two passes per batch: the normal forces and every tanh
+// this replaced, so that on one tanh path the result is bit for bit the
+// same. In two passes per batch: the normal forces and every tanh
 // argument (friction α·v_t, rolling α·R·ω) first, then one tanh_batch,
 // then the sums.
 //
