@@ -1,6 +1,7 @@
 #include "analysis/compare_run.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <sstream>
 
 #include "core/input_error.hpp"
@@ -92,10 +93,44 @@ Comparison prepare_comparison(const Scene& scene, const std::vector<engines::Eng
   return c;
 }
 
-void run_engines(Comparison& c) {
+namespace {
+
+// The run the diagnosis takes apart: the first after runs[0] with soft
+// constraints (0: none has them).
+size_t diagnosed_run(const Comparison& c) {
   for (size_t i = 1; i < c.runs.size(); ++i)
-    c.runs[i].run = engines::run_engine(c.runs[i].spec, c.scene);
-  c.runs[0].run = engines::run_engine(c.runs[0].spec, c.scene);
+    if (engines::find_engine(c.runs[i].spec.kind)->soft_constraints) return i;
+  return 0;
+}
+
+}  // namespace
+
+void run_engines(Comparison& c, bool early_diagnosis) {
+  const size_t diagnosed = early_diagnosis ? diagnosed_run(c) : 0;
+  const std::vector<EarlyRun> early =
+      diagnosed > 0 ? early_mujoco_runs(c.scene, c.runs[diagnosed].spec) : std::vector<EarlyRun>{};
+  // One job per run: the engines after the first, the early MuJoCo runs of
+  // the diagnosis, then the first (the reference: the cheapest).
+  const size_t n = c.runs.size() + early.size();
+  std::vector<std::optional<EngineRun>> made(early.size());
+  parallel_for(n, early.empty() ? 1 : 0, [&](size_t job) {
+    if (job + 1 < c.runs.size()) {
+      ComparedRun& r = c.runs[job + 1];
+      r.run = engines::run_engine(r.spec, c.scene);
+    } else if (job + 1 < n) {
+      const EarlyRun& e = early[job + 1 - c.runs.size()];
+      try {
+        made[job + 1 - c.runs.size()] = registry_runner()(e.engine, e.scene);
+      } catch (const std::exception&) {
+        // The diagnosis runs it again and reports what it throws.
+      }
+    } else {
+      c.runs[0].run = engines::run_engine(c.runs[0].spec, c.scene);
+    }
+  });
+  c.early.clear();
+  for (size_t i = 0; i < early.size(); ++i)
+    if (made[i]) c.early.emplace_back(early[i].cause, std::move(*made[i]));
 }
 
 std::vector<RunProblem> run_problems(const Comparison& c) {
@@ -120,8 +155,7 @@ void measure(Comparison& c, double converged_tol, bool diagnosis, const Diagnosi
     if (i > 0) r.vs_first = error_between(first, r.run.trajectory);
   }
   if (!diagnosis) return;
-  for (size_t i = 1; i < c.runs.size() && c.diagnosed == 0; ++i)
-    if (engines::find_engine(c.runs[i].spec.kind)->soft_constraints) c.diagnosed = i;
+  c.diagnosed = diagnosed_run(c);
   if (c.diagnosed == 0) {
     std::string others;
     for (size_t i = 1; i < c.runs.size(); ++i)
@@ -133,8 +167,10 @@ void measure(Comparison& c, double converged_tol, bool diagnosis, const Diagnosi
     return;
   }
   const size_t i = c.diagnosed;
+  DiagnosisOptions how = options;
+  if (!c.early.empty()) how.early = &c.early;
   c.diagnosis = diagnose(c.scene, c.runs[i].spec, c.runs[0].run, c.runs[i].run, pair(c, i),
-                         registry_runner(), options);
+                         registry_runner(), how);
 }
 
 ThreeWay pair(const Comparison& c, size_t i) {

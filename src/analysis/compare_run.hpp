@@ -11,7 +11,8 @@
 //   prepare_comparison   the scene and the engines; throws InputError for an
 //                        engine that cannot run the scene (EngineInfo::check:
 //                        MuJoCo has no explicit Euler) — no engine has run
-//   run_engines          every engine after the first, then the first, each timed
+//   run_engines          every engine, each timed (and the diagnosis's early
+//                        MuJoCo runs beside them, when it will be asked for)
 //   run_problems         why the runs cannot be compared: every engine that
 //                        diverged, else every run that is not physics
 //                        (core/run.hpp: nonphysical())
@@ -60,6 +61,9 @@ struct Comparison {
   // ran = false until measure() runs it, and when no engine has them.
   Diagnosis diagnosis;
   size_t diagnosed = 0;
+  // The diagnosis's MuJoCo runs made beside the base runs, by cause
+  // (run_engines with early_diagnosis).
+  std::vector<std::pair<std::string, EngineRun>> early;
 };
 
 // The engines of `contact2d compare`: the reference first, then `names`
@@ -79,8 +83,11 @@ std::vector<engines::EngineSpec> comparison_engines(
 // work when an engine cannot run the scene.
 Comparison prepare_comparison(const Scene& scene, const std::vector<engines::EngineSpec>& specs);
 
-// Runs every engine after the first, in order, then the first.
-void run_engines(Comparison& c);
+// Runs every engine. With `early_diagnosis` (compare without
+// --no-diagnosis), the diagnosis's first-tier MuJoCo runs that depend on
+// the scene and the engine alone (early_mujoco_runs) are made beside them,
+// on the machine's cores, into Comparison::early, for measure() to use.
+void run_engines(Comparison& c, bool early_diagnosis = false);
 
 // A reason the runs cannot be compared.
 struct RunProblem {

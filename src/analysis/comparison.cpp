@@ -295,6 +295,24 @@ std::vector<Rerun> plan_reruns(const DiagnosisInputs& in) {
   return reruns;
 }
 
+}  // namespace
+
+std::vector<EarlyRun> early_mujoco_runs(const Scene& scene, const engines::EngineSpec& mujoco) {
+  // The plan of the first tier's MuJoCo runs reads nothing of the base runs
+  // (friction_law's ratio and the fine-step tier do, and are left out), so
+  // a placeholder stands in for them.
+  const EngineRun none;
+  const ThreeWay no_distances;
+  const DiagnosisInputs in = diagnosis_inputs(scene, mujoco, none, none, no_distances);
+  std::vector<EarlyRun> early;
+  for (const Rerun& r : plan_reruns(in))
+    if (r.scene.sim.dt == scene.sim.dt && !r.mujoco_unchanged && !r.mujoco_spec)
+      early.push_back({r.cause, r.mujoco, r.scene});
+  return early;
+}
+
+namespace {
+
 // The re-runs at a smaller step than the scene's: 10–1000 times the steps.
 bool fine_step(const Rerun& r, const Scene& scene) { return r.scene.sim.dt < scene.sim.dt; }
 
@@ -305,7 +323,8 @@ bool fine_step(const Rerun& r, const Scene& scene) { return r.scene.sim.dt < sce
 // first and the short ones fill the gaps. A re-run that shares another's
 // reference run (ref_from) takes it after all ran, so it is computed once.
 void run_reruns(std::vector<Rerun>& reruns, const std::vector<size_t>& which,
-                const DiagnosisInputs& in, const EngineRunner& runner, unsigned threads) {
+                const DiagnosisInputs& in, const EngineRunner& runner, unsigned threads,
+                const std::vector<std::pair<std::string, EngineRun>>* early = nullptr) {
   struct Job {
     size_t rerun;
     bool mujoco;
@@ -313,7 +332,15 @@ void run_reruns(std::vector<Rerun>& reruns, const std::vector<size_t>& which,
   std::vector<Job> jobs;
   for (const bool mujoco : {true, false})
     for (const size_t i : which) {
-      const Rerun& r = reruns[i];
+      Rerun& r = reruns[i];
+      if (mujoco && early) {
+        const auto made = std::find_if(early->begin(), early->end(),
+                                       [&r](const auto& run) { return run.first == r.cause; });
+        if (made != early->end()) {
+          r.mujoco_run = made->second;
+          continue;
+        }
+      }
       if (mujoco ? !r.mujoco_unchanged : r.ref && r.ref_from < 0) jobs.push_back({i, mujoco});
     }
   std::vector<std::string> failures(jobs.size());
@@ -659,7 +686,7 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
   std::vector<size_t> first, fine;
   for (size_t i = 0; i < reruns.size(); ++i)
     (fine_step(reruns[i], scene) ? fine : first).push_back(i);
-  run_reruns(reruns, first, in, runner, options.threads);
+  run_reruns(reruns, first, in, runner, options.threads, options.early);
   const Rerun* explains = nullptr;  // the first tier's largest share, if it explains
   for (const size_t i : first) {
     const Finding f = measured_finding(reruns[i], before);

@@ -145,11 +145,24 @@ struct Diagnosis {
   std::string not_rerun_why;
 };
 
+// A MuJoCo run of the first tier that depends on the scene and the engine
+// alone (friction, rolling_resistance, mapping), so that compare can make it
+// beside the base runs, before the diagnosis is asked for.
+struct EarlyRun {
+  std::string cause;
+  std::string engine;  // the engine's name, as the runner takes it
+  Scene scene;
+};
+std::vector<EarlyRun> early_mujoco_runs(const Scene& scene, const engines::EngineSpec& mujoco);
+
 struct DiagnosisOptions {
   // Also run the fine-step re-runs when the first tier explains the
   // difference (compare --full-diagnosis).
   bool full = false;
   unsigned threads = 0;  // as parallel_for: 0 = the machine's cores
+  // MuJoCo runs already made (early_mujoco_runs), by cause: used instead of
+  // running them again. A cause missing here (its run threw) is run.
+  const std::vector<std::pair<std::string, EngineRun>>* early = nullptr;
 };
 
 // `mujoco` is the MuJoCo engine of the base run. The base runs and their

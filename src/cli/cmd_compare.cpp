@@ -283,7 +283,7 @@ int compare(const CompareOptions& options) {
   }
   std::unique_ptr<AtomicFile> csv;
   if (!options.csv.empty()) csv = std::make_unique<AtomicFile>(options.csv);
-  analysis::run_engines(c);
+  analysis::run_engines(c, !options.no_diagnosis);
   for (const ComparedRun& r : c.runs)
     for (const std::string& w : r.run.warnings)
       std::cerr << "contact2d: " << r.label << " warning: " << w << "\n";

@@ -205,7 +205,7 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
           model_dt, source, python_keyword));
   std::vector<std::string> warnings;
   python::interruptible([&] {
-    analysis::run_engines(c);
+    analysis::run_engines(c, diagnosis);
     return true;
   });
   for (const analysis::ComparedRun& r : c.runs)

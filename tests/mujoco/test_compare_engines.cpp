@@ -4,6 +4,7 @@
 // the engines chosen from the registry's data.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -174,6 +175,38 @@ TEST(CompareEngines, DiagnosisIsOfTheFirstEngineWithSoftConstraints) {
   EXPECT_EQ(none.diagnosis.summary.rfind("Not run: ", 0), 0u) << none.diagnosis.summary;
   EXPECT_NE(none.diagnosis.summary.find("ref has none."), std::string::npos)
       << none.diagnosis.summary;
+}
+
+// The diagnosis's MuJoCo runs made early, beside the base runs, are the
+// runs it would make itself: on every built-in shape with friction (the
+// early runs: friction, rolling resistance, mapping) the findings are the
+// same bit for bit, and the early runs were used.
+TEST(CompareEngines, EarlyDiagnosisRunsChangeNoFinding) {
+  for (const Shape shape : {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle}) {
+    Scene scene = test::drop_scene(shape, 200.0, 0.5);
+    scene.sim.duration = 0.5;
+    scene.contact.damping = DampingLaw::Compression;
+    if (shape == Shape::Circle) scene.contact.mu_roll = 0.01;
+    const std::vector<engines::EngineSpec> specs = {engines::parse_engine("ref"),
+                                                    engines::parse_engine("mujoco")};
+    analysis::Comparison late = analysis::prepare_comparison(scene, specs);
+    analysis::run_engines(late, false);
+    analysis::measure(late, 1e-10, true);
+    analysis::Comparison early = analysis::prepare_comparison(scene, specs);
+    analysis::run_engines(early, true);
+    EXPECT_EQ(early.early.size(), shape == Shape::Circle ? 3u : 2u) << shape_name(shape);
+    analysis::measure(early, 1e-10, true);
+    ASSERT_EQ(late.diagnosis.findings.size(), early.diagnosis.findings.size());
+    for (size_t i = 0; i < late.diagnosis.findings.size(); ++i) {
+      const analysis::Finding &a = late.diagnosis.findings[i], &b = early.diagnosis.findings[i];
+      EXPECT_EQ(a.cause, b.cause);
+      if (std::isfinite(a.after) || std::isfinite(b.after)) {
+        EXPECT_EQ(a.after, b.after) << shape_name(shape) << " " << a.cause;
+      }
+      EXPECT_EQ(a.explanation, b.explanation);
+    }
+    EXPECT_EQ(late.diagnosis.summary, early.diagnosis.summary);
+  }
 }
 
 // An engine that cannot run the scene says so before anything runs.
