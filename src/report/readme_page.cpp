@@ -94,6 +94,9 @@ std::string causes_text(const ThreeWayCase& c, double named_share) {
     out += (out.empty() ? "" : "; ") + cause.cause + " " +
            format_text("%.0f %%", std::round(100.0 * cause.share) + 0.0) + " (`" + cause.fix + "`)";
   }
+  std::string skipped;
+  for (const std::string& cause : c.not_rerun) skipped += (skipped.empty() ? "" : ", ") + cause;
+  if (!skipped.empty()) out += "; not re-run: " + skipped + " (`--full-diagnosis`)";
   return out;
 }
 

@@ -40,7 +40,10 @@ struct ThreeWayCase {
   double amplification = 0.0;
   bool agrees = false;
   std::vector<CauseShare> causes;  // named causes, largest share first
-  std::string animation;           // file name in the report directory; empty: not drawn
+  // The fine-step causes the diagnosis did not re-run (another explained
+  // the difference; compare --full-diagnosis makes them).
+  std::vector<std::string> not_rerun;
+  std::string animation;  // file name in the report directory; empty: not drawn
 };
 
 // The shipped goal replay on both engines (section 9).

@@ -130,6 +130,7 @@ ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
   c.agrees = d.agrees;
   for (const analysis::Finding& f : d.findings)
     if (f.named) c.causes.push_back({f.cause, f.share, f.fix});
+  c.not_rerun = d.not_rerun;
   if (keep) {
     keep->scene = scene;
     keep->reference = std::move(ref.trajectory);
