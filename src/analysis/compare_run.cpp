@@ -108,7 +108,7 @@ size_t diagnosed_run(const Comparison& c) {
 void run_engines(Comparison& c, bool early_diagnosis) {
   const size_t diagnosed = early_diagnosis ? diagnosed_run(c) : 0;
   const std::vector<EarlyRun> early =
-      diagnosed > 0 ? early_mujoco_runs(c.scene, c.runs[diagnosed].spec) : std::vector<EarlyRun>{};
+      diagnosed > 0 ? early_reruns(c.scene, c.runs[diagnosed].spec) : std::vector<EarlyRun>{};
   // One job per run: the engines after the first, the early MuJoCo runs of
   // the diagnosis, then the first (the reference: the cheapest).
   const size_t n = c.runs.size() + early.size();

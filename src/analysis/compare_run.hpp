@@ -85,7 +85,7 @@ Comparison prepare_comparison(const Scene& scene, const std::vector<engines::Eng
 
 // Runs every engine. With `early_diagnosis` (compare without
 // --no-diagnosis), the diagnosis's first-tier MuJoCo runs that depend on
-// the scene and the engine alone (early_mujoco_runs) are made beside them,
+// the scene and the engine alone (early_reruns) are made beside them,
 // on the machine's cores, into Comparison::early, for measure() to use.
 void run_engines(Comparison& c, bool early_diagnosis = false);
 

@@ -297,7 +297,7 @@ std::vector<Rerun> plan_reruns(const DiagnosisInputs& in) {
 
 }  // namespace
 
-std::vector<EarlyRun> early_mujoco_runs(const Scene& scene, const engines::EngineSpec& mujoco) {
+std::vector<EarlyRun> early_reruns(const Scene& scene, const engines::EngineSpec& mujoco) {
   // The plan of the first tier's MuJoCo runs reads nothing of the base runs
   // (friction_law's ratio and the fine-step tier do, and are left out), so
   // a placeholder stands in for them.

@@ -153,14 +153,14 @@ struct EarlyRun {
   std::string engine;  // the engine's name, as the runner takes it
   Scene scene;
 };
-std::vector<EarlyRun> early_mujoco_runs(const Scene& scene, const engines::EngineSpec& mujoco);
+std::vector<EarlyRun> early_reruns(const Scene& scene, const engines::EngineSpec& mujoco);
 
 struct DiagnosisOptions {
   // Also run the fine-step re-runs when the first tier explains the
   // difference (compare --full-diagnosis).
   bool full = false;
   unsigned threads = 0;  // as parallel_for: 0 = the machine's cores
-  // MuJoCo runs already made (early_mujoco_runs), by cause: used instead of
+  // MuJoCo runs already made (early_reruns), by cause: used instead of
   // running them again. A cause missing here (its run threw) is run.
   const std::vector<std::pair<std::string, EngineRun>>* early = nullptr;
 };
