@@ -111,6 +111,17 @@ void measure(Comparison& c, double converged_tol, bool diagnosis,
 // runs[0] ↔ runs[i] with the converged solution, as the diagnosis takes it.
 ThreeWay pair(const Comparison& c, size_t i);
 
+// The text `contact2d compare` prints of a measured comparison: the
+// three-way table, energies, wall clocks, the versions and the diagnosis,
+// wrapped at 78 columns (analysis/compare_text.cpp). Like comparison_json,
+// formatted here, in the layer that measured it, for every caller.
+std::string comparison_text(const Comparison& c);
+
+// "mapping calibrated, geometry corners" (`name_first`) or "calibrated
+// mapping" (the first option only): the run's engine options, given or
+// their fallbacks; empty for an engine without options.
+std::string run_options_text(const ComparedRun& r, bool name_first);
+
 // The --json object of a measured comparison, newline-terminated; `scene_label`
 // is its "scene" (the scene file as given).
 std::string comparison_json(const Comparison& c, const std::string& scene_label);

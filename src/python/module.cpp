@@ -223,6 +223,7 @@ py::dict py_compare(const py::object& scene_object, const std::optional<std::str
   });
   py::dict out;
   out["json"] = analysis::comparison_json(c, source);
+  out["text"] = analysis::comparison_text(c);  // what `contact2d compare` prints
   for (const analysis::ComparedRun& r : c.runs)
     out[(r.key + "_trajectory").c_str()] = trajectory_array(r.run.trajectory);
   out["converged_trajectory"] =

@@ -44,7 +44,7 @@ def test_compare_json_and_trajectories(scene, tmp_path):
     for key in TIMINGS:
         assert key in result
     assert masked({k: v for k, v in result.items() if not k.endswith("_trajectory")
-                   and k != "warnings"}) == masked(expected)
+                   and k not in ("warnings", "text")}) == masked(expected)
     header, rows = read_csv(csv)
     ref, mujoco, conv = (result["ref_trajectory"], result["mujoco_trajectory"],
                          result["converged_trajectory"])
@@ -54,6 +54,18 @@ def test_compare_json_and_trajectories(scene, tmp_path):
         parts.append([r.split(",", 1)[1] for r in csv_rows(conv[:n])])
     assert header.count(",") + 1 == 7 + 6 * (len(parts) - 1)
     assert [",".join(p) for p in zip(*parts)] == rows
+
+
+@pytest.mark.parametrize("scene", SCENES)
+def test_compare_text_is_what_the_program_prints(scene):
+    """result["text"] is compare's table and diagnosis, line for line (the
+    wall-clock line masked: it is a measurement of each run)."""
+    out, _ = run_program("compare", scene)
+    text = contact2d.compare(contact2d.Scene.load(scene))["text"]
+    def unclocked(lines):
+        return [line for line in lines.splitlines() if not line.startswith("wall clock")]
+    assert unclocked(text) == unclocked(out)
+    assert "Diagnosis" in text
 
 
 def test_compare_engines_list(tmp_path):
@@ -67,7 +79,7 @@ def test_compare_engines_list(tmp_path):
     expected = json.loads(out)
     timings = TIMINGS + ("mujoco_exact_seconds", "mujoco_calibrated_boxes_seconds")
     assert ({k: v for k, v in result.items() if not k.endswith("_trajectory")
-             and k != "warnings" and k not in timings}
+             and k not in ("warnings", "text") and k not in timings}
             == {k: v for k, v in expected.items() if k not in timings})
     assert set(expected["integrators"]) == {"ref", "mujoco_exact", "mujoco_calibrated_boxes"}
     for key in ("ref", "mujoco_exact", "mujoco_calibrated_boxes"):
@@ -85,7 +97,7 @@ def test_compare_options(tmp_path):
     result = contact2d.compare(s, mapping="compensated", integrator="rk4", dt=2e-4,
                                diagnosis=False)
     assert masked({k: v for k, v in result.items() if not k.endswith("_trajectory")
-                   and k != "warnings"}) == masked(json.loads(out))
+                   and k not in ("warnings", "text")}) == masked(json.loads(out))
 
 
 @pytest.mark.parametrize("engine", ["ref", "mujoco"])

@@ -128,7 +128,8 @@ def compare(scene: SceneLike, mapping: str = "", geometry: str = "", model_dt: O
     other, as ``contact2d compare --json``: that JSON object as a dict, with
     the trajectories added as arrays ("ref_trajectory", "mujoco_trajectory",
     "converged_trajectory": the converged solution at the reference's sample
-    times, None where it is not available) and "warnings". ``engines``, as
+    times, None where it is not available), "warnings", and "text": the
+    table and diagnosis `contact2d compare` prints. ``engines``, as
     ``--engines``, compares the reference with each engine of the list
     (names with their options, "mujoco:exact:boxes"; not together with
     mapping or geometry): every engine adds its keys and its
