@@ -52,11 +52,8 @@ struct CompareOptions {
   bool allow_nonphysical = false;
 };
 
-using analysis::Comparison;
-using analysis::energies;
-using analysis::Energies;
-
 using analysis::ComparedRun;
+using analysis::Comparison;
 
 // t, then x_KEY … omega_KEY for every run in order, then the converged
 // solution's when available; one row per sample the runs share.
