@@ -57,7 +57,7 @@ std::vector<Override> with(std::vector<Override> a, const std::vector<Override>&
 const std::vector<Override> kFrictionless{{"contact.mu", "0"}, {"contact.mu_roll", "0"}};
 
 // One case of README.md: the scene on both engines.
-Comparison compare(const std::string& s, const std::vector<Override>& overrides,
+ComparisonRow compare(const std::string& s, const std::vector<Override>& overrides,
                    const std::string& mapping = "calibrated",
                    const std::string& geometry = "corners", const std::string& plot = "") {
   return compare_engines(load(scene_path(s), overrides), scene_path(s), mapping, geometry, plot);
@@ -181,8 +181,8 @@ void mapping_tasks(const ReportRequest& o, ReadmeData& d, Tasks& tasks) {
 // A scene whose two laws agree to the bit keeps one plot.
 void drop_law_independent_plots(const ReportRequest& o, ReadmeData& d) {
   for (const std::string& s : kScenes) {
-    const Comparison* shipped = nullptr;
-    const Comparison* kv = nullptr;
+    const ComparisonRow* shipped = nullptr;
+    const ComparisonRow* kv = nullptr;
     for (const MappingCase& c : d.shipped)
       if (c.scene == s && c.mapping == "calibrated") shipped = &c.result;
     for (const MappingCase& c : d.kelvin_voigt)

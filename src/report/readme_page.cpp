@@ -12,7 +12,7 @@
 namespace contact2d::report {
 namespace {
 
-std::string per_step(double seconds, const Comparison& c) {
+std::string per_step(double seconds, const ComparisonRow& c) {
   return format_significant(micros_per_step(seconds, c.duration, c.dt));
 }
 
@@ -21,7 +21,7 @@ std::string mapping_table(const std::vector<MappingCase>& cases) {
            "end pos (m)", "ref µs/step", "MuJoCo µs/step"},
           {}};
   for (const MappingCase& c : cases) {
-    const Comparison& r = c.result;
+    const ComparisonRow& r = c.result;
     add_row(t, {c.scene + " / " + c.mapping, format_significant(r.max_pos),
                 format_significant(r.rms_pos), format_significant(r.max_angle),
                 format_significant(r.max_vel), format_significant(r.end_pos),
@@ -52,7 +52,7 @@ std::string goal_table(const std::vector<GoalCase>& goals) {
       {"case", "impratio", "max pos (m)", "goal (m)", "max angle (rad)", "goal (rad)", "reached"},
       {}};
   for (const GoalCase& c : goals) {
-    const Comparison& r = c.result;
+    const ComparisonRow& r = c.result;
     const bool ok = goal_reached(r.max_pos, r.max_angle, c.pos_goal, c.angle_goal);
     add_row(t, {c.label, format_significant(r.impratio), format_significant(r.max_pos),
                 sci(c.pos_goal), format_significant(r.max_angle),
@@ -64,7 +64,7 @@ std::string goal_table(const std::vector<GoalCase>& goals) {
 std::string geometry_table(const std::vector<GeometryCase>& cases) {
   Table t{{"case", "geometry", "max pos (m)", "max angle (rad)", "MuJoCo µs/step"}, {}};
   for (const GeometryCase& c : cases) {
-    const Comparison& r = c.result;
+    const ComparisonRow& r = c.result;
     add_row(t, {c.scene + ", " + (c.friction ? "friction" : "frictionless"), c.geometry,
                 format_significant(r.max_pos), format_significant(r.max_angle),
                 per_step(r.mujoco_seconds, r)});
@@ -77,7 +77,7 @@ std::string integrator_table(const std::vector<IntegratorCase>& cases) {
       {"scene", "integrator", "max pos (m)", "max angle (rad)", "ref µs/step", "MuJoCo µs/step"},
       {}};
   for (const IntegratorCase& c : cases) {
-    const Comparison& r = c.result;
+    const ComparisonRow& r = c.result;
     add_row(t, {c.scene, c.integrator + " / " + r.mujoco_integrator, format_significant(r.max_pos),
                 format_significant(r.max_angle), per_step(r.ref_seconds, r),
                 per_step(r.mujoco_seconds, r)});

@@ -16,7 +16,7 @@ namespace contact2d::report {
 // ------------------------------------------------------------ README.md
 
 // One `compare` of a scene on the reference and MuJoCo.
-struct Comparison {
+struct ComparisonRow {
   std::string shape;              // "point_mass", …
   std::string mujoco_integrator;  // "Euler", "RK4", "implicit"
   double dt = 0.0, duration = 0.0;
@@ -64,7 +64,7 @@ struct ReplayComparison {
 // Every scene under every mapping (sections 1 and 2).
 struct MappingCase {
   std::string scene, mapping;
-  Comparison result;
+  ComparisonRow result;
 };
 
 // A line of the goal table (section 3): the verdict is computed by the page.
@@ -72,7 +72,7 @@ struct GoalCase {
   std::string label;
   double pos_goal = 0.0;
   std::optional<double> angle_goal;  // none: only the position is a goal
-  Comparison result;
+  ComparisonRow result;
   // With friction: its difference taken apart (RandomCase's three parts);
   // NaN for a frictionless case.
   double friction_shape = std::numeric_limits<double>::quiet_NaN();
@@ -84,13 +84,13 @@ struct GeometryCase {
   std::string scene;
   bool friction = false;
   std::string geometry;  // "corners", "boxes"
-  Comparison result;
+  ComparisonRow result;
 };
 
 struct IntegratorCase {
   std::string scene;
   std::string integrator;  // the reference's name
-  Comparison result;
+  ComparisonRow result;
 };
 
 // A scene drawn at random (section 6), run without and with friction.

@@ -73,12 +73,12 @@ std::pair<engines::EngineRun, engines::EngineRun> run_both(const engines::Engine
 
 bool mujoco_built() { return engines::mujoco_available(); }
 
-Comparison compare_engines(const Scene& scene, const std::string& source,
+ComparisonRow compare_engines(const Scene& scene, const std::string& source,
                            const std::string& mapping, const std::string& geometry,
                            const std::string& plot_png) {
   namespace mj = contact2d::mujoco;
   const mj::MjcfOptions options = mj::mjcf_options(mapping, geometry, source);
-  Comparison c;
+  ComparisonRow c;
   c.mujoco_integrator = mj::mujoco_integrator(scene.sim.integrator);
   engines::EngineSpec spec;
   spec.kind = "mujoco";
@@ -338,8 +338,8 @@ RandomCase compare_random_scene(const RandomScene& r, const std::string& mapping
   Scene frictionless = r.scene;
   frictionless.contact.mu = 0.0;
   const std::string source = "random scene " + r.name;
-  const Comparison without = compare_engines(frictionless, source, mapping, "corners");
-  const Comparison friction = compare_engines(r.scene, source, mapping, "corners");
+  const ComparisonRow without = compare_engines(frictionless, source, mapping, "corners");
+  const ComparisonRow friction = compare_engines(r.scene, source, mapping, "corners");
   const analysis::FrictionParts parts = analysis::friction_parts(r.scene, mapping);
   return {r.name,
           without.shape,

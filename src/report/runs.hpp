@@ -36,7 +36,7 @@ bool mujoco_built();
 // samples; draws the comparison PNG when `plot_png` is not empty. `source`
 // names the scene in the MJCF and in messages. Throws std::runtime_error
 // when either engine diverges, InputError for a scene MuJoCo cannot take.
-Comparison compare_engines(const Scene& scene, const std::string& source,
+ComparisonRow compare_engines(const Scene& scene, const std::string& source,
                            const std::string& mapping, const std::string& geometry,
                            const std::string& plot_png = "");
 

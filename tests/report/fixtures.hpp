@@ -11,8 +11,8 @@
 
 namespace contact2d::report::fixtures {
 
-inline Comparison comparison(double max_pos, double max_angle, double impratio = 1e-15) {
-  Comparison c;
+inline ComparisonRow comparison(double max_pos, double max_angle, double impratio = 1e-15) {
+  ComparisonRow c;
   c.shape = "box";
   c.mujoco_integrator = "Euler";
   c.dt = 1e-4;
