@@ -58,8 +58,8 @@ const std::vector<Override> kFrictionless{{"contact.mu", "0"}, {"contact.mu_roll
 
 // One case of README.md: the scene on both engines.
 ComparisonRow compare(const std::string& s, const std::vector<Override>& overrides,
-                   const std::string& mapping = "calibrated",
-                   const std::string& geometry = "corners", const std::string& plot = "") {
+                      const std::string& mapping = "calibrated",
+                      const std::string& geometry = "corners", const std::string& plot = "") {
   return compare_engines(load(scene_path(s), overrides), scene_path(s), mapping, geometry, plot);
 }
 

@@ -74,8 +74,8 @@ std::pair<engines::EngineRun, engines::EngineRun> run_both(const engines::Engine
 bool mujoco_built() { return engines::mujoco_available(); }
 
 ComparisonRow compare_engines(const Scene& scene, const std::string& source,
-                           const std::string& mapping, const std::string& geometry,
-                           const std::string& plot_png) {
+                              const std::string& mapping, const std::string& geometry,
+                              const std::string& plot_png) {
   namespace mj = contact2d::mujoco;
   const mj::MjcfOptions options = mj::mjcf_options(mapping, geometry, source);
   ComparisonRow c;

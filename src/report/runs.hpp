@@ -37,8 +37,8 @@ bool mujoco_built();
 // names the scene in the MJCF and in messages. Throws std::runtime_error
 // when either engine diverges, InputError for a scene MuJoCo cannot take.
 ComparisonRow compare_engines(const Scene& scene, const std::string& source,
-                           const std::string& mapping, const std::string& geometry,
-                           const std::string& plot_png = "");
+                              const std::string& mapping, const std::string& geometry,
+                              const std::string& plot_png = "");
 
 // `contact2d compare SCENE` under the calibrated mapping: three-way
 // distances at `tol` and the diagnosis (analysis/comparison.hpp), on this
