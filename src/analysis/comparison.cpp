@@ -300,7 +300,7 @@ std::vector<Rerun> plan_reruns(const DiagnosisInputs& in) {
 std::vector<EarlyRun> early_reruns(const Scene& scene, const engines::EngineSpec& mujoco) {
   // The plan of the first tier's MuJoCo runs reads nothing of the base runs
   // (friction_law's ratio and the fine-step tier do, and are left out), so
-  // a placeholder stands in for them.
+  // empty runs stand in for them.
   const EngineRun none;
   const ThreeWay no_distances;
   const DiagnosisInputs in = diagnosis_inputs(scene, mujoco, none, none, no_distances);

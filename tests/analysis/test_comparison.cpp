@@ -107,24 +107,45 @@ TEST(ThreeWay, ObstaclesFallBackToTwoWayAndSayWhy) {
 // reference with its damping law forced to Kelvin–Voigt behaves like MuJoCo
 // on the damping law and nothing else, so exactly that cause must be named,
 // with the share the runs show.
-TEST(Diagnosis, NamesOnlyTheCauseThatTheReRunsRemove) {
+// The bouncing point with a compression-only damper, and its runs: the
+// reference, and the stand-in "MuJoCo" (the reference with Kelvin–Voigt
+// damping), each through `runner`, which records the Δt of every run.
+struct DampingStandIn {
   Scene scene = bouncing_point();
-  scene.contact.c = 20.0;
-  scene.contact.damping = DampingLaw::Compression;
-  const analysis::EngineRunner runner = [](const std::string& engine, const Scene& s) {
-    Scene t = s;
-    if (engine != "ref") t.contact.damping = DampingLaw::KelvinVoigt;
-    engines::EngineRun run = engines::run_engine("ref", t);
-    run.engine = engine;
-    return run;
-  };
+  std::vector<double> steps;
+  analysis::EngineRunner runner;
   engines::EngineSpec spec;
-  spec.kind = "mujoco";
-  spec.set("mapping", "calibrated");
-  const engines::EngineRun ref = runner("ref", scene);
-  const engines::EngineRun kv = runner(spec.name(), scene);
-  const analysis::ThreeWay three = analysis::three_way(scene, ref.trajectory, kv.trajectory, 1e-10);
-  const analysis::Diagnosis d = analysis::diagnose(scene, spec, ref, kv, three, runner, {false, 1});
+  engines::EngineRun ref, kv;
+  analysis::ThreeWay three;
+
+  DampingStandIn() {
+    scene.contact.c = 20.0;
+    scene.contact.damping = DampingLaw::Compression;
+    runner = [this](const std::string& engine, const Scene& s) {
+      steps.push_back(s.sim.dt);
+      Scene t = s;
+      if (engine != "ref") t.contact.damping = DampingLaw::KelvinVoigt;
+      engines::EngineRun run = engines::run_engine("ref", t);
+      run.engine = engine;
+      return run;
+    };
+    spec.kind = "mujoco";
+    spec.set("mapping", "calibrated");
+    ref = runner("ref", scene);
+    kv = runner(spec.name(), scene);
+    three = analysis::three_way(scene, ref.trajectory, kv.trajectory, 1e-10);
+    steps.clear();
+  }
+  DampingStandIn(const DampingStandIn&) = delete;  // the runner points to this one
+  DampingStandIn& operator=(const DampingStandIn&) = delete;
+  analysis::Diagnosis diagnose(bool full) {
+    return analysis::diagnose(scene, spec, ref, kv, three, runner, {full, 1});
+  }
+};
+
+TEST(Diagnosis, NamesOnlyTheCauseThatTheReRunsRemove) {
+  DampingStandIn stand_in;
+  const analysis::Diagnosis d = stand_in.diagnose(false);
   ASSERT_FALSE(d.agrees);
   ASSERT_FALSE(d.findings.empty());
   EXPECT_EQ(d.findings[0].cause, "damping_law");
@@ -162,27 +183,10 @@ TEST(Diagnosis, AgreeingEnginesAreNotReRun) {
 // only when asked (full), and otherwise listed as not re-run with the
 // share that explained the difference.
 TEST(Diagnosis, TheFineStepReRunIsMadeOnlyWhenTheFirstTierLeavesTheDifferenceUnexplained) {
-  Scene scene = bouncing_point();
-  scene.contact.c = 20.0;
-  scene.contact.damping = DampingLaw::Compression;
-  std::vector<double> steps;  // the Δt of every run the diagnosis asked for
-  const analysis::EngineRunner runner = [&steps](const std::string& engine, const Scene& s) {
-    steps.push_back(s.sim.dt);
-    Scene t = s;
-    if (engine != "ref") t.contact.damping = DampingLaw::KelvinVoigt;
-    engines::EngineRun run = engines::run_engine("ref", t);
-    run.engine = engine;
-    return run;
-  };
-  engines::EngineSpec spec;
-  spec.kind = "mujoco";
-  spec.set("mapping", "calibrated");
-  const engines::EngineRun ref = runner("ref", scene);
-  const engines::EngineRun kv = runner(spec.name(), scene);
-  const analysis::ThreeWay three = analysis::three_way(scene, ref.trajectory, kv.trajectory, 1e-10);
-  steps.clear();
-  const analysis::Diagnosis screened =
-      analysis::diagnose(scene, spec, ref, kv, three, runner, {false, 1});
+  DampingStandIn stand_in;
+  const std::vector<double>& steps = stand_in.steps;
+  const Scene& scene = stand_in.scene;
+  const analysis::Diagnosis screened = stand_in.diagnose(false);
   for (const double dt : steps) EXPECT_EQ(dt, scene.sim.dt);
   EXPECT_EQ(screened.not_rerun, std::vector<std::string>{"time_step"});
   EXPECT_NE(screened.not_rerun_why.find("damping_law already takes away 100 %"), std::string::npos)
@@ -190,9 +194,8 @@ TEST(Diagnosis, TheFineStepReRunIsMadeOnlyWhenTheFirstTierLeavesTheDifferenceUne
   for (const analysis::Finding& f : screened.findings) EXPECT_NE(f.cause, "time_step");
   const size_t first_tier_runs = steps.size();
 
-  steps.clear();
-  const analysis::Diagnosis full =
-      analysis::diagnose(scene, spec, ref, kv, three, runner, {true, 1});
+  stand_in.steps.clear();
+  const analysis::Diagnosis full = stand_in.diagnose(true);
   EXPECT_TRUE(full.not_rerun.empty());
   EXPECT_EQ(full.findings.size(), screened.findings.size() + 1);
   // The first tier's runs again, and the Δt/10 re-run's two.
