@@ -8,6 +8,7 @@
 
 #include <csignal>
 #include <cstring>
+#include <ctime>
 #include <mutex>
 
 namespace contact2d {
@@ -26,6 +27,16 @@ Slot g_slots[kSlots];
 std::mutex g_register;  // between threads that register; never taken by the handler
 constexpr int kChildren = 16;
 std::atomic<int> g_children[kChildren];  // a pid, or 0: free
+// Held sections in progress, on every thread, and whether the handler has
+// begun. The handler runs on a thread that holds none (its signals wait
+// there), but the others go on: it sets g_stopping, waits until no
+// section is in progress (each is a few system calls: a file created and
+// registered, a child spawned and registered, a set of renames), then
+// cleans up and exits, so no thread can create a file or a child between
+// its cleanup and the exit. A section that starts after g_stopping never
+// runs: its thread waits for the exit.
+std::atomic<int> g_held{0};
+std::atomic<bool> g_stopping{false};
 
 void write_all(const char* text) {
   size_t left = std::strlen(text);
@@ -38,6 +49,11 @@ void write_all(const char* text) {
 }
 
 extern "C" void on_interrupt(int signal) {
+  g_stopping.store(true);
+  while (g_held.load() > 0) {
+    const timespec pause_ms{0, 1000000};
+    ::nanosleep(&pause_ms, nullptr);  // async-signal-safe
+  }
   for (const std::atomic<int>& slot : g_children) {
     if (const int child = slot.load(); child > 0) ::kill(child, SIGKILL);
   }
@@ -75,9 +91,17 @@ InterruptsHeld::InterruptsHeld() {
   sigemptyset(&held);
   for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, s);
   ::pthread_sigmask(SIG_BLOCK, &held, &saved_);
+  g_held.fetch_add(1);
+  if (g_stopping.load()) {  // the handler is cleaning up: this thread waits for the exit
+    g_held.fetch_sub(1);
+    for (;;) ::pause();
+  }
 }
 
-InterruptsHeld::~InterruptsHeld() { ::pthread_sigmask(SIG_SETMASK, &saved_, nullptr); }
+InterruptsHeld::~InterruptsHeld() {
+  g_held.fetch_sub(1);
+  ::pthread_sigmask(SIG_SETMASK, &saved_, nullptr);
+}
 
 int register_temporary(const std::string& path) {
   if (path.size() >= kPathMax) return -1;

@@ -20,9 +20,11 @@ namespace contact2d {
 // except for a signal that is ignored when the program starts (nohup).
 void install_interrupt_cleanup();
 
-// While alive, SIGINT, SIGTERM and SIGHUP wait (on this thread): wrap the
-// creation of a temporary file and its registration in one, so that no
-// signal can come between them.
+// While alive, SIGINT, SIGTERM and SIGHUP wait (on this thread), and the
+// handler, running on another thread, waits for it to end before it cleans
+// up: wrap the creation of a temporary file (or a child) and its
+// registration in one, so that no interrupt can come between them on any
+// thread. Keep it short: an interrupt waits for it.
 class InterruptsHeld {
  public:
   InterruptsHeld();
