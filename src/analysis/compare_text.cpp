@@ -88,8 +88,8 @@ void diagnosis_text(std::ostringstream& out, const Comparison& c) {
   for (const Finding& finding : d.findings) {
     if (!finding.named) continue;
     out << "\n"
-        << wrapped(std::to_string(++n) + ". " + finding.cause + ": " + finding.explanation, "  ")
-        << "     fix: " << finding.fix << "\n";
+        << wrapped(std::to_string(++n) + ". " + finding.cause + ": " + finding.explanation, "  ");
+    if (!finding.fix.empty()) out << "     fix: " << finding.fix << "\n";
   }
   std::string ruled_out;
   for (const Finding& finding : d.findings) {

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "analysis/compare_run.hpp"
+#include "analysis/grazing.hpp"
 #include "analysis/reference.hpp"
 #include "core/contacts.hpp"
 #include "core/dynamics.hpp"
@@ -478,11 +479,18 @@ void explain_friction(Finding& f, const std::string& falls, const DiagnosisInput
   f.fix = scene.contact.mu_roll > 0.0 ? "--set contact.mu=0 --set contact.mu_roll=0"
                                       : "--set contact.mu=0";
   f.phases = sliding_phases(scene, in.ref.trajectory, in.mujoco_run.trajectory);
+  const bool cone = scene.contact.friction != FrictionLaw::Tanh;
   f.explanation =
-      "Friction laws differ: the reference's is −μ·Fn·tanh(α·v_t); MuJoCo's elliptic "
-      "cone is viscous inside the cone and, while sliding, its damper's slip term adds to the "
-      "normal force (the body hops). Without friction in both engines, " +
-      falls + ".";
+      cone ? "Both engines run MuJoCo's friction law here (friction_law = " +
+                 std::string(friction_law_name(scene.contact.friction)) +
+                 "); with friction the body slides under it and, under the soft cone, hops "
+                 "(the push c·μ·|v_t| on the normal force), so contacts open and close. "
+                 "Without friction in both engines, " +
+                 falls + "."
+           : "Friction laws differ: the reference's is −μ·Fn·tanh(α·v_t); MuJoCo's elliptic "
+             "cone is viscous inside the cone and, while sliding, its damper's slip term adds "
+             "to the normal force (the body hops). Without friction in both engines, " +
+                 falls + ".";
   if (!f.phases.empty()) {
     double grown = 0.0;
     for (const SlidingPhase& p : f.phases) grown += std::max(0.0, p.distance1 - p.distance0);
@@ -499,8 +507,9 @@ void explain_friction(Finding& f, const std::string& falls, const DiagnosisInput
     }
     f.explanation += ").";
   }
-  f.explanation +=
-      " No MuJoCo setting reproduces the tanh law; the fix removes friction from the scene.";
+  f.explanation += cone ? " The fix removes friction from the scene."
+                        : " No MuJoCo setting reproduces the tanh law; the fix removes friction "
+                          "from the scene.";
 }
 
 // friction_law (the full soft cone) and friction_shape (without its push).
@@ -631,6 +640,67 @@ void explain(Finding& f, const Rerun& r, const DiagnosisInputs& in, const Follow
   }
 }
 
+// The grazing probe (analysis/grazing.hpp): both engines at the scene's Δt,
+// sampled at every step up to the base runs' departure at 1/kGrazingGrowth
+// of their difference. None when the runs are that far apart at their first
+// sample (different from the start: no contact decided it), or when the
+// window holds more than kMaxProbeSteps steps (56 bytes a sample, twice:
+// 22 MB at the limit).
+constexpr double kMaxProbeSteps = 2e5;
+std::optional<Rerun> grazing_probe(const DiagnosisInputs& in) {
+  const Trajectory& a = in.ref.trajectory;
+  const double departure = departure_time(in.scene, a, in.mujoco_run.trajectory,
+                                          in.base.ref_vs_mujoco.max_pos / kGrazingGrowth);
+  if (!std::isfinite(departure) || a.samples.empty() || departure <= a.samples.front().t ||
+      departure / in.scene.sim.dt > kMaxProbeSteps)
+    return std::nullopt;
+  Rerun r = rerun("grazing", in.scene, true, in.mujoco.name());
+  if (in.mujoco.model_dt != 0.0) r.mujoco_spec = in.mujoco;
+  r.scene.sim.duration = departure;
+  r.scene.sim.output_dt = in.scene.sim.dt;
+  return r;
+}
+
+// A point's height for the text: "1.5e-12 m above the ground", "2e-13 m into
+// obstacle 1", or "clear of it" (an obstacle the run does not touch).
+std::string height_text(double height, const GrazingContact& g) {
+  const bool ground = g.where.find("ground") != std::string::npos;
+  if (!std::isfinite(height)) return "clear of it";
+  return format_number(std::abs(height), 2) + " m " +
+         (height < 0.0 ? "into "
+          : ground     ? "above "
+                       : "from ") +
+         (ground ? "the ground" : "it");
+}
+
+Finding grazing_finding(const GrazingContact& g, double before, const DiagnosisInputs& in) {
+  Finding f;
+  f.cause = "grazing";
+  f.before = before;
+  f.after = g.apart;
+  f.share = (before - g.apart) / before;
+  f.named = true;
+  const std::string mj = in.mujoco_run.engine.empty() ? "MuJoCo" : in.mujoco_run.engine;
+  f.explanation =
+      "At t = " + format_number(g.t, 6) + " s the body's " + g.where + " touches in " +
+      (g.touches_a ? "the reference" : mj) + " and not in " + (g.touches_a ? mj : "the reference") +
+      ": " + height_text(g.height_a, g) + " in the reference, " + height_text(g.height_b, g) +
+      " in " + mj + "; the two runs' points are " + format_number(g.apart, 2) + " m apart there (" +
+      (g.apart <= kRoundingAgreement
+           ? "the same run up to rounding"
+           : "what the engines' models still differ by, before any contact differs") +
+      "). A contact this close to grazing is decided by that distance, not by the contact "
+      "law; one engine applies a contact force the other does not, and from that step the "
+      "runs part, to " +
+      format_number(before, 3) + " m (" + format_number(before / g.apart, 2) +
+      " times as far). No option removes it: any change of the state by that much moves the "
+      "contact either way.";
+  if (in.base.converged.available)
+    f.explanation += " The scene magnifies a 1e-8 m change of the initial height " +
+                     format_number(in.base.converged.amplification, 3) + "-fold.";
+  return f;
+}
+
 // Named causes first, each group by the size of its share, largest first.
 void rank_findings(std::vector<Finding>& findings) {
   std::stable_sort(findings.begin(), findings.end(), [](const Finding& a, const Finding& b) {
@@ -643,10 +713,13 @@ void rank_findings(std::vector<Finding>& findings) {
 
 // One paragraph: the named causes and their shares, or that none is named.
 std::string diagnosis_summary(const std::vector<Finding>& findings, double before) {
-  std::string named, model;
+  std::string named, model, grazing;
   for (const Finding& f : findings) {
     if (!f.named) continue;
-    if (f.cause == "dt_dependent_model")
+    if (f.cause == "grazing")
+      grazing = "The engines part at a grazing contact (grazing) and end up " +
+                format_number(f.before / f.after, 2) + " times as far apart as they were there. ";
+    else if (f.cause == "dt_dependent_model")
       model = " Holding MuJoCo's Δt-dependent model fixed moves the Δt/10 difference by " +
               percent(std::abs(f.share)) + " of it (dt_dependent_model).";
     else
@@ -662,7 +735,7 @@ std::string diagnosis_summary(const std::vector<Finding>& findings, double befor
   else
     summary = "Of the " + format_number(before, 3) +
               " m difference, removing each cause alone takes away: " + named + ".";
-  return summary + model;
+  return grazing + summary + model;
 }
 
 }  // namespace
@@ -686,9 +759,16 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
   std::vector<size_t> first, fine;
   for (size_t i = 0; i < reruns.size(); ++i)
     (fine_step(reruns[i], scene) ? fine : first).push_back(i);
+  // The grazing probe runs with the first tier; it removes no cause.
+  const size_t causes = reruns.size();
+  if (std::optional<Rerun> probe = grazing_probe(in)) {
+    first.push_back(reruns.size());
+    reruns.push_back(std::move(*probe));
+  }
   run_reruns(reruns, first, in, runner, options.threads, options.early);
   const Rerun* explains = nullptr;  // the first tier's largest share, if it explains
   for (const size_t i : first) {
+    if (i >= causes) continue;
     const Finding f = measured_finding(reruns[i], before);
     if (f.named && f.share >= kExplainedShare &&
         (!explains || f.share > measured_finding(*explains, before).share))
@@ -710,13 +790,23 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
     run_reruns(reruns, fine, in, runner, options.threads);
   }
   const FollowingModel follow = following_model(reruns);
-  for (size_t i = 0; i < reruns.size(); ++i) {
+  for (size_t i = 0; i < causes; ++i) {
     if (!ran[i]) continue;
     Finding f = measured_finding(reruns[i], before);
     explain(f, reruns[i], in, follow);
     dg.findings.push_back(f);
   }
+  if (reruns.size() > causes && reruns[causes].failure.empty()) {
+    const Rerun& probe = reruns[causes];
+    if (const std::optional<GrazingContact> g = grazing_contact(
+            scene, probe.ref_run->trajectory, probe.mujoco_run.trajectory, before / kGrazingGrowth))
+      dg.findings.push_back(grazing_finding(*g, before, in));
+  }
   rank_findings(dg.findings);
+  // A grazing contact is where the runs part: it leads, before the causes
+  // whose removal also removes it (friction, when the body hops).
+  std::stable_partition(dg.findings.begin(), dg.findings.end(),
+                        [](const Finding& f) { return f.cause == "grazing"; });
   dg.summary = diagnosis_summary(dg.findings, before);
   return dg;
 }

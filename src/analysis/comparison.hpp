@@ -44,6 +44,11 @@
 //                 ζ = 1): --mapping calibrated
 //   refsafe       MuJoCo raised a standard-form timeconst to 2·Δt (a softer
 //                 contact): a Δt at which it does not
+// And one probe, which removes nothing: both engines sampled at every step
+// up to where they part (analysis/grazing.hpp). A point touching in one
+// engine and not the other while the runs are within 1/kGrazingGrowth of
+// their final difference is a grazing contact: named first, with its time,
+// the point and its heights in both runs, and no fix.
 // A cause is named when removing it takes away at least kNamedShare of the
 // distance; the others are kept as measured-and-ruled-out. Each share is
 // measured with that cause alone removed, so shares of overlapping causes
@@ -123,7 +128,9 @@ struct SlidingPhase {
 
 struct Finding {
   // damping_law | time_step | friction | friction_law | friction_shape |
-  // rolling_resistance | mapping | refsafe | dt_dependent_model
+  // rolling_resistance | mapping | refsafe | dt_dependent_model | grazing
+  // (grazing: before = the difference, after = the runs' distance at the
+  // switch, no fix)
   std::string cause;
   std::string explanation;           // for a newcomer, numbers included
   std::string fix;                   // the exact option that removes the cause

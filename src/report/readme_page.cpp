@@ -92,7 +92,8 @@ std::string causes_text(const ThreeWayCase& c, double named_share) {
   std::string out;
   for (const CauseShare& cause : c.causes) {
     out += (out.empty() ? "" : "; ") + cause.cause + " " +
-           format_text("%.0f %%", std::round(100.0 * cause.share) + 0.0) + " (`" + cause.fix + "`)";
+           format_text("%.0f %%", std::round(100.0 * cause.share) + 0.0) +
+           (cause.fix.empty() ? "" : " (`" + cause.fix + "`)");
   }
   std::string skipped;
   for (const std::string& cause : c.not_rerun) skipped += (skipped.empty() ? "" : ", ") + cause;
