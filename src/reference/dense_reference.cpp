@@ -390,8 +390,43 @@ double initial_step(const System& sys, const Vec6& y0, const Vec6& f0, double rt
   return std::min({100.0 * h0, h1, h_max});
 }
 
-// Failure message for a chatter resolve_chatter could not resolve.
-std::string chatter_message(const Model& model, double t, size_t j) {
+// Under the soft cone a sliding point's normal force at zero depth is the
+// push alone, c·s/(1 + μ²/impratio) with s = √((μ·v_t)² + (μ_roll·ω)²)
+// (core/contact.hpp): the force jumps from 0 to it as the point touches.
+// When it lifts the point faster than the point falls without it, the
+// contact has no consistent mode at the surface: in contact the point is
+// pushed out, out of contact it falls back, at every step however short
+// (fixed steps hop there, lower and more often the shorter the step: the
+// hops' limit holds the point on the surface, a motion this integrator has
+// no mode for). Says so, with the slip and the push at state y; empty when
+// the law is not the soft cone or nothing pushes.
+std::string soft_cone_chatter(const Model& model, size_t i, const Vec6& y) {
+  const ContactParams& law = model.contact;
+  if (law.friction != FrictionLaw::SoftCone || law.mu <= 0.0) return "";
+  const RigidBody& body = model.body;
+  const ShapeFeatures features = shape_features(body.shape);
+  const Vec2& local = body.points[i];
+  const double cos_t = features.rolls ? 1.0 : std::cos(y[2]);
+  const double sin_t = features.rolls ? 0.0 : std::sin(y[2]);
+  const double ry = sin_t * local.x() + cos_t * local.y();
+  const double v_t = y[3] - y[5] * ry;
+  const double spin = features.rolls && law.mu_roll > 0.0 ? y[5] : 0.0;
+  const double slip = std::hypot(law.mu * v_t, law.mu_roll * spin);
+  const double push = law.c * slip / (1.0 + law.mu * law.mu / law.cone_ratio);
+  if (!(push > 0.0)) return "";
+  char text[512];
+  std::snprintf(text, sizeof text,
+                ": under soft_cone the point slides at %.3g m/s on the surface, where the "
+                "normal force at zero depth is the push c*sqrt((mu*v_t)^2 + (mu_roll*w)^2)/"
+                "(1 + mu^2/impratio) = %.3g N; in contact it pushes the point out, out of "
+                "contact the point falls back, so the contact opens and closes at every step "
+                "however short (fixed steps hop there, lower and more often the shorter the step)",
+                std::abs(v_t), push);
+  return text;
+}
+
+// Failure message for a chatter resolve_chatter could not resolve, at state y.
+std::string chatter_message(const Model& model, double t, size_t j, const Vec6& y) {
   const size_t n = model.body.points.size();
   const size_t i = j < n ? j : j - n;
   const char* what = j < n ? "contact (c_y = 0)"
@@ -402,7 +437,8 @@ std::string chatter_message(const Model& model, double t, size_t j) {
   std::snprintf(time, sizeof time, "%.17g", t);
   return "inconsistent contact mode at t = " + std::string(time) + " s: contact point " +
          std::to_string(i) + ", switching function " + what +
-         " is on the wrong side in both modes (chattering) and no shorter step resolves it";
+         " is on the wrong side in both modes (chattering) and no shorter step resolves it" +
+         (j < n ? soft_cone_chatter(model, i, y) : "");
 }
 
 // Flips the mode bits at an event located on function `located` at time t
@@ -498,7 +534,7 @@ DenseTrajectory integrate_dense(const Model& model, const State& initial, double
     h = std::min(h, h_max);
     if (h >= remaining || remaining - h <= 1e-12 * remaining) h = remaining;
     if (h <= 8.0 * kEps * std::max(1.0, t)) {
-      if (unresolved) return fail(chatter_message(model, t, *unresolved));
+      if (unresolved) return fail(chatter_message(model, t, *unresolved, y));
       return fail("step size underflow at t = " + std::to_string(t));
     }
 
