@@ -7,23 +7,15 @@
 
 #include "core/obstacles.hpp"
 #include "game/game.hpp"
+#include "game/pitches.hpp"
 #include "game/session.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d::game {
 namespace {
 
-// The built-in pitch with the ball at rest at x0 (no pass) and the kick
-// angle set to `angle` (any value, not only the 5° steps of the keys).
-Pitch still_ball(double x0, double angle = 0.0) {
-  Pitch p = default_pitch();
-  p.rules.pass_speed_min = p.rules.pass_speed_max = 0.0;
-  p.rules.pass_x = x0;
-  p.rules.kick_angle_min = -90.0;
-  p.rules.kick_angle_max = 90.0;
-  p.rules.kick_angle = angle;
-  return p;
-}
+using testing::still_ball;
+using testing::without_keeper;
 
 // What happened to the ball on the way.
 struct Watch {
@@ -71,7 +63,8 @@ Outcome kick_from(const Pitch& pitch, Watch* watch = nullptr) {
 
 TEST(Rules, NoInputScoresNoGoal) {
   for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u}) {
-    const Pitch pitch = default_pitch();
+    Pitch pitch = default_pitch();
+    pitch.rules.round_time = 4.0;  // the round waits for a kick: past the ~2 s the pass takes
     Game game(pitch, "ref", seed);
     play_round(game);
     EXPECT_EQ(game.goals(), 0) << "seed " << seed;
@@ -82,8 +75,9 @@ TEST(Rules, NoInputScoresNoGoal) {
 TEST(Rules, APassThatRollsInByItselfIsNoGoal) {
   // A pass strong enough to roll over the line: the ball does go in, but
   // nobody kicked it.
-  Pitch pitch = default_pitch();
+  Pitch pitch = without_keeper();
   pitch.rules.pass_speed_min = pitch.rules.pass_speed_max = 7.0;
+  pitch.rules.pass_lift_min = pitch.rules.pass_lift_max = 0.0;
   pitch.rules.pass_spin_min = pitch.rules.pass_spin_max = 1.0;
   Game game(pitch, "ref", 1);
   const Watch w = play_round(game);
@@ -261,8 +255,11 @@ TEST(PitchFile, TheBuiltInPitchIsTheShippedFile) {
   const Pitch built_in = default_pitch();
   const Pitch file = load_pitch(CONTACT2D_SOURCE_DIR "/validation/scenes/game/pitch.toml");
   EXPECT_EQ(built_in.fingerprint, file.fingerprint);
-  EXPECT_EQ(built_in.scene.obstacles.size(), 3u);
+  EXPECT_EQ(built_in.scene.obstacles.size(), 4u);
   EXPECT_EQ(built_in.crossbar_bottom(), 2.44);
+  ASSERT_EQ(built_in.rules.keeper, 3);
+  EXPECT_TRUE(built_in.scene.obstacles[3].moves) << "the keeper moves";
+  EXPECT_FALSE(built_in.scene.obstacles[0].moves) << "the crossbar does not";
 }
 
 }  // namespace
