@@ -153,6 +153,12 @@ int Game::streak() const {
   return run;
 }
 
+int Game::session_goals() const {
+  return static_cast<int>(
+      std::count_if(rounds_.begin() + (session_first_round_ - 1), rounds_.end(),
+                    [](const RoundRecord& r) { return r.outcome == Outcome::Goal; }));
+}
+
 int Game::goals() const {
   return static_cast<int>(std::count_if(rounds_.begin(), rounds_.end(), [](const RoundRecord& r) {
     return r.outcome == Outcome::Goal;
@@ -225,6 +231,13 @@ void Game::handle(Key key, bool down) {
       return;
     case Key::Reset:
       if (phase_ == Phase::Playing) end_round(Outcome::Reset);
+      if (session_finished_ || session_round() >= r.session_rounds) {
+        // A new session (the reset of a last round ends its session too).
+        best_goals_ = best_session_goals();
+        ++session_;
+        session_first_round_ = round() + 1;
+        session_finished_ = false;
+      }
       start_round();
       return;
     case Key::Kick: {
@@ -309,7 +322,13 @@ void Game::step() {
   }
 
   if (phase_ == Phase::Over) {
-    if (++over_steps_ >= result_steps_) start_round();
+    if (++over_steps_ >= result_steps_ && !session_finished_) {
+      if (session_round() >= pitch_.rules.session_rounds) {
+        session_finished_ = true;  // the ball stays where it is until reset
+      } else {
+        start_round();
+      }
+    }
     return;
   }
   if (pushing) last_touch_ = Touch::Push;

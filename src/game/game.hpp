@@ -147,6 +147,14 @@ class Game {
   const std::vector<RoundRecord>& rounds() const { return rounds_; }
   const std::vector<KickRecord>& kicks() const { return kicks_; }
   int goals() const;
+  // The session: its number (1-based), its rounds so far, its goals, the
+  // most goals of any session so far (this one included), and whether its
+  // last round's result has been shown (the game then waits for reset).
+  int session() const { return session_; }
+  int session_round() const { return round() - session_first_round_ + 1; }
+  int session_goals() const;
+  int best_session_goals() const { return std::max(best_goals_, session_goals()); }
+  bool session_finished() const { return session_finished_; }
   // The longest run of goals in consecutive rounds so far (the session's best).
   int best_streak() const;
   int streak() const;  // goals in a row up to the last decided round
@@ -158,9 +166,11 @@ class Game {
   // the screen); None when no kick was ignored.
   IgnoredKick ignored_kick() const { return ignored_kick_why_; }
   long long steps_since_ignored_kick() const { return steps_ - ignored_kick_step_; }
-  // Steps until the next pass starts (0 while playing).
+  // Steps until the next pass starts (0 while playing, or once the session
+  // is finished).
   long long steps_to_next_pass() const {
-    return phase_ == Phase::Over ? std::max(0LL, result_steps_ - over_steps_) : 0;
+    return phase_ == Phase::Over && !session_finished_ ? std::max(0LL, result_steps_ - over_steps_)
+                                                       : 0;
   }
 
  private:
@@ -207,6 +217,10 @@ class Game {
   std::optional<Divergence> divergence_;
   std::vector<RoundRecord> rounds_;
   std::vector<KickRecord> kicks_;
+  int session_ = 1;
+  int session_first_round_ = 1;
+  int best_goals_ = 0;  // of the sessions before this one
+  bool session_finished_ = false;
 };
 
 // The path of the kick the player would take now: the ball's centre flying

@@ -96,6 +96,7 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
   g.number("rest_speed", r.rest_speed, 0.0, 100.0, "must be in [0, 100] m/s");
   g.number("rest_time", r.rest_time, 0.0, 1e3, "must be in [0, 1e3] s");
   g.number("result_time", r.result_time, 0.0, 1e3, "must be in [0, 1e3] s");
+  g.integer("session_rounds", r.session_rounds, 1, 1'000'000, "must be in [1, 1000000] passes");
   g.number("pitch_min_x", r.pitch_min_x, -kBig, kBig, "must be finite, |pitch_min_x| <= 1e6 m");
   g.number("pitch_max_x", r.pitch_max_x, -kBig, kBig, "must be finite, |pitch_max_x| <= 1e6 m");
   g.reject_unknown();

@@ -54,6 +54,7 @@ struct Rules {
   double rest_speed = 0.02;   // m/s: the ball is at rest below this (centre and rim speed)...
   double rest_time = 0.5;     // ...for this long, s
   double result_time = 2.0;   // s between the end of a round and the next pass
+  int session_rounds = 10;    // passes in a session; then its end (reset: a new session)
   double pitch_min_x = -0.5;  // the ball is out of play beyond these, m
   double pitch_max_x = 12.5;
 };

@@ -121,6 +121,9 @@ std::string report_json(const Game& game) {
   out += ",\"engine\":" + json::string(std::string(game.engine_name()));
   out += ",\"seed\":" + std::to_string(game.seed());
   out += ",\"level\":" + json::string(std::string(level_name(game.level())));
+  out += ",\"session\":" + std::to_string(game.session()) +
+         ",\"session_goals\":" + std::to_string(game.session_goals()) +
+         ",\"best_session_goals\":" + std::to_string(game.best_session_goals());
   out += ",\"ball\":{\"x\":" + number(s.q.x()) + ",\"y\":" + number(s.q.y()) +
          ",\"vx\":" + number(s.v.x()) + ",\"vy\":" + number(s.v.y()) +
          ",\"omega\":" + number(s.v.z()) + "}";

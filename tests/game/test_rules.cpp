@@ -264,3 +264,86 @@ TEST(PitchFile, TheBuiltInPitchIsTheShippedFile) {
 
 }  // namespace
 }  // namespace contact2d::game
+
+namespace contact2d::game {
+namespace {
+
+// A pass rolling at 3 m/s (no lift, rolling spin) braked by the control key
+// from the start: m·|v|/control_time is above control_force until the last
+// 0.14 m/s, so the centre decelerates by at least control_force/m = 14 m/s²
+// (the grass's rolling resistance, 0.9 m/s², adds): still after 3/14 =
+// 0.21 s plus the exponential tail (control_time = 0.05 s: 0.14 m/s to
+// 0.02 m/s in 0.1 s). The spin it keeps is the grass's business: friction
+// turns it into a slow roll, which the key brakes as well.
+TEST(Rules, TheControlKeyBrakesThePass) {
+  Pitch pitch = without_keeper();
+  pitch.rules.pass_speed_min = pitch.rules.pass_speed_max = 3.0;
+  pitch.rules.pass_spin_min = pitch.rules.pass_spin_max = 1.0;
+  pitch.rules.pass_lift_min = pitch.rules.pass_lift_max = 0.0;
+  Game held(pitch, "ref", 1), free(pitch, "ref", 1);
+  held.handle(Key::Control, true);
+  for (int i = 0; i < 50000; ++i) {  // 0.5 s
+    held.step();
+    free.step();
+  }
+  const double v_held = std::hypot(held.ball().v.x(), held.ball().v.y());
+  std::printf("after 0.5 s: %.4f m/s controlled, %.3f m/s free\n", v_held, free.ball().v.x());
+  EXPECT_LT(v_held, 0.05);
+  EXPECT_GT(free.ball().v.x(), 2.0) << "without the key it rolls on";
+  EXPECT_EQ(held.last_touch(), Touch::None) << "control is no touch";
+}
+
+// Reach: a pass lifted at 5 m/s is at 0.11 + 5·0.3 − g·0.3²/2 = 1.17 m at
+// 0.3 s, above reach_height (0.9 m): the kick key does nothing, and says why.
+TEST(Rules, AKickOutOfReachIsIgnored) {
+  Pitch pitch = without_keeper();
+  pitch.rules.pass_lift_min = pitch.rules.pass_lift_max = 5.0;
+  Game game(pitch, "ref", 1);
+  for (int i = 0; i < 30000; ++i) game.step();
+  ASSERT_GT(game.ball().q.y(), pitch.rules.reach_height);
+  game.handle(Key::Kick, true);
+  EXPECT_EQ(game.ignored_kick(), IgnoredKick::OutOfReach);
+  EXPECT_TRUE(game.kicks().empty());
+  EXPECT_FALSE(game.kicking());
+}
+
+TEST(Rules, ThePowerKeysStepClampAndScaleTheKick) {
+  Pitch pitch = still_ball(5.0, 0.0);
+  pitch.rules.kick_power = 0.5;
+  pitch.scene.sim.gravity = 0.0;  // as in TheKickDeliversItsImpulse: no grass force
+  Game game(pitch, "ref", 1);
+  game.handle(Key::Kick, true);
+  for (int i = 0; i < 10000; ++i) game.step();
+  EXPECT_NEAR(game.ball().v.x(), 0.5 * pitch.rules.kick_impulse / pitch.scene.mass, 1e-9);
+  for (int i = 0; i < 20; ++i) game.handle(Key::PowerUp, true);
+  EXPECT_EQ(game.kick_power(), 1.0);
+  for (int i = 0; i < 20; ++i) game.handle(Key::PowerDown, true);
+  EXPECT_EQ(game.kick_power(), pitch.rules.kick_power_min);
+}
+
+// A session of one pass: after its result the game waits (no new pass);
+// the reset key starts session 2, whose score starts at 0 while the best
+// keeps session 1's goal.
+TEST(Rules, ASessionEndsAndTheBestScoreStays) {
+  Pitch pitch = still_ball(7.0, 15.0);
+  pitch.rules.session_rounds = 1;
+  Game game(pitch, "ref", 1);
+  game.handle(Key::Kick, true);
+  while (game.phase() == Phase::Playing) game.step();
+  ASSERT_EQ(game.current_round().outcome, Outcome::Goal);
+  for (long long i = 0; i < game.result_steps() + 1000; ++i) game.step();
+  EXPECT_TRUE(game.session_finished());
+  EXPECT_EQ(game.round(), 1) << "no next pass";
+  EXPECT_EQ(game.session_goals(), 1);
+  game.handle(Key::Reset, true);
+  EXPECT_FALSE(game.session_finished());
+  EXPECT_EQ(game.session(), 2);
+  EXPECT_EQ(game.round(), 2);
+  EXPECT_EQ(game.session_round(), 1);
+  EXPECT_EQ(game.session_goals(), 0);
+  EXPECT_EQ(game.best_session_goals(), 1);
+  EXPECT_EQ(game.phase(), Phase::Playing);
+}
+
+}  // namespace
+}  // namespace contact2d::game
