@@ -109,6 +109,7 @@ void PolicyPlayer::choose_kick(const Game& game) {
       const double m = kick_margin(game, p, v);
       if (m > best) {
         best = m;
+        margin_ = m;
         want_angle_steps_ = i;
         want_power_steps_ = j;
       }
@@ -193,13 +194,14 @@ void PolicyPlayer::act(const Game& game, InputFeed& feed) {
   }
 }
 
-Outcome play_policy_round(Game& game, InputFeed& feed, Policy policy) {
+Outcome play_policy_round(Game& game, InputFeed& feed, Policy policy, double* margin) {
   PolicyPlayer player(policy);
   const int round = game.round();
   while (!game.divergence() && game.round() == round && game.phase() == Phase::Playing) {
     player.act(game, feed);
     game.step();
   }
+  if (margin) *margin = player.margin();
   return game.rounds().at(static_cast<size_t>(round - 1)).outcome;
 }
 
@@ -212,7 +214,7 @@ std::vector<PolicyRun> run_policy(const Pitch& pitch, const std::string& engine,
     InputFeed feed(game, nullptr);
     PolicyRun run;
     run.seed = seed;
-    run.outcome = play_policy_round(game, feed, policy);
+    run.outcome = play_policy_round(game, feed, policy, &run.margin);
     if (!game.kicks().empty()) run.kick_distance = game.kicks().back().distance;
     runs.push_back(run);
   }
@@ -240,7 +242,17 @@ std::string policy_json(const std::vector<PolicyRun>& runs, Policy policy,
     out += (first ? "" : ",") + json::string(name) + ":" + std::to_string(count);
     first = false;
   }
-  out += "}}";
+  out += "}";
+  std::vector<double> margins;
+  for (const PolicyRun& r : runs) {
+    if (!std::isnan(r.margin)) margins.push_back(r.margin);
+  }
+  if (!margins.empty()) {
+    std::sort(margins.begin(), margins.end());
+    out += ",\"margin_min\":" + json::number(margins.front(), 4) +
+           ",\"margin_median\":" + json::number(margins[margins.size() / 2], 4);
+  }
+  out += "}";
   return out;
 }
 

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -33,6 +34,9 @@ class PolicyPlayer {
  public:
   explicit PolicyPlayer(Policy policy) : policy_(policy) {}
   void act(const Game& game, InputFeed& feed);
+  // The scripted kick's predicted clearance (the smallest of over the
+  // keeper and under the bar, m); NaN before it chose one.
+  double margin() const { return margin_; }
 
  private:
   enum class Stage { Receive, Dribble, Settle, Aim, Done };
@@ -46,13 +50,14 @@ class PolicyPlayer {
   bool released_last_ = false;  // a tap's key went up at the last step
   int want_angle_steps_ = 0;    // presses of angle_up (> 0) or angle_down (< 0) still to do
   int want_power_steps_ = 0;
-  bool aimed_ = false;
   bool kicked_ = false;
+  double margin_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Plays the game's current round with the policy until it ends (or the
-// physics diverges); its keys go through `feed` (recorded there).
-Outcome play_policy_round(Game& game, InputFeed& feed, Policy policy);
+// physics diverges); its keys go through `feed` (recorded there). `margin`:
+// the scripted kick's predicted clearance (PolicyPlayer::margin).
+Outcome play_policy_round(Game& game, InputFeed& feed, Policy policy, double* margin = nullptr);
 
 // One round per seed (seeds first, first + 1, …): the policy plays until
 // the round ends. Returns the rounds' outcomes in seed order.
@@ -60,11 +65,15 @@ struct PolicyRun {
   std::uint64_t seed = 0;
   Outcome outcome = Outcome::None;
   double kick_distance = -1.0;  // m from the line, −1 without a kick
+  double margin = 0.0;          // scripted: the kick's predicted clearance, m (NaN: none)
 };
 std::vector<PolicyRun> run_policy(const Pitch& pitch, const std::string& engine, Level level,
                                   Policy policy, std::uint64_t first_seed, int seeds);
 
 // {"policy":…,"engine":…,"level":…,"seeds":n,"goals":k,"rate":k/n,"outcomes":{…}}
+// and, for the scripted player, the smallest and the median of its kicks'
+// predicted clearance ("margin_min", "margin_median", m): the room for
+// error the level leaves.
 std::string policy_json(const std::vector<PolicyRun>& runs, Policy policy,
                         const std::string& engine, Level level);
 

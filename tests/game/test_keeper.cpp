@@ -13,6 +13,8 @@
 #include "game/game.hpp"
 #include "game/keeper.hpp"
 #include "game/pitches.hpp"
+#include "game/policy.hpp"
+#include "game/session.hpp"
 
 namespace contact2d::game {
 namespace {
@@ -166,6 +168,30 @@ TEST(BothEngines, AChipFromCloseBeatsTheKeeper) {
     EXPECT_GT(s.highest, 0.2) << engine << ": it did move";
     EXPECT_FALSE(s.touched) << engine;
     EXPECT_EQ(s.outcome, Outcome::Goal) << engine;
+  }
+}
+
+}  // namespace
+}  // namespace contact2d::game
+
+namespace contact2d::game {
+namespace {
+
+// A policy's keys go through the InputFeed like a person's: what it
+// recorded replays headless to the same kicks and the same final state, on
+// both engines (deterministic: the same seed and inputs, the same game).
+TEST(BothEngines, AScriptedRoundReplaysExactly) {
+  for (const std::string& engine : keeper_engines()) {
+    const Pitch pitch = default_pitch();
+    Game game(pitch, engine, 3);
+    InputFeed feed(game, nullptr);
+    const Outcome outcome = play_policy_round(game, feed, Policy::Scripted);
+    const std::string live = report_json(game);
+    const ReplayRun replayed = run_replay(pitch, feed.recorded(), engine);
+    std::printf("%s: %s, %zu key events\n", engine.c_str(),
+                std::string(outcome_name(outcome)).c_str(), feed.recorded().events.size());
+    EXPECT_EQ(replayed.outcome, outcome) << engine;
+    EXPECT_EQ(replayed.json, live) << engine;
   }
 }
 
