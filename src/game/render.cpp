@@ -414,7 +414,7 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
   std::string right = "ENGINE " + upper(game.engine_name()) + "   F1/H: HELP";
   if (overlay.fps > 0.0 && !overlay.recording) right = fmt("%.0f FPS", overlay.fps) + "   " + right;
   text(width - 10 - text_width(right, 1.5), 10, right, 1.5, kText);
-  if (overlay.replaying) text(width - 10 - text_width("REPLAY", 2.0), 34, "REPLAY", 2.0, kGoal);
+  if (overlay.replaying) text(width - 10 - text_width("REPLAY", 2.0), 88, "REPLAY", 2.0, kGoal);
   // The engine cannot keep up at this frame rate: the game runs slower.
   if (!overlay.recording && overlay.speed < 0.97) {
     const std::string slow = fmt("SLOW MOTION x%.2f", overlay.speed);

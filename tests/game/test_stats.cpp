@@ -4,9 +4,9 @@
 // dribbles to 2.5 m, chips the keeper) on at least 50 %, on both engines.
 // The full measure is 100 seeds per engine (`contact2d play --headless
 // --policy blind|scripted --seeds 100 [--engine mujoco]`, docs/game.md has
-// its figures). Here the reference plays the same 100 seeds (~13 s in
-// Release) and MuJoCo, ~10× slower per step at the pitch's Δt, fewer
-// (~20 s); label game_stats, which scripts/test leaves out of the sanitizer
+// its figures). Here the reference plays the same 100 seeds (6 s in
+// Release) and MuJoCo, ~25× slower per step at the pitch's Δt, fewer
+// (15 s); label game_stats, which scripts/test leaves out of the sanitizer
 // stage (there they would cost ten times as much).
 //
 // What n seeds show: every seed here is a different pass, and a policy is
