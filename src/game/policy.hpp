@@ -5,7 +5,7 @@
 //
 //   blind     presses the kick key once, 0.1 s after the pass starts, and
 //             nothing else (what a new player tries first).
-//   scripted  receives the pass, controls it, dribbles it to 2 m from the
+//   scripted  receives the pass, controls it, dribbles it to 2.5 m from the
 //             goal line, stops it there and chips it over the keeper: among
 //             the angle and power levels it picks the one whose no-drag
 //             path (kick_preview's) clears the keeper's top, as high as the
@@ -47,8 +47,7 @@ class PolicyPlayer {
   Policy policy_;
   Stage stage_ = Stage::Receive;
   bool held_[static_cast<int>(Key::PowerDown) + 1] = {};
-  bool released_last_ = false;  // a tap's key went up at the last step
-  int want_angle_steps_ = 0;    // presses of angle_up (> 0) or angle_down (< 0) still to do
+  int want_angle_steps_ = 0;  // presses of angle_up (> 0) or angle_down (< 0) still to do
   int want_power_steps_ = 0;
   bool kicked_ = false;
   double margin_ = std::numeric_limits<double>::quiet_NaN();

@@ -116,6 +116,75 @@ void person(double x, double facing, const Color& jersey, double kick = 0.0) {
   disc(x, head, 0.13, 0.13, kSkin, 16);
 }
 
+// The keeper (where the physics has it) and the player, drawn before the
+// ball.
+void draw_keeper_and_player(const Game& game, const View& v) {
+  const Pitch& pitch = game.pitch();
+  const Rules& r = pitch.rules;
+  const double dir = pitch.direction();
+  // The keeper: its box where the physics has it now (what the ball
+  // bounces off), in its jersey, with a head and gloves drawn inside it.
+  if (game.has_keeper()) {
+    const Obstacle& k = game.keeper();
+    const double kx = 0.5 * (k.a.x() + k.b.x()), kw = k.b.x() - k.a.x();
+    rect(k.a.x(), k.a.y(), k.b.x(), k.b.y(), kKeeper);
+    rect_outline(k.a.x(), k.a.y(), k.b.x(), k.b.y(), 1.5 / v.scale, kOutline);
+    disc(kx, k.b.y() - 0.3 * kw, 0.28 * kw, 0.28 * kw, kSkin, 16);
+    // (Gloves off-white: pure white is the ball's alone, which the window
+    // test measures.)
+    disc(k.a.x() + 0.15 * kw, 0.5 * (k.a.y() + k.b.y()), 0.18 * kw, 0.18 * kw,
+         Color{0.97f, 0.97f, 0.88f, 1.0f}, 12);
+    // Its legs below the box while it is up (it jumps): drawn, not solid.
+    if (k.a.y() > 0.02) {
+      thick_line(Vec2(kx - 0.05, k.a.y()), Vec2(kx - 0.05, std::max(0.0, k.a.y() - 0.5)), 0.08,
+                 Color{0.95f, 0.55f, 0.1f, 0.5f});
+    }
+  }
+
+  // The player: behind the ball on the grass, at least 1.5 m in front of
+  // the teammate (where the pass comes to him); after a kick, where it was
+  // taken, the kicking leg swung while the kick acts.
+  const State& s = game.ball();
+  const double R = game.radius();
+  double player = s.q.x() - dir * (R + 0.3);
+  if (!game.kicks().empty() && game.kicks().back().round == game.round())
+    player = r.goal_line - dir * game.kicks().back().distance - dir * (R + 0.3);
+  player = dir > 0 ? std::max(player, r.pass_x + 1.5) : std::min(player, r.pass_x - 1.5);
+  person(player, dir, kTeam, game.kicking() ? 1.0 : 0.0);
+}
+
+// The aim and the kick's preview while the ball is in reach, and the force
+// being applied, over the ball.
+void draw_aim_and_force(const Game& game) {
+  const double dir = game.pitch().direction();
+  const State& s = game.ball();
+  const double R = game.radius();
+  // Aim (the kick's direction) while the ball is in reach, and the force
+  // being applied.
+  const Vec2 c(s.q.x(), s.q.y());
+  const bool aiming = game.phase() == Phase::Playing && game.in_reach() && !game.kicking();
+  const double a = game.kick_angle() * kPi / 180.0;
+  const Vec2 aim(dir * std::cos(a), std::sin(a));
+  for (int i = 0; aiming && i < 5; ++i) {
+    const double t0 = R + 0.1 + 0.2 * i;
+    thick_line(c + t0 * aim, c + (t0 + 0.1) * aim, 0.025, kAim);
+  }
+  // The kick the player would take now, as dots every 0.03 s: the no-drag
+  // path without spin or bounce (kick_preview), while the ball is in reach.
+  if (aiming) {
+    Vec2 path[64];
+    const int n = kick_preview(game, 0.03, path, 64);
+    for (int i = 1; i < n; ++i) disc(path[i].x(), path[i].y(), 0.035, 0.035, kPreview, 8);
+  }
+  const Vec3 f = game.applied();
+  const double fn = std::hypot(f.x(), f.y());
+  if (fn > 0.0) {
+    // 0.15 m per N up to 1.5 m: a push (a few N) and a kick (~100 N) both show.
+    const double len = std::min(1.5, 0.15 * fn);
+    arrow(c, c + Vec2(f.x(), f.y()) * (len / fn), 0.05, kForce);
+  }
+}
+
 void draw_world(const Game& game, const View& v) {
   const Pitch& pitch = game.pitch();
   const Rules& r = pitch.rules;
@@ -180,38 +249,12 @@ void draw_world(const Game& game, const View& v) {
     }
   }
 
-  // The keeper: its box where the physics has it now (what the ball
-  // bounces off), in its jersey, with a head and gloves drawn inside it.
-  if (game.has_keeper()) {
-    const Obstacle& k = game.keeper();
-    const double kx = 0.5 * (k.a.x() + k.b.x()), kw = k.b.x() - k.a.x();
-    rect(k.a.x(), k.a.y(), k.b.x(), k.b.y(), kKeeper);
-    rect_outline(k.a.x(), k.a.y(), k.b.x(), k.b.y(), 1.5 / v.scale, kOutline);
-    disc(kx, k.b.y() - 0.3 * kw, 0.28 * kw, 0.28 * kw, kSkin, 16);
-    // (Gloves off-white: pure white is the ball's alone, which the window
-    // test measures.)
-    disc(k.a.x() + 0.15 * kw, 0.5 * (k.a.y() + k.b.y()), 0.18 * kw, 0.18 * kw,
-         Color{0.97f, 0.97f, 0.88f, 1.0f}, 12);
-    // Its legs below the box while it is up (it jumps): drawn, not solid.
-    if (k.a.y() > 0.02) {
-      thick_line(Vec2(kx - 0.05, k.a.y()), Vec2(kx - 0.05, std::max(0.0, k.a.y() - 0.5)), 0.08,
-                 Color{0.95f, 0.55f, 0.1f, 0.5f});
-    }
-  }
-
-  // The player: behind the ball on the grass, at least 1.5 m in front of
-  // the teammate (where the pass comes to him); after a kick, where it was
-  // taken, the kicking leg swung while the kick acts.
-  const State& s = game.ball();
-  const double R = game.radius();
-  double player = s.q.x() - dir * (R + 0.3);
-  if (!game.kicks().empty() && game.kicks().back().round == game.round())
-    player = r.goal_line - dir * game.kicks().back().distance - dir * (R + 0.3);
-  player = dir > 0 ? std::max(player, r.pass_x + 1.5) : std::min(player, r.pass_x - 1.5);
-  person(player, dir, kTeam, game.kicking() ? 1.0 : 0.0);
+  draw_keeper_and_player(game, v);
 
   // The ball: a shadow that shrinks with height, the disc, two spokes that
   // show its spin.
+  const State& s = game.ball();
+  const double R = game.radius();
   const double lift = std::max(0.0, s.q.y() - R);
   const double shadow = R * std::max(0.3, 1.0 - 0.15 * lift);
   disc(s.q.x(), 0.0, shadow, 0.25 * shadow, Color{0.0f, 0.0f, 0.0f, 0.3f}, 20);
@@ -224,31 +267,6 @@ void draw_world(const Game& game, const View& v) {
   }
   disc(s.q.x() + 0.45 * R * std::cos(s.q.z() + 0.8), s.q.y() + 0.45 * R * std::sin(s.q.z() + 0.8),
        0.25 * R, 0.25 * R, kOutline, 10);
-
-  // Aim (the kick's direction) while the ball is in reach, and the force
-  // being applied.
-  const Vec2 c(s.q.x(), s.q.y());
-  const bool aiming = game.phase() == Phase::Playing && game.in_reach() && !game.kicking();
-  const double a = game.kick_angle() * kPi / 180.0;
-  const Vec2 aim(dir * std::cos(a), std::sin(a));
-  for (int i = 0; aiming && i < 5; ++i) {
-    const double t0 = R + 0.1 + 0.2 * i;
-    thick_line(c + t0 * aim, c + (t0 + 0.1) * aim, 0.025, kAim);
-  }
-  // The kick the player would take now, as dots every 0.03 s: the no-drag
-  // path without spin or bounce (kick_preview), while the ball is in reach.
-  if (aiming) {
-    Vec2 path[64];
-    const int n = kick_preview(game, 0.03, path, 64);
-    for (int i = 1; i < n; ++i) disc(path[i].x(), path[i].y(), 0.035, 0.035, kPreview, 8);
-  }
-  const Vec3 f = game.applied();
-  const double fn = std::hypot(f.x(), f.y());
-  if (fn > 0.0) {
-    // 0.15 m per N up to 1.5 m: a push (a few N) and a kick (~100 N) both show.
-    const double len = std::min(1.5, 0.15 * fn);
-    arrow(c, c + Vec2(f.x(), f.y()) * (len / fn), 0.05, kForce);
-  }
 }
 
 // A panel of centred lines in the middle of the screen; the first line at
@@ -461,6 +479,7 @@ void draw_frame(const Game& game, const Overlay& overlay, int width, int height)
   glMatrixMode(GL_MODELVIEW);
   glLoadIdentity();
   draw_world(game, v);
+  draw_aim_and_force(game);
   draw::flush_shapes();
 
   glMatrixMode(GL_PROJECTION);

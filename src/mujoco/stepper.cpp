@@ -1,5 +1,6 @@
 #include "mujoco/stepper.hpp"
 
+#include <cstddef>
 #include <string>
 #include <utility>
 
@@ -56,7 +57,7 @@ bool MujocoStepper::move_obstacle(int index, const Vec2& offset) {
   if (mocap_[i] < 0) return false;
   const Obstacle& placed = placed_[i];
   const Vec2 c = 0.5 * (placed.a + placed.b) + offset;
-  mjtNum* pos = data_->mocap_pos + 3 * mocap_[i];
+  mjtNum* pos = data_->mocap_pos + 3 * static_cast<std::ptrdiff_t>(mocap_[i]);
   pos[0] = c.x();
   pos[1] = 0.0;
   pos[2] = c.y();
