@@ -91,6 +91,26 @@ TEST(PlayCli, RecordingAReplayAndPlayingItBackGivesTheSameJson) {
   fs::remove(copy);
 }
 
+// The built-in players: --seeds prints one line of statistics; a single
+// scripted round records a replay that plays back to the same JSON.
+TEST(PlayCli, TheBuiltInPlayersPlayThroughTheRealProgram) {
+  const Result stats = run("play --headless --policy blind --seeds 3");
+  ASSERT_EQ(stats.status, 0) << stats.err;
+  EXPECT_TRUE(has(stats.out, "\"policy\":\"blind\"")) << stats.out;
+  EXPECT_TRUE(has(stats.out, "\"seeds\":3,\"goals\":0")) << stats.out;
+  EXPECT_EQ(std::count(stats.out.begin(), stats.out.end(), '\n'), 1) << stats.out;
+
+  const fs::path recorded = temp("scripted.replay");
+  const Result a =
+      run("play --headless --policy scripted --seed 3 --record-input '" + recorded.string() + "'");
+  ASSERT_EQ(a.status, 0) << a.err;
+  EXPECT_TRUE(has(a.out, "\"goal\":true")) << a.out;
+  const Result b = run("play --headless --replay '" + recorded.string() + "'");
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_EQ(a.out, b.out);
+  fs::remove(recorded);
+}
+
 #ifdef CONTACT2D_WITH_MUJOCO
 // The same replay on the MuJoCo engine: the same JSON twice (MuJoCo's step
 // is deterministic on one machine, and the player's force reaches it as the
