@@ -229,6 +229,16 @@ void Game::handle(Key key, bool down) {
     case Key::PowerDown:
       kick_power_ = std::max(r.kick_power_min, kick_power_ - r.kick_power_step);
       return;
+    case Key::LevelEasy:
+    case Key::LevelNormal:
+    case Key::LevelHard:
+      if (level_open()) {
+        level_ = key == Key::LevelEasy     ? Level::Easy
+                 : key == Key::LevelNormal ? Level::Normal
+                                           : Level::Hard;
+        keeper_rule_.speed = pitch_.keeper_speed(level_);
+      }
+      return;
     case Key::Reset:
       if (phase_ == Phase::Playing) end_round(Outcome::Reset);
       if (session_finished_ || session_round() >= r.session_rounds) {

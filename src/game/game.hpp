@@ -118,6 +118,8 @@ class Game {
   std::string_view engine_name() const { return engine_name_; }
   std::uint64_t seed() const { return seed_; }
   Level level() const { return level_; }
+  // Whether the level keys act now.
+  bool level_open() const { return steps_ == 0 || session_finished_; }
   long long steps() const { return steps_; }
   double dt() const { return pitch_.scene.sim.dt; }
   double time() const { return static_cast<double>(steps_) * dt(); }

@@ -329,8 +329,8 @@ void draw_banners(const Game& game, const Overlay& overlay, int width, int heigh
     centred_panel({"BEAT THE KEEPER", "Your teammate passes. Control the ball (C),",
                    "bring it closer (arrows), aim (W/S angle, A/D power)",
                    "and chip it over the keeper into the goal (K).",
-                   fmt("%.0f passes a session. Level: ", r.session_rounds) +
-                       upper(level_name(game.level())) + " (--level: easy, normal, hard)",
+                   fmt("%.0f passes a session. Level ", r.session_rounds) +
+                       upper(level_name(game.level())) + " (keys 1, 2, 3: easy, normal, hard)",
                    fmt("THE PASS COMES IN %.1f s   (F1: HELP)", overlay.get_ready)},
                   4.0, kGoal, width, height);
   } else if (game.session_finished()) {
@@ -380,6 +380,8 @@ void draw_help(int width, int height) {
       "K / ENTER     kick towards the goal",
       "SPACE         pause (this help pauses too)",
       "BACKSPACE     next pass (after a session: a new one)",
+      "1 / 2 / 3     level easy / normal / hard (at the start,",
+      "              or after a session for the next one)",
       "F1 / H        this help",
       "ESC           quit",
   };

@@ -47,6 +47,9 @@ std::string_view key_name(Key key) {
     case Key::Control: return "control";
     case Key::PowerUp: return "power_up";
     case Key::PowerDown: return "power_down";
+    case Key::LevelEasy: return "level_easy";
+    case Key::LevelNormal: return "level_normal";
+    case Key::LevelHard: return "level_hard";
   }
   return "?";
 }

@@ -9,7 +9,7 @@
 //   level normal                 easy | normal | hard: the keeper's speed (normal if absent)
 //   <step> <key> down|up         e.g. "123000 kick down": applied before step 123000
 // Keys: left right up down kick angle_up angle_down reset control power_up
-// power_down.
+// power_down level_easy level_normal level_hard.
 #pragma once
 
 #include <cstdint>
@@ -31,7 +31,10 @@ enum class Key {
   Reset,
   Control,
   PowerUp,
-  PowerDown
+  PowerDown,
+  LevelEasy,  // the level keys act before the first step and between sessions
+  LevelNormal,
+  LevelHard
 };
 
 std::string_view key_name(Key key);

@@ -231,7 +231,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadPlay{"replay_garbage", "", "hello\n", "", ":1: not a replay file"},
         BadPlay{"replay_bad_key", "", "contact2d-replay 1\nseed 1\ndt 1e-05\n10 jump down\n", "",
                 ":4: key 'jump' is not one of left, right, up, down, kick, angle_up, angle_down, "
-                "reset, control, power_up, power_down"},
+                "reset, control, power_up, power_down, level_easy, level_normal, level_hard"},
         BadPlay{"replay_bad_order", "",
                 "contact2d-replay 1\nseed 1\ndt 1e-05\n10 kick down\n5 kick up\n", "",
                 ":5: step 5 is earlier than the line before"},

@@ -321,6 +321,23 @@ TEST(Rules, ThePowerKeysStepClampAndScaleTheKick) {
   EXPECT_EQ(game.kick_power(), pitch.rules.kick_power_min);
 }
 
+// The level keys act before the first step and while a session is
+// finished, not during one (the keeper's speed would change under a shot).
+TEST(Rules, TheLevelKeysActOnlyBeforeASession) {
+  Pitch pitch = still_ball(7.0, 15.0);
+  pitch.rules.session_rounds = 1;
+  Game game(pitch, "ref", 1);
+  game.handle(Key::LevelHard, true);
+  EXPECT_EQ(game.level(), Level::Hard);
+  game.step();
+  game.handle(Key::LevelEasy, true);
+  EXPECT_EQ(game.level(), Level::Hard) << "ignored once the session has started";
+  game.handle(Key::Kick, true);
+  while (!game.session_finished()) game.step();
+  game.handle(Key::LevelEasy, true);
+  EXPECT_EQ(game.level(), Level::Easy) << "for the next session";
+}
+
 // A session of one pass: after its result the game waits (no new pass);
 // the reset key starts session 2, whose score starts at 0 while the best
 // keeps session 1's goal.
