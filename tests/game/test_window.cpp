@@ -295,24 +295,25 @@ TEST(Window, TheHelpOverlayPausesTheGame) {
   fs::remove(err);
 }
 
-// Live play shows the first pass frozen for kFirstPassDelay = 1.5 s before
-// it rolls. Recording makes the frames' time exact (1/60 s each): 60 frames
-// (1 s) take no physics step, 120 frames (2 s) do. A replay does not wait
+// Live play shows the title screen with the first pass frozen for
+// kFirstPassDelay = 3 s before it rolls. Recording makes the frames' time
+// exact (1/60 s each): 150 frames (2.5 s) take no physics step, 210 frames
+// (3.5 s) do. A replay does not wait
 // (TheHelpOverlayPausesTheGame: 60 unrecorded frames of it step).
 TEST(Window, LivePlayWaitsBeforeTheFirstPass) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
   ASSERT_EQ(sh("command -v ffmpeg >/dev/null"), 0) << "needs ffmpeg";
-  ASSERT_LT(contact2d::game::kFirstPassDelay * 60.0, 120.0);
-  ASSERT_GT(contact2d::game::kFirstPassDelay * 60.0, 60.0);
+  ASSERT_LT(contact2d::game::kFirstPassDelay * 60.0, 210.0);
+  ASSERT_GT(contact2d::game::kFirstPassDelay * 60.0, 150.0);
   const fs::path video = temp("ready.mp4"), out = temp("ready.json"), err = temp("ready.err");
-  for (const int frames : {60, 120}) {
+  for (const int frames : {150, 210}) {
     ASSERT_EQ(
         sh(std::string("'") + CONTACT2D_EXE + "' play --seed 5 --frames " + std::to_string(frames) +
            " --record '" + video.string() + "' >'" + out.string() + "' 2>'" + err.string() + "'"),
         0)
         << read_file(err);
     const bool stepped = read_file(out).find("\"steps\":0,") == std::string::npos;
-    EXPECT_EQ(stepped, frames == 120) << frames << " frames: " << read_file(out);
+    EXPECT_EQ(stepped, frames == 210) << frames << " frames: " << read_file(out);
   }
   fs::remove(video);
   fs::remove(out);
