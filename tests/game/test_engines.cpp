@@ -54,14 +54,15 @@ TEST(BothEngines, TheShippedGoalReplay) {
   EXPECT_EQ(runs[1].outcome, Outcome::Goal) << runs[1].json;
 }
 
-// Before a kick the round waits for the player until round_time: 4 s here
+// Before a kick the round waits for the player until round_time: 3 s here
 // (not the pitch's 20 s, to keep MuJoCo's share of the test short) is past
-// the ~2 s the fastest pass takes to reach the keeper and the goal.
+// the 1.9 s the fastest pass (5 m/s, slowing by 0.9 m/s²) takes to roll the
+// 8.95 m to the keeper.
 TEST(BothEngines, NoInputScoresNoGoal) {
   for (const std::string& engine : engines_to_test()) {
     for (std::uint64_t seed : {1u, 2u, 3u}) {
       Pitch p = default_pitch();
-      p.rules.round_time = 4.0;
+      p.rules.round_time = 3.0;
       Game game(p, engine, seed);
       while (game.phase() == Phase::Playing) game.step();
       EXPECT_EQ(game.goals(), 0) << engine << " seed " << seed;
