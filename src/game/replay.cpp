@@ -15,11 +15,13 @@
 namespace contact2d::game {
 namespace {
 
-constexpr Key kKeys[] = {Key::Left,    Key::Right,   Key::Up,        Key::Down,
-                         Key::Kick,    Key::AngleUp, Key::AngleDown, Key::Reset,
-                         Key::Control, Key::PowerUp, Key::PowerDown};
+constexpr Key kKeys[] = {Key::Left,        Key::Right,    Key::Up,        Key::Down,
+                         Key::Kick,        Key::AngleUp,  Key::AngleDown, Key::Reset,
+                         Key::Control,     Key::PowerUp,  Key::PowerDown, Key::LevelEasy,
+                         Key::LevelNormal, Key::LevelHard};
 constexpr const char* kAllowedKeys =
-    "left, right, up, down, kick, angle_up, angle_down, reset, control, power_up, power_down";
+    "left, right, up, down, kick, angle_up, angle_down, reset, control, power_up, power_down, "
+    "level_easy, level_normal, level_hard";
 constexpr Level kLevels[] = {Level::Easy, Level::Normal, Level::Hard};
 
 bool parse_u64(const std::string& text, std::uint64_t& out, int base) {

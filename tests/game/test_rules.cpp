@@ -364,3 +364,34 @@ TEST(Rules, ASessionEndsAndTheBestScoreStays) {
 
 }  // namespace
 }  // namespace contact2d::game
+
+namespace contact2d::game {
+namespace {
+
+// Every key of the enum has a name in replay files that reads back as it
+// (a key left out of the parser's list could be pressed but not replayed).
+TEST(ReplayFile, EveryKeyHasANameThatReadsBack) {
+  for (int k = 0; k <= static_cast<int>(Key::LevelHard); ++k) {
+    const auto key = static_cast<Key>(k);
+    const auto parsed = parse_key(key_name(key));
+    ASSERT_TRUE(parsed.has_value()) << key_name(key);
+    EXPECT_EQ(*parsed, key) << key_name(key);
+  }
+}
+
+TEST(ReplayFile, TheLevelIsWrittenAndReadBack) {
+  Replay replay;
+  replay.seed = 9;
+  replay.dt = 1e-5;
+  replay.level = Level::Hard;
+  replay.events = {{0, Key::LevelEasy, true}, {5, Key::Control, true}};
+  const Replay back = parse_replay(format_replay(replay), "test");
+  EXPECT_EQ(back.level, Level::Hard);
+  ASSERT_EQ(back.events.size(), 2u);
+  EXPECT_EQ(back.events[0].key, Key::LevelEasy);
+  EXPECT_EQ(parse_replay("contact2d-replay 1\nseed 1\ndt 1e-05\n", "old").level, Level::Normal)
+      << "a replay without a level line plays at normal";
+}
+
+}  // namespace
+}  // namespace contact2d::game
