@@ -326,31 +326,34 @@ void draw_banners(const Game& game, const Overlay& overlay, int width, int heigh
 
   if (overlay.get_ready > 0.0) {
     // The start screen, while the first pass waits.
-    centred_panel({"BEAT THE KEEPER", "Your teammate passes. Control the ball (C),",
-                   "bring it closer (arrows), aim (W/S angle, A/D power)",
-                   "and chip it over the keeper into the goal (K).",
-                   fmt("%.0f passes a session. Level ", r.session_rounds) +
-                       upper(level_name(game.level())) + " (keys 1, 2, 3: easy, normal, hard)",
-                   fmt("THE PASS COMES IN %.1f s   (F1: HELP)", overlay.get_ready)},
-                  4.0, kGoal, width, height);
+    centred_panel(
+        {"BEAT THE KEEPER", "Your teammate passes. Control the ball (C),",
+         "bring it closer (arrows), aim (W/S angle, A/D power)",
+         "and chip it over the keeper into the goal (K).",
+         fmt("%.0f passes a session.", r.session_rounds),
+         "Level " + upper(level_name(game.level())) + " (keys 1, 2, 3: easy, normal, hard)",
+         fmt("THE PASS COMES IN %.1f s   (F1: HELP)", overlay.get_ready)},
+        4.0, kGoal, width, height);
   } else if (game.session_finished()) {
     // The end of a session: its score and the best so far.
     centred_panel(
         {"SESSION OVER", fmt("%.0f GOALS FROM %.0f PASSES", game.session_goals(), r.session_rounds),
          fmt("BEST SESSION SO FAR: %.0f GOALS", game.best_session_goals()),
+         "NEXT LEVEL " + upper(level_name(game.level())) + " (KEYS 1, 2, 3: EASY, NORMAL, HARD)",
          "BACKSPACE: A NEW SESSION    ESC: QUIT"},
         4.0, kGoal, width, height);
   } else if (game.phase() == Phase::Over) {
     // The round's result.
     const Outcome outcome = game.current_round().outcome;
     const std::string what = outcome_text(outcome, r.min_kick_distance);
-    centred_panel(
-        {what,
-         fmt("PASS %.0f OF %.0f: %.0f GOALS", game.session_round(), r.session_rounds,
-             game.session_goals()),
-         fmt("NEXT PASS IN %.1f s", static_cast<double>(game.steps_to_next_pass()) * game.dt())},
-        outcome == Outcome::Goal ? 6.0 : 2.5, outcome == Outcome::Goal ? kGoal : kNoGoal, width,
-        height);
+    centred_panel({what,
+                   fmt("PASS %.0f OF %.0f: %.0f GOALS", game.session_round(), r.session_rounds,
+                       game.session_goals()),
+                   fmt(game.session_round() >= r.session_rounds ? "THE SESSION ENDS IN %.1f s"
+                                                                : "NEXT PASS IN %.1f s",
+                       static_cast<double>(game.steps_to_next_pass()) * game.dt())},
+                  outcome == Outcome::Goal ? 6.0 : 2.5, outcome == Outcome::Goal ? kGoal : kNoGoal,
+                  width, height);
   }
   if (overlay.paused) {
     const double w = text_width("PAUSED", 4.0);
