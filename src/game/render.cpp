@@ -444,6 +444,24 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
     text(width - 10 - text_width(slow, 1.5), 58, slow, 1.5, kNoGoal);
   }
 
+  // The preview's label, above the highest of its dots (draw_aim_and_force
+  // draws them at the same condition).
+  if (game.phase() == Phase::Playing && game.in_reach() && !game.kicking()) {
+    Vec2 path[64];
+    const int n = kick_preview(game, 0.03, path, 64);
+    Vec2 top = path[0];
+    for (int i = 1; i < n; ++i) {
+      if (path[i].y() > top.y()) top = path[i];
+    }
+    const std::string label = "KICK PREVIEW: NO DRAG, SPIN OR BOUNCE";
+    const Vec2 at = v.pixel(top.x(), top.y(), height);
+    const double w = text_width(label, 1.5);
+    const double x = std::clamp(at.x() - 0.5 * w, 8.0, width - w - 8.0);
+    const double y = std::max(112.0, at.y() - 26.0);
+    rect(x - 4, y - 4, x + w + 4, y + 15, kPanel);
+    text(x, y, label, 1.5, kPreview);
+  }
+
   // Label of the 1 m line, at its foot.
   const Vec2 zone = v.pixel(r.goal_line - pitch.direction() * r.min_kick_distance, 0.0, height);
   const std::string zone_label = fmt("%g m", r.min_kick_distance);
