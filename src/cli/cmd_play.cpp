@@ -1,5 +1,6 @@
-// contact2d play [PITCH.toml] [--engine ref|mujoco] [--seed N] [--record-input FILE]
-//                [--replay FILE] [--headless] [--record FILE.mp4] [--frames N] [--no-vsync]
+// contact2d play [PITCH.toml] [--engine ref|mujoco] [--seed N] [--level easy|normal|hard]
+//                [--record-input FILE] [--replay FILE] [--headless] [--record FILE.mp4]
+//                [--frames N] [--no-vsync] [--policy blind|scripted [--seeds N]]
 #include <cerrno>
 #include <cstdlib>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include "core/input_error.hpp"
 #include "game/game.hpp"
 #include "game/pitch.hpp"
+#include "game/policy.hpp"
 #include "game/session.hpp"
 #ifdef CONTACT2D_WITH_WINDOW
 #include "game/window.hpp"
@@ -50,6 +52,9 @@ struct PlayOptions {
   long long frames = 0;
   bool no_vsync = false;
   bool help_on_start = false;
+  std::string level;   // checked by parse_level
+  std::string policy;  // checked by parse_policy
+  long long seeds = 0;
   OutputOptions outputs;  // --record-input, --record
 };
 
@@ -60,6 +65,24 @@ int play(const PlayOptions& o) {
   if (o.headless && o.frames > 0)
     throw InputError("--frames counts window frames: it cannot be used with --headless");
   const std::optional<std::uint64_t> seed_option = parse_seed(o.seed);
+  std::optional<Level> level_option;
+  if (!o.level.empty()) {
+    level_option = parse_level(o.level);
+    if (!level_option) throw InputError("--level " + o.level + ": must be easy, normal or hard");
+  }
+  std::optional<Policy> policy;
+  if (!o.policy.empty()) {
+    policy = parse_policy(o.policy);
+    if (!policy) throw InputError("--policy " + o.policy + ": must be blind or scripted");
+    if (!o.headless) throw InputError("--policy plays without a window: it needs --headless");
+    if (!o.replay.empty())
+      throw InputError("--policy plays its own keys: it cannot be used with --replay");
+  }
+  if (o.seeds > 0 && !policy)
+    throw InputError("--seeds " + std::to_string(o.seeds) +
+                     ": counts the rounds a --policy plays; give --policy blind|scripted");
+  if (o.seeds > 0 && !o.record_input.empty())
+    throw InputError("--record-input records one round: it cannot be used with --seeds");
   o.outputs.check();
   const Pitch pitch = o.pitch.empty() ? default_pitch() : load_pitch(o.pitch);
 
@@ -83,6 +106,12 @@ int play(const PlayOptions& o) {
                 << "; the outcome may differ\n";
     }
     seed = replay->seed;
+    if (level_option && *level_option != replay->level) {
+      throw InputError("--level " + o.level + " conflicts with the replay's level " +
+                       std::string(level_name(replay->level)) +
+                       " (a replay plays at its own level; drop --level)");
+    }
+    level_option = replay->level;
   } else {
     seed =
         seed_option
@@ -90,10 +119,20 @@ int play(const PlayOptions& o) {
             : (static_cast<std::uint64_t>(std::random_device{}()) << 32 | std::random_device{}());
   }
 
-  Game game(pitch, o.engine, seed);
+  const Level level = level_option.value_or(Level::Normal);
+  if (policy && o.seeds > 0) {
+    // Statistics: one round per seed from --seed (default 1).
+    const std::uint64_t first = seed_option.value_or(1);
+    const auto runs = run_policy(pitch, o.engine, level, *policy, first, static_cast<int>(o.seeds));
+    std::cout << policy_json(runs, *policy, o.engine, level) << "\n";
+    return kExitOk;
+  }
+  Game game(pitch, o.engine, seed, level);
   InputFeed feed(game, replay ? &*replay : nullptr);
 
-  if (o.headless) {
+  if (policy) {
+    play_policy_round(game, feed, *policy);
+  } else if (o.headless) {
     run_headless(game, feed);
   } else {
 #ifdef CONTACT2D_WITH_WINDOW
@@ -133,11 +172,12 @@ Command add_play(CLI::App& app) {
   auto o = std::make_shared<PlayOptions>();
   CLI::App* cmd = app.add_subcommand(
       "play",
-      "The game: receive a pass, push the ball with the arrows, kick it (K) into the goal from at "
-      "least 1 m.\n"
-      "Keys: arrows push, K or Enter kicks, W/S change the kick angle, Space pauses, Backspace "
-      "resets\n"
-      "to the next pass, F1 or H shows the help, Esc quits. Prints one JSON line at the end.");
+      "The game: receive the teammate's pass, control it, beat the keeper: kick it (K) into the "
+      "goal from at least 1 m.\n"
+      "Keys: C controls (brakes) the ball, arrows push it, W/S change the kick angle, A/D its "
+      "power, K or Enter kicks,\n"
+      "Space pauses, Backspace resets to the next pass, F1 or H shows the help, Esc quits. Prints "
+      "one JSON line at the end.");
   cmd->add_option(
          "pitch", o->pitch,
          "Pitch file: any circle scene; its [game] table names the crossbar and the rules, without "
@@ -164,6 +204,19 @@ Command add_play(CLI::App& app) {
   cmd->add_flag("--no-vsync", o->no_vsync,
                 "Do not wait for the display's refresh (to measure the frame rate)");
   cmd->add_flag("--help-overlay", o->help_on_start, "Start with the help overlay shown");
+  cmd->add_option("--level", o->level,
+                  "Difficulty: how fast the keeper moves, easy, normal or hard (default normal; "
+                  "a replay plays at its own)")
+      ->type_name("LEVEL");
+  cmd->add_option("--policy", o->policy,
+                  "With --headless: a built-in player plays the round, blind (one kick at 0.1 s) "
+                  "or scripted (controls, dribbles to 2 m, chips the keeper)")
+      ->type_name("NAME");
+  cmd->add_option("--seeds", o->seeds,
+                  "With --policy: play one round on each of N seeds from --seed (default 1) and "
+                  "print the goals and outcomes as one JSON line")
+      ->type_name("N")
+      ->check(CLI::Range(1LL, 1000000LL));
   return {cmd, [o] { return play(*o); }};
 }
 

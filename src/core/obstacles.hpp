@@ -130,6 +130,9 @@ struct Obstacle {
   Vec2 b = Vec2::Zero();    // box: upper-right corner hi; segment: second end
   double radius = 0.0;      // segment: half thickness (≥ 0); box: unused
   ContactOverride contact;  // unset keys: the scene's [contact]
+  // Kinematic (the game's keeper): a Stepper moves it between steps
+  // (Stepper::move_obstacle); on MuJoCo it is a mocap body. Static otherwise.
+  bool moves = false;
 };
 
 // A box from its centre and size (width, height > 0).

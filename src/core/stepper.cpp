@@ -20,8 +20,22 @@ State initial_state(const Scene& scene) {
 }
 
 ReferenceStepper::ReferenceStepper(const Scene& scene)
-    : model_(make_model(scene)), integrator_(scene.sim.integrator), dt_(scene.sim.dt), ws_(model_) {
+    : model_(make_model(scene)),
+      placed_(model_.obstacles),
+      integrator_(scene.sim.integrator),
+      dt_(scene.sim.dt),
+      ws_(model_) {
   reset(initial_state(scene));
+}
+
+bool ReferenceStepper::move_obstacle(int index, const Vec2& offset) {
+  if (index < 0 || static_cast<size_t>(index) >= placed_.size()) return false;
+  const Obstacle& placed = placed_[static_cast<size_t>(index)];
+  if (!placed.moves) return false;
+  Obstacle& o = model_.obstacles[static_cast<size_t>(index)];
+  o.a = placed.a + offset;
+  o.b = placed.b + offset;
+  return true;
 }
 
 void ReferenceStepper::reset(const State& state) {

@@ -40,6 +40,14 @@ class Stepper {
   // (Fx, Fy, τ) at the COM, held until changed (the game's player).
   virtual void set_applied(const Vec3& force) = 0;
   virtual StepStatus step() = 0;  // one Δt
+  // Places obstacle `index` (one with Obstacle::moves) `offset` from where
+  // the scene put it, for the steps that follow (the game's keeper). It is
+  // geometry that moves between steps: its velocity does not enter the
+  // contact law, on the reference as for MuJoCo's mocap bodies (the solver
+  // sees them at rest), so a moving obstacle pushes the ball through its
+  // spring only. Returns false when the engine cannot move obstacles
+  // (the default) or `index` is not a moving obstacle.
+  virtual bool move_obstacle(int /*index*/, const Vec2& /*offset*/) { return false; }
   // The next `steps` steps will be taken with no reset and no change of the
   // applied force (the run loop says so before it starts): an engine that
   // works in batches (mujoco3/stepper.hpp) fetches them in few requests.
@@ -72,6 +80,7 @@ class ReferenceStepper final : public Stepper {
   void reset(const State& state) override;
   void set_applied(const Vec3& force) override { model_.applied = force; }
   StepStatus step() override { return contact2d::step(model_, integrator_, dt_, state_, ws_); }
+  bool move_obstacle(int index, const Vec2& offset) override;
   const State& state() const override { return state_; }
   const ContactSet& contacts() const override { return ws_.contacts; }
   const Model& model() const override { return model_; }
@@ -80,6 +89,7 @@ class ReferenceStepper final : public Stepper {
 
  private:
   Model model_;
+  std::vector<Obstacle> placed_;  // the scene's obstacles where it put them
   Integrator integrator_;
   double dt_;
   State state_;

@@ -29,6 +29,7 @@ std::string_view outcome_name(Outcome outcome) {
     case Outcome::NotKicked: return "not_kicked";
     case Outcome::KickTooClose: return "kick_too_close";
     case Outcome::Pushed: return "last_touch_a_push";
+    case Outcome::Saved: return "saved";
     case Outcome::Stopped: return "ball_stopped";
     case Outcome::Out: return "out_of_play";
     case Outcome::TimeUp: return "time_up";
@@ -46,6 +47,7 @@ std::string outcome_text(Outcome outcome, double min_kick_distance) {
     case Outcome::NotKicked: return "No goal: nobody kicked it in";
     case Outcome::KickTooClose: return std::string("No goal: the kick was inside ") + distance;
     case Outcome::Pushed: return "No goal: the last touch was a push, not a kick";
+    case Outcome::Saved: return "Saved by the keeper";
     case Outcome::Stopped: return "No goal: the ball stopped";
     case Outcome::Out: return "No goal: out of play";
     case Outcome::TimeUp: return "No goal: time up";
@@ -68,11 +70,12 @@ std::unique_ptr<Stepper> make_game_stepper(const std::string& engine, const Pitc
 
 }  // namespace
 
-Game::Game(Pitch pitch, const std::string& engine, std::uint64_t seed)
+Game::Game(Pitch pitch, const std::string& engine, std::uint64_t seed, Level level)
     : pitch_(std::move(pitch)),
       engine_name_(engine),
       stepper_(make_game_stepper(engine, pitch_)),
       seed_(seed),
+      level_(level),
       rng_(seed) {
   const Rules& r = pitch_.rules;
   const double h = dt();
@@ -81,6 +84,22 @@ Game::Game(Pitch pitch, const std::string& engine, std::uint64_t seed)
   result_steps_ = steps_for(r.result_time, h);
   round_steps_ = std::max(1LL, steps_for(r.round_time, h));
   kick_angle_ = r.kick_angle;
+  kick_power_ = r.kick_power;
+  if (pitch_.has_keeper()) {
+    if (!stepper_->move_obstacle(r.keeper, Vec2::Zero())) {
+      throw InputError("--engine " + engine +
+                       ": this engine cannot move the keeper (game.keeper = " +
+                       std::to_string(r.keeper) + "); play on ref or mujoco");
+    }
+    const Obstacle& k = pitch_.scene.obstacles[keeper_index()];
+    keeper_rule_.direction = pitch_.direction();
+    keeper_rule_.face_x = keeper_rule_.direction > 0.0 ? k.a.x() : k.b.x();
+    keeper_rule_.centre_y = 0.5 * (k.a.y() + k.b.y());
+    keeper_rule_.max_offset = std::max(0.0, pitch_.crossbar_bottom() - k.b.y());
+    keeper_rule_.speed = pitch_.keeper_speed(level_);
+    keeper_rule_.gravity = pitch_.scene.sim.gravity;
+    keeper_rule_.radius = pitch_.scene.radius;
+  }
   start_round();
 }
 
@@ -99,6 +118,47 @@ Vec3 Game::push_force() const {
   return {fx, fy, 0.0};
 }
 
+Vec2 Game::kick_velocity() const {
+  const double a = kick_angle_ * kPi / 180.0;
+  const double dv = kick_power_ * pitch_.rules.kick_impulse / pitch_.scene.mass;
+  return {pitch_.direction() * dv * std::cos(a), dv * std::sin(a)};
+}
+
+Vec3 Game::control_force() const {
+  if (!held_control_) return Vec3::Zero();
+  const State& s = ball();
+  const double speed = std::hypot(s.v.x(), s.v.y());
+  if (speed == 0.0) return Vec3::Zero();
+  const double r =
+      std::min(pitch_.rules.control_force, pitch_.scene.mass * speed / pitch_.rules.control_time);
+  return {-r * s.v.x() / speed, -r * s.v.y() / speed, 0.0};
+}
+
+int Game::best_streak() const {
+  int best = 0, run = 0;
+  for (const RoundRecord& r : rounds_) {
+    if (r.outcome == Outcome::None) continue;
+    run = r.outcome == Outcome::Goal ? run + 1 : 0;
+    best = std::max(best, run);
+  }
+  return best;
+}
+
+int Game::streak() const {
+  int run = 0;
+  for (const RoundRecord& r : rounds_) {
+    if (r.outcome == Outcome::None) continue;
+    run = r.outcome == Outcome::Goal ? run + 1 : 0;
+  }
+  return run;
+}
+
+int Game::session_goals() const {
+  return static_cast<int>(
+      std::count_if(rounds_.begin() + (session_first_round_ - 1), rounds_.end(),
+                    [](const RoundRecord& r) { return r.outcome == Outcome::Goal; }));
+}
+
 int Game::goals() const {
   return static_cast<int>(std::count_if(rounds_.begin(), rounds_.end(), [](const RoundRecord& r) {
     return r.outcome == Outcome::Goal;
@@ -113,6 +173,7 @@ void Game::start_round() {
   record.start_step = steps_;
   record.pass_speed = r.pass_speed_min + (r.pass_speed_max - r.pass_speed_min) * next_uniform();
   record.pass_spin = r.pass_spin_min + (r.pass_spin_max - r.pass_spin_min) * next_uniform();
+  record.pass_lift = r.pass_lift_min + (r.pass_lift_max - r.pass_lift_min) * next_uniform();
   rounds_.push_back(record);
 
   const double dir = pitch_.direction();
@@ -121,8 +182,11 @@ void Game::start_round() {
   State s;
   s.q = Vec3(r.pass_x, scene.radius - std::min(rest_depth, 0.5 * scene.radius), 0.0);
   // Rolling towards +x turns clockwise: ω = −v/R.
-  s.v = Vec3(dir * record.pass_speed, 0.0,
+  s.v = Vec3(dir * record.pass_speed, record.pass_lift,
              -dir * record.pass_spin * record.pass_speed / scene.radius);
+  keeper_offset_ = 0.0;  // back on its spot for each pass
+  if (pitch_.has_keeper()) stepper_->move_obstacle(r.keeper, Vec2::Zero());
+  keeper_touched_ = false;
   stepper_->reset(s);
   monitor_ = std::make_unique<DivergenceMonitor>(stepper_->model(), s, stepper_->contacts());
   round_start_ = steps_;
@@ -149,6 +213,7 @@ void Game::handle(Key key, bool down) {
     case Key::Right: held_[1] = down; return;
     case Key::Up: held_[2] = down; return;
     case Key::Down: held_[3] = down; return;
+    case Key::Control: held_control_ = down; return;
     default: break;
   }
   if (!down || divergence_) return;
@@ -160,16 +225,38 @@ void Game::handle(Key key, bool down) {
     case Key::AngleDown:
       kick_angle_ = std::max(r.kick_angle_min, kick_angle_ - r.kick_angle_step);
       return;
+    case Key::PowerUp: kick_power_ = std::min(1.0, kick_power_ + r.kick_power_step); return;
+    case Key::PowerDown:
+      kick_power_ = std::max(r.kick_power_min, kick_power_ - r.kick_power_step);
+      return;
+    case Key::LevelEasy:
+    case Key::LevelNormal:
+    case Key::LevelHard:
+      if (level_open()) {
+        level_ = key == Key::LevelEasy     ? Level::Easy
+                 : key == Key::LevelNormal ? Level::Normal
+                                           : Level::Hard;
+        keeper_rule_.speed = pitch_.keeper_speed(level_);
+      }
+      return;
     case Key::Reset:
       if (phase_ == Phase::Playing) end_round(Outcome::Reset);
+      if (session_finished_ || session_round() >= r.session_rounds) {
+        // A new session (the reset of a last round ends its session too).
+        best_goals_ = best_session_goals();
+        ++session_;
+        session_first_round_ = round() + 1;
+        session_finished_ = false;
+      }
       start_round();
       return;
     case Key::Kick: {
-      if (phase_ != Phase::Playing || kick_steps_left_ > 0) {
+      if (phase_ != Phase::Playing || kick_steps_left_ > 0 || !in_reach()) {
         // Shown on screen (ignored_kick()): the key was seen, and why nothing happened.
         ignored_kick_step_ = steps_;
-        ignored_kick_why_ =
-            phase_ != Phase::Playing ? IgnoredKick::RoundOver : IgnoredKick::StillKicking;
+        ignored_kick_why_ = phase_ != Phase::Playing ? IgnoredKick::RoundOver
+                            : kick_steps_left_ > 0   ? IgnoredKick::StillKicking
+                                                     : IgnoredKick::OutOfReach;
         return;
       }
       KickRecord kick;
@@ -179,13 +266,15 @@ void Game::handle(Key key, bool down) {
       kick.round_time = round_time();
       kick.distance = distance_to_goal();
       kick.angle = kick_angle_;
+      kick.power = kick_power_;
       kick.counted = kick.distance >= r.min_kick_distance;
       kicks_.push_back(kick);
-      const double a = kick_angle_ * kPi / 180.0;
       // The whole impulse over kick_steps_ steps.
-      const double force = r.kick_impulse / (static_cast<double>(kick_steps_) * dt());
-      kick_force_ = Vec3(pitch_.direction() * force * std::cos(a), force * std::sin(a), 0.0);
+      const Vec2 dv = kick_velocity();
+      const double per_step = pitch_.scene.mass / (static_cast<double>(kick_steps_) * dt());
+      kick_force_ = Vec3(dv.x() * per_step, dv.y() * per_step, 0.0);
       kick_steps_left_ = kick_steps_;
+      keeper_touched_ = false;
       last_touch_ = Touch::Kick;
       last_kick_counted_ = kick.counted;
       return;
@@ -194,10 +283,21 @@ void Game::handle(Key key, bool down) {
   }
 }
 
+void Game::move_keeper() {
+  keeper_offset_ = keeper_step(keeper_rule_, keeper_offset_, ball(), dt());
+  stepper_->move_obstacle(pitch_.rules.keeper, Vec2(0.0, keeper_offset_));
+}
+
 void Game::step() {
   if (divergence_) return;
-  Vec3 force = push_force();
+  // The player reaches the ball only within reach; a kick already started
+  // goes on (it is the foot's follow-through).
+  const bool reach = in_reach();
+  Vec3 force = reach ? push_force() : Vec3::Zero();
   const bool pushing = force.x() != 0.0 || force.y() != 0.0;
+  if (reach) force += control_force();
+  const double keeper_before = keeper_offset_;
+  if (pitch_.has_keeper()) move_keeper();
   if (kick_steps_left_ > 0) {
     force += kick_force_;
     --kick_steps_left_;
@@ -212,6 +312,19 @@ void Game::step() {
   // the net work the divergence rule may credit.
   work_ += std::abs(force.x() * (s.q.x() - before.q.x()) + force.y() * (s.q.y() - before.q.y()) +
                     force.z() * (s.q.z() - before.q.z()));
+  if (pitch_.has_keeper()) {
+    // The keeper's contacts, and a bound of the work its move did on the ball: its
+    // contact force (spring, damper and friction, |F| ≤ (1 + μ)(k·d + c·|v_n|)) times
+    // how far it moved.
+    const double moved = std::abs(keeper_offset_ - keeper_before);
+    for (const Contact& c : stepper_->contacts()) {
+      if (c.obstacle != pitch_.rules.keeper) continue;
+      keeper_touched_ = true;
+      const ContactParams& law = stepper_->model().law(c);
+      const double vn = (s.v.x() - s.v.z() * c.ry) * c.nx + (s.v.y() + s.v.z() * c.rx) * c.ny;
+      work_ += (1.0 + law.mu) * (law.k * c.depth + law.c * std::abs(vn)) * moved;
+    }
+  }
   divergence_ = check_step(status, *stepper_, *monitor_, round_time(), work_);
   if (divergence_) {
     if (phase_ == Phase::Playing) end_round(Outcome::Diverged);
@@ -219,7 +332,13 @@ void Game::step() {
   }
 
   if (phase_ == Phase::Over) {
-    if (++over_steps_ >= result_steps_) start_round();
+    if (++over_steps_ >= result_steps_ && !session_finished_) {
+      if (session_round() >= pitch_.rules.session_rounds) {
+        session_finished_ = true;  // the ball stays where it is until reset
+      } else {
+        start_round();
+      }
+    }
     return;
   }
   if (pushing) last_touch_ = Touch::Push;
@@ -241,6 +360,10 @@ void Game::apply_rules() {
     }
     return;
   }
+  if (last_touch_ == Touch::Kick && keeper_touched_ && pitch_.direction() * s.v.x() < 0.0) {
+    end_round(Outcome::Saved);
+    return;
+  }
   if (s.q.x() < r.pitch_min_x || s.q.x() > r.pitch_max_x) {
     end_round(Outcome::Out);
     return;
@@ -249,11 +372,29 @@ void Game::apply_rules() {
       std::hypot(s.v.x(), s.v.y()) < r.rest_speed && std::abs(s.v.z()) * radius < r.rest_speed;
   // A ball being pushed or kicked is not at rest, however slow.
   rest_steps_ = still && applied_.isZero() ? rest_steps_ + 1 : 0;
-  if (rest_steps_ >= rest_steps_needed_) {
+  // Before a kick a ball at rest waits for the player.
+  if (rest_steps_ >= rest_steps_needed_ && last_touch_ == Touch::Kick) {
     end_round(Outcome::Stopped);
     return;
   }
   if (steps_ - round_start_ >= round_steps_) end_round(Outcome::TimeUp);
+}
+
+int kick_preview(const Game& game, double dt, Vec2* out, int capacity) {
+  const Pitch& pitch = game.pitch();
+  const State& s = game.ball();
+  const Vec2 v = Vec2(s.v.x(), s.v.y()) + game.kick_velocity();
+  const double g = pitch.scene.sim.gravity, radius = pitch.scene.radius;
+  int n = 0;
+  for (; n < capacity; ++n) {
+    const double t = n * dt;
+    const Vec2 p(s.q.x() + v.x() * t, s.q.y() + v.y() * t - 0.5 * g * t * t);
+    out[n] = p;
+    if (n > 0 && (pitch.direction() * (p.x() - pitch.rules.goal_line) > 0.0 || p.y() < radius)) {
+      return n + 1;
+    }
+  }
+  return n;
 }
 
 }  // namespace contact2d::game

@@ -64,6 +64,14 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
   g.number("goal_line", r.goal_line, -kBig, kBig, "must be finite, |goal_line| <= 1e6 m");
   g.integer("crossbar", r.crossbar, 0, 1'000'000,
             "must be the index of a box in [[obstacle]], counted from 0");
+  g.integer("keeper", r.keeper, -1, 1'000'000,
+            "must be -1 (no keeper) or the index of a box in [[obstacle]], counted from 0");
+  g.number("keeper_speed_easy", r.keeper_speed_easy, 0.0, 100.0, "must be in [0, 100] m/s");
+  g.number("keeper_speed_normal", r.keeper_speed_normal, 0.0, 100.0, "must be in [0, 100] m/s");
+  g.number("keeper_speed_hard", r.keeper_speed_hard, 0.0, 100.0, "must be in [0, 100] m/s");
+  g.number("reach_height", r.reach_height, 0.0, 100.0, "must be in [0, 100] m");
+  g.number("control_force", r.control_force, 0.0, 1e4, "must be in [0, 1e4] N");
+  g.number("control_time", r.control_time, 1e-4, 100.0, "must be in [1e-4, 100] s");
   g.number("min_kick_distance", r.min_kick_distance, 0.0, 1e3, "must be in [0, 1e3] m");
   g.number("kick_impulse", r.kick_impulse, 0.0, 1e4, "must be in [0, 1e4] N·s");
   g.number("kick_duration", r.kick_duration, 1e-6, 10.0, "must be in [1e-6, 10] s");
@@ -71,6 +79,9 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
   g.number("kick_angle_max", r.kick_angle_max, -90.0, 90.0, "must be in [-90, 90] degrees");
   g.number("kick_angle", r.kick_angle, -90.0, 90.0, "must be in [-90, 90] degrees");
   g.number("kick_angle_step", r.kick_angle_step, 1e-3, 90.0, "must be in [1e-3, 90] degrees");
+  g.number("kick_power_min", r.kick_power_min, 0.01, 1.0, "must be in [0.01, 1]");
+  g.number("kick_power", r.kick_power, 0.01, 1.0, "must be in [0.01, 1]");
+  g.number("kick_power_step", r.kick_power_step, 1e-3, 1.0, "must be in [1e-3, 1]");
   g.number("push_force", r.push_force, 0.0, 1e4, "must be in [0, 1e4] N");
   g.number("pass_x", r.pass_x, -kBig, kBig, "must be finite, |pass_x| <= 1e6 m");
   g.number("pass_speed_min", r.pass_speed_min, 0.0, 100.0, "must be in [0, 100] m/s");
@@ -79,10 +90,13 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
            "must be in [-10, 10] (multiples of rolling spin)");
   g.number("pass_spin_max", r.pass_spin_max, -10.0, 10.0,
            "must be in [-10, 10] (multiples of rolling spin)");
+  g.number("pass_lift_min", r.pass_lift_min, 0.0, 100.0, "must be in [0, 100] m/s");
+  g.number("pass_lift_max", r.pass_lift_max, 0.0, 100.0, "must be in [0, 100] m/s");
   g.number("round_time", r.round_time, 1e-3, 1e4, "must be in [1e-3, 1e4] s");
   g.number("rest_speed", r.rest_speed, 0.0, 100.0, "must be in [0, 100] m/s");
   g.number("rest_time", r.rest_time, 0.0, 1e3, "must be in [0, 1e3] s");
   g.number("result_time", r.result_time, 0.0, 1e3, "must be in [0, 1e3] s");
+  g.integer("session_rounds", r.session_rounds, 1, 1'000'000, "must be in [1, 1000000] passes");
   g.number("pitch_min_x", r.pitch_min_x, -kBig, kBig, "must be finite, |pitch_min_x| <= 1e6 m");
   g.number("pitch_max_x", r.pitch_max_x, -kBig, kBig, "must be finite, |pitch_max_x| <= 1e6 m");
   g.reject_unknown();
@@ -98,6 +112,10 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
           "must be >= game.pass_speed_min = " + format_value(r.pass_speed_min) + " m/s");
   g.check("pass_spin_max", r.pass_spin_max, r.pass_spin_max >= r.pass_spin_min,
           "must be >= game.pass_spin_min = " + format_value(r.pass_spin_min));
+  g.check("pass_lift_max", r.pass_lift_max, r.pass_lift_max >= r.pass_lift_min,
+          "must be >= game.pass_lift_min = " + format_value(r.pass_lift_min) + " m/s");
+  g.check("kick_power", r.kick_power, r.kick_power >= r.kick_power_min,
+          "must be in [game.kick_power_min, 1] = [" + format_value(r.kick_power_min) + ", 1]");
   g.check("pitch_max_x", r.pitch_max_x, r.pitch_max_x > r.pitch_min_x,
           "must be > game.pitch_min_x = " + format_value(r.pitch_min_x) + " m");
   g.check("pass_x", r.pass_x, r.pass_x > r.pitch_min_x && r.pass_x < r.pitch_max_x,
@@ -116,6 +134,19 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
               scene.obstacles[static_cast<size_t>(r.crossbar)].shape == ObstacleShape::Box,
           "must be the index of a box in [[obstacle]] (the scene has " + std::to_string(boxes) +
               " obstacles, counted from 0)");
+  if (r.keeper >= 0) {
+    const auto k = static_cast<size_t>(r.keeper);
+    g.check("keeper", r.keeper,
+            r.keeper < boxes && r.keeper != r.crossbar &&
+                scene.obstacles[k].shape == ObstacleShape::Box,
+            "must be -1 (no keeper) or the index of a box in [[obstacle]] other than the crossbar "
+            "(the scene has " +
+                std::to_string(boxes) + " obstacles, counted from 0)");
+    const Obstacle& bar = scene.obstacles[static_cast<size_t>(r.crossbar)];
+    g.check("keeper", r.keeper, scene.obstacles[k].b.y() < bar.a.y(),
+            "must be a box whose top is below the crossbar's underside (" +
+                format_value(bar.a.y()) + " m): it moves up to it");
+  }
   return r;
 }
 
@@ -123,6 +154,15 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
 
 double Pitch::crossbar_bottom() const {
   return scene.obstacles.at(static_cast<size_t>(rules.crossbar)).a.y();
+}
+
+double Pitch::keeper_speed(Level level) const {
+  switch (level) {
+    case Level::Easy: return rules.keeper_speed_easy;
+    case Level::Normal: return rules.keeper_speed_normal;
+    case Level::Hard: return rules.keeper_speed_hard;
+  }
+  return rules.keeper_speed_normal;
 }
 
 Pitch parse_pitch(const std::string& toml_text, const std::string& origin) {
@@ -149,6 +189,8 @@ Pitch parse_pitch(const std::string& toml_text, const std::string& origin) {
   } else {
     pitch.rules = read_rules(game, pitch.scene, origin);
   }
+  if (pitch.rules.keeper >= 0)
+    pitch.scene.obstacles[static_cast<size_t>(pitch.rules.keeper)].moves = true;
   pitch.path = origin;
   pitch.fingerprint = fnv1a(toml_text);
   return pitch;

@@ -42,29 +42,55 @@ constexpr Color kPanel{0.13f, 0.17f, 0.24f, 1.0f};  // opaque: the HUD is drawn 
 constexpr Color kText{1.0f, 1.0f, 1.0f, 1.0f};
 constexpr Color kGoal{1.0f, 0.85f, 0.1f, 1.0f};
 constexpr Color kNoGoal{1.0f, 0.55f, 0.45f, 1.0f};
+constexpr Color kKeeper{0.95f, 0.55f, 0.1f, 1.0f};  // the keeper's jersey
+constexpr Color kTeam{0.15f, 0.25f, 0.75f, 1.0f};   // the player's and the teammate's
+constexpr Color kSkin{0.93f, 0.76f, 0.6f, 1.0f};
+constexpr Color kShorts{0.95f, 0.95f, 0.95f, 1.0f};
+constexpr Color kPreview{1.0f, 0.95f, 0.3f, 0.85f};
+// Text over the pitch: not pure white, which is the ball's alone (the window
+// test finds the ball by it).
+constexpr Color kPanelText{0.92f, 0.94f, 0.98f, 1.0f};
 
 std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
   return format_text(format, a, b, c);
 }
 
-// World-to-screen mapping: a camera kViewWidth metres wide (the whole pitch
-// if it is narrower) that follows the ball, the ball kLead of the width from
-// its left edge for a goal towards +x (mirrored for −x), and stops at the
-// pitch's ends, so the whole goal is in view once the ball is within ~3 m of
-// it; the grass line sits 90 px above the bottom. The whole 13 m pitch in
-// 800 px drew the 0.22 m ball 13.5 px across; 7 m draw it 25 px across
-// (2R·800/7 = 25.1 px; tests/game/test_window.cpp measures 22 px of white
-// inside the outline).
-constexpr double kViewWidth = 7.0;  // m
-constexpr double kLead = 0.4;
+// World-to-screen mapping: a camera that frames the ball and the whole goal
+// (from kBehind metres behind the ball to kBeyond beyond the goal's back,
+// never narrower than kMinViewWidth, within the pitch's ends), so the
+// keeper, the goal and the pass are in view together; the grass line sits
+// 90 px above the bottom. Near the goal it shows 7 m: the 0.22 m ball is
+// 2R·800/7 = 25.1 px across; from the pass's start it shows the whole 13 m
+// pitch (13.5 px; tests/game/test_window.cpp measures the white inside the
+// outline).
+constexpr double kMinViewWidth = 7.0;  // m
+constexpr double kBehind = 1.5;        // m behind the ball
+constexpr double kBeyond = 0.9;        // m beyond the goal's back
+
+// The goal's back: the farthest face of the obstacles beyond the goal line
+// on the goal's side (the net), 1 m beyond the line without one.
+double goal_back(const Pitch& pitch) {
+  const Rules& r = pitch.rules;
+  const double dir = pitch.direction();
+  double back = r.goal_line + dir * 1.0;
+  for (const Obstacle& o : pitch.scene.obstacles) {
+    if (o.shape != ObstacleShape::Box) continue;
+    if (dir > 0 && o.a.x() >= r.goal_line) back = std::max(back, o.a.x());
+    if (dir < 0 && o.b.x() <= r.goal_line) back = std::min(back, o.b.x());
+  }
+  return back;
+}
 
 struct View {
   double x0, x1, y0, y1, scale;  // metres; pixels per metre
   View(const Pitch& pitch, double ball_x, int width, int height) {
     const Rules& r = pitch.rules;
-    const double w = std::min(kViewWidth, r.pitch_max_x - r.pitch_min_x);
-    const double lead = pitch.direction() > 0 ? kLead : 1.0 - kLead;
-    x0 = std::clamp(ball_x - lead * w, r.pitch_min_x, r.pitch_max_x - w);
+    const double dir = pitch.direction();
+    const double widest = r.pitch_max_x - r.pitch_min_x;
+    const double end = goal_back(pitch) + dir * kBeyond;  // the goal's side of the view
+    const double w = std::min(widest, std::max(kMinViewWidth, dir * (end - ball_x) + kBehind));
+    x0 = dir > 0 ? end - w : end;
+    x0 = std::clamp(x0, r.pitch_min_x, r.pitch_max_x - w);
     x1 = x0 + w;
     scale = width / w;
     y0 = -90.0 / scale;
@@ -75,6 +101,89 @@ struct View {
     return {(x - x0) * scale, height - (y - y0) * scale};
   }
 };
+
+// A person seen from the side, standing at x on the grass, `facing` +1 or
+// −1; `kick` swings the front leg forward. Drawn only, not in the physics.
+void person(double x, double facing, const Color& jersey, double kick = 0.0) {
+  const double hip = 0.9, shoulder = 1.45, head = 1.65;
+  const Vec2 h(x, hip);
+  const double swing = 0.55 * kick;
+  thick_line(h, Vec2(x - facing * 0.15, 0.0), 0.11, kSkin);  // back leg
+  thick_line(h, Vec2(x + facing * (0.12 + swing), 0.05 + 0.3 * kick), 0.11, kSkin);
+  rect(x - 0.13, hip - 0.2, x + 0.13, hip + 0.05, kShorts);
+  thick_line(Vec2(x, hip), Vec2(x, shoulder), 0.3, jersey);
+  thick_line(Vec2(x, shoulder - 0.05), Vec2(x + facing * 0.25, hip + 0.15), 0.08, jersey);
+  disc(x, head, 0.13, 0.13, kSkin, 16);
+}
+
+// The keeper (where the physics has it) and the player, drawn before the
+// ball.
+void draw_keeper_and_player(const Game& game, const View& v) {
+  const Pitch& pitch = game.pitch();
+  const Rules& r = pitch.rules;
+  const double dir = pitch.direction();
+  // The keeper: its box where the physics has it now (what the ball
+  // bounces off), in its jersey, with a head and gloves drawn inside it.
+  if (game.has_keeper()) {
+    const Obstacle& k = game.keeper();
+    const double kx = 0.5 * (k.a.x() + k.b.x()), kw = k.b.x() - k.a.x();
+    rect(k.a.x(), k.a.y(), k.b.x(), k.b.y(), kKeeper);
+    rect_outline(k.a.x(), k.a.y(), k.b.x(), k.b.y(), 1.5 / v.scale, kOutline);
+    disc(kx, k.b.y() - 0.3 * kw, 0.28 * kw, 0.28 * kw, kSkin, 16);
+    // (Gloves off-white: pure white is the ball's alone, which the window
+    // test measures.)
+    disc(k.a.x() + 0.15 * kw, 0.5 * (k.a.y() + k.b.y()), 0.18 * kw, 0.18 * kw,
+         Color{0.97f, 0.97f, 0.88f, 1.0f}, 12);
+    // Its legs below the box while it is up (it jumps): drawn, not solid.
+    if (k.a.y() > 0.02) {
+      thick_line(Vec2(kx - 0.05, k.a.y()), Vec2(kx - 0.05, std::max(0.0, k.a.y() - 0.5)), 0.08,
+                 Color{0.95f, 0.55f, 0.1f, 0.5f});
+    }
+  }
+
+  // The player: behind the ball on the grass, at least 1.5 m in front of
+  // the teammate (where the pass comes to him); after a kick, where it was
+  // taken, the kicking leg swung while the kick acts.
+  const State& s = game.ball();
+  const double R = game.radius();
+  double player = s.q.x() - dir * (R + 0.3);
+  if (!game.kicks().empty() && game.kicks().back().round == game.round())
+    player = r.goal_line - dir * game.kicks().back().distance - dir * (R + 0.3);
+  player = dir > 0 ? std::max(player, r.pass_x + 1.5) : std::min(player, r.pass_x - 1.5);
+  person(player, dir, kTeam, game.kicking() ? 1.0 : 0.0);
+}
+
+// The aim and the kick's preview while the ball is in reach, and the force
+// being applied, over the ball.
+void draw_aim_and_force(const Game& game) {
+  const double dir = game.pitch().direction();
+  const State& s = game.ball();
+  const double R = game.radius();
+  // Aim (the kick's direction) while the ball is in reach, and the force
+  // being applied.
+  const Vec2 c(s.q.x(), s.q.y());
+  const bool aiming = game.phase() == Phase::Playing && game.in_reach() && !game.kicking();
+  const double a = game.kick_angle() * kPi / 180.0;
+  const Vec2 aim(dir * std::cos(a), std::sin(a));
+  for (int i = 0; aiming && i < 5; ++i) {
+    const double t0 = R + 0.1 + 0.2 * i;
+    thick_line(c + t0 * aim, c + (t0 + 0.1) * aim, 0.025, kAim);
+  }
+  // The kick the player would take now, as dots every 0.03 s: the no-drag
+  // path without spin or bounce (kick_preview), while the ball is in reach.
+  if (aiming) {
+    Vec2 path[64];
+    const int n = kick_preview(game, 0.03, path, 64);
+    for (int i = 1; i < n; ++i) disc(path[i].x(), path[i].y(), 0.035, 0.035, kPreview, 8);
+  }
+  const Vec3 f = game.applied();
+  const double fn = std::hypot(f.x(), f.y());
+  if (fn > 0.0) {
+    // 0.15 m per N up to 1.5 m: a push (a few N) and a kick (~100 N) both show.
+    const double len = std::min(1.5, 0.15 * fn);
+    arrow(c, c + Vec2(f.x(), f.y()) * (len / fn), 0.05, kForce);
+  }
+}
 
 void draw_world(const Game& game, const View& v) {
   const Pitch& pitch = game.pitch();
@@ -99,12 +208,7 @@ void draw_world(const Game& game, const View& v) {
   // The goal: net (behind everything), the near post (beside the plane of
   // play, so not solid here), the goal line, the obstacles.
   const Obstacle& bar = pitch.scene.obstacles[static_cast<size_t>(r.crossbar)];
-  double back = r.goal_line + dir * 1.0, roof = bar.b.y();
-  for (const Obstacle& o : pitch.scene.obstacles) {
-    if (o.shape != ObstacleShape::Box) continue;
-    if (dir > 0 && o.a.x() >= r.goal_line) back = std::max(back, o.a.x());
-    if (dir < 0 && o.b.x() <= r.goal_line) back = std::min(back, o.b.x());
-  }
+  const double back = goal_back(pitch), roof = bar.b.y();
   for (int i = 0; i <= 12; ++i) {
     const double x = r.goal_line + (back - r.goal_line) * i / 12.0;
     thick_line(Vec2(x, 0.0), Vec2(x, roof), 0.012, kNet);
@@ -127,7 +231,12 @@ void draw_world(const Game& game, const View& v) {
   rect(std::min(zone, r.goal_line), -0.05, std::max(zone, r.goal_line), 0.0,
        Color{1.0f, 0.85f, 0.1f, 0.35f});
 
-  for (const Obstacle& o : pitch.scene.obstacles) {
+  // The teammate who passed, behind where the pass starts.
+  person(r.pass_x - dir * 0.45, dir, kTeam, game.round_time() < 0.25 ? 1.0 : 0.0);
+
+  for (size_t i = 0; i < pitch.scene.obstacles.size(); ++i) {
+    const Obstacle& o = pitch.scene.obstacles[i];
+    if (game.has_keeper() && static_cast<int>(i) == r.keeper) continue;  // drawn below
     if (o.shape == ObstacleShape::Box) {
       rect(o.a.x(), o.a.y(), o.b.x(), o.b.y(), kObstacle);
       rect_outline(o.a.x(), o.a.y(), o.b.x(), o.b.y(), 1.0 / v.scale,
@@ -139,6 +248,8 @@ void draw_world(const Game& game, const View& v) {
       disc(o.b.x(), o.b.y(), 0.5 * w, 0.5 * w, kObstacle, 16);
     }
   }
+
+  draw_keeper_and_player(game, v);
 
   // The ball: a shadow that shrinks with height, the disc, two spokes that
   // show its spin.
@@ -156,98 +267,134 @@ void draw_world(const Game& game, const View& v) {
   }
   disc(s.q.x() + 0.45 * R * std::cos(s.q.z() + 0.8), s.q.y() + 0.45 * R * std::sin(s.q.z() + 0.8),
        0.25 * R, 0.25 * R, kOutline, 10);
+}
 
-  // Aim (the kick's direction) and the force being applied.
-  const Vec2 c(s.q.x(), s.q.y());
-  const double a = game.kick_angle() * kPi / 180.0;
-  const Vec2 aim(dir * std::cos(a), std::sin(a));
-  for (int i = 0; i < 5; ++i) {
-    const double t0 = R + 0.1 + 0.2 * i;
-    thick_line(c + t0 * aim, c + (t0 + 0.1) * aim, 0.025, kAim);
+// A panel of centred lines in the middle of the screen; the first line at
+// `first_scale` in `first_colour`, the others at 2.
+void centred_panel(const std::vector<std::string>& lines, double first_scale,
+                   const Color& first_colour, int width, int height) {
+  double widest = 0.0, tall = 0.0;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const double scale = i == 0 ? first_scale : 2.0;
+    widest = std::max(widest, text_width(lines[i], scale));
+    tall += 9.0 * scale + 8.0;
   }
-  const Vec3 f = game.applied();
-  const double fn = std::hypot(f.x(), f.y());
-  if (fn > 0.0) {
-    // 0.15 m per N up to 1.5 m: a push (a few N) and a kick (~100 N) both show.
-    const double len = std::min(1.5, 0.15 * fn);
-    arrow(c, c + Vec2(f.x(), f.y()) * (len / fn), 0.05, kForce);
+  const double top = 0.34 * height;
+  rect(0.5 * (width - widest) - 20, top - 14, 0.5 * (width + widest) + 20, top + tall + 4, kPanel);
+  double y = top;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const double scale = i == 0 ? first_scale : 2.0;
+    text(0.5 * (width - text_width(lines[i], scale)), y, lines[i], scale,
+         i == 0 ? first_colour : kPanelText);
+    y += 9.0 * scale + 8.0;
   }
 }
 
-// "REF" or "MUJOCO" (with a mapping: "MUJOCO:EXACT"), as the HUD names it.
-std::string engine_label(std::string_view name) {
-  std::string out(name);
+std::string upper(std::string_view text) {
+  std::string out(text);
   for (char& ch : out) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
   return out;
 }
 
-// The messages and banners in the middle of the screen: an ignored kick,
-// the round's result, the pause and the countdown before the first pass.
+// The messages and screens in the middle of the screen: an ignored kick,
+// the start screen (before the first pass), a round's result, the end of a
+// session, the pause.
 void draw_banners(const Game& game, const Overlay& overlay, int width, int height) {
   const Rules& r = game.pitch().rules;
   // A kick key that did nothing, for a second: why.
   if (game.ignored_kick() != IgnoredKick::None &&
       static_cast<double>(game.steps_since_ignored_kick()) * game.dt() < 1.0) {
-    const std::string what = game.ignored_kick() == IgnoredKick::RoundOver
-                                 ? fmt("KICK IGNORED: THE ROUND IS OVER, NEXT PASS IN %.1f s",
-                                       static_cast<double>(game.steps_to_next_pass()) * game.dt())
-                                 : std::string("KICK IGNORED: THE LAST KICK IS STILL ACTING");
+    std::string what;
+    switch (game.ignored_kick()) {
+      case IgnoredKick::RoundOver:
+        what = game.session_finished()
+                   ? std::string("KICK IGNORED: THE SESSION IS OVER (BACKSPACE: A NEW ONE)")
+                   : fmt("KICK IGNORED: THE ROUND IS OVER, NEXT PASS IN %.1f s",
+                         static_cast<double>(game.steps_to_next_pass()) * game.dt());
+        break;
+      case IgnoredKick::StillKicking: what = "KICK IGNORED: THE LAST KICK IS STILL ACTING"; break;
+      case IgnoredKick::OutOfReach:
+        what = fmt("KICK IGNORED: OUT OF REACH (THE BALL IS ABOVE %.1f m)", r.reach_height);
+        break;
+      case IgnoredKick::None: break;
+    }
     const double w = text_width(what, 2.0);
-    rect(0.5 * (width - w) - 10, 0.38 * height + 70, 0.5 * (width + w) + 10, 0.38 * height + 98,
+    rect(0.5 * (width - w) - 10, 0.3 * height - 40, 0.5 * (width + w) + 10, 0.3 * height - 12,
          kPanel);
-    text(0.5 * (width - w), 0.38 * height + 76, what, 2.0, kNoGoal);
+    text(0.5 * (width - w), 0.3 * height - 34, what, 2.0, kNoGoal);
   }
 
-  // Result of the round.
-  if (game.phase() == Phase::Over) {
+  if (overlay.get_ready > 0.0) {
+    // The start screen, while the first pass waits.
+    centred_panel(
+        {"BEAT THE KEEPER", "Your teammate passes. Control the ball (C),",
+         "bring it closer (arrows), aim (W/S angle, A/D power)",
+         "and chip it over the keeper into the goal (K).",
+         fmt("%.0f passes a session.", r.session_rounds),
+         "Level " + upper(level_name(game.level())) + " (keys 1, 2, 3: easy, normal, hard)",
+         fmt("THE PASS COMES IN %.1f s   (F1: HELP)", overlay.get_ready)},
+        4.0, kGoal, width, height);
+  } else if (game.session_finished()) {
+    // The end of a session: its score and the best so far.
+    centred_panel(
+        {"SESSION OVER", fmt("%.0f GOALS FROM %.0f PASSES", game.session_goals(), r.session_rounds),
+         fmt("BEST SESSION SO FAR: %.0f GOALS", game.best_session_goals()),
+         "NEXT LEVEL " + upper(level_name(game.level())) + " (KEYS 1, 2, 3: EASY, NORMAL, HARD)",
+         "BACKSPACE: A NEW SESSION    ESC: QUIT"},
+        4.0, kGoal, width, height);
+  } else if (game.phase() == Phase::Over) {
+    // The round's result.
     const Outcome outcome = game.current_round().outcome;
     const std::string what = outcome_text(outcome, r.min_kick_distance);
-    const double scale = outcome == Outcome::Goal ? 6.0 : 2.5;
-    const double w = text_width(what, scale);
-    rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20,
-         0.38 * height + 9 * scale, kPanel);
-    text(0.5 * (width - w), 0.38 * height, what, scale, outcome == Outcome::Goal ? kGoal : kNoGoal);
+    centred_panel({what,
+                   fmt("PASS %.0f OF %.0f: %.0f GOALS", game.session_round(), r.session_rounds,
+                       game.session_goals()),
+                   fmt(game.session_round() >= r.session_rounds ? "THE SESSION ENDS IN %.1f s"
+                                                                : "NEXT PASS IN %.1f s",
+                       static_cast<double>(game.steps_to_next_pass()) * game.dt())},
+                  outcome == Outcome::Goal ? 6.0 : 2.5, outcome == Outcome::Goal ? kGoal : kNoGoal,
+                  width, height);
   }
   if (overlay.paused) {
     const double w = text_width("PAUSED", 4.0);
-    text(0.5 * (width - w), 0.25 * height, "PAUSED", 4.0, kText);
-  }
-  // Before the first pass: the countdown.
-  if (overlay.get_ready > 0.0) {
-    const std::string what = fmt("GET READY: THE PASS COMES IN %.1f s", overlay.get_ready);
-    const double w = text_width(what, 2.5);
-    rect(0.5 * (width - w) - 20, 0.38 * height - 14, 0.5 * (width + w) + 20,
-         0.38 * height + 9 * 2.5, kPanel);
-    text(0.5 * (width - w), 0.38 * height, what, 2.5, kText);
+    text(0.5 * (width - w), 0.2 * height, "PAUSED", 4.0, kPanelText);
   }
 }
 
 // The help panel: the rules and the keys.
 void draw_help(int width, int height) {
   const char* lines[] = {
-      "CONTACT2D PLAY - score from at least 1 m",
+      "CONTACT2D PLAY - beat the keeper, score from at least 1 m",
       "",
-      "A teammate passes: the ball rolls in towards the goal.",
-      "Kick it into the goal. A kick counts only if the ball",
-      "is at least 1 m from the goal line (the yellow line).",
-      "The whole ball must cross the line under the crossbar,",
-      "and the last touch must be a counted kick.",
-      "The crossbar, the roof and the back of the goal are solid.",
+      "A teammate passes: the ball comes rolling or bouncing.",
+      "You reach it while it is below 0.9 m: control it, bring",
+      "it closer, aim and kick. A kick counts only if the ball is",
+      "at least 1 m from the goal line (the yellow line). The",
+      "whole ball must cross the line under the crossbar, and the",
+      "last touch must be a counted kick. The keeper moves up to",
+      "where the ball will reach it: from far it gets there in",
+      "time; a chip from close, high over it, beats it.",
+      "The yellow dots: your kick's path (no spin, no bounce).",
       "",
+      "C             control: brake the ball (a force)",
       "ARROWS        push the ball (a force)",
-      "K / ENTER     kick towards the goal",
       "W / S         raise / lower the kick angle",
+      "D / A         more / less kick power",
+      "K / ENTER     kick towards the goal",
       "SPACE         pause (this help pauses too)",
-      "BACKSPACE     next pass",
+      "BACKSPACE     next pass (after a session: a new one)",
+      "1 / 2 / 3     level easy / normal / hard (at the start,",
+      "              or after a session for the next one)",
       "F1 / H        this help",
       "ESC           quit",
   };
   double widest = 0.0;
   for (const char* line : lines) widest = std::max(widest, text_width(line, 2.0));
-  const double x0 = std::max(16.0, 0.5 * (width - widest)), y0 = 120;
+  const double x0 = std::max(16.0, 0.5 * (width - widest)), y0 = 100;
   // The panel is a scissored clear (the world is already drawn and the HUD
   // not yet): llvmpipe clears far faster than it shades a large quad.
-  const int top = static_cast<int>(y0 - 16), bottom = static_cast<int>(y0 + 16 * 22 + 8);
+  const int top = static_cast<int>(y0 - 16),
+            bottom = static_cast<int>(y0 + 22 * static_cast<double>(std::size(lines)) + 8);
   glEnable(GL_SCISSOR_TEST);
   glScissor(static_cast<int>(x0 - 16), height - bottom, static_cast<int>(widest + 32),
             bottom - top);
@@ -269,24 +416,50 @@ void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width
 
   rect(0, 0, width, 78, kPanel);
   text(10, 8,
-       fmt("ROUND %.0f   GOALS %.0f   TIME %.1f s", game.round(), game.goals(), game.round_time()),
+       fmt("PASS %.0f/%.0f   GOALS %.0f", game.session_round(), r.session_rounds,
+           game.session_goals()) +
+           fmt("   BEST %.0f   ", game.best_session_goals()) + upper(level_name(game.level())),
        2.0, kText);
+  const std::string reach = !game.in_reach()     ? "   OUT OF REACH"
+                            : game.controlling() ? "   CONTROL"
+                                                 : "";
   text(10, 30,
-       fmt("SPEED %.2f m/s   DISTANCE TO GOAL %.2f m", std::hypot(s.v.x(), s.v.y()),
-           game.distance_to_goal()),
-       2.0, kText);
-  text(10, 52, fmt("KICK ANGLE %.0f deg   FORCE (%.1f, %.1f) N", game.kick_angle(), f.x(), f.y()),
+       fmt("TIME %.1f s   SPEED %.2f m/s   TO GOAL %.2f m", game.round_time(),
+           std::hypot(s.v.x(), s.v.y()), game.distance_to_goal()) +
+           reach,
+       2.0, game.in_reach() ? kText : kNoGoal);
+  text(10, 52,
+       fmt("KICK ANGLE %.0f deg   POWER %.0f %%", game.kick_angle(), 100.0 * game.kick_power()) +
+           fmt("   FORCE (%.1f, %.1f) N", f.x(), f.y()),
        2.0, kText);
   // A recording shows neither the frame rate (that of the encoder, not the
   // game) nor a REC mark.
-  std::string right = "ENGINE " + engine_label(game.engine_name()) + "   F1/H: HELP";
+  std::string right = "ENGINE " + upper(game.engine_name()) + "   F1/H: HELP";
   if (overlay.fps > 0.0 && !overlay.recording) right = fmt("%.0f FPS", overlay.fps) + "   " + right;
   text(width - 10 - text_width(right, 1.5), 10, right, 1.5, kText);
-  if (overlay.replaying) text(width - 10 - text_width("REPLAY", 2.0), 34, "REPLAY", 2.0, kGoal);
+  if (overlay.replaying) text(width - 10 - text_width("REPLAY", 2.0), 88, "REPLAY", 2.0, kGoal);
   // The engine cannot keep up at this frame rate: the game runs slower.
   if (!overlay.recording && overlay.speed < 0.97) {
     const std::string slow = fmt("SLOW MOTION x%.2f", overlay.speed);
     text(width - 10 - text_width(slow, 1.5), 58, slow, 1.5, kNoGoal);
+  }
+
+  // The preview's label, above the highest of its dots (draw_aim_and_force
+  // draws them at the same condition).
+  if (game.phase() == Phase::Playing && game.in_reach() && !game.kicking()) {
+    Vec2 path[64];
+    const int n = kick_preview(game, 0.03, path, 64);
+    Vec2 top = path[0];
+    for (int i = 1; i < n; ++i) {
+      if (path[i].y() > top.y()) top = path[i];
+    }
+    const std::string label = "KICK PREVIEW: NO DRAG, SPIN OR BOUNCE";
+    const Vec2 at = v.pixel(top.x(), top.y(), height);
+    const double w = text_width(label, 1.5);
+    const double x = std::clamp(at.x() - 0.5 * w, 8.0, width - w - 8.0);
+    const double y = std::max(112.0, at.y() - 26.0);
+    rect(x - 4, y - 4, x + w + 4, y + 15, kPanel);
+    text(x, y, label, 1.5, kPreview);
   }
 
   // Label of the 1 m line, at its foot.
@@ -329,6 +502,7 @@ void draw_frame(const Game& game, const Overlay& overlay, int width, int height)
   glMatrixMode(GL_MODELVIEW);
   glLoadIdentity();
   draw_world(game, v);
+  draw_aim_and_force(game);
   draw::flush_shapes();
 
   glMatrixMode(GL_PROJECTION);

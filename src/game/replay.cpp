@@ -15,9 +15,14 @@
 namespace contact2d::game {
 namespace {
 
-constexpr Key kKeys[] = {Key::Left, Key::Right,   Key::Up,        Key::Down,
-                         Key::Kick, Key::AngleUp, Key::AngleDown, Key::Reset};
-constexpr const char* kAllowedKeys = "left, right, up, down, kick, angle_up, angle_down, reset";
+constexpr Key kKeys[] = {Key::Left,        Key::Right,    Key::Up,        Key::Down,
+                         Key::Kick,        Key::AngleUp,  Key::AngleDown, Key::Reset,
+                         Key::Control,     Key::PowerUp,  Key::PowerDown, Key::LevelEasy,
+                         Key::LevelNormal, Key::LevelHard};
+constexpr const char* kAllowedKeys =
+    "left, right, up, down, kick, angle_up, angle_down, reset, control, power_up, power_down, "
+    "level_easy, level_normal, level_hard";
+constexpr Level kLevels[] = {Level::Easy, Level::Normal, Level::Hard};
 
 bool parse_u64(const std::string& text, std::uint64_t& out, int base) {
   if (text.empty() || text[0] == '-' || text[0] == '+') return false;
@@ -41,8 +46,30 @@ std::string_view key_name(Key key) {
     case Key::AngleUp: return "angle_up";
     case Key::AngleDown: return "angle_down";
     case Key::Reset: return "reset";
+    case Key::Control: return "control";
+    case Key::PowerUp: return "power_up";
+    case Key::PowerDown: return "power_down";
+    case Key::LevelEasy: return "level_easy";
+    case Key::LevelNormal: return "level_normal";
+    case Key::LevelHard: return "level_hard";
   }
   return "?";
+}
+
+std::string_view level_name(Level level) {
+  switch (level) {
+    case Level::Easy: return "easy";
+    case Level::Normal: return "normal";
+    case Level::Hard: return "hard";
+  }
+  return "?";
+}
+
+std::optional<Level> parse_level(std::string_view name) {
+  for (Level level : kLevels) {
+    if (level_name(level) == name) return level;
+  }
+  return std::nullopt;
 }
 
 std::optional<Key> parse_key(std::string_view name) {
@@ -94,11 +121,16 @@ Replay parse_replay(const std::string& text, const std::string& origin) {
           !third.empty()) {
         fail("pitch must be 16 hexadecimal digits (the pitch file's FNV-1a)");
       }
+    } else if (first == "level") {
+      const auto level = parse_level(second);
+      if (!level || !third.empty()) fail("level must be easy, normal or hard");
+      replay.level = *level;
     } else {
       std::uint64_t step = 0;
       if (!parse_u64(first, step, 10) || step > (1ull << 62)) {
         fail("'" + first +
-             "' is not a step index, seed, dt or pitch line (event lines: <step> <key> down|up)");
+             "' is not a step index, seed, dt, pitch or level line (event lines: <step> <key> "
+             "down|up)");
       }
       const auto key = parse_key(second);
       if (!key) fail("key '" + second + "' is not one of " + kAllowedKeys);
@@ -136,7 +168,8 @@ std::string format_replay(const Replay& replay) {
       << "# inputs of contact2d play, stamped with the physics step they apply before\n"
       << "seed " << replay.seed << "\n"
       << "dt " << dt << "\n"
-      << "pitch " << fingerprint << "\n";
+      << "pitch " << fingerprint << "\n"
+      << "level " << level_name(replay.level) << "\n";
   for (const InputEvent& e : replay.events) {
     out << e.step << " " << key_name(e.key) << " " << (e.down ? "down" : "up") << "\n";
   }

@@ -6,8 +6,10 @@
 //   seed 7                       the pass generator's seed
 //   dt 1e-05                     the physics step the steps count (must match the pitch)
 //   pitch 0123456789abcdef       FNV-1a of the pitch file (a mismatch is a warning)
+//   level normal                 easy | normal | hard: the keeper's speed (normal if absent)
 //   <step> <key> down|up         e.g. "123000 kick down": applied before step 123000
-// Keys: left right up down kick angle_up angle_down reset.
+// Keys: left right up down kick angle_up angle_down reset control power_up
+// power_down level_easy level_normal level_hard.
 #pragma once
 
 #include <cstdint>
@@ -18,10 +20,30 @@
 
 namespace contact2d::game {
 
-enum class Key { Left, Right, Up, Down, Kick, AngleUp, AngleDown, Reset };
+enum class Key {
+  Left,
+  Right,
+  Up,
+  Down,
+  Kick,
+  AngleUp,
+  AngleDown,
+  Reset,
+  Control,
+  PowerUp,
+  PowerDown,
+  LevelEasy,  // the level keys act before the first step and between sessions
+  LevelNormal,
+  LevelHard
+};
 
 std::string_view key_name(Key key);
 std::optional<Key> parse_key(std::string_view name);
+
+// The difficulty: how fast the keeper moves (game.keeper_speed_<level>).
+enum class Level { Easy, Normal, Hard };
+std::string_view level_name(Level level);  // "easy", "normal", "hard"
+std::optional<Level> parse_level(std::string_view name);
 
 struct InputEvent {
   long long step = 0;  // applied before the physics step with this index (0 = the first)
@@ -33,6 +55,7 @@ struct Replay {
   std::uint64_t seed = 0;
   double dt = 0.0;
   std::uint64_t pitch_fingerprint = 0;
+  Level level = Level::Normal;
   std::vector<InputEvent> events;  // non-decreasing steps
 };
 

@@ -13,6 +13,7 @@ InputFeed::InputFeed(Game& game, const Replay* replay) : game_(game), replay_(re
   log_.seed = game.seed();
   log_.dt = game.dt();
   log_.pitch_fingerprint = game.pitch().fingerprint;
+  log_.level = game.level();
 }
 
 void InputFeed::apply_due() {
@@ -55,7 +56,7 @@ void run_headless(Game& game, InputFeed& feed) {
 
 ReplayRun run_replay(const Pitch& pitch, const Replay& replay, const std::string& engine,
                      double sample_dt) {
-  Game game(pitch, engine, replay.seed);
+  Game game(pitch, engine, replay.seed, replay.level);
   InputFeed feed(game, &replay);
   ReplayRun run;
   run.engine = engine;
@@ -103,7 +104,7 @@ std::string report_json(const Game& game) {
     out += "{\"round\":" + std::to_string(k.round) + ",\"step\":" + std::to_string(k.step) +
            ",\"time\":" + number(k.time) + ",\"round_time\":" + number(k.round_time) +
            ",\"distance\":" + number(k.distance) + ",\"angle\":" + number(k.angle) +
-           ",\"counted\":" + (k.counted ? "true" : "false") + "}";
+           ",\"power\":" + number(k.power) + ",\"counted\":" + (k.counted ? "true" : "false") + "}";
   }
   out += "],\"rounds\":[";
   first = true;
@@ -111,7 +112,7 @@ std::string report_json(const Game& game) {
     out += first ? "" : ",";
     first = false;
     out += "{\"round\":" + std::to_string(r.round) + ",\"pass_speed\":" + number(r.pass_speed) +
-           ",\"pass_spin\":" + number(r.pass_spin) +
+           ",\"pass_spin\":" + number(r.pass_spin) + ",\"pass_lift\":" + number(r.pass_lift) +
            ",\"outcome\":" + json::string(std::string(outcome_name(r.outcome))) +
            ",\"end_time\":" + number(r.end_time) + "}";
   }
@@ -119,6 +120,10 @@ std::string report_json(const Game& game) {
   out += ",\"steps\":" + std::to_string(game.steps());
   out += ",\"engine\":" + json::string(std::string(game.engine_name()));
   out += ",\"seed\":" + std::to_string(game.seed());
+  out += ",\"level\":" + json::string(std::string(level_name(game.level())));
+  out += ",\"session\":" + std::to_string(game.session()) +
+         ",\"session_goals\":" + std::to_string(game.session_goals()) +
+         ",\"best_session_goals\":" + std::to_string(game.best_session_goals());
   out += ",\"ball\":{\"x\":" + number(s.q.x()) + ",\"y\":" + number(s.q.y()) +
          ",\"vx\":" + number(s.v.x()) + ",\"vy\":" + number(s.v.y()) +
          ",\"omega\":" + number(s.v.z()) + "}";

@@ -50,6 +50,12 @@ std::optional<Key> game_key(int key) {
     case GLFW_KEY_S:
     case GLFW_KEY_PAGE_DOWN: return Key::AngleDown;
     case GLFW_KEY_BACKSPACE: return Key::Reset;
+    case GLFW_KEY_C: return Key::Control;
+    case GLFW_KEY_D: return Key::PowerUp;
+    case GLFW_KEY_A: return Key::PowerDown;
+    case GLFW_KEY_1: return Key::LevelEasy;
+    case GLFW_KEY_2: return Key::LevelNormal;
+    case GLFW_KEY_3: return Key::LevelHard;
     default: return std::nullopt;
   }
 }
@@ -76,9 +82,13 @@ bool handle_keys(KeyQueue& queue, InputFeed& feed, Overlay& overlay) {
       if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) overlay.help = !overlay.help;
     }
     const auto k = game_key(key);
-    if (!k || overlay.get_ready > 0.0) continue;  // before the first pass: no game keys
-    const bool angle = *k == Key::AngleUp || *k == Key::AngleDown;
-    if (action == GLFW_PRESS || (action == GLFW_REPEAT && angle)) feed.live(*k, true);
+    if (!k) continue;
+    // Before the first pass only the level keys (nothing has stepped yet).
+    const bool level = *k == Key::LevelEasy || *k == Key::LevelNormal || *k == Key::LevelHard;
+    if (overlay.get_ready > 0.0 && !level) continue;
+    const bool stepped = *k == Key::AngleUp || *k == Key::AngleDown || *k == Key::PowerUp ||
+                         *k == Key::PowerDown;  // held: repeats, one step each
+    if (action == GLFW_PRESS || (action == GLFW_REPEAT && stepped)) feed.live(*k, true);
     if (action == GLFW_RELEASE) feed.live(*k, false);
   }
   queue.events.clear();

@@ -19,7 +19,8 @@
 
 namespace contact2d::game {
 
-inline constexpr double kFirstPassDelay = 1.5;  // s
+// The title screen's time: long enough to read it and pick a level.
+inline constexpr double kFirstPassDelay = 3.0;  // s
 
 struct WindowOptions {
   int width = 800;

@@ -620,14 +620,28 @@ void add_body(XMLDocument& doc, XMLElement* world, const Scene& scene, const Lay
 }
 
 // The static obstacles (mjcf.hpp): world-body geoms that touch only through
-// the pairs of add_pairs.
-void add_obstacles(XMLDocument& doc, XMLElement* world, const Scene& scene) {
+// the pairs of add_pairs. `moving`: only the moving ones (Obstacle::moves),
+// each a geom at the origin of its own mocap body "obstacle<i>_body" placed
+// where the scene puts the obstacle, written after the planar body so that
+// the planar body stays body 1; otherwise only the static ones.
+void add_obstacles(XMLDocument& doc, XMLElement* world, const Scene& scene, bool moving) {
   const double depth = obstacle_half_depth(scene);
   for (size_t i = 0; i < scene.obstacles.size(); ++i) {
     const Obstacle& o = scene.obstacles[i];
+    if (o.moves != moving) continue;
     const std::string name = "obstacle" + std::to_string(i);
     XMLElement* e = nullptr;
-    if (o.shape == ObstacleShape::Box) {
+    if (moving) {
+      if (o.shape != ObstacleShape::Box)
+        throw InputError("obstacle " + std::to_string(i) +
+                         ": only a box obstacle can move on MuJoCo (a mocap body)");
+      const Vec2 c = 0.5 * (o.a + o.b), half = 0.5 * (o.b - o.a);
+      XMLElement* body =
+          add(doc, world, "body",
+              {{"name", name + "_body"}, {"mocap", "true"}, {"pos", join({c.x(), 0.0, c.y()})}});
+      e = add(doc, body, "geom",
+              {{"name", name}, {"type", "box"}, {"size", join({half.x(), depth, half.y()})}});
+    } else if (o.shape == ObstacleShape::Box) {
       const Vec2 c = 0.5 * (o.a + o.b), half = 0.5 * (o.b - o.a);
       e = add(doc, world, "geom",
               {{"name", name},
@@ -765,8 +779,9 @@ std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
   add_options(doc, root, scene, settings, layout, condim_of(scene, options));
   XMLElement* world = add(doc, root, "worldbody", {});
   add(doc, world, "geom", {{"name", "ground"}, {"type", "plane"}, {"size", "0 0 1"}});
-  add_obstacles(doc, world, scene);
+  add_obstacles(doc, world, scene, false);
   add_body(doc, world, scene, layout);
+  add_obstacles(doc, world, scene, true);
   add_pairs(doc, root, scene, settings, layout);
   add_keyframe(doc, root, scene, layout);
   tinyxml2::XMLPrinter printer;

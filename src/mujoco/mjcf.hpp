@@ -56,6 +56,9 @@
 // scene's solimp. A pair's values are used as given, where geom values
 // would be mixed (friction: max, direct solref: min, solimp: average).
 // calibrated's impratio, one value for all contacts, uses the largest c.
+// A moving obstacle (Obstacle::moves, a box: the game's keeper) is the same
+// geom at the origin of its own mocap body "obstacle<i>_body" (after the
+// planar body, which stays body 1), placed by Stepper::move_obstacle.
 //
 // The header comment states every derived value with the formula that
 // computes it (tests/mujoco/test_mjcf_header.cpp recomputes them) and marks

@@ -1,5 +1,7 @@
 #include "mujoco/stepper.hpp"
 
+#include <cstddef>
+#include <string>
 #include <utility>
 
 #include "mujoco/divergence.hpp"
@@ -34,8 +36,36 @@ MujocoStepper::MujocoStepper(const Scene& scene, const std::string& xml, const s
   x0_ = m->body_pos[3];
   y0_ = m->body_pos[5];
   hinge_ = m->nq == 3;
+  placed_ = model_.obstacles;
+  offsets_.assign(placed_.size(), Vec2::Zero());
+  for (size_t i = 0; i < placed_.size(); ++i) {
+    int id = -1;
+    if (placed_[i].moves) {
+      const std::string name = "obstacle" + std::to_string(i) + "_body";
+      const int body = mj_name2id(m, mjOBJ_BODY, name.c_str());
+      if (body >= 0) id = m->body_mocapid[body];
+    }
+    mocap_.push_back(id);
+  }
   mj_resetDataKeyframe(m, data_.get(), 0);
   read_state();
+}
+
+bool MujocoStepper::move_obstacle(int index, const Vec2& offset) {
+  if (index < 0 || static_cast<size_t>(index) >= placed_.size()) return false;
+  const auto i = static_cast<size_t>(index);
+  if (mocap_[i] < 0) return false;
+  const Obstacle& placed = placed_[i];
+  const Vec2 c = 0.5 * (placed.a + placed.b) + offset;
+  mjtNum* pos = data_->mocap_pos + 3 * static_cast<std::ptrdiff_t>(mocap_[i]);
+  pos[0] = c.x();
+  pos[1] = 0.0;
+  pos[2] = c.y();
+  Obstacle& o = model_.obstacles[i];
+  o.a = placed.a + offset;
+  o.b = placed.b + offset;
+  offsets_[i] = offset;
+  return true;
 }
 
 void MujocoStepper::read_state() {
@@ -57,6 +87,11 @@ void MujocoStepper::reset(const State& state) {
     d->qvel[2] = state.v.z();
   }
   set_applied(model_.applied);  // mj_resetData cleared it; the force is held, as the reference's
+  // mj_resetData put the mocap bodies back where the model has them; moved
+  // obstacles stay where they were moved, as on the reference.
+  for (size_t i = 0; i < mocap_.size(); ++i) {
+    if (mocap_[i] >= 0) move_obstacle(static_cast<int>(i), offsets_[i]);
+  }
   read_state();
 }
 

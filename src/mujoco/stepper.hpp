@@ -40,6 +40,9 @@ class MujocoStepper final : public Stepper {
   void reset(const State& state) override;
   void set_applied(const Vec3& force) override;
   StepStatus step() override;
+  // A moving obstacle's mocap body (mjcf.hpp): mocap_pos, and the model the
+  // reference's contact stage reads.
+  bool move_obstacle(int index, const Vec2& offset) override;
   const State& state() const override { return state_; }
   const ContactSet& contacts() const override { return contacts_; }
   const Model& model() const override { return model_; }
@@ -69,6 +72,9 @@ class MujocoStepper final : public Stepper {
   DataPtr data_;
   double x0_ = 0.0, y0_ = 0.0;
   bool hinge_ = false;
+  std::vector<Obstacle> placed_;  // the scene's obstacles where it put them
+  std::vector<int> mocap_;        // per obstacle: its mocap index, −1 when static
+  std::vector<Vec2> offsets_;     // per obstacle: where move_obstacle put it
   State state_;
   ContactSet contacts_;
   std::vector<std::string> messages_;

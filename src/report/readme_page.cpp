@@ -214,6 +214,13 @@ std::string replay_section(const ReplayComparison& r) {
   out += "\nThe two balls are 0.01 m apart " + when(r.part_1cm) + " and a ball radius (" +
          format_significant(r.radius) + " m) apart " + when(r.part_radius) +
          ".\n\n![The goal replay on both engines](" + r.plot + ")\n";
+  if (!r.gif.empty()) {
+    out +=
+        "\nThe same goal as the window shows it, the ball chipped over the keeper (recorded on "
+        "the reference by `scripts/record-goal`" +
+        (r.mp4.empty() ? std::string() : "; the whole video: [" + r.mp4 + "](" + r.mp4 + ")") +
+        "):\n\n![A goal against the keeper](" + r.gif + ")\n";
+  }
   return out;
 }
 

@@ -59,6 +59,10 @@ struct ReplayComparison {
   std::optional<double> part_1cm, part_radius;  // s: first time the balls are 0.01 m / R apart
   double radius = 0.0;                          // m
   std::string plot;                             // file name in the report directory
+  // The window's video of the goal (scripts/record-goal: goal.gif and
+  // goal.mp4 in validation/report/), in the report directory; empty when
+  // it has not been recorded.
+  std::string gif, mp4;
 };
 
 // Every scene under every mapping (sections 1 and 2).

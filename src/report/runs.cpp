@@ -185,6 +185,18 @@ ReplayComparison replay_on_both(const std::string& replay_path, const std::strin
   b.samples = mj.samples;
   plot_comparison(plot_png, "the goal replay: the ball on both engines", a, b, "ref", "MuJoCo");
   out.plot = std::filesystem::path(plot_png).filename().string();
+  // The recorded video beside the plot (a report written elsewhere than the
+  // snapshot gets a copy).
+  const std::filesystem::path dir = std::filesystem::path(plot_png).parent_path();
+  for (const char* name : {"goal.gif", "goal.mp4"}) {
+    const std::filesystem::path shipped = std::filesystem::path("validation/report") / name;
+    std::error_code ec;
+    if (!std::filesystem::exists(shipped, ec)) continue;
+    if (!std::filesystem::equivalent(shipped, dir / name, ec))
+      std::filesystem::copy_file(shipped, dir / name,
+                                 std::filesystem::copy_options::overwrite_existing, ec);
+    if (!ec) (std::string(name) == "goal.gif" ? out.gif : out.mp4) = name;
+  }
   return out;
 }
 

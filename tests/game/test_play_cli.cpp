@@ -91,6 +91,26 @@ TEST(PlayCli, RecordingAReplayAndPlayingItBackGivesTheSameJson) {
   fs::remove(copy);
 }
 
+// The built-in players: --seeds prints one line of statistics; a single
+// scripted round records a replay that plays back to the same JSON.
+TEST(PlayCli, TheBuiltInPlayersPlayThroughTheRealProgram) {
+  const Result stats = run("play --headless --policy blind --seeds 3");
+  ASSERT_EQ(stats.status, 0) << stats.err;
+  EXPECT_TRUE(has(stats.out, "\"policy\":\"blind\"")) << stats.out;
+  EXPECT_TRUE(has(stats.out, "\"seeds\":3,\"goals\":0")) << stats.out;
+  EXPECT_EQ(std::count(stats.out.begin(), stats.out.end(), '\n'), 1) << stats.out;
+
+  const fs::path recorded = temp("scripted.replay");
+  const Result a =
+      run("play --headless --policy scripted --seed 3 --record-input '" + recorded.string() + "'");
+  ASSERT_EQ(a.status, 0) << a.err;
+  EXPECT_TRUE(has(a.out, "\"goal\":true")) << a.out;
+  const Result b = run("play --headless --replay '" + recorded.string() + "'");
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_EQ(a.out, b.out);
+  fs::remove(recorded);
+}
+
 #ifdef CONTACT2D_WITH_MUJOCO
 // The same replay on the MuJoCo engine: the same JSON twice (MuJoCo's step
 // is deterministic on one machine, and the player's force reaches it as the
@@ -175,20 +195,43 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, PlayBadInput,
     ::testing::Values(
         BadPlay{"unknown_game_key", "speed = 3", "", "",  // appended: the file ends inside [game]
-                "unknown key 'game.speed' (allowed here: crossbar, goal_line, kick_angle,"},
+                "unknown key 'game.speed' (allowed here: control_force, control_time, crossbar, "
+                "goal_line, keeper,"},
+        BadPlay{"keeper_is_the_crossbar", "keeper =0", "", "",
+                "game.keeper = 0 is out of range: must be -1 (no keeper) or the index of a box in "
+                "[[obstacle]] other than the crossbar"},
+        BadPlay{"keeper_above_the_bar", "keeper =1", "", "",
+                "game.keeper = 1 is out of range: must be a box whose top is below the crossbar's "
+                "underside (2.44 m)"},
+        BadPlay{"keeper_speed_negative", "keeper_speed_hard =-1.0", "", "",
+                "game.keeper_speed_hard = -1 is out of range: must be in [0, 100] m/s"},
+        BadPlay{"power_below_min", "kick_power =0.2", "", "",
+                "game.kick_power = 0.2 is out of range: must be in [game.kick_power_min, 1] = "
+                "[0.3, 1]"},
+        BadPlay{"lift_order", "pass_lift_min =4.0", "", "",
+                "game.pass_lift_max = 3.5 is out of range: must be >= game.pass_lift_min = 4 m/s"},
+        BadPlay{"bad_level", "", "", "--level insane",
+                "--level insane: must be easy, normal or hard"},
+        BadPlay{"bad_policy", "", "", "--policy random",
+                "--policy random: must be blind or scripted"},
+        BadPlay{"seeds_without_policy", "", "", "--seeds 3",
+                "--seeds 3: counts the rounds a --policy plays; give --policy blind|scripted"},
+        BadPlay{"level_conflict", "", "contact2d-replay 1\nseed 1\ndt 1e-05\nlevel hard\n",
+                "--level easy", "--level easy conflicts with the replay's level hard"},
+        BadPlay{"replay_bad_level", "", "contact2d-replay 1\nseed 1\ndt 1e-05\nlevel insane\n", "",
+                ":4: level must be easy, normal or hard"},
         BadPlay{"kick_negative", "kick_impulse =-1.0", "", "",
                 "game.kick_impulse = -1 is out of range: must be in [0, 1e4] N·s"},
         BadPlay{"crossbar_missing", "crossbar =7", "", "",
                 "game.crossbar = 7 is out of range: must be the index of a box in [[obstacle]]"},
-        BadPlay{
-            "pass_order", "pass_speed_max =1.0", "", "",
-            "game.pass_speed_max = 1 is out of range: must be >= game.pass_speed_min = 2.5 m/s"},
+        BadPlay{"pass_order", "pass_speed_max =1.0", "", "",
+                "game.pass_speed_max = 1 is out of range: must be >= game.pass_speed_min = 3 m/s"},
         BadPlay{"angle_outside", "kick_angle =75.0", "", "",
                 "game.kick_angle = 75 is out of range"},
         BadPlay{"replay_garbage", "", "hello\n", "", ":1: not a replay file"},
         BadPlay{"replay_bad_key", "", "contact2d-replay 1\nseed 1\ndt 1e-05\n10 jump down\n", "",
                 ":4: key 'jump' is not one of left, right, up, down, kick, angle_up, angle_down, "
-                "reset"},
+                "reset, control, power_up, power_down, level_easy, level_normal, level_hard"},
         BadPlay{"replay_bad_order", "",
                 "contact2d-replay 1\nseed 1\ndt 1e-05\n10 kick down\n5 kick up\n", "",
                 ":5: step 5 is earlier than the line before"},

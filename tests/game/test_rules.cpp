@@ -7,23 +7,15 @@
 
 #include "core/obstacles.hpp"
 #include "game/game.hpp"
+#include "game/pitches.hpp"
 #include "game/session.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d::game {
 namespace {
 
-// The built-in pitch with the ball at rest at x0 (no pass) and the kick
-// angle set to `angle` (any value, not only the 5° steps of the keys).
-Pitch still_ball(double x0, double angle = 0.0) {
-  Pitch p = default_pitch();
-  p.rules.pass_speed_min = p.rules.pass_speed_max = 0.0;
-  p.rules.pass_x = x0;
-  p.rules.kick_angle_min = -90.0;
-  p.rules.kick_angle_max = 90.0;
-  p.rules.kick_angle = angle;
-  return p;
-}
+using testing::still_ball;
+using testing::without_keeper;
 
 // What happened to the ball on the way.
 struct Watch {
@@ -71,7 +63,8 @@ Outcome kick_from(const Pitch& pitch, Watch* watch = nullptr) {
 
 TEST(Rules, NoInputScoresNoGoal) {
   for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u}) {
-    const Pitch pitch = default_pitch();
+    Pitch pitch = default_pitch();
+    pitch.rules.round_time = 4.0;  // the round waits for a kick: past the ~2 s the pass takes
     Game game(pitch, "ref", seed);
     play_round(game);
     EXPECT_EQ(game.goals(), 0) << "seed " << seed;
@@ -82,8 +75,9 @@ TEST(Rules, NoInputScoresNoGoal) {
 TEST(Rules, APassThatRollsInByItselfIsNoGoal) {
   // A pass strong enough to roll over the line: the ball does go in, but
   // nobody kicked it.
-  Pitch pitch = default_pitch();
+  Pitch pitch = without_keeper();
   pitch.rules.pass_speed_min = pitch.rules.pass_speed_max = 7.0;
+  pitch.rules.pass_lift_min = pitch.rules.pass_lift_max = 0.0;
   pitch.rules.pass_spin_min = pitch.rules.pass_spin_max = 1.0;
   Game game(pitch, "ref", 1);
   const Watch w = play_round(game);
@@ -261,8 +255,142 @@ TEST(PitchFile, TheBuiltInPitchIsTheShippedFile) {
   const Pitch built_in = default_pitch();
   const Pitch file = load_pitch(CONTACT2D_SOURCE_DIR "/validation/scenes/game/pitch.toml");
   EXPECT_EQ(built_in.fingerprint, file.fingerprint);
-  EXPECT_EQ(built_in.scene.obstacles.size(), 3u);
+  EXPECT_EQ(built_in.scene.obstacles.size(), 4u);
   EXPECT_EQ(built_in.crossbar_bottom(), 2.44);
+  ASSERT_EQ(built_in.rules.keeper, 3);
+  EXPECT_TRUE(built_in.scene.obstacles[3].moves) << "the keeper moves";
+  EXPECT_FALSE(built_in.scene.obstacles[0].moves) << "the crossbar does not";
+}
+
+}  // namespace
+}  // namespace contact2d::game
+
+namespace contact2d::game {
+namespace {
+
+// A pass rolling at 3 m/s (no lift, rolling spin) braked by the control key
+// from the start: m·|v|/control_time is above control_force until the last
+// 0.14 m/s, so the centre decelerates by at least control_force/m = 14 m/s²
+// (the grass's rolling resistance, 0.9 m/s², adds): still after 3/14 =
+// 0.21 s plus the exponential tail (control_time = 0.05 s: 0.14 m/s to
+// 0.02 m/s in 0.1 s). The spin it keeps is the grass's business: friction
+// turns it into a slow roll, which the key brakes as well.
+TEST(Rules, TheControlKeyBrakesThePass) {
+  Pitch pitch = without_keeper();
+  pitch.rules.pass_speed_min = pitch.rules.pass_speed_max = 3.0;
+  pitch.rules.pass_spin_min = pitch.rules.pass_spin_max = 1.0;
+  pitch.rules.pass_lift_min = pitch.rules.pass_lift_max = 0.0;
+  Game held(pitch, "ref", 1), free(pitch, "ref", 1);
+  held.handle(Key::Control, true);
+  for (int i = 0; i < 50000; ++i) {  // 0.5 s
+    held.step();
+    free.step();
+  }
+  const double v_held = std::hypot(held.ball().v.x(), held.ball().v.y());
+  std::printf("after 0.5 s: %.4f m/s controlled, %.3f m/s free\n", v_held, free.ball().v.x());
+  EXPECT_LT(v_held, 0.05);
+  EXPECT_GT(free.ball().v.x(), 2.0) << "without the key it rolls on";
+  EXPECT_EQ(held.last_touch(), Touch::None) << "control is no touch";
+}
+
+// Reach: a pass lifted at 5 m/s is at 0.11 + 5·0.3 − g·0.3²/2 = 1.17 m at
+// 0.3 s, above reach_height (0.9 m): the kick key does nothing, and says why.
+TEST(Rules, AKickOutOfReachIsIgnored) {
+  Pitch pitch = without_keeper();
+  pitch.rules.pass_lift_min = pitch.rules.pass_lift_max = 5.0;
+  Game game(pitch, "ref", 1);
+  for (int i = 0; i < 30000; ++i) game.step();
+  ASSERT_GT(game.ball().q.y(), pitch.rules.reach_height);
+  game.handle(Key::Kick, true);
+  EXPECT_EQ(game.ignored_kick(), IgnoredKick::OutOfReach);
+  EXPECT_TRUE(game.kicks().empty());
+  EXPECT_FALSE(game.kicking());
+}
+
+TEST(Rules, ThePowerKeysStepClampAndScaleTheKick) {
+  Pitch pitch = still_ball(5.0, 0.0);
+  pitch.rules.kick_power = 0.5;
+  pitch.scene.sim.gravity = 0.0;  // as in TheKickDeliversItsImpulse: no grass force
+  Game game(pitch, "ref", 1);
+  game.handle(Key::Kick, true);
+  for (int i = 0; i < 10000; ++i) game.step();
+  EXPECT_NEAR(game.ball().v.x(), 0.5 * pitch.rules.kick_impulse / pitch.scene.mass, 1e-9);
+  for (int i = 0; i < 20; ++i) game.handle(Key::PowerUp, true);
+  EXPECT_EQ(game.kick_power(), 1.0);
+  for (int i = 0; i < 20; ++i) game.handle(Key::PowerDown, true);
+  EXPECT_EQ(game.kick_power(), pitch.rules.kick_power_min);
+}
+
+// The level keys act before the first step and while a session is
+// finished, not during one (the keeper's speed would change under a shot).
+TEST(Rules, TheLevelKeysActOnlyBeforeASession) {
+  Pitch pitch = still_ball(7.0, 15.0);
+  pitch.rules.session_rounds = 1;
+  Game game(pitch, "ref", 1);
+  game.handle(Key::LevelHard, true);
+  EXPECT_EQ(game.level(), Level::Hard);
+  game.step();
+  game.handle(Key::LevelEasy, true);
+  EXPECT_EQ(game.level(), Level::Hard) << "ignored once the session has started";
+  game.handle(Key::Kick, true);
+  while (!game.session_finished()) game.step();
+  game.handle(Key::LevelEasy, true);
+  EXPECT_EQ(game.level(), Level::Easy) << "for the next session";
+}
+
+// A session of one pass: after its result the game waits (no new pass);
+// the reset key starts session 2, whose score starts at 0 while the best
+// keeps session 1's goal.
+TEST(Rules, ASessionEndsAndTheBestScoreStays) {
+  Pitch pitch = still_ball(7.0, 15.0);
+  pitch.rules.session_rounds = 1;
+  Game game(pitch, "ref", 1);
+  game.handle(Key::Kick, true);
+  while (game.phase() == Phase::Playing) game.step();
+  ASSERT_EQ(game.current_round().outcome, Outcome::Goal);
+  for (long long i = 0; i < game.result_steps() + 1000; ++i) game.step();
+  EXPECT_TRUE(game.session_finished());
+  EXPECT_EQ(game.round(), 1) << "no next pass";
+  EXPECT_EQ(game.session_goals(), 1);
+  game.handle(Key::Reset, true);
+  EXPECT_FALSE(game.session_finished());
+  EXPECT_EQ(game.session(), 2);
+  EXPECT_EQ(game.round(), 2);
+  EXPECT_EQ(game.session_round(), 1);
+  EXPECT_EQ(game.session_goals(), 0);
+  EXPECT_EQ(game.best_session_goals(), 1);
+  EXPECT_EQ(game.phase(), Phase::Playing);
+}
+
+}  // namespace
+}  // namespace contact2d::game
+
+namespace contact2d::game {
+namespace {
+
+// Every key of the enum has a name in replay files that reads back as it
+// (a key left out of the parser's list could be pressed but not replayed).
+TEST(ReplayFile, EveryKeyHasANameThatReadsBack) {
+  for (int k = 0; k <= static_cast<int>(Key::LevelHard); ++k) {
+    const auto key = static_cast<Key>(k);
+    const auto parsed = parse_key(key_name(key));
+    ASSERT_TRUE(parsed.has_value()) << key_name(key);
+    EXPECT_EQ(*parsed, key) << key_name(key);
+  }
+}
+
+TEST(ReplayFile, TheLevelIsWrittenAndReadBack) {
+  Replay replay;
+  replay.seed = 9;
+  replay.dt = 1e-5;
+  replay.level = Level::Hard;
+  replay.events = {{0, Key::LevelEasy, true}, {5, Key::Control, true}};
+  const Replay back = parse_replay(format_replay(replay), "test");
+  EXPECT_EQ(back.level, Level::Hard);
+  ASSERT_EQ(back.events.size(), 2u);
+  EXPECT_EQ(back.events[0].key, Key::LevelEasy);
+  EXPECT_EQ(parse_replay("contact2d-replay 1\nseed 1\ndt 1e-05\n", "old").level, Level::Normal)
+      << "a replay without a level line plays at normal";
 }
 
 }  // namespace

@@ -222,9 +222,10 @@ void keys_move_the_ball(const std::string& engine) {
 
   // The ball is big enough to see: below the HUD (y > 110) and above the
   // goal line's white mark on the grass (y < 505) only the ball is pure
-  // white. The camera shows 7 m in 800 px, so its 0.22 m are 25.1 px; inside
-  // its 1.5 px outline 22 px are white (render.cpp). Before the camera
-  // followed the ball, the whole 13 m pitch drew it 13.5 px across.
+  // white (render.cpp draws text over the pitch off-white). The camera frames
+  // the ball and the goal: 7 m in 800 px near the goal, where the 0.22 m
+  // ball is 25.1 px across, up to the whole 13 m pitch from the pass's
+  // start, 13.5 px; inside its 1.5 px outline ~3 px less are white.
   int left = 800, right = -1, top = 600, bottom = -1;
   for (int yy = 111; yy < 505; ++yy) {
     for (int xx = 0; xx < 800; ++xx) {
@@ -237,7 +238,7 @@ void keys_move_the_ball(const std::string& engine) {
     }
   }
   std::printf("ball on screen: %d x %d px of white\n", right - left + 1, bottom - top + 1);
-  EXPECT_GE(right - left + 1, 20);
+  EXPECT_GE(right - left + 1, 10);
   EXPECT_LE(right - left + 1, 25);
   // The screenshot is taken at a wall-clock moment: a ball in the air shows
   // its whole height, a ball on the ground (the grass line 90 px above the
@@ -246,7 +247,7 @@ void keys_move_the_ball(const std::string& engine) {
   // either edge of the band is measured by its width alone.
   const bool clipped = top <= 111 || bottom >= 504;
   if (!clipped) {
-    EXPECT_GE(bottom - top + 1, 20);
+    EXPECT_GE(bottom - top + 1, 10);
   }
   EXPECT_LE(bottom - top + 1, 25);
 
@@ -294,24 +295,25 @@ TEST(Window, TheHelpOverlayPausesTheGame) {
   fs::remove(err);
 }
 
-// Live play shows the first pass frozen for kFirstPassDelay = 1.5 s before
-// it rolls. Recording makes the frames' time exact (1/60 s each): 60 frames
-// (1 s) take no physics step, 120 frames (2 s) do. A replay does not wait
+// Live play shows the title screen with the first pass frozen for
+// kFirstPassDelay = 3 s before it rolls. Recording makes the frames' time
+// exact (1/60 s each): 150 frames (2.5 s) take no physics step, 210 frames
+// (3.5 s) do. A replay does not wait
 // (TheHelpOverlayPausesTheGame: 60 unrecorded frames of it step).
 TEST(Window, LivePlayWaitsBeforeTheFirstPass) {
   ASSERT_NE(std::getenv("DISPLAY"), nullptr) << "no X display: run under xvfb-run (ctest does)";
   ASSERT_EQ(sh("command -v ffmpeg >/dev/null"), 0) << "needs ffmpeg";
-  ASSERT_LT(contact2d::game::kFirstPassDelay * 60.0, 120.0);
-  ASSERT_GT(contact2d::game::kFirstPassDelay * 60.0, 60.0);
+  ASSERT_LT(contact2d::game::kFirstPassDelay * 60.0, 210.0);
+  ASSERT_GT(contact2d::game::kFirstPassDelay * 60.0, 150.0);
   const fs::path video = temp("ready.mp4"), out = temp("ready.json"), err = temp("ready.err");
-  for (const int frames : {60, 120}) {
+  for (const int frames : {150, 210}) {
     ASSERT_EQ(
         sh(std::string("'") + CONTACT2D_EXE + "' play --seed 5 --frames " + std::to_string(frames) +
            " --record '" + video.string() + "' >'" + out.string() + "' 2>'" + err.string() + "'"),
         0)
         << read_file(err);
     const bool stepped = read_file(out).find("\"steps\":0,") == std::string::npos;
-    EXPECT_EQ(stepped, frames == 120) << frames << " frames: " << read_file(out);
+    EXPECT_EQ(stepped, frames == 210) << frames << " frames: " << read_file(out);
   }
   fs::remove(video);
   fs::remove(out);

@@ -1,5 +1,6 @@
 // Obstacles in the MJCF: the game's pitch loads in MuJoCo without
-// a warning (load_model throws on any), with one world geom per obstacle,
+// a warning (load_model throws on any), with one geom per obstacle (in the
+// world body, or for the moving keeper at the origin of its mocap body),
 // each touched through one explicit pair carrying the obstacle's own law.
 #include <gtest/gtest.h>
 
@@ -23,7 +24,9 @@ TEST(MjcfObstacles, ThePitchLoadsWithOneGeomAndOnePairPerObstacle) {
       mujoco::generate_mjcf(scene, mujoco::mjcf_options("", "", pitch.path));
   const mujoco::ModelPtr model = mujoco::load_model(generated.xml, "pitch");
   const mjModel* m = model.get();
-  ASSERT_EQ(scene.obstacles.size(), 3u);
+  ASSERT_EQ(scene.obstacles.size(), 4u);
+  EXPECT_EQ(m->nmocap, 1) << "the keeper";
+  EXPECT_EQ(m->body_mocapid[1], -1) << "the ball stays body 1";
   // Geoms: the ground, the obstacles, the ball's disc.
   EXPECT_EQ(m->ngeom, 1 + static_cast<int>(scene.obstacles.size()) + 1);
   EXPECT_EQ(m->npair, static_cast<int>(scene.obstacles.size())) << "one pair per obstacle";
@@ -32,14 +35,26 @@ TEST(MjcfObstacles, ThePitchLoadsWithOneGeomAndOnePairPerObstacle) {
     const std::string name = "obstacle" + std::to_string(i);
     const int g = mj_name2id(m, mjOBJ_GEOM, name.c_str());
     ASSERT_GE(g, 0) << name;
-    EXPECT_EQ(m->geom_bodyid[g], 0) << "static: in the world body";
+    const Obstacle& o = scene.obstacles[i];
+    const int body = m->geom_bodyid[g];
+    // Where the obstacle's centre is: the geom's own position in the world
+    // body, or its mocap body's (the geom at its origin).
+    const mjtNum* centre = m->geom_pos + 3 * g;
+    if (o.moves) {
+      EXPECT_GE(m->body_mocapid[body], 0) << name << ": moving: a mocap body";
+      EXPECT_EQ(m->body_parentid[body], 0) << name;
+      EXPECT_EQ(m->geom_pos[3 * g + 0], 0.0) << name;
+      EXPECT_EQ(m->geom_pos[3 * g + 2], 0.0) << name;
+      centre = m->body_pos + 3 * body;
+    } else {
+      EXPECT_EQ(body, 0) << name << ": static: in the world body";
+    }
     EXPECT_EQ(m->geom_type[g], mjGEOM_BOX);
     EXPECT_EQ(m->geom_contype[g], 0) << "touched through its pair only";
-    const Obstacle& o = scene.obstacles[i];
     EXPECT_DOUBLE_EQ(m->geom_size[3 * g + 0], 0.5 * (o.b.x() - o.a.x()));
     EXPECT_DOUBLE_EQ(m->geom_size[3 * g + 2], 0.5 * (o.b.y() - o.a.y()));
-    EXPECT_DOUBLE_EQ(m->geom_pos[3 * g + 0], 0.5 * (o.a.x() + o.b.x()));
-    EXPECT_DOUBLE_EQ(m->geom_pos[3 * g + 2], 0.5 * (o.a.y() + o.b.y()));
+    EXPECT_DOUBLE_EQ(centre[0], 0.5 * (o.a.x() + o.b.x()));
+    EXPECT_DOUBLE_EQ(centre[2], 0.5 * (o.a.y() + o.b.y()));
     // The pair: solref = (−k·Â, −c·Â) of the obstacle's own law (n = 1 for
     // the disc), to the 17 digits written.
     int pair = -1;
@@ -53,8 +68,10 @@ TEST(MjcfObstacles, ThePitchLoadsWithOneGeomAndOnePairPerObstacle) {
     EXPECT_EQ(m->pair_friction[5 * pair + 0], law.mu) << name;
     EXPECT_EQ(m->pair_dim[pair], mujoco::contact_condim(law)) << name;
   }
-  // The crossbar keeps the scene's law, the net (roof, back) has its own.
+  // The crossbar and the keeper keep the scene's law, the net (roof, back)
+  // has its own.
   EXPECT_FALSE(scene.obstacles[0].contact.any());
+  EXPECT_FALSE(scene.obstacles[3].contact.any());
   EXPECT_TRUE(scene.obstacles[2].contact.any());
   EXPECT_NE(generated.xml.find("obstacle2 (box, own law): k 2000 N/m"), std::string::npos)
       << "the header states each obstacle's law";
@@ -105,9 +122,9 @@ TEST(MjcfObstacles, TheHeaderStatesEachObstaclesValues) {
   const double impratio =
       std::min(1.0 / (c_max * dt * a_t), inertia * (mu / mu_roll) * (mu / mu_roll) / (c_max * dt));
   EXPECT_NEAR(value_after(h, "mu_roll)^2/(c Δt)) = "), impratio, 1e-12 * impratio);
-  EXPECT_EQ(value_after(h, "N = "), 3.0);
-  EXPECT_EQ(value_after(h, "nconmax = 2 P (1 + N) + 40 = "), 2 * 1 * (1 + 3) + 40);
-  EXPECT_EQ(model->nconmax, 2 * 1 * (1 + 3) + 40);
+  EXPECT_EQ(value_after(h, "N = "), 4.0);
+  EXPECT_EQ(value_after(h, "nconmax = 2 P (1 + N) + 40 = "), 2 * 1 * (1 + 4) + 40);
+  EXPECT_EQ(model->nconmax, 2 * 1 * (1 + 4) + 40);
 }
 
 TEST(MjcfObstacles, ASegmentIsACapsuleAndAPostASphere) {

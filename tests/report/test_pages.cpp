@@ -388,3 +388,21 @@ TEST(ReportPages, StabilityProseRanges) {
 
 }  // namespace
 }  // namespace contact2d::report
+
+namespace contact2d::report {
+namespace {
+
+// Section 9 shows the window's video of the goal when scripts/record-goal
+// has made it (ReplayComparison::gif, mp4), and says nothing of it otherwise.
+TEST(ReportPages, TheGoalReplaySectionShowsTheRecordedGoal) {
+  ReadmeData d = fixtures::readme();
+  EXPECT_EQ(readme_page(d).find("goal.gif"), std::string::npos);
+  d.replay.gif = "goal.gif";
+  d.replay.mp4 = "goal.mp4";
+  const std::string page = readme_page(d);
+  EXPECT_NE(page.find("![A goal against the keeper](goal.gif)"), std::string::npos);
+  EXPECT_NE(page.find("[goal.mp4](goal.mp4)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace contact2d::report
