@@ -134,25 +134,6 @@ Vec3 Game::control_force() const {
   return {-r * s.v.x() / speed, -r * s.v.y() / speed, 0.0};
 }
 
-int Game::best_streak() const {
-  int best = 0, run = 0;
-  for (const RoundRecord& r : rounds_) {
-    if (r.outcome == Outcome::None) continue;
-    run = r.outcome == Outcome::Goal ? run + 1 : 0;
-    best = std::max(best, run);
-  }
-  return best;
-}
-
-int Game::streak() const {
-  int run = 0;
-  for (const RoundRecord& r : rounds_) {
-    if (r.outcome == Outcome::None) continue;
-    run = r.outcome == Outcome::Goal ? run + 1 : 0;
-  }
-  return run;
-}
-
 int Game::session_goals() const {
   return static_cast<int>(
       std::count_if(rounds_.begin() + (session_first_round_ - 1), rounds_.end(),

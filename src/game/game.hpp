@@ -157,9 +157,6 @@ class Game {
   int session_goals() const;
   int best_session_goals() const { return std::max(best_goals_, session_goals()); }
   bool session_finished() const { return session_finished_; }
-  // The longest run of goals in consecutive rounds so far (the session's best).
-  int best_streak() const;
-  int streak() const;  // goals in a row up to the last decided round
   long long steps_since_end() const { return over_steps_; }
   long long result_steps() const { return result_steps_; }
   const std::optional<Divergence>& divergence() const { return divergence_; }
