@@ -56,6 +56,10 @@ Scene drop_scene(Shape shape, double c) {
       text = "scene = \"circle\"\n[body]\nmass = 1.0\nradius = 0.1\n" + contact +
              "[initial]\ny = 0.5\nvx = 1.0\n" + sim;
       break;
+    case Shape::Ellipse:
+      text = "scene = \"ellipse\"\n[body]\nmass = 1.0\na = 0.2\nb = 0.1\n" + contact +
+             "[initial]\ny = 0.6\ntheta = 0.3\nvx = 0.5\nomega = 1.0\n" + sim;
+      break;
   }
   return parse_scene(text, "drop scene");
 }

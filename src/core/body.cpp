@@ -28,7 +28,7 @@ RigidBody shaped_body(Shape shape) {
   RigidBody body;
   body.shape = shape;
   body.rotates = shape_features(shape).turns;
-  body.points_rotate = !shape_features(shape).rolls;
+  body.points_rotate = !shape_features(shape).rolls && !shape_features(shape).smooth;
   return body;
 }
 
@@ -75,7 +75,18 @@ RigidBody make_circle(double mass, double radius) {
   return body;
 }
 
+RigidBody make_ellipse(double mass, double a, double b, double inertia) {
+  RigidBody body = shaped_body(Shape::Ellipse);
+  body.mass = mass;
+  body.inertia = inertia;
+  body.semi_axes = Vec2(a, b);
+  body.roll_radius = std::sqrt(a * b);
+  body.points = {Vec2(0.0, -b)};
+  return body;
+}
+
 double body_extent(const RigidBody& body) {
+  if (shape_features(body.shape).smooth) return std::max(body.semi_axes.x(), body.semi_axes.y());
   double extent = 0.0;
   for (const Vec2& r : body.points) extent = std::max(extent, r.norm());
   return extent;

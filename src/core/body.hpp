@@ -10,6 +10,10 @@
 //   compound    rotates = true,  every vertex of every part, relative to the COM
 //   circle      rotates = true,  one point (0, -R) that stays below the centre
 //               (points_rotate = false) plus rolling resistance
+//   ellipse     rotates = true,  semi-axes (a, b); its contact point is the
+//               rim's support point, computed from θ by the contact stage
+//               (core/ellipse.hpp); `points` holds the lowest point at θ = 0,
+//               (0, −b), for the code that only needs a point of the body
 //
 // A box and every part of a compound also keep their outline: an axis-aligned
 // rectangle in the body frame (centre relative to the COM, half extents),
@@ -54,7 +58,8 @@ struct RigidBody {
   double inertia = 0.0;            // about the COM, kg·m² (0 when rotates = false)
   bool rotates = true;             // false: θ and ω stay 0 (point mass)
   bool points_rotate = true;       // false: points keep their world-frame offset (circle)
-  double roll_radius = 0.0;        // the disc's radius when shape_features(shape).rolls
+  double roll_radius = 0.0;        // the rolling tanh's length R (disc: its radius; ellipse: √(a·b))
+  Vec2 semi_axes = Vec2::Zero();   // the ellipse's (a, b): a along the body's x; else 0
   std::vector<Vec2> points;        // contact points relative to the COM, body frame
   std::vector<PartOutline> parts;  // convex outlines with edges (box, compound); else empty
   Vec2 com_offset = Vec2::Zero();  // COM in the construction frame (compound only)
@@ -73,6 +78,9 @@ RigidBody make_point_mass(double mass, double half_height);
 RigidBody make_box(double mass, double width, double height);
 RigidBody make_compound(const std::vector<BoxPart>& parts);
 RigidBody make_circle(double mass, double radius);
+// An ellipse of semi-axes a (body x) and b (body y); `inertia` about its
+// centre (a uniform plate's m·(a² + b²)/4 unless the caller measured another).
+RigidBody make_ellipse(double mass, double a, double b, double inertia);
 
 // Smallest effective mass a single contact point can present along the
 // normal, over all orientations: 1/m_eff = 1/m + |r|²/I. Used for stability

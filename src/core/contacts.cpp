@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/ellipse.hpp"
+
 namespace contact2d {
 
 ContactSet::ContactSet(const Model& model) {
@@ -29,6 +31,27 @@ void find_contacts(const Model& model, const Vec3& q, ContactSet& out) {
   const size_t n_points = body.points.size();
   Contact* const first = out.storage_.data();  // room for every contact at once
   Contact* next = first;
+
+  // A smooth outline (the ellipse): its support point, not a body point
+  // (core/ellipse.hpp has the geometry).
+  if (shape_features(body.shape).smooth) {
+    const double a = body.semi_axes.x(), b = body.semi_axes.y();
+    const Vec2 r = ellipse_lowest_point(a, b, q.z());
+    const double c_y = q.y() + r.y();
+    if (!(c_y >= 0.0)) *next++ = {-c_y, 0.0, 1.0, r.x(), r.y()};  // NaN stays visible
+    out.ground_ = static_cast<size_t>(next - first);
+    if (!model.obstacles.empty()) {
+      const double ct = std::cos(q.z()), st = std::sin(q.z());
+      ObstacleContact hit;
+      for (size_t j = 0; j < model.obstacles.size(); ++j) {
+        if (ellipse_obstacle_contact(model.obstacles[j], a, b, p, ct, st, hit))
+          *next++ = {hit.depth, hit.normal.x(), hit.normal.y(),
+                     hit.r.x(), hit.r.y(),      static_cast<int>(j)};
+      }
+    }
+    out.size_ = static_cast<size_t>(next - first);
+    return;
+  }
 
   // Ground, the half-plane y < 0: d = −c_y, n = +y.
   for (size_t i = 0; i < n_points; ++i) {

@@ -150,7 +150,7 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
     }
     // … and the rolling arguments (a rolling body with μ_roll > 0 only).
     const size_t n_friction = n_args;
-    if (features.rolls) {
+    if (features.resists_rolling) {
       for (size_t i = from; i < to; ++i) {
         const ContactParams& law = i < ground ? model.contact : model.law(list[i]);
         if (law.mu_roll > 0.0) arg[n_args++] = law.alpha * radius * v.z();
@@ -163,7 +163,7 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
       const Contact& c = list[i];
       const ContactParams& law = i < ground ? model.contact : model.law(c);
       if (law.friction != FrictionLaw::Tanh) {
-        const bool rolls = features.rolls && law.mu_roll > 0.0;
+        const bool rolls = features.resists_rolling && law.mu_roll > 0.0;
         if (rolls) ++rolling;  // its tanh argument was computed and is not used
         add_cone(c, law, fn[i - from], v, omega, rolls, force, torque);
         continue;
@@ -172,7 +172,7 @@ void add_contacts(const Model& model, const ContactSet& contacts, size_t first, 
       const double s = arg[i - from];
       const double ft = -law.mu * f_n * s;
       double roll = 0.0, s_roll = 0.0;
-      const bool rolls = features.rolls && law.mu_roll > 0.0;
+      const bool rolls = features.resists_rolling && law.mu_roll > 0.0;
       if (rolls) {
         s_roll = arg[rolling++];
         roll = -law.mu_roll * f_n * s_roll;
@@ -244,7 +244,11 @@ Vec3 acceleration(const Model& model, const ContactSet& contacts, const Vec3& v)
 Vec3 acceleration_jacobian(const Model& model, const ContactSet& contacts, const Vec3& q,
                            const Vec3& v, AccelerationJacobian& jacobian, ContactSet& probe) {
   const RigidBody& body = model.body;
-  if (model.uses_cone_law()) return cone_jacobian(model, contacts, q, v, jacobian, probe);
+  // A cone law, or a smooth outline whose contact point moves over the rim
+  // with θ (its lever arm's derivative is not that of a body point):
+  // forward differences.
+  if (model.uses_cone_law() || shape_features(body.shape).smooth)
+    return cone_jacobian(model, contacts, q, v, jacobian, probe);
   Vec2 force(model.applied.x(), model.applied.y() - body.mass * model.gravity);
   double torque = model.applied.z();
   double d[3][6] = {};

@@ -122,6 +122,26 @@ bool point_contact(const Obstacle& o, const Vec2& c, ObstacleContact& out) {
   return true;
 }
 
+double signed_distance(const Obstacle& o, const Vec2& c, Vec2& normal) {
+  if (o.shape == ObstacleShape::Box) {
+    const Vec2 q(std::clamp(c.x(), o.a.x(), o.b.x()), std::clamp(c.y(), o.a.y(), o.b.y()));
+    const Vec2 delta = c - q;
+    const double d2 = delta.squaredNorm();
+    if (d2 > 0.0) {
+      const double distance = std::sqrt(d2);
+      normal = delta / distance;
+      return distance;
+    }
+    double face = 0.0;
+    nearest_face(o, c, face, normal);
+    return -face;
+  }
+  const Vec2 q = closest_on_segment(o.a, o.b, c);
+  double distance = 0.0;
+  normal = away_from(c, q, o, distance);
+  return distance - o.radius;
+}
+
 int obstacle_vertices(const Obstacle& o, Vec2 (&vertices)[4], double& radius) {
   if (o.shape == ObstacleShape::Box) {
     radius = 0.0;

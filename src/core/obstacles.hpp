@@ -157,6 +157,12 @@ bool disc_contact(const Obstacle& obstacle, const Vec2& centre, double radius,
 // for the caller); false when outside.
 bool point_contact(const Obstacle& obstacle, const Vec2& c, ObstacleContact& out);
 
+// Signed distance of the world point c from the obstacle's surface: < 0
+// inside (minus the distance to the nearest face of a box, the depth into a
+// capsule), > 0 outside; `normal` is the unit direction out of the surface
+// nearest c (the gradient of the distance where it has one).
+double signed_distance(const Obstacle& obstacle, const Vec2& c, Vec2& normal);
+
 // The vertices an obstacle presses into a body's edges: a box's four corners
 // (radius 0) or a segment's ends, round caps of the segment's radius (one cap
 // when a = b). Returns how many of `vertices` it wrote.

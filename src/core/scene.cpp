@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/ellipse.hpp"
+
 namespace contact2d {
 
 std::vector<BoxPart> default_tshape_parts() {
@@ -18,6 +20,7 @@ Scene default_scene(Shape shape) {
     case Shape::Box: break;
     case Shape::TShape: scene.parts = default_tshape_parts(); break;
     case Shape::Circle: scene.initial.q = Vec3(0.0, scene.radius, 0.0); break;
+    case Shape::Ellipse: break;
   }
   return scene;
 }
@@ -109,6 +112,10 @@ std::optional<ValidationError> validate(const Scene& s) {
               "must be in (0, 1e3] m"),
       require(positive(s.radius) && s.radius <= 1e3, s.radius, "body.radius",
               "must be in (0, 1e3] m"),
+      require(positive(s.a) && s.a <= 1e3, s.a, "body.a", "must be in (0, 1e3] m"),
+      require(positive(s.b) && s.b <= 1e3, s.b, "body.b", "must be in (0, 1e3] m"),
+      require(non_negative(s.inertia) && s.inertia <= 1e15, s.inertia, "body.inertia",
+              "must be in [0, 1e15] kg·m² (0: a uniform plate's m·(a² + b²)/4)"),
       require(bounded(s.initial.q.x(), kMaxCoord), s.initial.q.x(), "initial.x",
               "must be finite, |x| <= 1e6 m"),
       require(bounded(s.initial.q.y(), kMaxCoord), s.initial.q.y(), "initial.y",
@@ -182,6 +189,9 @@ RigidBody make_body(const Scene& s) {
     case Shape::Box: return make_box(s.mass, s.width, s.height);
     case Shape::TShape: return make_compound(s.parts.empty() ? default_tshape_parts() : s.parts);
     case Shape::Circle: return make_circle(s.mass, s.radius);
+    case Shape::Ellipse:
+      return make_ellipse(s.mass, s.a, s.b,
+                          s.inertia > 0.0 ? s.inertia : ellipse_plate_inertia(s.mass, s.a, s.b));
   }
   return {};
 }

@@ -29,6 +29,9 @@ struct Scene {
   double width = 0.4;          // box
   double height = 0.2;         // box
   double radius = 0.1;         // circle
+  double a = 0.2;              // ellipse: semi-axis along the body's x
+  double b = 0.1;              // ellipse: semi-axis along the body's y
+  double inertia = 0.0;        // ellipse: about the COM, kg·m²; 0 = a uniform plate's m·(a² + b²)/4
   std::vector<BoxPart> parts;  // tshape; empty = the default T
   ContactParams contact;
   std::vector<Obstacle> obstacles;  // static geometry, same contact law as the ground

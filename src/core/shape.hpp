@@ -1,6 +1,6 @@
 // The four shapes of a body and the one table of what each of them has.
 //
-// A scene names its body's shape (point_mass, box, tshape, circle) and the
+// A scene names its body's shape (point_mass, box, tshape, circle, ellipse) and the
 // body carries it (core/body.hpp). The code that treats shapes differently
 // does not ask which shape it holds, nor infers it from a field's value (a
 // radius > 0, an empty part list): it asks `shape_features(shape)` for the
@@ -21,9 +21,7 @@
 //   rolls     the body is a disc: its one contact point stays below the
 //             centre whatever θ is (the point does not turn with the body),
 //             it meets obstacles with its whole rim (disc_contact, not
-//             point_contact), and a law with μ_roll > 0 adds rolling
-//             resistance (the force stage, the converged reference, the
-//             friction rows and impratio of the MuJoCo mappings).
+//             point_contact). Its rolling resistance is `resists_rolling`.
 //   corners   the contact points are the corners of rectangular outlines
 //             with edges, turning with the body: obstacles' corners and
 //             round ends are tested against those edges, and MuJoCo can
@@ -31,6 +29,18 @@
 //   compound  the body is a list of parts ([[body.parts]] in a scene file):
 //             its mass, COM and inertia come from the parts, not from the
 //             scene's mass.
+//   smooth    the outline is a smooth convex curve (the ellipse) whose
+//             contact point is not fixed in the body: against the ground it
+//             is the outline's support point, the lowest point of the rim at
+//             the body's θ, which slides over the rim as the body turns;
+//             against an obstacle it is the rim's deepest point inside it
+//             (core/ellipse.hpp). The force stage and the converged
+//             reference read the point from there, not from `points`.
+//   resists_rolling
+//             a law with μ_roll > 0 adds the rolling-resistance torque
+//             −μ_roll·Fn·tanh(α·R·ω) at each contact (the disc and the
+//             ellipse; R is the body's `roll_radius`), and MuJoCo models it
+//             with condim 6.
 #pragma once
 
 #include <array>
@@ -39,35 +49,40 @@
 
 namespace contact2d {
 
-enum class Shape { PointMass, Box, TShape, Circle };
+enum class Shape { PointMass, Box, TShape, Circle, Ellipse };
 
 inline constexpr std::array kAllShapes = {Shape::PointMass, Shape::Box, Shape::TShape,
-                                          Shape::Circle};
+                                          Shape::Circle, Shape::Ellipse};
 
 struct ShapeFeatures {
   bool turns = false;
   bool rolls = false;
   bool corners = false;
   bool compound = false;
+  bool smooth = false;
+  bool resists_rolling = false;
 };
 
 constexpr ShapeFeatures shape_features(Shape shape) {
   switch (shape) {
-    case Shape::PointMass: return {false, false, false, false};
-    case Shape::Box: return {true, false, true, false};
-    case Shape::TShape: return {true, false, true, true};
-    case Shape::Circle: return {true, true, false, false};
+    //                     turns  rolls  corners compound smooth resists_rolling
+    case Shape::PointMass: return {false, false, false, false, false, false};
+    case Shape::Box: return {true, false, true, false, false, false};
+    case Shape::TShape: return {true, false, true, true, false, false};
+    case Shape::Circle: return {true, true, false, false, false, true};
+    case Shape::Ellipse: return {true, false, false, false, true, true};
   }
   return {};
 }
 
-// The scene file's name of a shape: "point_mass", "box", "tshape", "circle".
+// The scene file's name of a shape: "point_mass", "box", "tshape", "circle", "ellipse".
 constexpr std::string_view shape_name(Shape shape) {
   switch (shape) {
     case Shape::PointMass: return "point_mass";
     case Shape::Box: return "box";
     case Shape::TShape: return "tshape";
     case Shape::Circle: return "circle";
+    case Shape::Ellipse: return "ellipse";
   }
   return "?";
 }

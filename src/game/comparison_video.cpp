@@ -90,6 +90,15 @@ std::vector<std::vector<Vec2>> body_polygons(const RigidBody& body, const State&
     return Vec2(p.x() + c * r.x() - sn * r.y(), p.y() + sn * r.x() + c * r.y());
   };
   std::vector<std::vector<Vec2>> out;
+  if (shape_features(body.shape).smooth) {  // the ellipse's rim, 48 points
+    std::vector<Vec2> rim;
+    for (int i = 0; i < 48; ++i) {
+      const double phi = 6.283185307179586 * i / 48;
+      rim.push_back(world(Vec2(body.semi_axes.x() * std::cos(phi),
+                               body.semi_axes.y() * std::sin(phi))));
+    }
+    out.push_back(std::move(rim));
+  }
   for (const PartOutline& part : body.parts) {
     out.push_back({world(part.centre + Vec2(-part.hx, -part.hy)),
                    world(part.centre + Vec2(part.hx, -part.hy)),
@@ -105,7 +114,8 @@ double disc_radius(const RigidBody& body, const Scene& scene) {
     case Shape::Circle: return body.roll_radius;
     case Shape::PointMass: return std::max(scene.half_height, 1e-3);
     case Shape::Box:
-    case Shape::TShape: break;
+    case Shape::TShape:
+    case Shape::Ellipse: break;  // polygons (body_polygons)
   }
   return 0.0;
 }

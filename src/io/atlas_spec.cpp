@@ -139,7 +139,7 @@ void read_atlas_table(AtlasSpec& spec, const toml::table* atlas, const std::stri
 
   reader.mark_used("bodies");
   for (const std::string& body : string_list(
-           atlas, "bodies", origin, "point_mass, box, tshape, circle or scene files (*.toml)")) {
+           atlas, "bodies", origin, "point_mass, box, tshape, circle, ellipse or scene files (*.toml)")) {
     AtlasBody b;
     if (body.size() > 5 && body.compare(body.size() - 5, 5, ".toml") == 0) {
       const std::filesystem::path path = std::filesystem::path(base_dir) / body;
@@ -155,7 +155,7 @@ void read_atlas_table(AtlasSpec& spec, const toml::table* atlas, const std::stri
       if (!shape)
         fail(origin, "atlas.bodies",
              "'" + body +
-                 "' is not a body: point_mass, box, tshape, circle or a scene file "
+                 "' is not a body: point_mass, box, tshape, circle, ellipse or a scene file "
                  "(*.toml)");
       b.scene = default_scene(*shape);
       b.label = body;

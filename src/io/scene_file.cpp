@@ -42,6 +42,13 @@ void read_body(const toml::table* table, Scene& scene, const std::string& origin
       body.number("radius", scene.radius);
       body.reject_unknown("mass, radius");
       return;
+    case Shape::Ellipse:
+      body.number("mass", scene.mass);
+      body.number("a", scene.a);
+      body.number("b", scene.b);
+      body.number("inertia", scene.inertia);
+      body.reject_unknown("mass, a, b, inertia");
+      return;
     case Shape::TShape: break;
   }
   const toml::array* parts = body.array("parts");
@@ -335,12 +342,12 @@ Scene read_scene(const std::string& toml_text, const std::string& origin,
   std::string shape_text;
   top.string("scene", shape_text);
   if (!root.contains("scene")) {
-    throw InputError(origin + ": missing key 'scene' (one of point_mass, box, tshape, circle)");
+    throw InputError(origin + ": missing key 'scene' (one of point_mass, box, tshape, circle, ellipse)");
   }
   const auto shape = parse_shape(shape_text);
   if (!shape) {
     top.fail("scene",
-             "= \"" + shape_text + "\" is not a scene: use point_mass, box, tshape or circle");
+             "= \"" + shape_text + "\" is not a scene: use point_mass, box, tshape, circle or ellipse");
   }
   Scene scene = default_scene(*shape);
   read_body(subtable(root, "body", origin), scene, origin);

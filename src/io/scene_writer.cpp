@@ -26,6 +26,11 @@ std::string scene_to_toml(const Scene& s, const std::string& comment) {
       o << "mass = " << format_shortest(s.mass) << "\nradius = " << format_shortest(s.radius)
         << "\n";
       break;
+    case Shape::Ellipse:
+      o << "mass = " << format_shortest(s.mass) << "\na = " << format_shortest(s.a)
+        << "\nb = " << format_shortest(s.b) << "\n";
+      if (s.inertia > 0.0) o << "inertia = " << format_shortest(s.inertia) << "\n";
+      break;
     case Shape::TShape: {
       const std::vector<BoxPart> parts = s.parts.empty() ? default_tshape_parts() : s.parts;
       o << "parts = [\n";

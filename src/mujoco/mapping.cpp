@@ -52,7 +52,7 @@ double calibrated_impratio(const ContactParams& p, const RigidBody& body, double
   // impratio (core/contact.hpp), so that a diagnosis's fix, pasted, runs
   // both engines as the diagnosis did.
   if (p.friction != FrictionLaw::Tanh) return std::clamp(p.cone_ratio, kMinImpratio, kMaxImpratio);
-  const bool rolls = shape_features(body.shape).rolls && p.mu_roll > 0.0;
+  const bool rolls = shape_features(body.shape).resists_rolling && p.mu_roll > 0.0;
   if (!(p.c > 0.0)) return 1.0;  // no damper: MuJoCo's friction has no velocity term at all
   if (p.mu <= 0.0 && !rolls) return kMinImpratio;
   // impratio is one value for every contact: the bound of the stiffest damper.

@@ -67,7 +67,8 @@ std::vector<BoxPart> parts_of(const Scene& scene) {
     case Shape::Box: return {BoxPart{scene.width, scene.height, 0.0, 0.0, scene.mass}};
     case Shape::TShape: return scene.parts.empty() ? default_tshape_parts() : scene.parts;
     case Shape::PointMass:
-    case Shape::Circle: break;  // no rectangular outline
+    case Shape::Circle:
+    case Shape::Ellipse: break;  // no rectangular outline
   }
   return {};
 }
@@ -157,10 +158,30 @@ Layout circle_layout(const Scene& scene) {
   return layout;
 }
 
+// An ellipsoid of semi-axes a (MuJoCo x), min(a, b) (MuJoCo y, out of the
+// plane: the body never tilts about x, so its lowest point and its contact
+// with a plane lie in the x–z section whatever this axis is) and b (MuJoCo
+// z). The inertia about the hinge is the scene's own, written explicitly
+// (MuJoCo would compute a solid ellipsoid's m(a² + b²)/5 from the geom);
+// the other two carry no joint and are only made loadable.
+Layout ellipse_layout(const Scene& scene) {
+  const RigidBody body = make_body(scene);
+  const double m = scene.mass, a = scene.a, b = scene.b;
+  Layout layout;
+  layout.mass = m;
+  layout.inertia = loadable_inertia({0.25 * m * b * b, body.inertia, 0.25 * m * a * a});
+  layout.geoms.push_back(
+      {"ellipse", "ellipsoid", join(std::array{a, std::min(a, b), b}), 0.0, 0.0, false});
+  layout.max_contacts = 1;
+  layout.contacts_why = "one ellipsoid: plane-ellipsoid gives its one deepest point";
+  return layout;
+}
+
 Layout shape_layout(const Scene& scene, Geometry geometry) {
   switch (scene.shape) {
     case Shape::PointMass: return point_mass_layout(scene);
     case Shape::Circle: return circle_layout(scene);
+    case Shape::Ellipse: return ellipse_layout(scene);
     case Shape::Box:
     case Shape::TShape: return box_layout(scene, geometry);
   }
@@ -254,6 +275,7 @@ std::string inertia_formula(Shape shape) {
       return "I = sum over parts of m_i ((w_i^2 + h_i^2)/12 + |p_i - COM|^2), "
              "COM = sum m_i p_i / m";
     case Shape::Circle: return "I = m R^2/2";
+    case Shape::Ellipse: return "I = the scene's body.inertia, or a plate's m (a^2 + b^2)/4";
     case Shape::PointMass: break;
   }
   return "";
@@ -321,7 +343,7 @@ std::string mapping_lines(const Scene& scene, const SolverSettings& s, int condi
     return text;
   }
   const bool turns = shape_features(body.shape).turns;
-  const bool rolls = shape_features(body.shape).rolls && p.mu_roll > 0.0;
+  const bool rolls = shape_features(body.shape).resists_rolling && p.mu_roll > 0.0;
   if (!(p.c > 0.0)) {
     text += in + "impratio: not written (c = 0: MuJoCo's friction has no velocity term)\n";
     return text;

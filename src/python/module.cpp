@@ -90,7 +90,7 @@ Integrator parse_integrator_or_throw(const std::string& name) {
 Shape parse_shape_or_throw(const std::string& name) {
   if (const auto s = parse_shape(name)) return *s;
   throw InputError("scene = \"" + name +
-                   "\" is not a scene: use point_mass, box, tshape or circle");
+                   "\" is not a scene: use point_mass, box, tshape, circle or ellipse");
 }
 
 // The scene file of a scene, as given to Scene.load ("" when built in Python).
@@ -404,7 +404,7 @@ void bind_scene(py::module_& m) {
       .def_property(
           "shape", [](const Scene& s) { return std::string(shape_name(s.shape)); },
           [](Scene& s, const std::string& name) { s.shape = parse_shape_or_throw(name); },
-          "\"point_mass\", \"box\", \"tshape\" or \"circle\"")
+          "\"point_mass\", \"box\", \"tshape\", \"circle\" or \"ellipse\"")
       .def_readwrite("mass", &Scene::mass, "body mass, kg (not a tshape: its parts carry theirs)")
       .def_readwrite("half_height", &Scene::half_height,
                      "point_mass: the contact point's distance below the centre, m")

@@ -1,5 +1,7 @@
 #include "reference/dense_reference.hpp"
 
+#include "core/ellipse.hpp"
+
 #include "core/cancel.hpp"
 
 #include <algorithm>
@@ -77,10 +79,11 @@ class System {
     const RigidBody& body = model_.body;
     const ContactParams& law = model_.contact;
     const ShapeFeatures features = shape_features(body.shape);
-    // A disc's point stays below the centre; a rolling law adds resistance.
-    const bool rolls = features.rolls && law.mu_roll > 0.0;
+    // A disc's point stays below the centre, an ellipse's is its lowest
+    // point (core/ellipse.hpp); a rolling law adds resistance.
+    const bool rolls = features.resists_rolling && law.mu_roll > 0.0;
     double cos_t = 1.0, sin_t = 0.0;
-    if (!features.rolls) {
+    if (!features.rolls && !features.smooth) {
       cos_t = std::cos(y[2]);
       sin_t = std::sin(y[2]);
     }
@@ -89,9 +92,9 @@ class System {
     double torque = model_.applied.z();
     for (size_t i = 0; i < n_; ++i) {
       if (!contact_[i]) continue;
-      const Vec2& local = body.points[i];
-      const double rx = cos_t * local.x() - sin_t * local.y();
-      const double ry = sin_t * local.x() + cos_t * local.y();
+      const Vec2 r = lever(i, y, cos_t, sin_t);
+      const double rx = r.x();
+      const double ry = r.y();
       const double depth = -(y[1] + ry);
       if (law.friction == FrictionLaw::SoftCone) {
         // The core's soft-cone law (core/contact.hpp) at MuJoCo's contact
@@ -125,7 +128,7 @@ class System {
       fx += ft;
       fy += fn;
       torque += rx * fn - ry * ft +
-                (features.rolls ? rolling_torque(law, fn, body.roll_radius, y[5]) : 0.0);
+                (features.resists_rolling ? rolling_torque(law, fn, body.roll_radius, y[5]) : 0.0);
     }
     dy.head<3>() = y.tail<3>();
     dy[3] = fx / body.mass;
@@ -142,15 +145,17 @@ class System {
                        double& g_active, double& rate_contact, double& rate_active) const {
     const RigidBody& body = model_.body;
     const ContactParams& law = model_.contact;
-    const Vec2& local = body.points[i];
-    // A disc's point stays below the centre; every other body's turns with θ.
-    const bool points_turn = !shape_features(body.shape).rolls;
-    double rx = local.x(), ry = local.y();
-    if (points_turn) {
-      const double cos_t = std::cos(y[2]), sin_t = std::sin(y[2]);
-      rx = cos_t * local.x() - sin_t * local.y();
-      ry = sin_t * local.x() + cos_t * local.y();
+    const ShapeFeatures features = shape_features(body.shape);
+    // A disc's point stays below the centre; an ellipse's is its lowest
+    // point; every other body's turns with θ.
+    const bool points_turn = !features.rolls;
+    double cos_t = 1.0, sin_t = 0.0;
+    if (points_turn && !features.smooth) {
+      cos_t = std::cos(y[2]);
+      sin_t = std::sin(y[2]);
     }
+    const Vec2 r = lever(i, y, cos_t, sin_t);
+    const double rx = r.x(), ry = r.y();
     const double cy = y[1] + ry;
     const double vcy = y[4] + y[5] * rx;
     g_contact = -cy;
@@ -164,7 +169,14 @@ class System {
     const Vec6& yd = *ydot;
     const double spin = points_turn ? yd[2] : 0.0;  // dθ/dt moving the point
     const double cy_rate = yd[1] + spin * rx;
-    const double vcy_rate = yd[4] + yd[5] * rx - y[5] * spin * ry;
+    // The lever arm's own rate: −ω·r_y for a body point, the lowest
+    // point's dr_x/dθ·θ̇ for an ellipse (core/ellipse.hpp).
+    const double vcy_rate =
+        features.smooth ? yd[4] + yd[5] * rx +
+                              y[5] * spin *
+                                  ellipse_lowest_point_turn_rate(body.semi_axes.x(),
+                                                                 body.semi_axes.y(), y[2])
+                        : yd[4] + yd[5] * rx - y[5] * spin * ry;
     rate_contact = -cy_rate;
     rate_active = law.friction == FrictionLaw::SoftCone    ? 0.0
                   : law.damping == DampingLaw::Compression ? -vcy_rate
@@ -193,6 +205,16 @@ class System {
   }
 
  private:
+  // Lever arm of contact point i at state y ((cos_t, sin_t) of θ, or of 0
+  // for a disc and an ellipse, whose points do not turn with the body).
+  Vec2 lever(size_t i, const Vec6& y, double cos_t, double sin_t) const {
+    const RigidBody& body = model_.body;
+    if (shape_features(body.shape).smooth)
+      return ellipse_lowest_point(body.semi_axes.x(), body.semi_axes.y(), y[2]);
+    const Vec2& local = body.points[i];
+    return {cos_t * local.x() - sin_t * local.y(), sin_t * local.x() + cos_t * local.y()};
+  }
+
   const Model& model_;
   size_t n_;
   std::vector<unsigned char> contact_;
@@ -408,9 +430,11 @@ std::string soft_cone_chatter(const Model& model, size_t i, const Vec6& y) {
   const Vec2& local = body.points[i];
   const double cos_t = features.rolls ? 1.0 : std::cos(y[2]);
   const double sin_t = features.rolls ? 0.0 : std::sin(y[2]);
-  const double ry = sin_t * local.x() + cos_t * local.y();
+  const double ry = features.smooth
+                        ? ellipse_lowest_point(body.semi_axes.x(), body.semi_axes.y(), y[2]).y()
+                        : sin_t * local.x() + cos_t * local.y();
   const double v_t = y[3] - y[5] * ry;
-  const double spin = features.rolls && law.mu_roll > 0.0 ? y[5] : 0.0;
+  const double spin = features.resists_rolling && law.mu_roll > 0.0 ? y[5] : 0.0;
   const double slip = std::hypot(law.mu * v_t, law.mu_roll * spin);
   const double push = law.c * slip / (1.0 + law.mu * law.mu / law.cone_ratio);
   if (!(push > 0.0)) return "";

@@ -33,6 +33,10 @@ double draw_body(std::uint64_t& state, double m, Scene& s) {
       s.height = rounded(0.05 + u(), 4);
       break;
     case Shape::Circle: s.radius = rounded(0.02 + u() * 0.5, 4); break;
+    case Shape::Ellipse:
+      s.a = rounded(0.02 + u() * 0.5, 4);
+      s.b = rounded(0.02 + u() * 0.5, 4);
+      break;
     case Shape::TShape: {
       s.parts.clear();
       const int n = 1 + static_cast<int>(u() * 3);

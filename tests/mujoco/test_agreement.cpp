@@ -243,6 +243,7 @@ double friction_tolerance(Shape shape) {
     case Shape::Box: return 7e-3;
     case Shape::TShape: return 4e-3;
     case Shape::Circle: return 7e-3;
+    case Shape::Ellipse: return 7e-3;
   }
   return 0.0;
 }

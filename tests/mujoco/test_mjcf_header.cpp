@@ -116,6 +116,12 @@ Body2d body_of(const Scene& s) {
       b.r = s.radius;
       b.points = 1;
       return b;
+    case Shape::Ellipse:
+      b.m = s.mass;
+      b.inertia = s.inertia > 0.0 ? s.inertia : s.mass * (s.a * s.a + s.b * s.b) / 4.0;
+      b.r = std::max(s.a, s.b);
+      b.points = 1;
+      return b;
     case Shape::Box:
       b.m = s.mass;
       b.inertia = s.mass * (s.width * s.width + s.height * s.height) / 12.0;
@@ -200,6 +206,10 @@ TEST_P(Header, EveryNumberIsItsStatedFormula) {
       expect_rel(after(h,
                        "I = sum over parts of m_i ((w_i^2 + h_i^2)/12 + |p_i - COM|^2), "
                        "COM = sum m_i p_i / m = "),
+                 b.inertia, "I");
+      break;
+    case Shape::Ellipse:
+      expect_rel(after(h, "I = the scene's body.inertia, or a plate's m (a^2 + b^2)/4 = "),
                  b.inertia, "I");
       break;
     case Shape::PointMass: EXPECT_FALSE(says(h, "I = ")); break;
