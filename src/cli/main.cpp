@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   for (Command& c : add_mujoco_commands(app)) commands.push_back(c);  // generate, compare, report
   commands.push_back(add_sweep(app));
   commands.push_back(add_stability(app));
+  commands.push_back(add_fit(app));
 
   // An unknown subcommand is named (CLI11 would say "A subcommand is
   // required", as if none had been given).

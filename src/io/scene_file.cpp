@@ -23,6 +23,8 @@ const toml::table* subtable(const toml::table& root, const char* name, const std
   return node->as_table();
 }
 
+}  // namespace
+
 void read_body(const toml::table* table, Scene& scene, const std::string& origin) {
   TableReader body(table, "body.", origin);
   switch (scene.shape) {
@@ -77,6 +79,8 @@ void read_body(const toml::table* table, Scene& scene, const std::string& origin
     scene.parts.push_back(p);
   }
 }
+
+namespace {
 
 void read_contact(const toml::table* table, Scene& scene, const std::string& origin) {
   TableReader contact(table, "contact.", origin);

@@ -43,4 +43,9 @@ class TableReader {
   std::set<std::string> used_;
 };
 
+// The [body] keys of a scene file for scene.shape (io/scene_file.cpp): a
+// recording's manifest (io/recording.hpp) describes its body the same way.
+struct Scene;
+void read_body(const toml::table* table, Scene& scene, const std::string& origin);
+
 }  // namespace contact2d

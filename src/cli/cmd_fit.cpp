@@ -1,0 +1,84 @@
+// contact2d fit RECORDING [--json] [--seed N] [--bootstrap B] [--threads N]
+//                         [--engines LIST] [--all-impacts] [--quiet]
+// A recording of real impacts in (docs/recordings.md), the contact law's
+// k, c (ζ), μ and μ_roll out, and every model measured on held-out impacts
+// (analysis/real_impacts.hpp, docs/real-impacts.md).
+#include <algorithm>
+#include <iostream>
+#include <memory>
+
+#include "analysis/real_impacts.hpp"
+#include "cli/common.hpp"
+#include "core/input_error.hpp"
+#include "io/recording.hpp"
+
+namespace contact2d::cli {
+
+namespace {
+
+struct FitOptions {
+  std::string recording;
+  bool json = false;
+  long long seed = 2026;
+  int bootstrap = 8;
+  unsigned threads = 0;
+  std::vector<std::string> engines;
+  bool engines_given = false;
+  bool all_impacts = false;
+  bool quiet = false;
+};
+
+int fit(const FitOptions& o) {
+  const Recording rec = read_recording(o.recording);
+  if (rec.kind != "impacts")
+    throw InputError(o.recording + ": kind = \"" + rec.kind +
+                     "\": contact2d fit takes \"impacts\" recordings (trajectories are not fitted "
+                     "yet)");
+  analysis::ImpactFitOptions options;
+  options.seed = static_cast<std::uint64_t>(o.seed);
+  options.bootstrap = o.bootstrap;
+  options.threads = o.threads;
+  options.engines = o.engines_given ? o.engines : analysis::default_fit_engines();
+  options.engines.erase(std::remove(options.engines.begin(), options.engines.end(), ""),
+                        options.engines.end());
+  options.all_impacts = o.all_impacts;
+  if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  const analysis::ImpactFit result = analysis::fit_impacts(rec, options);
+  std::cout << (o.json ? analysis::impact_fit_json(result) : analysis::impact_fit_text(result));
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_fit(CLI::App& app) {
+  auto o = std::make_shared<FitOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "fit",
+      "Fit k, c, mu and mu_roll to a recording of real impacts and measure every model (the "
+      "reference, MuJoCo 2.2.2 and 3.14, impulse baselines) on held-out impacts");
+  cmd->add_option("recording", o->recording,
+                  "The recording's manifest (TOML; docs/recordings.md), e.g. "
+                  "validation/real/ellipse/recording.toml")
+      ->required();
+  cmd->add_flag("--json", o->json, "Print one JSON object instead of the table");
+  cmd->add_option("--seed", o->seed, "Seed of the 50/50 split's shuffle (default 2026)")
+      ->check(CLI::Range(0LL, 1LL << 53));
+  cmd->add_option("--bootstrap", o->bootstrap,
+                  "Refits on resampled training sets for the parameters' spread (default 8; 0: "
+                  "none)")
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--threads", o->threads, "Threads (default: one per core)")
+      ->check(CLI::Range(0u, 256u));
+  cmd->add_option("--engines", o->engines,
+                  "Comma-separated engines that replay the held-out impacts with the fitted "
+                  "parameters besides the reference (default: every built-in engine with soft "
+                  "constraints; \"\": none)")
+      ->delimiter(',')
+      ->each([o](const std::string&) { o->engines_given = true; });
+  cmd->add_flag("--all-impacts", o->all_impacts,
+                "Also the impacts the recording flags (its flags column)");
+  cmd->add_flag("--quiet", o->quiet, "No progress lines on stderr");
+  return {cmd, [o] { return fit(*o); }};
+}
+
+}  // namespace contact2d::cli
