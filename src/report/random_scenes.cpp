@@ -4,6 +4,7 @@
 #include "core/format.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -72,7 +73,10 @@ std::vector<RandomScene> draw_random_scenes(std::uint64_t seed, int count) {
   for (int i = count - 1; i > 0; --i) std::swap(slots[i], slots[static_cast<int>(u() * (i + 1))]);
   std::vector<RandomScene> out;
   for (int i = 0; i < count; ++i) {
-    const Shape shape = kAllShapes[static_cast<size_t>(i) % kAllShapes.size()];
+    // The four shapes of the course, in turn (the ellipse is not drawn yet:
+    // the report's snapshot of these scenes was made without it).
+    constexpr std::array kDrawn = {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle};
+    const Shape shape = kDrawn[static_cast<size_t>(i) % kDrawn.size()];
     Scene s = default_scene(shape);
     double m = std::pow(10.0, u() * 2 - 1);
     const double k = std::pow(10.0, 3 + u() * 2.5);

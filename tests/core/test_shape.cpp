@@ -39,6 +39,17 @@ TEST(Shape, TableSaysWhatEachShapeHas) {
   EXPECT_FALSE(circle.corners);
   EXPECT_FALSE(circle.compound);
   static_assert(shape_features(Shape::Circle).rolls, "the table is usable at compile time");
+  // The ellipse: turns, its point slides over a smooth rim, rolling resistance.
+  const ShapeFeatures ellipse = shape_features(Shape::Ellipse);
+  EXPECT_TRUE(ellipse.turns);
+  EXPECT_FALSE(ellipse.rolls);
+  EXPECT_FALSE(ellipse.corners);
+  EXPECT_FALSE(ellipse.compound);
+  EXPECT_TRUE(ellipse.smooth);
+  EXPECT_TRUE(ellipse.resists_rolling);
+  EXPECT_TRUE(circle.resists_rolling);
+  EXPECT_FALSE(circle.smooth);
+  EXPECT_FALSE(box.resists_rolling || box.smooth || point.smooth || tshape.smooth);
 }
 
 TEST(Shape, BodyOfASceneCarriesItsShapeAndItsFlags) {
@@ -48,8 +59,10 @@ TEST(Shape, BodyOfASceneCarriesItsShapeAndItsFlags) {
     const ShapeFeatures features = shape_features(shape);
     EXPECT_EQ(body.shape, shape);
     EXPECT_EQ(body.rotates, features.turns);
-    EXPECT_EQ(body.points_rotate, !features.rolls);
-    EXPECT_EQ(body.roll_radius > 0.0, features.rolls);
+    EXPECT_EQ(body.points_rotate, !features.rolls && !features.smooth);
+    EXPECT_EQ(body.roll_radius > 0.0, features.resists_rolling);
+    // Smooth: the outline's semi-axes are set, and only then.
+    EXPECT_EQ(body.semi_axes.x() > 0.0 && body.semi_axes.y() > 0.0, features.smooth);
     // Corners: the points are the four corners of each rectangular outline.
     EXPECT_EQ(!body.parts.empty(), features.corners);
     if (features.corners) {
@@ -143,6 +156,7 @@ TEST(Shape, NamesReadBackAndAreDistinct) {
   EXPECT_EQ(names.size(), kAllShapes.size());
   EXPECT_EQ(shape_name(Shape::PointMass), "point_mass");
   EXPECT_EQ(shape_name(Shape::Circle), "circle");
+  EXPECT_EQ(shape_name(Shape::Ellipse), "ellipse");
   static_assert(parse_shape("tshape") == Shape::TShape, "parse_shape is constexpr");
 }
 
@@ -153,7 +167,8 @@ TEST(Shape, UnknownNamesAreRejected) {
 }
 
 TEST(Shape, AllShapesListsEveryShapeOnceInOrder) {
-  ASSERT_EQ(kAllShapes.size(), 4u);
+  ASSERT_EQ(kAllShapes.size(), 5u);
+  EXPECT_EQ(kAllShapes[4], Shape::Ellipse);
   EXPECT_EQ(kAllShapes[0], Shape::PointMass);
   EXPECT_EQ(kAllShapes[1], Shape::Box);
   EXPECT_EQ(kAllShapes[2], Shape::TShape);
