@@ -130,7 +130,8 @@ int resting_contacts(Shape shape) {
     case Shape::Box: return 2;
     case Shape::TShape:
     case Shape::Circle:
-    case Shape::Ellipse: break;  // not cases of the table (the ellipse's: tests/core/test_ellipse.cpp)
+    case Shape::Ellipse:
+      break;  // not cases of the table (the ellipse's: tests/core/test_ellipse.cpp)
   }
   throw std::logic_error("static_case: no resting closed form for " +
                          std::string(shape_name(shape)));

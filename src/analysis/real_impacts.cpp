@@ -1,7 +1,5 @@
 #include "analysis/real_impacts.hpp"
 
-#include <nlopt.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -10,6 +8,7 @@
 #include <stdexcept>
 
 #include "analysis/engine.hpp"
+#include "analysis/minimise.hpp"
 #include "core/contacts.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
@@ -23,9 +22,8 @@ double impact_error(const Vec3& predicted, const Vec3& measured, double inertia,
   const double w = std::sqrt(inertia / mass);
   const Vec3 d = predicted - measured;
   const double num = std::sqrt(d.x() * d.x() + d.y() * d.y() + w * w * d.z() * d.z());
-  const double den =
-      std::sqrt(measured.x() * measured.x() + measured.y() * measured.y() +
-                w * w * measured.z() * measured.z());
+  const double den = std::sqrt(measured.x() * measured.x() + measured.y() * measured.y() +
+                               w * w * measured.z() * measured.z());
   return num / den;
 }
 
@@ -47,9 +45,9 @@ Quartiles quartiles(std::vector<double> v) {
 
 namespace {
 
-constexpr double kOmegaDt = 0.01;      // ω·Δt of the replays
-constexpr double kWindow = 0.08;       // s: the longest contact a replay follows
-constexpr double kTwoFrames = 2.0;     // frames a pre-impact state may be above its touch
+constexpr double kOmegaDt = 0.01;   // ω·Δt of the replays
+constexpr double kWindow = 0.08;    // s: the longest contact a replay follows
+constexpr double kTwoFrames = 2.0;  // frames a pre-impact state may be above its touch
 
 // Height of the body's lowest point above the ground (negative: it penetrates).
 double gap(const Model& model, const Vec3& q, ContactSet& contacts) {
@@ -114,8 +112,8 @@ Touch first_touch(const Model& model, const RecordedImpact& impact, double frame
     }
     prev = tau;
   }
-  throw InputError(csv + ":" + std::to_string(impact.line) + ": field 'y0' = " +
-                   format_number("%.6g", impact.before.q.y()) +
+  throw InputError(csv + ":" + std::to_string(impact.line) +
+                   ": field 'y0' = " + format_number("%.6g", impact.before.q.y()) +
                    ": the body's lowest point is " + format_number("%.3g", g0) +
                    " m above the ground and does not touch it within two frames (" +
                    format_number("%.3g", limit) +
@@ -195,44 +193,6 @@ std::vector<double> errors_of(const std::vector<Vec3>& predicted, const std::vec
   return e;
 }
 
-// NLopt's BOBYQA on f over the box [lo, hi] from x; returns evaluations.
-struct Minimised {
-  std::vector<double> x;
-  double f = 0.0;
-  int evaluations = 0;
-};
-
-Minimised minimise(const std::function<double(const std::vector<double>&)>& f,
-                   std::vector<double> x, const std::vector<double>& lo,
-                   const std::vector<double>& hi, const std::vector<double>& step, int max_eval) {
-  struct Data {
-    const std::function<double(const std::vector<double>&)>* f;
-    int evaluations;
-  } data{&f, 0};
-  const unsigned n = static_cast<unsigned>(x.size());
-  nlopt_opt opt = nlopt_create(NLOPT_LN_BOBYQA, n);
-  nlopt_set_lower_bounds(opt, lo.data());
-  nlopt_set_upper_bounds(opt, hi.data());
-  nlopt_set_initial_step(opt, step.data());
-  nlopt_set_xtol_rel(opt, 1e-4);
-  nlopt_set_ftol_abs(opt, 1e-6);
-  nlopt_set_maxeval(opt, max_eval);
-  nlopt_set_min_objective(
-      opt,
-      [](unsigned dim, const double* xs, double*, void* d) {
-        auto* data = static_cast<Data*>(d);
-        ++data->evaluations;
-        return (*data->f)(std::vector<double>(xs, xs + dim));
-      },
-      &data);
-  double value = 0.0;
-  const nlopt_result result = nlopt_optimize(opt, x.data(), &value);
-  nlopt_destroy(opt);
-  if (result < 0 && result != NLOPT_ROUNDOFF_LIMITED)
-    throw std::runtime_error("fit: NLopt's BOBYQA failed (code " + std::to_string(result) + ")");
-  return {x, value, data.evaluations};
-}
-
 // ---------------------------------------------------------------- impulses
 
 // One impulse P = (P_t, P_n) at lever r on the ground (n = +y, t = +x).
@@ -290,13 +250,6 @@ Vec3 best_impulse(const State& s, const Vec2& r, const Vec3& measured, double m,
   return apply_impulse(s, r, pt, pn, m, inertia);
 }
 
-void set_quartiles(ModelFit& fit) {
-  const Quartiles q = quartiles(fit.errors);
-  fit.q1 = q.q1;
-  fit.median = q.median;
-  fit.q3 = q.q3;
-}
-
 std::vector<double> percentiles(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   auto at = [&v](double p) {
@@ -316,18 +269,247 @@ std::vector<std::string> default_fit_engines() {
   return out;
 }
 
+namespace {
+
+// What every model of a fit reads: the impacts at first touch, their levers,
+// the replay problem and the options.
+struct Fitter {
+  const Recording& rec;
+  const ImpactFitOptions& options;
+  ImpactFit& out;
+  Model geometry;
+  double m = 0.0, inertia = 0.0;
+  std::vector<Touch> touches;
+  std::vector<Vec2> levers;
+  Problem pb;
+
+  void say(const std::string& line) const {
+    if (options.progress) options.progress(line);
+  }
+  std::vector<double> errors(const std::vector<Vec3>& predicted,
+                             const std::vector<size_t>& set) const {
+    return errors_of(predicted, set, out.impacts, inertia, m);
+  }
+  double train_median(const PenaltyParams& p, const std::vector<size_t>& set) const {
+    return quartiles(errors(predict_ref(pb, p, set), set)).median;
+  }
+  ModelFit model(const std::string& name, const std::string& engine, const SplitFit& sf,
+                 std::vector<Vec3> predicted) const {
+    ModelFit mf;
+    mf.name = name;
+    mf.engine = engine;
+    mf.split = sf.split;
+    mf.predicted = std::move(predicted);
+    mf.errors = errors(mf.predicted, sf.test);
+    const Quartiles q = quartiles(mf.errors);
+    mf.q1 = q.q1;
+    mf.median = q.median;
+    mf.q3 = q.q3;
+    return mf;
+  }
+  std::vector<std::pair<std::string, double>> penalty_parameters(const PenaltyParams& p) const {
+    const double k = std::pow(10.0, p.log_k);
+    return {{"k", k},
+            {"zeta", p.zeta},
+            {"c", 2.0 * p.zeta * std::sqrt(k * m)},
+            {"mu", p.mu},
+            {"mu_roll", p.mu_roll}};
+  }
+};
+
+// The box of (log10 k, ζ, μ[, μ_roll]) and three starts (little, some and
+// much friction and rolling resistance): the error surface has more than
+// one valley; the best training fit wins.
+struct PenaltySearch {
+  std::vector<double> lo = {3.0, 0.0, 0.0}, hi = {9.0, 1.5, 2.0}, step = {0.5, 0.1, 0.1};
+  std::vector<std::vector<double>> starts = {{5.0, 0.2, 0.05}, {5.0, 0.2, 0.4}, {7.0, 0.3, 0.0}};
+  explicit PenaltySearch(bool rolling) {
+    if (!rolling) return;
+    lo.push_back(0.0);
+    hi.push_back(0.03);
+    step.push_back(0.001);
+    starts[0].push_back(0.003);
+    starts[1].push_back(0.01);
+    starts[2].push_back(0.0);
+  }
+};
+
+PenaltyParams params_of(const std::vector<double>& x) {
+  return {x[0], x[1], x[2], x.size() > 3 ? x[3] : 0.0};
+}
+
+// The penalty law fitted on the training half, measured on the other.
+ModelFit fit_penalty(const Fitter& f, const SplitFit& sf, bool rolling, Minimised& best) {
+  const std::string name = rolling ? "penalty" : "penalty_no_rolling";
+  f.say("fit: " + sf.split + " split, " + name + " on " + std::to_string(sf.train.size()) +
+        " impacts (NLopt BOBYQA, 3 starts)");
+  const PenaltySearch search(rolling);
+  auto objective = [&](const std::vector<double>& x) {
+    return f.train_median(params_of(x), sf.train);
+  };
+  best = Minimised{};
+  best.f = INFINITY;
+  for (const std::vector<double>& x0 : search.starts) {
+    const Minimised tried = minimise(objective, x0, search.lo, search.hi, search.step, 300);
+    best.evaluations += tried.evaluations;
+    if (tried.f < best.f) {
+      best.x = tried.x;
+      best.f = tried.f;
+    }
+  }
+  const PenaltyParams p = params_of(best.x);
+  ModelFit mf = f.model(name, "ref", sf, predict_ref(f.pb, p, sf.test));
+  mf.train_median = best.f;
+  mf.evaluations = best.evaluations;
+  mf.parameters = f.penalty_parameters(p);
+  return mf;
+}
+
+// Refits on training sets drawn with replacement, each from the fit with
+// the search's full first step; the 16th–84th percentile of each parameter.
+void bootstrap(const Fitter& f, const SplitFit& sf, const Minimised& fit, ModelFit& mf) {
+  if (f.options.bootstrap < 2) return;
+  const PenaltySearch search(true);
+  std::vector<std::vector<double>> draws(mf.parameters.size());
+  std::uint64_t state = f.options.seed ^ 0xb007ull;
+  for (int b = 0; b < f.options.bootstrap; ++b) {
+    f.say("fit: " + sf.split + " split, bootstrap " + std::to_string(b + 1) + "/" +
+          std::to_string(f.options.bootstrap));
+    std::vector<size_t> resample(sf.train.size());
+    const double n = static_cast<double>(sf.train.size());
+    for (size_t& i : resample) i = sf.train[static_cast<size_t>(next_uniform(state) * n)];
+    const Minimised refit = minimise(
+        [&](const std::vector<double>& x) { return f.train_median(params_of(x), resample); }, fit.x,
+        search.lo, search.hi, search.step, 150);
+    const auto values = f.penalty_parameters(params_of(refit.x));
+    for (size_t j = 0; j < values.size(); ++j) draws[j].push_back(values[j].second);
+  }
+  for (const std::vector<double>& d : draws) {
+    const std::vector<double> p = percentiles(d);
+    mf.spread.emplace_back(p[0], p[1]);
+  }
+}
+
+// The training median with log10 k held at 3, 4, …, 9 and ζ, μ, μ_roll refitted.
+void k_profile(const Fitter& f, SplitFit& sf, const Minimised& fit) {
+  for (int lk = 3; lk <= 9; ++lk) {
+    f.say("fit: k profile, k = 1e" + std::to_string(lk) + " N/m");
+    const Minimised at = minimise(
+        [&](const std::vector<double>& x) {
+          return f.train_median({static_cast<double>(lk), x[0], x[1], x[2]}, sf.train);
+        },
+        {fit.x[1], fit.x[2], fit.x[3]}, {0.0, 0.0, 0.0}, {1.5, 2.0, 0.03}, {0.05, 0.05, 0.0005},
+        120);
+    sf.k_profile.emplace_back(std::pow(10.0, lk), at.f);
+  }
+}
+
+// The penalty fit replayed on every engine of the options, and the
+// distances between every pair of them (the reference's first).
+void replay_engines(const Fitter& f, SplitFit& sf, const PenaltyParams& best) {
+  if (f.options.engines.empty()) return;
+  const Scene scene = penalty_scene(f.rec.body, best, f.pb.m_eff);
+  const long long steps = step_count(scene.sim);
+  const std::vector<std::pair<std::string, double>> parameters = sf.models[0].parameters;
+  for (const std::string& engine : f.options.engines) {
+    const engines::EngineSpec spec = engines::parse_engine(engine, "--engines");
+    f.say("fit: " + sf.split + " split, replaying " + std::to_string(sf.test.size()) +
+          " held-out impacts on " + engine);
+    std::vector<Vec3> predicted(sf.test.size());
+    const unsigned threads = f.pb.threads;
+    parallel_for(threads, threads, [&](size_t c) {
+      std::unique_ptr<Stepper> stepper = engines::make_stepper(spec, scene);
+      ContactSet contacts(f.geometry);
+      for (size_t i = c; i < sf.test.size(); i += threads)
+        predicted[i] = replay(*stepper, f.geometry, f.touches[sf.test[i]].state, steps, contacts);
+    });
+    ModelFit mf = f.model("penalty", engine, sf, std::move(predicted));
+    mf.parameters = parameters;
+    sf.models.push_back(std::move(mf));
+  }
+  std::vector<const ModelFit*> replayed = {&sf.models[0]};
+  for (const ModelFit& mf : sf.models)
+    if (mf.engine != "ref" && mf.engine != "baseline") replayed.push_back(&mf);
+  for (size_t a = 0; a < replayed.size(); ++a) {
+    for (size_t b = a + 1; b < replayed.size(); ++b) {
+      std::vector<double> d(sf.test.size());
+      for (size_t i = 0; i < sf.test.size(); ++i)
+        d[i] = impact_error(replayed[b]->predicted[i], replayed[a]->predicted[i], f.inertia, f.m);
+      sf.engine_distances.push_back(
+          {replayed[a]->engine, replayed[b]->engine, quartiles(d).median});
+    }
+  }
+}
+
+// The constant predictor, Newton + Coulomb, and the best impulse after the fact.
+void baselines(const Fitter& f, SplitFit& sf) {
+  Vec3 sum = Vec3::Zero();
+  for (size_t i : sf.train) sum += f.out.impacts[i].after.v;
+  const Vec3 mean = sum / static_cast<double>(sf.train.size());
+  ModelFit constant = f.model("constant", "baseline", sf, std::vector<Vec3>(sf.test.size(), mean));
+  constant.parameters = {{"vx", mean.x()}, {"vy", mean.y()}, {"omega", mean.z()}};
+  sf.models.push_back(std::move(constant));
+
+  f.say("fit: " + sf.split + " split, Newton restitution with Coulomb friction");
+  auto predict = [&f](double e, double mu, const std::vector<size_t>& set) {
+    std::vector<Vec3> p(set.size());
+    for (size_t i = 0; i < set.size(); ++i)
+      p[i] = newton_coulomb(f.touches[set[i]].state, f.levers[set[i]], e, mu, f.m, f.inertia);
+    return p;
+  };
+  const Minimised fit = minimise(
+      [&](const std::vector<double>& x) {
+        return quartiles(f.errors(predict(x[0], x[1], sf.train), sf.train)).median;
+      },
+      {0.5, 0.3}, {0.0, 0.0}, {1.0, 2.0}, {0.1, 0.1}, 400);
+  ModelFit newton = f.model("newton_coulomb", "baseline", sf, predict(fit.x[0], fit.x[1], sf.test));
+  newton.train_median = fit.f;
+  newton.evaluations = fit.evaluations;
+  newton.parameters = {{"restitution", fit.x[0]}, {"mu", fit.x[1]}};
+  sf.models.push_back(std::move(newton));
+
+  std::vector<Vec3> bound(sf.test.size());
+  for (size_t j = 0; j < sf.test.size(); ++j) {
+    const size_t i = sf.test[j];
+    bound[j] =
+        best_impulse(f.touches[i].state, f.levers[i], f.out.impacts[i].after.v, f.m, f.inertia);
+  }
+  sf.models.push_back(f.model("irb_bound", "baseline", sf, std::move(bound)));
+}
+
+// The seeded and the chronological halves of n impacts.
+std::vector<SplitFit> splits_of(size_t n, std::uint64_t seed) {
+  std::vector<size_t> shuffled(n);
+  std::iota(shuffled.begin(), shuffled.end(), 0);
+  std::uint64_t state = seed;
+  for (size_t i = n - 1; i > 0; --i)
+    std::swap(shuffled[i],
+              shuffled[static_cast<size_t>(next_uniform(state) * static_cast<double>(i + 1))]);
+  std::vector<size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<SplitFit> out(2);
+  out[0].split = "seeded";
+  out[1].split = "chronological";
+  for (SplitFit& sf : out) {
+    const std::vector<size_t>& all = sf.split == "seeded" ? shuffled : order;
+    const auto half = all.begin() + static_cast<std::ptrdiff_t>(n / 2);
+    sf.train.assign(all.begin(), half);
+    sf.test.assign(half, all.end());
+    std::sort(sf.test.begin(), sf.test.end());
+  }
+  return out;
+}
+
+}  // namespace
+
 ImpactFit fit_impacts(const Recording& rec, const ImpactFitOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   if (rec.kind != "impacts")
     throw InputError(rec.path + ": kind = \"" + rec.kind + "\": fit_impacts needs \"impacts\"");
-  auto say = [&options](const std::string& line) {
-    if (options.progress) options.progress(line);
-  };
   ImpactFit out;
   out.recording = rec.path;
   for (const RecordedImpact& impact : rec.impacts) {
-    const bool flagged = impact.flags.find('1') != std::string::npos;
-    if (flagged && !options.all_impacts) {
+    if (impact.flags.find('1') != std::string::npos && !options.all_impacts) {
       ++out.flagged_left_out;
       continue;
     }
@@ -336,240 +518,39 @@ ImpactFit fit_impacts(const Recording& rec, const ImpactFitOptions& options) {
   if (out.impacts.size() < 4)
     throw InputError(rec.csv + ": " + std::to_string(out.impacts.size()) +
                      " impacts to fit: at least 4 are needed (2 to train, 2 to test)");
-  const Model geometry = make_model(rec.body);
-  const double m = geometry.body.mass;
-  const double inertia = geometry.body.inertia;
-  if (!(inertia > 0.0))
+  Fitter f{rec, options, out, make_model(rec.body), 0.0, 0.0, {}, {}, {}};
+  f.m = f.geometry.body.mass;
+  f.inertia = f.geometry.body.inertia;
+  if (!(f.inertia > 0.0))
     throw InputError(rec.path + ": body.shape = \"" + std::string(shape_name(rec.body.shape)) +
                      "\": fit needs a body that turns (an inertia about its centre)");
-  out.mass = m;
-  out.inertia = inertia;
-  std::vector<Touch> touches;
+  out.mass = f.m;
+  out.inertia = f.inertia;
   std::vector<double> lifts;
+  f.touches.reserve(out.impacts.size());
+  f.levers.reserve(out.impacts.size());
   for (const RecordedImpact& impact : out.impacts) {
-    touches.push_back(first_touch(geometry, impact, rec.frame_rate, rec.csv));
-    if (touches.back().lift > 0.0) lifts.push_back(touches.back().lift);
+    f.touches.push_back(first_touch(f.geometry, impact, rec.frame_rate, rec.csv));
+    if (f.touches.back().lift > 0.0) lifts.push_back(f.touches.back().lift);
+    f.levers.push_back(lowest_lever(f.geometry, f.touches.back().state));
   }
   out.lifted = static_cast<int>(lifts.size());
   out.median_lift = quartiles(lifts).median;
-  std::vector<Vec2> levers;
-  for (const Touch& t : touches) levers.push_back(lowest_lever(geometry, t.state));
+  f.pb = {&rec.body, &f.touches, &out.impacts, min_effective_mass(f.geometry.body),
+          options.threads == 0 ? default_threads() : options.threads};
 
-  Problem pb;
-  pb.body = &rec.body;
-  pb.touches = &touches;
-  pb.impacts = &out.impacts;
-  pb.m_eff = min_effective_mass(geometry.body);
-  pb.threads = options.threads == 0 ? default_threads() : options.threads;
-
-  const size_t n = out.impacts.size();
-  std::vector<size_t> shuffled(n);
-  std::iota(shuffled.begin(), shuffled.end(), 0);
-  std::uint64_t state = options.seed;
-  for (size_t i = n - 1; i > 0; --i)
-    std::swap(shuffled[i], shuffled[static_cast<size_t>(next_uniform(state) * (i + 1))]);
-  std::vector<size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-
-  for (const std::string split : {"seeded", "chronological"}) {
-    SplitFit sf;
-    sf.split = split;
-    const std::vector<size_t>& all = split == "seeded" ? shuffled : order;
-    sf.train.assign(all.begin(), all.begin() + static_cast<long>(n / 2));
-    sf.test.assign(all.begin() + static_cast<long>(n / 2), all.end());
-    if (split == "seeded") std::sort(sf.test.begin(), sf.test.end());
-    auto objective_on = [&](const std::vector<size_t>& set) {
-      return [&pb, &set, &out, inertia, m](const PenaltyParams& p) {
-        return quartiles(errors_of(predict_ref(pb, p, set), set, out.impacts, inertia, m)).median;
-      };
-    };
-    // Penalty models: with and without rolling resistance.
-    PenaltyParams best;
-    for (const bool rolling : {true, false}) {
-      const std::string name = rolling ? "penalty" : "penalty_no_rolling";
-      say("fit: " + split + " split, " + name + " on " + std::to_string(sf.train.size()) +
-          " impacts (NLopt BOBYQA)");
-      const auto objective = objective_on(sf.train);
-      auto f = [&](const std::vector<double>& x) {
-        return objective({x[0], x[1], x[2], rolling ? x[3] : 0.0});
-      };
-      // Three starts (little, some and much friction and rolling
-      // resistance): the error surface has more than one valley; the best
-      // training fit wins.
-      std::vector<double> lo = {3.0, 0.0, 0.0}, hi = {9.0, 1.5, 2.0}, step = {0.5, 0.1, 0.1};
-      std::vector<std::vector<double>> starts = {{5.0, 0.2, 0.05}, {5.0, 0.2, 0.4}, {7.0, 0.3, 0.0}};
-      if (rolling) {
-        lo.push_back(0.0);
-        hi.push_back(0.03);
-        step.push_back(0.001);
-        starts[0].push_back(0.003);
-        starts[1].push_back(0.01);
-        starts[2].push_back(0.0);
-      }
-      Minimised fit;
-      fit.f = INFINITY;
-      for (const std::vector<double>& x0 : starts) {
-        const Minimised tried = minimise(f, x0, lo, hi, step, 300);
-        fit.evaluations += tried.evaluations;
-        if (tried.f < fit.f) {
-          fit.x = tried.x;
-          fit.f = tried.f;
-        }
-      }
-      const PenaltyParams p{fit.x[0], fit.x[1], fit.x[2], rolling ? fit.x[3] : 0.0};
-      ModelFit mf;
-      mf.name = name;
-      mf.engine = "ref";
-      mf.split = split;
-      mf.train_median = fit.f;
-      mf.evaluations = fit.evaluations;
-      const double k = std::pow(10.0, p.log_k);
-      mf.parameters = {{"k", k},
-                       {"zeta", p.zeta},
-                       {"c", 2.0 * p.zeta * std::sqrt(k * m)},
-                       {"mu", p.mu},
-                       {"mu_roll", p.mu_roll}};
-      mf.predicted = predict_ref(pb, p, sf.test);
-      mf.errors = errors_of(mf.predicted, sf.test, out.impacts, inertia, m);
-      set_quartiles(mf);
-      if (rolling) {
-        best = p;
-        // Bootstrap: refits on training sets drawn with replacement.
-        std::vector<std::vector<double>> draws(5);
-        std::uint64_t boot = options.seed ^ 0xb007ull;
-        for (int b = 0; b < options.bootstrap; ++b) {
-          say("fit: " + split + " split, bootstrap " + std::to_string(b + 1) + "/" +
-              std::to_string(options.bootstrap));
-          std::vector<size_t> resample(sf.train.size());
-          for (size_t& i : resample)
-            i = sf.train[static_cast<size_t>(next_uniform(boot) * sf.train.size())];
-          const auto obj = objective_on(resample);
-          const Minimised refit = minimise(
-              [&](const std::vector<double>& x) { return obj({x[0], x[1], x[2], x[3]}); },
-              fit.x, lo, hi, {0.2, 0.05, 0.05, 0.0005}, 150);
-          const double kb = std::pow(10.0, refit.x[0]);
-          draws[0].push_back(kb);
-          draws[1].push_back(refit.x[1]);
-          draws[2].push_back(2.0 * refit.x[1] * std::sqrt(kb * m));
-          draws[3].push_back(refit.x[2]);
-          draws[4].push_back(refit.x[3]);
-        }
-        if (options.bootstrap > 1) {
-          for (const std::vector<double>& d : draws) {
-            const std::vector<double> p16 = percentiles(d);
-            mf.spread.push_back({p16[0], p16[1]});
-          }
-        }
-        // k's profile (seeded split only): ζ, μ, μ_roll refitted at each k.
-        if (split == "seeded") {
-          for (double lk = 3.0; lk <= 9.0 + 1e-9; lk += 1.0) {
-            say("fit: k profile, k = 1e" + std::to_string(static_cast<int>(lk)) + " N/m");
-            const Minimised at = minimise(
-                [&](const std::vector<double>& x) { return objective({lk, x[0], x[1], x[2]}); },
-                {fit.x[1], fit.x[2], fit.x[3]}, {0.0, 0.0, 0.0}, {1.5, 2.0, 0.03},
-                {0.05, 0.05, 0.0005}, 120);
-            sf.k_profile.push_back({std::pow(10.0, lk), at.f});
-          }
-        }
-      }
-      sf.models.push_back(std::move(mf));
-    }
-    // The other engines with the penalty fit (through their default mapping).
-    if (!options.engines.empty()) {
-      const Scene scene = penalty_scene(rec.body, best, pb.m_eff);
-      const long long steps = step_count(scene.sim);
-      for (const std::string& engine : options.engines) {
-        const engines::EngineSpec spec = engines::parse_engine(engine, "--engines");
-        say("fit: " + split + " split, replaying " + std::to_string(sf.test.size()) +
-            " held-out impacts on " + engine);
-        ModelFit mf;
-        mf.name = "penalty";
-        mf.engine = engine;
-        mf.split = split;
-        mf.parameters = sf.models[0].parameters;
-        mf.predicted.resize(sf.test.size());
-        parallel_for(pb.threads, pb.threads, [&](size_t c) {
-          std::unique_ptr<Stepper> stepper = engines::make_stepper(spec, scene);
-          ContactSet contacts(geometry);
-          for (size_t i = c; i < sf.test.size(); i += pb.threads)
-            mf.predicted[i] = replay(*stepper, geometry, touches[sf.test[i]].state, steps, contacts);
-        });
-        mf.errors = errors_of(mf.predicted, sf.test, out.impacts, inertia, m);
-        set_quartiles(mf);
-        sf.models.push_back(std::move(mf));
-      }
-      // Every pair among the reference's penalty fit and the engines.
-      std::vector<const ModelFit*> replayed = {&sf.models[0]};
-      for (const ModelFit& mf : sf.models)
-        if (mf.engine != "ref" && mf.engine != "baseline") replayed.push_back(&mf);
-      for (size_t a = 0; a < replayed.size(); ++a) {
-        for (size_t b = a + 1; b < replayed.size(); ++b) {
-          std::vector<double> d;
-          for (size_t i = 0; i < sf.test.size(); ++i)
-            d.push_back(impact_error(replayed[b]->predicted[i], replayed[a]->predicted[i], inertia,
-                                     m));
-          sf.engine_distances.push_back(
-              {replayed[a]->engine, replayed[b]->engine, quartiles(d).median});
-        }
-      }
-    }
-    // Baselines.
-    {
-      ModelFit mf;
-      mf.name = "constant";
-      mf.engine = "baseline";
-      mf.split = split;
-      Vec3 sum = Vec3::Zero();
-      for (size_t i : sf.train) sum += out.impacts[i].after.v;
-      const Vec3 v = sum / static_cast<double>(sf.train.size());
-      mf.parameters = {{"vx", v.x()}, {"vy", v.y()}, {"omega", v.z()}};
-      mf.predicted.assign(sf.test.size(), v);
-      mf.errors = errors_of(mf.predicted, sf.test, out.impacts, inertia, m);
-      set_quartiles(mf);
-      sf.models.push_back(std::move(mf));
-    }
-    {
-      say("fit: " + split + " split, Newton restitution with Coulomb friction");
-      auto predict = [&](double e, double mu, const std::vector<size_t>& set) {
-        std::vector<Vec3> p;
-        for (size_t i : set) p.push_back(newton_coulomb(touches[i].state, levers[i], e, mu, m, inertia));
-        return p;
-      };
-      const Minimised fit = minimise(
-          [&](const std::vector<double>& x) {
-            return quartiles(errors_of(predict(x[0], x[1], sf.train), sf.train, out.impacts,
-                                       inertia, m))
-                .median;
-          },
-          {0.5, 0.3}, {0.0, 0.0}, {1.0, 2.0}, {0.1, 0.1}, 400);
-      ModelFit mf;
-      mf.name = "newton_coulomb";
-      mf.engine = "baseline";
-      mf.split = split;
-      mf.train_median = fit.f;
-      mf.evaluations = fit.evaluations;
-      mf.parameters = {{"restitution", fit.x[0]}, {"mu", fit.x[1]}};
-      mf.predicted = predict(fit.x[0], fit.x[1], sf.test);
-      mf.errors = errors_of(mf.predicted, sf.test, out.impacts, inertia, m);
-      set_quartiles(mf);
-      sf.models.push_back(std::move(mf));
-    }
-    {
-      ModelFit mf;
-      mf.name = "irb_bound";
-      mf.engine = "baseline";
-      mf.split = split;
-      for (size_t i : sf.test)
-        mf.predicted.push_back(
-            best_impulse(touches[i].state, levers[i], out.impacts[i].after.v, m, inertia));
-      mf.errors = errors_of(mf.predicted, sf.test, out.impacts, inertia, m);
-      set_quartiles(mf);
-      sf.models.push_back(std::move(mf));
-    }
+  for (SplitFit& sf : splits_of(out.impacts.size(), options.seed)) {
+    Minimised best;
+    sf.models.push_back(fit_penalty(f, sf, true, best));
+    bootstrap(f, sf, best, sf.models.back());
+    if (sf.split == "seeded") k_profile(f, sf, best);
+    Minimised unused;
+    sf.models.push_back(fit_penalty(f, sf, false, unused));
+    replay_engines(f, sf, params_of(best.x));
+    baselines(f, sf);
     out.splits.push_back(std::move(sf));
   }
-  out.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
 }
 

@@ -60,24 +60,24 @@ struct ImpactFitOptions {
   // Engines the held-out impacts are replayed on with the penalty fit's
   // parameters (registry names); empty: none.
   std::vector<std::string> engines;
-  bool all_impacts = false;   // also the impacts the recording flags
+  bool all_impacts = false;  // also the impacts the recording flags
   // One line of progress (what is being done, how far); may be empty.
   std::function<void(const std::string&)> progress;
 };
 
 struct ModelFit {
-  std::string name;    // "penalty", "constant", …
-  std::string engine;  // "ref", an engine of the registry, or "baseline"
-  std::string split;   // "seeded" or "chronological"
+  std::string name;                         // "penalty", "constant", …
+  std::string engine;                       // "ref", an engine of the registry, or "baseline"
+  std::string split;                        // "seeded" or "chronological"
   double median = 0.0, q1 = 0.0, q3 = 0.0;  // of the held-out errors
   std::vector<std::pair<std::string, double>> parameters;
   // Bootstrap spread of each parameter (the 16th and 84th percentiles of
   // the refits), same order as `parameters`; empty without a bootstrap.
   std::vector<std::pair<double, double>> spread;
-  double train_median = 0.0;     // the fitted objective on the training half
-  int evaluations = 0;           // objective evaluations of the fit
-  std::vector<double> errors;    // per held-out impact, in `test` order
-  std::vector<Vec3> predicted;   // v̂ per held-out impact
+  double train_median = 0.0;    // the fitted objective on the training half
+  int evaluations = 0;          // objective evaluations of the fit
+  std::vector<double> errors;   // per held-out impact, in `test` order
+  std::vector<Vec3> predicted;  // v̂ per held-out impact
   double iqr() const { return q3 - q1; }
 };
 
@@ -101,11 +101,11 @@ struct ImpactFit {
   std::string recording;
   std::vector<RecordedImpact> impacts;  // the ones used (unflagged unless all_impacts)
   int flagged_left_out = 0;
-  int lifted = 0;                 // pre-impact states moved up to first touch
-  double median_lift = 0.0;       // m, over the lifted ones
+  int lifted = 0;            // pre-impact states moved up to first touch
+  double median_lift = 0.0;  // m, over the lifted ones
   double inertia = 0.0, mass = 0.0;
-  std::vector<SplitFit> splits;   // seeded, then chronological
-  double seconds = 0.0;           // wall time of the whole fit
+  std::vector<SplitFit> splits;  // seeded, then chronological
+  double seconds = 0.0;          // wall time of the whole fit
 };
 
 // The engines a fit replays by default: every engine of the registry that

@@ -8,12 +8,13 @@ namespace contact2d::analysis {
 
 std::string impact_fit_json(const ImpactFit& fit) {
   std::ostringstream o;
-  o << "{\"recording\": " << json::string(fit.recording)
-    << ", \"impacts\": " << fit.impacts.size() << ", \"flagged_left_out\": " << fit.flagged_left_out
+  o << "{\"recording\": " << json::string(fit.recording) << ", \"impacts\": " << fit.impacts.size()
+    << ", \"flagged_left_out\": " << fit.flagged_left_out
     << ", \"lifted_to_first_touch\": " << fit.lifted
     << ", \"median_lift_m\": " << json::number(fit.median_lift)
     << ", \"mass\": " << json::number(fit.mass) << ", \"inertia\": " << json::number(fit.inertia)
-    << ", \"metric\": \"|W(v_hat - v)| / |W v| over (vx, vy, omega) after the impact, W = diag(1, 1, sqrt(I/m))\""
+    << ", \"metric\": \"|W(v_hat - v)| / |W v| over (vx, vy, omega) after the impact, W = diag(1, "
+       "1, sqrt(I/m))\""
     << ", \"seconds\": " << json::number(fit.seconds, 4) << ", \"models\": [";
   bool first = true;
   for (const SplitFit& s : fit.splits) {
@@ -45,8 +46,7 @@ std::string impact_fit_json(const ImpactFit& fit) {
   o << "], \"splits\": [";
   for (size_t i = 0; i < fit.splits.size(); ++i) {
     const SplitFit& s = fit.splits[i];
-    o << (i ? ", " : "") << "{\"split\": " << json::string(s.split)
-      << ", \"engine_distances\": [";
+    o << (i ? ", " : "") << "{\"split\": " << json::string(s.split) << ", \"engine_distances\": [";
     for (size_t j = 0; j < s.engine_distances.size(); ++j)
       o << (j ? ", " : "") << "{\"a\": " << json::string(s.engine_distances[j].a)
         << ", \"b\": " << json::string(s.engine_distances[j].b)
@@ -71,8 +71,8 @@ std::string impact_fit_text(const ImpactFit& fit) {
   o << "error of one impact: |W(v_hat - v)| / |W v| over (vx, vy, omega) after it, W = diag(1, 1, "
        "sqrt(I/m)); median [IQR] over the held-out half\n";
   for (const SplitFit& s : fit.splits) {
-    o << "\n" << s.split << " split (" << s.train.size() << " to fit, " << s.test.size()
-      << " held out)\n";
+    o << "\n"
+      << s.split << " split (" << s.train.size() << " to fit, " << s.test.size() << " held out)\n";
     o << "  model                 engine    median  [q1, q3]          parameters\n";
     for (const ModelFit& m : s.models) {
       std::string params;
@@ -83,9 +83,8 @@ std::string impact_fit_text(const ImpactFit& fit) {
           params += " (" + format_number("%.3g", m.spread[i].first) + "-" +
                     format_number("%.3g", m.spread[i].second) + ")";
       }
-      o << "  " << m.name
-        << std::string(m.name.size() < 22 ? 22 - m.name.size() : 1, ' ') << m.engine
-        << std::string(m.engine.size() < 10 ? 10 - m.engine.size() : 1, ' ')
+      o << "  " << m.name << std::string(m.name.size() < 22 ? 22 - m.name.size() : 1, ' ')
+        << m.engine << std::string(m.engine.size() < 10 ? 10 - m.engine.size() : 1, ' ')
         << format_number("%.3f", m.median) << "  [" << format_number("%.3f", m.q1) << ", "
         << format_number("%.3f", m.q3) << "]    " << params << "\n";
     }

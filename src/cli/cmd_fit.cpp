@@ -1,13 +1,16 @@
 // contact2d fit RECORDING [--json] [--seed N] [--bootstrap B] [--threads N]
-//                         [--engines LIST] [--all-impacts] [--quiet]
-// A recording of real impacts in (docs/recordings.md), the contact law's
-// k, c (ζ), μ and μ_roll out, and every model measured on held-out impacts
-// (analysis/real_impacts.hpp, docs/real-impacts.md).
+//                         [--engines LIST] [--all-impacts] [--omega-dt X] [--quiet]
+// A recording of real impacts or trajectories in (docs/recordings.md), the
+// contact law's k, c (ζ), μ (and μ_roll for impacts) out, and every model
+// measured on held-out impacts (analysis/real_impacts.hpp,
+// docs/real-impacts.md) or trajectories (analysis/real_trajectories.hpp,
+// docs/real-trajectories.md).
 #include <algorithm>
 #include <iostream>
 #include <memory>
 
 #include "analysis/real_impacts.hpp"
+#include "analysis/real_trajectories.hpp"
 #include "cli/common.hpp"
 #include "core/input_error.hpp"
 #include "io/recording.hpp"
@@ -25,22 +28,41 @@ struct FitOptions {
   std::vector<std::string> engines;
   bool engines_given = false;
   bool all_impacts = false;
+  bool bootstrap_given = false;
+  double omega_dt = 0.0;  // 0: the fit's default
   bool quiet = false;
 };
 
-int fit(const FitOptions& o) {
+int fit_trajectories(const FitOptions& o, const Recording& rec) {
+  if (o.bootstrap_given || o.all_impacts)
+    throw InputError(std::string(o.all_impacts ? "--all-impacts" : "--bootstrap") +
+                     ": applies to impacts recordings; " + o.recording +
+                     " holds trajectories (kind = \"trajectories\")");
+  analysis::TrajectoryFitOptions options;
+  options.seed = static_cast<std::uint64_t>(o.seed);
+  options.threads = o.threads;
+  options.engines = o.engines;
+  if (o.omega_dt > 0.0) options.omega_dt = o.omega_dt;
+  if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  const analysis::TrajectoryFit result = analysis::fit_trajectories(rec, options);
+  std::cout << (o.json ? analysis::trajectory_fit_json(result)
+                       : analysis::trajectory_fit_text(result));
+  return kExitOk;
+}
+
+int fit(FitOptions o) {
   const Recording rec = read_recording(o.recording);
-  if (rec.kind != "impacts")
-    throw InputError(o.recording + ": kind = \"" + rec.kind +
-                     "\": contact2d fit takes \"impacts\" recordings (trajectories are not fitted "
-                     "yet)");
+  if (!o.engines_given) o.engines = analysis::default_fit_engines();
+  o.engines.erase(std::remove(o.engines.begin(), o.engines.end(), ""), o.engines.end());
+  if (rec.kind == "trajectories") return fit_trajectories(o, rec);
+  if (o.omega_dt > 0.0)
+    throw InputError("--omega-dt: applies to trajectories recordings; " + o.recording +
+                     " holds impacts (kind = \"impacts\"), replayed at omega dt = 0.01");
   analysis::ImpactFitOptions options;
   options.seed = static_cast<std::uint64_t>(o.seed);
   options.bootstrap = o.bootstrap;
   options.threads = o.threads;
-  options.engines = o.engines_given ? o.engines : analysis::default_fit_engines();
-  options.engines.erase(std::remove(options.engines.begin(), options.engines.end(), ""),
-                        options.engines.end());
+  options.engines = o.engines;
   options.all_impacts = o.all_impacts;
   if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   const analysis::ImpactFit result = analysis::fit_impacts(rec, options);
@@ -54,8 +76,9 @@ Command add_fit(CLI::App& app) {
   auto o = std::make_shared<FitOptions>();
   CLI::App* cmd = app.add_subcommand(
       "fit",
-      "Fit k, c, mu and mu_roll to a recording of real impacts and measure every model (the "
-      "reference, MuJoCo 2.2.2 and 3.14, impulse baselines) on held-out impacts");
+      "Fit k, c, mu (and mu_roll for impacts) to a recording of real impacts or trajectories and "
+      "measure every model (the reference, MuJoCo 2.2.2 and 3.14, impulse baselines or the "
+      "recording's peer engine) on held-out impacts or trajectories");
   cmd->add_option("recording", o->recording,
                   "The recording's manifest (TOML; docs/recordings.md), e.g. "
                   "validation/real/ellipse/recording.toml")
@@ -66,7 +89,8 @@ Command add_fit(CLI::App& app) {
   cmd->add_option("--bootstrap", o->bootstrap,
                   "Refits on resampled training sets for the parameters' spread (default 8; 0: "
                   "none)")
-      ->check(CLI::Range(0, 1000));
+      ->check(CLI::Range(0, 1000))
+      ->each([o](const std::string&) { o->bootstrap_given = true; });
   cmd->add_option("--threads", o->threads, "Threads (default: one per core)")
       ->check(CLI::Range(0u, 256u));
   cmd->add_option("--engines", o->engines,
@@ -77,6 +101,10 @@ Command add_fit(CLI::App& app) {
       ->each([o](const std::string&) { o->engines_given = true; });
   cmd->add_flag("--all-impacts", o->all_impacts,
                 "Also the impacts the recording flags (its flags column)");
+  cmd->add_option("--omega-dt", o->omega_dt,
+                  "Trajectories: the largest omega dt of the replays (default 0.1; Δt then "
+                  "divides the frame period)")
+      ->check(CLI::Range(1e-4, 1.0));
   cmd->add_flag("--quiet", o->quiet, "No progress lines on stderr");
   return {cmd, [o] { return fit(*o); }};
 }

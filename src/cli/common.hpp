@@ -138,7 +138,7 @@ Command add_generate(CLI::App& app);   // built with MuJoCo only
 Command add_compare(CLI::App& app);    // built with MuJoCo only
 Command add_sweep(CLI::App& app);      // error against run time (src/cli/cmd_sweep.cpp)
 Command add_stability(CLI::App& app);  // stability map (src/cli/cmd_stability.cpp)
-Command add_fit(CLI::App& app);  // contact parameters from real impacts (src/cli/cmd_fit.cpp)
+Command add_fit(CLI::App& app);        // contact parameters from real impacts (src/cli/cmd_fit.cpp)
 Command add_report(CLI::App& app);     // validation/report/ (src/cli/cmd_report.cpp; with MuJoCo)
 Command add_solref(CLI::App& app);     // MuJoCo numbers for your own model (cmd_solref.cpp; MuJoCo)
 Command add_atlas(CLI::App& app);  // fidelity atlas over a parameter space (cmd_atlas.cpp; MuJoCo)

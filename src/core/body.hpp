@@ -55,10 +55,10 @@ struct PartOutline {
 struct RigidBody {
   Shape shape = Shape::Box;  // what the body has: shape_features(shape)
   double mass = 1.0;
-  double inertia = 0.0;            // about the COM, kg·m² (0 when rotates = false)
-  bool rotates = true;             // false: θ and ω stay 0 (point mass)
-  bool points_rotate = true;       // false: points keep their world-frame offset (circle)
-  double roll_radius = 0.0;        // the rolling tanh's length R (disc: its radius; ellipse: √(a·b))
+  double inertia = 0.0;       // about the COM, kg·m² (0 when rotates = false)
+  bool rotates = true;        // false: θ and ω stay 0 (point mass)
+  bool points_rotate = true;  // false: points keep their world-frame offset (circle)
+  double roll_radius = 0.0;   // the rolling tanh's length R (disc: its radius; ellipse: √(a·b))
   Vec2 semi_axes = Vec2::Zero();   // the ellipse's (a, b): a along the body's x; else 0
   std::vector<Vec2> points;        // contact points relative to the COM, body frame
   std::vector<PartOutline> parts;  // convex outlines with edges (box, compound); else empty

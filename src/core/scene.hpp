@@ -25,13 +25,13 @@ struct Scene {
   Shape shape = Shape::PointMass;
   // [body]
   double mass = 1.0;
-  double half_height = 0.05;   // point mass: contact point at (0, −half_height)
-  double width = 0.4;          // box
-  double height = 0.2;         // box
-  double radius = 0.1;         // circle
-  double a = 0.2;              // ellipse: semi-axis along the body's x
-  double b = 0.1;              // ellipse: semi-axis along the body's y
-  double inertia = 0.0;        // ellipse: about the COM, kg·m²; 0 = a uniform plate's m·(a² + b²)/4
+  double half_height = 0.05;  // point mass: contact point at (0, −half_height)
+  double width = 0.4;         // box
+  double height = 0.2;        // box
+  double radius = 0.1;        // circle
+  double a = 0.2;             // ellipse: semi-axis along the body's x
+  double b = 0.1;             // ellipse: semi-axis along the body's y
+  double inertia = 0.0;  // ellipse: about the COM, kg·m²; 0 = a uniform plate's m·(a² + b²)/4
   std::vector<BoxPart> parts;  // tshape; empty = the default T
   ContactParams contact;
   std::vector<Obstacle> obstacles;  // static geometry, same contact law as the ground

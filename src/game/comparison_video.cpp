@@ -94,8 +94,8 @@ std::vector<std::vector<Vec2>> body_polygons(const RigidBody& body, const State&
     std::vector<Vec2> rim;
     for (int i = 0; i < 48; ++i) {
       const double phi = 6.283185307179586 * i / 48;
-      rim.push_back(world(Vec2(body.semi_axes.x() * std::cos(phi),
-                               body.semi_axes.y() * std::sin(phi))));
+      rim.push_back(
+          world(Vec2(body.semi_axes.x() * std::cos(phi), body.semi_axes.y() * std::sin(phi))));
     }
     out.push_back(std::move(rim));
   }

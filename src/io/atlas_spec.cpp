@@ -138,8 +138,9 @@ void read_atlas_table(AtlasSpec& spec, const toml::table* atlas, const std::stri
   spec.random = sample == "random";
 
   reader.mark_used("bodies");
-  for (const std::string& body : string_list(
-           atlas, "bodies", origin, "point_mass, box, tshape, circle, ellipse or scene files (*.toml)")) {
+  for (const std::string& body :
+       string_list(atlas, "bodies", origin,
+                   "point_mass, box, tshape, circle, ellipse or scene files (*.toml)")) {
     AtlasBody b;
     if (body.size() > 5 && body.compare(body.size() - 5, 5, ".toml") == 0) {
       const std::filesystem::path path = std::filesystem::path(base_dir) / body;

@@ -11,8 +11,8 @@ std::string read_input_file(const std::string& path, const std::string& what) {
                          "larger than 4 MiB, where one is a few kB: is it the right file?");
 }
 
-std::string read_input_file(const std::string& path, const std::string& what,
-                            std::size_t limit, const std::string& why) {
+std::string read_input_file(const std::string& path, const std::string& what, std::size_t limit,
+                            const std::string& why) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read " + what + " (missing or unreadable)");
   std::string text;

@@ -18,7 +18,7 @@ std::string read_input_file(const std::string& path, const std::string& what);
 // A recording's data (io/recording.hpp): thousands of rows, so a larger cap.
 constexpr std::size_t kMaxRecordingBytes = 64u << 20;  // 64 MiB
 // The same read with its own cap (`limit` bytes, named in the message).
-std::string read_input_file(const std::string& path, const std::string& what,
-                            std::size_t limit, const std::string& why);
+std::string read_input_file(const std::string& path, const std::string& what, std::size_t limit,
+                            const std::string& why);
 
 }  // namespace contact2d

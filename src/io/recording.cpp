@@ -1,5 +1,6 @@
 #include "io/recording.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -51,9 +52,8 @@ Csv read_csv(const std::string& path, const std::string& what) {
     }
     std::vector<std::string> fields = split(line);
     if (fields.size() != csv.header.size())
-      throw InputError(path + ":" + std::to_string(number) + ": " +
-                       std::to_string(fields.size()) + " fields, the header has " +
-                       std::to_string(csv.header.size()));
+      throw InputError(path + ":" + std::to_string(number) + ": " + std::to_string(fields.size()) +
+                       " fields, the header has " + std::to_string(csv.header.size()));
     csv.rows.push_back(std::move(fields));
     csv.lines.push_back(number);
   }
@@ -81,8 +81,8 @@ std::vector<size_t> columns(const Csv& csv, const std::vector<std::string>& name
 
 double number(const Csv& csv, size_t row, size_t column, const std::string& path) {
   const std::string& text = csv.rows[row][column];
-  const std::string where = path + ":" + std::to_string(csv.lines[row]) + ": field '" +
-                            csv.header[column] + "'";
+  const std::string where =
+      path + ":" + std::to_string(csv.lines[row]) + ": field '" + csv.header[column] + "'";
   if (text.empty()) throw InputError(where + " is empty: it must be a finite number");
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
@@ -111,10 +111,18 @@ State state_at(const Csv& csv, size_t row, const std::vector<size_t>& col, size_
   return s;
 }
 
-std::vector<RecordedTrajectory> read_trajectories(const std::string& path) {
+// `velocities`: whether vx, vy, omega are required (the recording's own
+// trajectories); a peer's file may leave all three out (then they are 0 and
+// RecordedTrajectory::velocities is false), or give all three.
+std::vector<RecordedTrajectory> read_trajectories(const std::string& path, bool velocities) {
   const Csv csv = read_csv(path, "trajectories");
-  const std::vector<size_t> col =
-      columns(csv, {"traj", "t", "x", "y", "theta", "vx", "vy", "omega"}, path);
+  const auto has = [&csv](const char* name) {
+    return std::find(csv.header.begin(), csv.header.end(), name) != csv.header.end();
+  };
+  if (!velocities) velocities = has("vx") || has("vy") || has("omega");
+  std::vector<std::string> names = {"traj", "t", "x", "y", "theta"};
+  if (velocities) names.insert(names.end(), {"vx", "vy", "omega"});
+  const std::vector<size_t> col = columns(csv, names, path);
   std::vector<RecordedTrajectory> out;
   std::map<int, size_t> seen;
   for (size_t r = 0; r < csv.rows.size(); ++r) {
@@ -122,22 +130,31 @@ std::vector<RecordedTrajectory> read_trajectories(const std::string& path) {
     const double t = number(csv, r, col[1], path);
     if (out.empty() || out.back().id != id) {
       if (seen.count(id))
-        throw InputError(path + ":" + std::to_string(csv.lines[r]) + ": field 'traj' = " +
-                         std::to_string(id) +
+        throw InputError(path + ":" + std::to_string(csv.lines[r]) +
+                         ": field 'traj' = " + std::to_string(id) +
                          ": this trajectory's rows must be consecutive (it appeared before, "
-                         "at line " + std::to_string(out[seen[id]].line) + ")");
+                         "at line " +
+                         std::to_string(out[seen[id]].line) + ")");
       seen[id] = out.size();
-      out.push_back({id, csv.lines[r], {}, {}});
+      out.push_back({id, csv.lines[r], velocities, {}, {}, {}});
     } else if (!(t > out.back().t.back())) {
       std::ostringstream m;
       m.precision(17);
-      m << path << ":" << csv.lines[r] << ": field 't' = " << t
-        << " is not after the row before's " << out.back().t.back()
-        << " (time must increase within a trajectory)";
+      m << path << ":" << csv.lines[r] << ": field 't' = " << t << " is not after the row before's "
+        << out.back().t.back() << " (time must increase within a trajectory)";
       throw InputError(m.str());
     }
+    out.back().lines.push_back(csv.lines[r]);
     out.back().t.push_back(t);
-    out.back().states.push_back(state_at(csv, r, col, 2, path));
+    State s;
+    if (velocities) {
+      s = state_at(csv, r, col, 2, path);
+    } else {
+      s.q = Vec3(number(csv, r, col[2], path), number(csv, r, col[3], path),
+                 number(csv, r, col[4], path));
+      s.v = Vec3::Zero();
+    }
+    out.back().states.push_back(s);
   }
   return out;
 }
@@ -160,8 +177,9 @@ Recording read_recording(const std::string& path) {
   TableReader top(&root, "", path);
   top.string("kind", rec.kind);
   if (rec.kind != "impacts" && rec.kind != "trajectories")
-    top.fail("kind", rec.kind.empty() ? "is required: \"impacts\" or \"trajectories\""
-                                      : "= \"" + rec.kind + "\": use \"impacts\" or \"trajectories\"");
+    top.fail("kind", rec.kind.empty()
+                         ? "is required: \"impacts\" or \"trajectories\""
+                         : "= \"" + rec.kind + "\": use \"impacts\" or \"trajectories\"");
   std::string csv_name, peer_csv;
   top.string("csv", csv_name);
   if (csv_name.empty()) top.fail("csv", "is required: the data file, relative to this file");
@@ -203,16 +221,18 @@ Recording read_recording(const std::string& path) {
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
   rec.csv = (dir / csv_name).string();
   if (rec.kind == "trajectories") {
-    rec.trajectories = read_trajectories(rec.csv);
-    if (!peer_csv.empty()) rec.peer_trajectories = read_trajectories((dir / peer_csv).string());
+    rec.trajectories = read_trajectories(rec.csv, true);
+    if (!peer_csv.empty()) {
+      rec.peer_csv = (dir / peer_csv).string();
+      rec.peer_trajectories = read_trajectories(rec.peer_csv, false);
+    }
     return rec;
   }
   const Csv csv = read_csv(rec.csv, "impacts");
-  const std::vector<size_t> col =
-      columns(csv,
-              {"impact", "x0", "y0", "theta0", "vx0", "vy0", "omega0", "x1", "y1", "theta1",
-               "vx1", "vy1", "omega1"},
-              rec.csv);
+  const std::vector<size_t> col = columns(csv,
+                                          {"impact", "x0", "y0", "theta0", "vx0", "vy0", "omega0",
+                                           "x1", "y1", "theta1", "vx1", "vy1", "omega1"},
+                                          rec.csv);
   size_t flags = csv.header.size();
   for (size_t i = 0; i < csv.header.size(); ++i)
     if (csv.header[i] == "flags") flags = i;

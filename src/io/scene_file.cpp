@@ -346,12 +346,13 @@ Scene read_scene(const std::string& toml_text, const std::string& origin,
   std::string shape_text;
   top.string("scene", shape_text);
   if (!root.contains("scene")) {
-    throw InputError(origin + ": missing key 'scene' (one of point_mass, box, tshape, circle, ellipse)");
+    throw InputError(origin +
+                     ": missing key 'scene' (one of point_mass, box, tshape, circle, ellipse)");
   }
   const auto shape = parse_shape(shape_text);
   if (!shape) {
-    top.fail("scene",
-             "= \"" + shape_text + "\" is not a scene: use point_mass, box, tshape, circle or ellipse");
+    top.fail("scene", "= \"" + shape_text +
+                          "\" is not a scene: use point_mass, box, tshape, circle or ellipse");
   }
   Scene scene = default_scene(*shape);
   read_body(subtable(root, "body", origin), scene, origin);

@@ -172,11 +172,11 @@ class System {
     // The lever arm's own rate: −ω·r_y for a body point, the lowest
     // point's dr_x/dθ·θ̇ for an ellipse (core/ellipse.hpp).
     const double vcy_rate =
-        features.smooth ? yd[4] + yd[5] * rx +
-                              y[5] * spin *
-                                  ellipse_lowest_point_turn_rate(body.semi_axes.x(),
-                                                                 body.semi_axes.y(), y[2])
-                        : yd[4] + yd[5] * rx - y[5] * spin * ry;
+        features.smooth
+            ? yd[4] + yd[5] * rx +
+                  y[5] * spin *
+                      ellipse_lowest_point_turn_rate(body.semi_axes.x(), body.semi_axes.y(), y[2])
+            : yd[4] + yd[5] * rx - y[5] * spin * ry;
     rate_contact = -cy_rate;
     rate_active = law.friction == FrictionLaw::SoftCone    ? 0.0
                   : law.damping == DampingLaw::Compression ? -vcy_rate

@@ -42,9 +42,8 @@ inline Scene drop_scene(Shape shape, double c, double mu) {
       return scene_from("scene = \"circle\"\n[body]\nmass = 1.0\nradius = 0.1\n" + contact +
                         "[initial]\ny = 0.5\nvx = 1.0\n" + sim);
     case Shape::Ellipse:
-      return scene_from("scene = \"ellipse\"\n[body]\nmass = 1.0\na = 0.2\nb = 0.1\n" +
-                        contact + "[initial]\ny = 0.6\ntheta = 0.3\nvx = 0.5\nomega = 1.0\n" +
-                        sim);
+      return scene_from("scene = \"ellipse\"\n[body]\nmass = 1.0\na = 0.2\nb = 0.1\n" + contact +
+                        "[initial]\ny = 0.6\ntheta = 0.3\nvx = 0.5\nomega = 1.0\n" + sim);
   }
   return {};
 }

@@ -1,0 +1,58 @@
+#include "analysis/fit_common.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/rng.hpp"
+
+namespace contact2d::analysis {
+
+double ground_gap(const Model& model, const Vec3& q, ContactSet& contacts) {
+  find_contacts(model, q, contacts);
+  if (contacts.ground_count() > 0) {
+    double deepest = 0.0;
+    for (size_t i = 0; i < contacts.ground_count(); ++i)
+      deepest = std::max(deepest, contacts.begin()[i].depth);
+    return -deepest;
+  }
+  // Above the ground: lift the body's lowest point by probing how far down
+  // it can go — for a smooth or a one-point body that is exact.
+  Vec3 low = q;
+  double lo = 0.0, hi = std::max(1.0, q.y() + 1.0);
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * std::max(1.0, hi); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    low.y() = q.y() - mid;
+    find_contacts(model, low, contacts);
+    (contacts.ground_count() > 0 ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+Scene penalty_scene(const Scene& body, const PenaltyParams& p, double m_eff, double omega_dt,
+                    double duration) {
+  Scene s = body;
+  s.contact.k = std::pow(10.0, p.log_k);
+  s.contact.c = 2.0 * p.zeta * std::sqrt(s.contact.k * body.mass);
+  s.contact.mu = p.mu;
+  s.contact.mu_roll = p.mu_roll;
+  s.contact.damping = DampingLaw::KelvinVoigt;
+  s.sim.integrator = Integrator::SemiImplicitEuler;
+  s.sim.dt = omega_dt / std::sqrt(s.contact.k / m_eff);
+  s.sim.duration = duration;
+  s.sim.output_dt = s.sim.dt;
+  s.obstacles.clear();
+  return s;
+}
+
+std::vector<size_t> seeded_order(size_t n, std::uint64_t seed) {
+  std::vector<size_t> shuffled(n);
+  std::iota(shuffled.begin(), shuffled.end(), 0);
+  std::uint64_t state = seed;
+  for (size_t i = n > 0 ? n - 1 : 0; i > 0; --i)
+    std::swap(shuffled[i],
+              shuffled[static_cast<size_t>(next_uniform(state) * static_cast<double>(i + 1))]);
+  return shuffled;
+}
+
+}  // namespace contact2d::analysis
