@@ -543,7 +543,7 @@ ImpactFit fit_impacts(const Recording& rec, const ImpactFitOptions& options) {
     Minimised best;
     sf.models.push_back(fit_penalty(f, sf, true, best));
     bootstrap(f, sf, best, sf.models.back());
-    if (sf.split == "seeded") k_profile(f, sf, best);
+    if (sf.split == "seeded" && options.k_profile) k_profile(f, sf, best);
     Minimised unused;
     sf.models.push_back(fit_penalty(f, sf, false, unused));
     replay_engines(f, sf, params_of(best.x));

@@ -61,6 +61,7 @@ struct ImpactFitOptions {
   // parameters (registry names); empty: none.
   std::vector<std::string> engines;
   bool all_impacts = false;  // also the impacts the recording flags
+  bool k_profile = true;     // the seeded split's profile of k (7 refits of ζ, μ, μ_roll)
   // One line of progress (what is being done, how far); may be empty.
   std::function<void(const std::string&)> progress;
 };
