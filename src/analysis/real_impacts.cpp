@@ -9,6 +9,7 @@
 
 #include "analysis/engine.hpp"
 #include "analysis/minimise.hpp"
+#include "core/cancel.hpp"
 #include "core/contacts.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
@@ -142,6 +143,7 @@ Scene penalty_scene(const Scene& body, const PenaltyParams& p, double m_eff) {
 // Runs `stepper` from `start` until the body leaves the ground; the velocity then.
 Vec3 replay(Stepper& stepper, const Model& geometry, const State& start, long long max_steps,
             ContactSet& contacts) {
+  throw_if_cancelled();  // Python's Ctrl-C (core/cancel.hpp): at every impact
   stepper.reset(start);
   stepper.plan(max_steps);
   bool touched = false;

@@ -29,11 +29,13 @@
 #include <vector>
 
 #include "analysis/compare_run.hpp"
+#include "analysis/real_impacts.hpp"
 #include "analysis/tables.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/scene.hpp"
 #include "engines/engines.hpp"
+#include "io/recording.hpp"
 #include "io/scene_file.hpp"
 #include "mujoco/inspect.hpp"
 #include "mujoco/mjcf.hpp"
@@ -275,6 +277,66 @@ py::dict py_solref(const mujoco::SolrefRequest& request) {
   return out;
 }
 
+// contact2d fit on a recording: the JSON the program prints, and per model
+// the held-out impacts' ids, errors, predicted and measured velocities.
+py::dict py_fit(const std::string& path, long long seed, int bootstrap,
+                std::optional<std::vector<std::string>> engines, unsigned threads,
+                bool all_impacts, bool k_profile) {
+  analysis::ImpactFitOptions options;
+  options.seed = static_cast<std::uint64_t>(seed);
+  options.bootstrap = bootstrap;
+  options.engines = engines ? *engines : analysis::default_fit_engines();
+  options.threads = threads;
+  options.all_impacts = all_impacts;
+  options.k_profile = k_profile;
+  const analysis::ImpactFit fit = python::interruptible([&] {
+    return reading(path, [&] {
+      const Recording rec = read_recording(path);
+      if (rec.kind != "impacts")
+        throw InputError(path + ": kind = \"" + rec.kind +
+                         "\": fit() takes \"impacts\" recordings (trajectories are not fitted "
+                         "yet)");
+      return analysis::fit_impacts(rec, options);
+    });
+  });
+  py::list models;
+  for (const analysis::SplitFit& split : fit.splits) {
+    for (const analysis::ModelFit& m : split.models) {
+      const auto n = static_cast<py::ssize_t>(split.test.size());
+      py::array_t<long long> ids(n);
+      py::array_t<double> errors(n);
+      py::array_t<double> predicted({n, py::ssize_t{3}});
+      py::array_t<double> measured({n, py::ssize_t{3}});
+      auto id = ids.mutable_unchecked<1>();
+      auto e = errors.mutable_unchecked<1>();
+      auto p = predicted.mutable_unchecked<2>();
+      auto v = measured.mutable_unchecked<2>();
+      for (py::ssize_t i = 0; i < n; ++i) {
+        const RecordedImpact& impact = fit.impacts[split.test[static_cast<size_t>(i)]];
+        id(i) = impact.id;
+        e(i) = m.errors[static_cast<size_t>(i)];
+        for (py::ssize_t j = 0; j < 3; ++j) {
+          p(i, j) = m.predicted[static_cast<size_t>(i)][j];
+          v(i, j) = impact.after.v[j];
+        }
+      }
+      py::dict entry;
+      entry["name"] = m.name;
+      entry["engine"] = m.engine;
+      entry["split"] = m.split;
+      entry["impacts"] = ids;
+      entry["errors"] = errors;
+      entry["predicted"] = predicted;
+      entry["measured"] = measured;
+      models.append(entry);
+    }
+  }
+  py::dict out;
+  out["json"] = analysis::impact_fit_json(fit);
+  out["arrays"] = models;
+  return out;
+}
+
 py::dict py_inspect(const std::string& path, const std::string& key, bool pairs,
                     std::optional<double> slope, double settle, bool estimate_loads,
                     const std::string& engine) {
@@ -411,6 +473,10 @@ void bind_scene(py::module_& m) {
       .def_readwrite("width", &Scene::width, "box width, m")
       .def_readwrite("height", &Scene::height, "box height, m")
       .def_readwrite("radius", &Scene::radius, "circle radius, m")
+      .def_readwrite("a", &Scene::a, "ellipse: semi-axis along the body's x, m")
+      .def_readwrite("b", &Scene::b, "ellipse: semi-axis along the body's y, m")
+      .def_readwrite("inertia", &Scene::inertia,
+                     "ellipse: inertia about the centre, kg·m² (0: a plate's m·(a² + b²)/4)")
       .def_readwrite("parts", &Scene::parts, "tshape: the body's rectangles (list of BoxPart)")
       .def_readwrite("contact", &Scene::contact, "[contact] (Contact)")
       .def_readwrite("initial", &Scene::initial, "[initial]: the initial state (State)")
@@ -439,6 +505,7 @@ void bind_commands(py::module_& m) {
   m.def("_compare", &py_compare);
   m.def("_generate", &py_generate);
   m.def("_inspect", &py_inspect);
+  m.def("_fit", &py_fit);
   m.def("_solref",
         [](std::optional<double> k, std::optional<double> c, double dt, std::optional<double> mass,
            const std::string& mapping, std::optional<std::string> joint, double inertia,

@@ -28,8 +28,9 @@ from ._contact2d import __version__
 from . import _contact2d
 
 __all__ = [
-    "BoxPart", "COLUMNS", "Contact", "Contact2dNote", "Scene", "Sim", "Simulation", "State",
-    "__version__", "compare", "generate", "inspect", "mujoco_available", "simulate", "solref",
+    "BoxPart", "COLUMNS", "Contact", "Contact2dNote", "Fit", "FitModel", "Scene", "Sim",
+    "Simulation", "State", "__version__", "compare", "fit", "generate", "inspect",
+    "mujoco_available", "simulate", "solref",
 ]
 
 SceneLike = Union[Scene, str, os.PathLike]
@@ -238,3 +239,78 @@ def inspect(path: Union[str, os.PathLike], key: str = "", pairs: bool = False,
                               _number(settle, "settle", "inspect", "s"), estimate_loads, engine)
     _notes(run["notes"])
     return json.loads(run["json"])
+
+
+@dataclass
+class FitModel:
+    """One model of a fit on one split, measured on the split's held-out
+    impacts (docs/real-impacts.md). ``parameters`` and ``spread`` (the
+    bootstrap's 16th and 84th percentiles, for the reference's penalty fit)
+    as dicts; per held-out impact, as numpy arrays: ``impacts`` (the
+    recording's ids), ``errors`` (‖W(v̂ − v)‖/‖W v‖), ``predicted`` and
+    ``measured`` ((n, 3): vx, vy, omega after the impact)."""
+    name: str
+    engine: str
+    split: str
+    median: float
+    iqr: float
+    parameters: dict
+    spread: dict
+    impacts: np.ndarray
+    errors: np.ndarray
+    predicted: np.ndarray
+    measured: np.ndarray
+
+
+@dataclass
+class Fit:
+    """What ``contact2d fit --json`` prints, as ``json`` (a dict), and its
+    models with their per-impact arrays, as ``models`` (FitModel)."""
+    json: dict
+    models: List[FitModel]
+
+    def model(self, name: str = "penalty", engine: str = "ref", split: str = "seeded") -> FitModel:
+        """The one model of that name, engine and split."""
+        for m in self.models:
+            if (m.name, m.engine, m.split) == (name, engine, split):
+                return m
+        raise KeyError(f"fit: no model {name!r} on engine {engine!r}, split {split!r}")
+
+
+def fit(recording: Union[str, os.PathLike], seed: int = 2026, bootstrap: int = 8,
+        engines: Optional[Sequence[str]] = None, threads: int = 0, all_impacts: bool = False,
+        k_profile: bool = True) -> Fit:
+    """k, c, mu and mu_roll fitted to a recording of real impacts, and every
+    model measured on held-out impacts, as ``contact2d fit`` (docs/real-impacts.md;
+    the format: docs/recordings.md). ``recording``: the manifest (str or
+    os.PathLike); ``seed``: the seeded split's shuffle; ``bootstrap``: refits
+    for the parameters' spread (0: none); ``engines``: the engines that
+    replay the held-out impacts with the fitted parameters (None: every
+    built-in engine with soft constraints, MuJoCo 2.2.2 and 3.14; []: none);
+    ``threads``: 0 for one per core; ``all_impacts``: keep the impacts the
+    recording flags; ``k_profile``: the seeded split's profile of k."""
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or not 0 <= seed < 2**53:
+        raise ValueError(f"fit(): seed = {seed!r}: an integer in [0, 2**53)")
+    if isinstance(bootstrap, bool) or not isinstance(bootstrap, numbers.Integral) \
+            or not 0 <= bootstrap <= 1000:
+        raise ValueError(f"fit(): bootstrap = {bootstrap!r}: an integer in [0, 1000]")
+    if isinstance(threads, bool) or not isinstance(threads, numbers.Integral) \
+            or not 0 <= threads <= 256:
+        raise ValueError(f"fit(): threads = {threads!r}: an integer in [0, 256] (0: one per core)")
+    if engines is not None:
+        if isinstance(engines, str):
+            raise TypeError("fit(): engines must be a list of engine names, e.g. ['mujoco'], "
+                            "not a string")
+        engines = [str(e) for e in engines]
+    run = _contact2d._fit(_path(recording, "recording", "fit"), int(seed), int(bootstrap),
+                          engines, int(threads), bool(all_impacts), bool(k_profile))
+    data = json.loads(run["json"])
+    models = []
+    for entry, arrays in zip(data["models"], run["arrays"]):
+        models.append(FitModel(
+            name=entry["name"], engine=entry["engine"], split=entry["split"],
+            median=entry["median"], iqr=entry["iqr"], parameters=dict(entry["parameters"]),
+            spread={k: tuple(v) for k, v in entry.get("spread_16_84", {}).items()},
+            impacts=arrays["impacts"], errors=arrays["errors"], predicted=arrays["predicted"],
+            measured=arrays["measured"]))
+    return Fit(json=data, models=models)
