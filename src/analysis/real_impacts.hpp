@@ -139,3 +139,18 @@ std::string impact_fit_json(const ImpactFit& fit);
 std::string impact_fit_text(const ImpactFit& fit);
 
 }  // namespace contact2d::analysis
+
+namespace contact2d::analysis {
+
+// The pictures of the report's real_impacts.md (gnuplot; each an atomic
+// file): for one split, measured against predicted vx, vy and ω after the
+// impact (the penalty law on the reference, Newton + Coulomb, the best
+// impulse after the fact); the distribution of every model's held-out
+// errors; the seeded split's profile of k. Throw as plot_sweep does.
+void plot_impact_predictions(const std::string& png_path, const ImpactFit& fit,
+                             const std::string& split);
+void plot_impact_errors(const std::string& png_path, const ImpactFit& fit,
+                        const std::string& split);
+void plot_k_profile(const std::string& png_path, const ImpactFit& fit);
+
+}  // namespace contact2d::analysis

@@ -9,6 +9,7 @@
 #include "analysis/atlas.hpp"
 #include "analysis/closed_forms.hpp"
 #include "analysis/friction_table.hpp"
+#include "analysis/real_impacts.hpp"
 #include "analysis/version_table.hpp"
 #include "report/results.hpp"
 
@@ -27,6 +28,20 @@ std::string friction_page(const std::vector<analysis::FrictionRow>& rows, double
 // versions.md: MuJoCo 3.14 beside 2.2.2 (its not_run says why when it did
 // not run here).
 std::string versions_page(const analysis::VersionTable& table);
+
+// real_impacts.md: the fit against recorded impacts (analysis/real_impacts.hpp)
+// and its pictures, or why it did not run.
+struct RealImpactsData {
+  std::string recording;  // the manifest's path
+  analysis::ImpactFit fit;
+  std::string not_run;  // why there is no fit (empty when there is one)
+  // Least squares over the seeded split's held-out impacts: the measured
+  // spin change Δω = slope·Δω_point + intercept, Δω_point the change a
+  // point impulse at the lowest point would make with the measured Δv.
+  double spin_slope = 0.0, spin_intercept = 0.0;
+  std::vector<std::string> pictures;  // file names, beside the page
+};
+std::string real_impacts_page(const RealImpactsData& data);
 
 // atlas.md: the default atlas (validation/atlas/default.toml), its summary
 // and how it ran (src/report/atlas_page.cpp).

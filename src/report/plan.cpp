@@ -485,7 +485,18 @@ struct Results {
   std::vector<analysis::VersionTable> versions;  // one per scene
   AtlasRun atlas;
   std::vector<ThreeWayRuns> three_way;  // as shipped, for the animations
+  RealImpactsData real_impacts;
 };
+
+// real_impacts.md: the fit against the recorded ellipse impacts, one task
+// (its replays on one thread; about two minutes of it).
+void real_impacts_task(const ReportRequest& o, bool mujoco, Results& r, Tasks& tasks) {
+  tasks.push_back({"real impacts", [&o, &r, mujoco] {
+                     const std::string recording = "validation/real/ellipse/recording.toml";
+                     progress("real impacts " + recording);
+                     r.real_impacts = real_impacts_run(recording, o.out, mujoco);
+                   }});
+}
 
 // closed_forms.md and friction.md.
 void table_tasks(Results& r, Tasks& tasks) {
@@ -536,10 +547,10 @@ analysis::VersionTable joined(const std::vector<analysis::VersionTable>& parts) 
 // first (it may have to run on this thread).
 void longest_first(Tasks& tasks) {
   if (tasks.empty()) return;
-  const std::vector<std::string> order{"three-way", "sweeps",      "stability",   "friction",
-                                       "versions",  "atlas plots", "goals",       "random scenes",
-                                       "mappings",  "extreme",     "goal replay", "closed forms",
-                                       "models"};
+  const std::vector<std::string> order{"real impacts",  "three-way", "sweeps",      "stability",
+                                       "friction",      "versions",  "atlas plots", "goals",
+                                       "random scenes", "mappings",  "extreme",     "goal replay",
+                                       "closed forms",  "models"};
   auto rank = [&](const Task& t) {
     return std::find(order.begin(), order.end(), t.section) - order.begin();
   };
@@ -557,6 +568,7 @@ void write_pages(const ReportRequest& o, const Results& r) {
   write_page(o.out + "/" + names[5], friction_page(r.friction, 1e-3));
   write_page(o.out + "/" + names[6], atlas_page(r.atlas.summary, r.atlas.info));
   write_page(o.out + "/" + names[7], versions_page(joined(r.versions)));
+  write_page(o.out + "/" + names[8], real_impacts_page(r.real_impacts));
 }
 
 }  // namespace
@@ -564,7 +576,7 @@ void write_pages(const ReportRequest& o, const Results& r) {
 const std::vector<std::string>& page_names() {
   static const std::vector<std::string> names{"README.md",  "sweep.md",        "stability.md",
                                               "extreme.md", "closed_forms.md", "friction.md",
-                                              "atlas.md",   "versions.md"};
+                                              "atlas.md",   "versions.md",     "real_impacts.md"};
   return names;
 }
 
@@ -587,6 +599,7 @@ ReportTimings write_report(const ReportRequest& o) {
   stability_tasks(o, mujoco, r.stability, tasks);
   extreme_tasks(mujoco, r.extreme, tasks);
   table_tasks(r, tasks);
+  real_impacts_task(o, mujoco, r, tasks);
   longest_first(tasks);
   run_tasks(tasks, o.jobs, clock);
   Tasks last;

@@ -395,7 +395,11 @@ std::string page_index() {
            {"versions.md",
             "MuJoCo 3.14 beside 2.2.2: the distance between the versions, each of MuJoCo 3's "
             "changes measured, friction without the push (MuJoCo 3's damper), and which "
-            "version and mapping to use for what"}}) {
+            "version and mapping to use for what"},
+           {"real_impacts.md",
+            "against real impacts: k, c, μ, μ_roll fitted to recorded impacts of an "
+            "ellipse, the reference and both MuJoCo versions on held-out impacts beside "
+            "impulse models"}}) {
     add_row(t, {page == "README.md" ? page : "[" + page + "](" + page + ")", what});
   }
   return "## The pages of this report\n\n" + to_markdown(t) + "\n";

@@ -13,11 +13,13 @@
 #include "analysis/comparison.hpp"
 #include "analysis/engine.hpp"
 #include "analysis/plots.hpp"
+#include "analysis/real_impacts.hpp"
 #include "analysis/stability.hpp"
 #include "analysis/sweep.hpp"
 #include "analysis/tables.hpp"
 #include "analysis/trajectory_error.hpp"
 #include "core/divergence.hpp"
+#include "core/ellipse.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "engines/engines.hpp"
@@ -30,6 +32,7 @@
 #include "io/csv.hpp"
 #include "io/exit_status.hpp"
 #include "io/plot.hpp"
+#include "io/recording.hpp"
 #include "io/scene_file.hpp"
 #include "mujoco/mjcf.hpp"
 #include "report/bench_json.hpp"
@@ -429,6 +432,45 @@ Bench run_bench(const std::string& executable, const std::string& min_time) {
   bench.command = (slash == std::string::npos ? executable : executable.substr(slash + 1)) +
                   " --benchmark_min_time=" + min_time;
   return bench;
+}
+
+RealImpactsData real_impacts_run(const std::string& recording, const std::string& out_dir,
+                                 bool mujoco) {
+  RealImpactsData d;
+  d.recording = recording;
+  const Recording rec = read_recording(recording);
+  analysis::ImpactFitOptions options;
+  options.threads = 1;
+  if (mujoco) options.engines = analysis::default_fit_engines();
+  d.fit = analysis::fit_impacts(rec, options);
+  const std::string prefix = out_dir + "/real_impacts.";
+  analysis::plot_impact_predictions(prefix + "predictions.png", d.fit, "seeded");
+  analysis::plot_impact_errors(prefix + "errors.png", d.fit, "seeded");
+  analysis::plot_k_profile(prefix + "k_profile.png", d.fit);
+  d.pictures = {"real_impacts.predictions.png", "real_impacts.errors.png",
+                "real_impacts.k_profile.png"};
+  // The spin: measured Δω against a point impulse's at the lowest point,
+  // P = m·Δv, Δω_point = (r_x·P_y − r_y·P_x)/I; least squares with an
+  // intercept over the seeded split's held-out impacts.
+  const analysis::SplitFit& seeded = d.fit.splits.front();
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(seeded.test.size());
+  const Model model = make_model(rec.body);
+  for (size_t i : seeded.test) {
+    const RecordedImpact& impact = d.fit.impacts[i];
+    const Vec3 dv = impact.after.v - impact.before.v;
+    Vec2 r = Vec2(0.0, -body_extent(model.body));
+    if (shape_features(rec.body.shape).smooth)
+      r = ellipse_lowest_point(rec.body.a, rec.body.b, impact.before.q.z());
+    const double point = model.body.mass * (r.x() * dv.y() - r.y() * dv.x()) / model.body.inertia;
+    sx += point;
+    sy += dv.z();
+    sxx += point * point;
+    sxy += point * dv.z();
+  }
+  d.spin_slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  d.spin_intercept = (sy - d.spin_slope * sx) / n;
+  return d;
 }
 
 }  // namespace contact2d::report

@@ -144,4 +144,10 @@ void draw_atlas(AtlasRun& run, const std::string& plot_dir, const std::string& p
 // std::runtime_error when it fails.
 Bench run_bench(const std::string& executable, const std::string& min_time);
 
+// real_impacts.md: contact2d fit on the recording (one thread, the default
+// bootstrap and engines when MuJoCo is built), its three pictures in
+// `out_dir` (real_impacts.*.png) and the spin's slope.
+RealImpactsData real_impacts_run(const std::string& recording, const std::string& out_dir,
+                                 bool mujoco);
+
 }  // namespace contact2d::report

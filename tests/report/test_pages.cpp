@@ -406,3 +406,57 @@ TEST(ReportPages, TheGoalReplaySectionShowsTheRecordedGoal) {
 
 }  // namespace
 }  // namespace contact2d::report
+
+namespace contact2d::report {
+namespace {
+
+// real_impacts.md from a hand-written fit: every model of both splits in
+// one table, the reference against the bound, the parameters with their
+// spread, the spin's slope; and one line when the fit did not run.
+TEST(ReportPages, RealImpactsShowsEveryModelAndSplit) {
+  RealImpactsData d;
+  d.recording = "validation/real/ellipse/recording.toml";
+  d.fit.impacts.resize(10);
+  d.fit.flagged_left_out = 3;
+  d.fit.mass = 2.0;
+  d.fit.inertia = 0.5;
+  for (const char* split : {"seeded", "chronological"}) {
+    analysis::SplitFit s;
+    s.split = split;
+    analysis::ModelFit ref;
+    ref.name = "penalty";
+    ref.engine = "ref";
+    ref.median = std::string(split) == "seeded" ? 0.3701 : 0.3662;
+    ref.q1 = 0.25;
+    ref.q3 = 0.6;
+    ref.parameters = {{"k", 2e7}, {"zeta", 0.23}, {"c", 409}, {"mu", 0.0}, {"mu_roll", 0.003}};
+    ref.spread = {{1e7, 3e7}, {0.22, 0.24}, {300, 500}, {0, 0.001}, {0.0029, 0.0031}};
+    analysis::ModelFit bound;
+    bound.name = "irb_bound";
+    bound.engine = "baseline";
+    bound.median = 0.442;
+    s.models = {ref, bound};
+    s.engine_distances = {{"ref", "mujoco", 0.0136}};
+    d.fit.splits.push_back(s);
+  }
+  d.spin_slope = 0.35;
+  d.spin_intercept = 18.0;
+  const std::string page = real_impacts_page(d);
+  EXPECT_NE(page.find("| penalty | ref |"), std::string::npos) << page;
+  EXPECT_NE(page.find("| 0.370 | 0.250–0.600 | 0.366 | 0.250–0.600 |"), std::string::npos) << page;
+  EXPECT_NE(page.find("seeded: the reference's median 0.370 is below the best impulse chosen "
+                      "after the fact (0.442)"),
+            std::string::npos);
+  EXPECT_NE(page.find("| seeded | 2e+07 (1e+07–3e+07) | 0.23 (0.22–0.24) |"), std::string::npos)
+      << page;
+  EXPECT_NE(page.find("ref and mujoco apart per impact (median, same metric): 0.0136"),
+            std::string::npos);
+  EXPECT_NE(page.find("0.35 × what a point impulse"), std::string::npos);
+  EXPECT_NE(page.find("10 recorded impacts"), std::string::npos);
+  RealImpactsData none;
+  none.not_run = "no recording";
+  EXPECT_EQ(real_impacts_page(none), "# Against real impacts\n\nNot run: no recording\n");
+}
+
+}  // namespace
+}  // namespace contact2d::report
