@@ -45,14 +45,23 @@ Scene penalty_scene(const Scene& body, const PenaltyParams& p, double m_eff, dou
   return s;
 }
 
-std::vector<size_t> seeded_order(size_t n, std::uint64_t seed) {
+std::vector<Halves> fit_splits(std::uint64_t seed, const std::vector<size_t>& chronological) {
+  const size_t n = chronological.size();
   std::vector<size_t> shuffled(n);
   std::iota(shuffled.begin(), shuffled.end(), 0);
   std::uint64_t state = seed;
   for (size_t i = n > 0 ? n - 1 : 0; i > 0; --i)
     std::swap(shuffled[i],
               shuffled[static_cast<size_t>(next_uniform(state) * static_cast<double>(i + 1))]);
-  return shuffled;
+  std::vector<Halves> out = {{"seeded", {}, {}}, {"chronological", {}, {}}};
+  for (Halves& h : out) {
+    const std::vector<size_t>& all = h.split == "seeded" ? shuffled : chronological;
+    const auto half = all.begin() + static_cast<std::ptrdiff_t>(n / 2);
+    h.train.assign(all.begin(), half);
+    h.test.assign(half, all.end());
+    std::sort(h.test.begin(), h.test.end());
+  }
+  return out;
 }
 
 }  // namespace contact2d::analysis

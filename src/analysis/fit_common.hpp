@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/contacts.hpp"
@@ -31,8 +32,17 @@ struct PenaltyParams {
 Scene penalty_scene(const Scene& body, const PenaltyParams& p, double m_eff, double omega_dt,
                     double duration);
 
-// 0 … n−1 shuffled with `seed` (Fisher–Yates on core/rng.hpp's
-// next_uniform): the seeded split's order, whose first half is fitted.
-std::vector<size_t> seeded_order(size_t n, std::uint64_t seed);
+// One 50/50 split of n recorded items (impacts, trajectories): the first
+// n/2 of its order are fitted, the others held out (in index order).
+struct Halves {
+  std::string split;  // "seeded" or "chronological"
+  std::vector<size_t> train, test;
+};
+
+// The two splits of the items 0 … n−1, n = chronological.size(): "seeded",
+// the items shuffled with `seed` (Fisher–Yates on core/rng.hpp's
+// next_uniform), and "chronological", the items in the order given (the
+// order they were recorded in, as far as the recording tells).
+std::vector<Halves> fit_splits(std::uint64_t seed, const std::vector<size_t>& chronological);
 
 }  // namespace contact2d::analysis

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "analysis/engine.hpp"
+#include "analysis/fit_common.hpp"
 #include "analysis/minimise.hpp"
 #include "core/cancel.hpp"
 #include "core/contacts.hpp"
@@ -46,26 +47,8 @@ Quartiles quartiles(std::vector<double> v) {
 
 namespace {
 
-constexpr double kOmegaDt = 0.01;   // ω·Δt of the replays
 constexpr double kWindow = 0.08;    // s: the longest contact a replay follows
 constexpr double kTwoFrames = 2.0;  // frames a pre-impact state may be above its touch
-
-// Height of the body's lowest point above the ground (negative: it penetrates).
-double gap(const Model& model, const Vec3& q, ContactSet& contacts) {
-  find_contacts(model, q, contacts);
-  if (contacts.ground_count() > 0) return -contacts.begin()->depth;
-  // Above the ground: lift the body's lowest point by probing how far down
-  // it can go — for a smooth or a one-point body that is exact.
-  Vec3 low = q;
-  double lo = 0.0, hi = std::max(1.0, q.y() + 1.0);
-  for (int i = 0; i < 200 && hi - lo > 1e-15 * std::max(1.0, hi); ++i) {
-    const double mid = 0.5 * (lo + hi);
-    low.y() = q.y() - mid;
-    find_contacts(model, low, contacts);
-    (contacts.ground_count() > 0 ? hi : lo) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
 
 // The state at first touch: lifted along +y when it penetrates, carried
 // along its free flight when it is above the ground.
@@ -80,7 +63,7 @@ Touch first_touch(const Model& model, const RecordedImpact& impact, double frame
   ContactSet contacts(model);
   Touch t;
   t.state = impact.before;
-  const double g0 = gap(model, t.state.q, contacts);
+  const double g0 = ground_gap(model, t.state.q, contacts);
   if (g0 <= 0.0) {
     t.lift = -g0;
     t.state.q.y() += t.lift;
@@ -101,11 +84,11 @@ Touch first_touch(const Model& model, const RecordedImpact& impact, double frame
   double prev = 0.0;
   for (int i = 1; i <= n; ++i) {
     const double tau = limit * i / n;
-    if (gap(model, at(tau).q, contacts) <= 0.0) {
+    if (ground_gap(model, at(tau).q, contacts) <= 0.0) {
       double lo = prev, hi = tau;
       for (int k = 0; k < 80; ++k) {
         const double mid = 0.5 * (lo + hi);
-        (gap(model, at(mid).q, contacts) <= 0.0 ? hi : lo) = mid;
+        (ground_gap(model, at(mid).q, contacts) <= 0.0 ? hi : lo) = mid;
       }
       t.state = at(lo);
       t.flight = lo;
@@ -119,25 +102,6 @@ Touch first_touch(const Model& model, const RecordedImpact& impact, double frame
                    " m above the ground and does not touch it within two frames (" +
                    format_number("%.3g", limit) +
                    " s) of free flight: this is not the state just before an impact");
-}
-
-struct PenaltyParams {
-  double log_k = 5.0, zeta = 0.3, mu = 0.3, mu_roll = 0.0;
-};
-
-Scene penalty_scene(const Scene& body, const PenaltyParams& p, double m_eff) {
-  Scene s = body;
-  s.contact.k = std::pow(10.0, p.log_k);
-  s.contact.c = 2.0 * p.zeta * std::sqrt(s.contact.k * body.mass);
-  s.contact.mu = p.mu;
-  s.contact.mu_roll = p.mu_roll;
-  s.contact.damping = DampingLaw::KelvinVoigt;
-  s.sim.integrator = Integrator::SemiImplicitEuler;
-  s.sim.dt = kOmegaDt / std::sqrt(s.contact.k / m_eff);
-  s.sim.duration = kWindow;
-  s.sim.output_dt = s.sim.dt;
-  s.obstacles.clear();
-  return s;
 }
 
 // Runs `stepper` from `start` until the body leaves the ground; the velocity then.
@@ -166,12 +130,13 @@ struct Problem {
   const std::vector<RecordedImpact>* impacts = nullptr;
   double m_eff = 0.0;
   unsigned threads = 1;
+  double omega_dt = 0.02;  // ImpactFitOptions::omega_dt
 };
 
 // Predictions of the penalty law on impacts `which`, on the reference.
 std::vector<Vec3> predict_ref(const Problem& pb, const PenaltyParams& p,
                               const std::vector<size_t>& which) {
-  const Scene scene = penalty_scene(*pb.body, p, pb.m_eff);
+  const Scene scene = penalty_scene(*pb.body, p, pb.m_eff, pb.omega_dt, kWindow);
   const long long steps = step_count(scene.sim);
   std::vector<Vec3> out(which.size());
   const unsigned chunks = std::max(1u, pb.threads);
@@ -410,7 +375,7 @@ void k_profile(const Fitter& f, SplitFit& sf, const Minimised& fit) {
 // distances between every pair of them (the reference's first).
 void replay_engines(const Fitter& f, SplitFit& sf, const PenaltyParams& best) {
   if (f.options.engines.empty()) return;
-  const Scene scene = penalty_scene(f.rec.body, best, f.pb.m_eff);
+  const Scene scene = penalty_scene(f.rec.body, best, f.pb.m_eff, f.pb.omega_dt, kWindow);
   const long long steps = step_count(scene.sim);
   const std::vector<std::pair<std::string, double>> parameters = sf.models[0].parameters;
   for (const std::string& engine : f.options.engines) {
@@ -481,23 +446,14 @@ void baselines(const Fitter& f, SplitFit& sf) {
 
 // The seeded and the chronological halves of n impacts.
 std::vector<SplitFit> splits_of(size_t n, std::uint64_t seed) {
-  std::vector<size_t> shuffled(n);
-  std::iota(shuffled.begin(), shuffled.end(), 0);
-  std::uint64_t state = seed;
-  for (size_t i = n - 1; i > 0; --i)
-    std::swap(shuffled[i],
-              shuffled[static_cast<size_t>(next_uniform(state) * static_cast<double>(i + 1))]);
   std::vector<size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::vector<SplitFit> out(2);
-  out[0].split = "seeded";
-  out[1].split = "chronological";
-  for (SplitFit& sf : out) {
-    const std::vector<size_t>& all = sf.split == "seeded" ? shuffled : order;
-    const auto half = all.begin() + static_cast<std::ptrdiff_t>(n / 2);
-    sf.train.assign(all.begin(), half);
-    sf.test.assign(half, all.end());
-    std::sort(sf.test.begin(), sf.test.end());
+  std::vector<SplitFit> out;
+  for (Halves& h : fit_splits(seed, order)) {
+    out.emplace_back();
+    out.back().split = h.split;
+    out.back().train = std::move(h.train);
+    out.back().test = std::move(h.test);
   }
   return out;
 }
@@ -538,8 +494,15 @@ ImpactFit fit_impacts(const Recording& rec, const ImpactFitOptions& options) {
   }
   out.lifted = static_cast<int>(lifts.size());
   out.median_lift = quartiles(lifts).median;
-  f.pb = {&rec.body, &f.touches, &out.impacts, min_effective_mass(f.geometry.body),
-          options.threads == 0 ? default_threads() : options.threads};
+  f.pb = {&rec.body,
+          &f.touches,
+          &out.impacts,
+          min_effective_mass(f.geometry.body),
+          options.threads == 0 ? default_threads() : options.threads,
+          options.omega_dt};
+  if (!(options.omega_dt > 0.0 && options.omega_dt <= 0.5))
+    throw InputError("omega_dt = " + format_number("%g", options.omega_dt) +
+                     ": the replays' omega*dt must be in (0, 0.5]");
 
   for (SplitFit& sf : splits_of(out.impacts.size(), options.seed)) {
     Minimised best;

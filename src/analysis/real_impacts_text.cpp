@@ -24,11 +24,7 @@ std::string impact_fit_json(const ImpactFit& fit) {
         << ", \"train\": " << s.train.size() << ", \"test\": " << s.test.size()
         << ", \"median\": " << json::number(m.median) << ", \"iqr\": " << json::number(m.iqr())
         << ", \"q1\": " << json::number(m.q1) << ", \"q3\": " << json::number(m.q3)
-        << ", \"parameters\": {";
-      for (size_t i = 0; i < m.parameters.size(); ++i)
-        o << (i ? ", " : "") << json::string(m.parameters[i].first) << ": "
-          << json::number(m.parameters[i].second);
-      o << "}";
+        << ", \"parameters\": " << json::object(m.parameters);
       if (!m.spread.empty()) {
         o << ", \"spread_16_84\": {";
         for (size_t i = 0; i < m.spread.size(); ++i)

@@ -11,7 +11,7 @@
 // every recorded sample time in the window (Δt divides the frame period, so
 // the sample times are step times).
 //
-// The error of one trajectory, the one metric of this page: the largest,
+// The error of one trajectory, the fit's one metric: the largest,
 // over the samples of the window, of the RMS distance between the body's
 // four reference points predicted and recorded — a box's corners, an
 // ellipse's or a circle's axis ends (±a, 0), (0, ±b) — matched up to the
@@ -30,11 +30,14 @@
 // The models:
 //   penalty  the reference's law (analysis/fit_common.hpp): Kelvin–Voigt
 //            normal force, c = 2ζ·√(k·m), tanh friction μ (the scene's
-//            default α); semi-implicit Euler at ω·Δt ≤ omega_dt (ω =
-//            √(k/m_eff)), Δt the largest that divides the frame period.
-//            NLopt's BOBYQA minimises the training trajectories' median
-//            error over (log10 k, ζ, μ) in [3, 6.5] × [0, 1.5] × [0, 2] from
-//            two starts; the best training fit is kept
+//            default α = 100 s/m); semi-implicit Euler at ω·Δt ≤ omega_dt
+//            (0.05; ω = √(k/m_eff), m_eff the body's smallest effective
+//            mass), Δt the largest such step that divides the frame period.
+//            The training trajectories' median error is minimised over
+//            (log10 k, ζ, μ) in [3, 6.5] × [0, 1.5] × [0, 2]: a 3 × 3 × 3
+//            grid (log10 k 4, 5, 6; ζ 0.1, 0.3, 0.6; μ 0.05, 0.15, 0.4)
+//            picks the start, NLopt's BOBYQA refines it. The same fit
+//            replayed at ω·Δt / 5 measures the integrator's share
 //   other engines (TrajectoryFitOptions::engines: MuJoCo 2.2.2 and 3.14)
 //            with the penalty fit's k, c, μ through their default
 //            (calibrated) mapping, nothing refitted
@@ -48,6 +51,7 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/fit_common.hpp"
 #include "analysis/real_impacts.hpp"
 #include "io/recording.hpp"
 
@@ -60,7 +64,7 @@ struct TrajectoryFitOptions {
   // fit's parameters (registry names); empty: none.
   std::vector<std::string> engines;
   double window = 0.4;       // s of each trajectory replayed and compared
-  double omega_dt = 0.1;     // the largest ω·Δt of the replays
+  double omega_dt = 0.05;    // the largest ω·Δt of the replays
   int max_evaluations = 60;  // of the objective, per start of the fit
   // One line of progress (what is being done, how far); may be empty.
   std::function<void(const std::string&)> progress;
@@ -68,9 +72,10 @@ struct TrajectoryFitOptions {
 
 // The errors of one replayed trajectory, each the largest over the samples.
 struct PoseError {
-  double points = 0.0;  // m: RMS distance of the reference points (the metric)
-  double centre = 0.0;  // m: distance of the centres
-  double angle = 0.0;   // rad: angle difference modulo the outline's symmetry
+  double points = 0.0;   // m: RMS distance of the reference points (the metric)
+  double centre = 0.0;   // m: distance of the centres
+  double angle = 0.0;    // rad: angle difference modulo the outline's symmetry
+  bool stopped = false;  // the replay stopped (a step failed): counted 1 m and the largest angle
 };
 
 struct TrajectoryModel {
@@ -82,7 +87,7 @@ struct TrajectoryModel {
   double train_median = 0.0;      // the fitted objective on the training half
   int evaluations = 0;            // objective evaluations of the fit
   double dt = 0.0;                // s: the replay's step (0 for the peer)
-  int failed = 0;                 // held-out replays that stopped (counted 1 m, π/4 off)
+  int failed = 0;                 // held-out replays that stopped (PoseError::stopped)
   std::vector<PoseError> errors;  // per held-out trajectory, in `test` order
 };
 
@@ -90,8 +95,16 @@ struct TrajectorySplit {
   std::string split;
   std::vector<size_t> train, test;  // indices into Recording::trajectories
   std::vector<TrajectoryModel> models;
+  // The replays of the penalty fit on every pair of engines (the reference
+  // first), apart by the metric between them: its median over the held-out
+  // trajectories.
+  using Distance = SplitFit::Distance;  // a, b, median
+  std::vector<Distance> engine_distances;
+  // How well k is determined: the grid's best training median at each of
+  // its k (ζ and μ over the grid's 3 × 3 values).
+  std::vector<std::pair<double, double>> k_grid;
   // The integrator's share: the penalty fit replayed on the held-out
-  // trajectories at a tenth of the step (ω·Δt = omega_dt / 10).
+  // trajectories at a fifth of the step (ω·Δt = omega_dt / 5).
   struct StepCheck {
     double omega_dt = 0.0, dt = 0.0;
     double median = 0.0;  // the metric's held-out median at that step
@@ -112,6 +125,12 @@ struct TrajectoryFit {
   std::vector<TrajectorySplit> splits;  // seeded, then chronological
   double seconds = 0.0;                 // wall time of the whole fit
 };
+
+// The scene a replay of `recording` runs with law `p`: the recorded body,
+// the penalty law (analysis/fit_common.hpp) and semi-implicit Euler at the
+// largest Δt ≤ omega_dt/ω that divides the frame period, for `window` s.
+Scene trajectory_replay_scene(const Recording& recording, const PenaltyParams& p, double omega_dt,
+                              double window);
 
 // Checks the recording (one line naming the file, row and field when a
 // trajectory or its peer cannot be compared) and fits and measures every

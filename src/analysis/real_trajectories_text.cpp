@@ -1,4 +1,6 @@
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "analysis/real_trajectories.hpp"
 #include "core/format.hpp"
@@ -14,56 +16,87 @@ constexpr const char* kMetric =
     "symmetry";
 
 std::string quartiles_json(const Quartiles& q) {
-  return "{\"median\": " + json::number(q.median) + ", \"iqr\": " + json::number(q.q3 - q.q1) +
-         ", \"q1\": " + json::number(q.q1) + ", \"q3\": " + json::number(q.q3) + "}";
+  return json::object({{"median", q.median}, {"iqr", q.q3 - q.q1}, {"q1", q.q1}, {"q3", q.q3}});
+}
+
+// `"key": value` members joined into one object.
+std::string members(const std::vector<std::string>& fields) {
+  std::string out = "{";
+  for (size_t i = 0; i < fields.size(); ++i) out += (i ? ", " : "") + fields[i];
+  return out + "}";
+}
+
+std::string member(const char* key, const std::string& json_value) {
+  return json::string(key) + ": " + json_value;
+}
+
+std::string model_json(const TrajectorySplit& s, const TrajectoryModel& m) {
+  std::vector<std::string> f = {member("name", json::string(m.name)),
+                                member("engine", json::string(m.engine)),
+                                member("split", json::string(m.split)),
+                                member("train", std::to_string(s.train.size())),
+                                member("test", std::to_string(s.test.size())),
+                                member("median", json::number(m.points.median)),
+                                member("iqr", json::number(m.points.q3 - m.points.q1)),
+                                member("q1", json::number(m.points.q1)),
+                                member("q3", json::number(m.points.q3)),
+                                member("centre_m", quartiles_json(m.centre)),
+                                member("angle_rad", quartiles_json(m.angle)),
+                                member("failed", std::to_string(m.failed)),
+                                member("parameters", json::object(m.parameters))};
+  if (m.dt > 0.0) f.push_back(member("dt", json::number(m.dt)));
+  if (m.evaluations > 0) {
+    f.push_back(member("train_median", json::number(m.train_median)));
+    f.push_back(member("evaluations", std::to_string(m.evaluations)));
+  }
+  return members(f);
+}
+
+std::string split_json(const TrajectorySplit& s) {
+  const TrajectorySplit::StepCheck& c = s.step_check;
+  std::string grid = "[";
+  for (size_t j = 0; j < s.k_grid.size(); ++j)
+    grid += (j ? ", " : "") +
+            json::object({{"k", s.k_grid[j].first}, {"train_median", s.k_grid[j].second}});
+  grid += "]";
+  std::string distances = "[";
+  for (size_t j = 0; j < s.engine_distances.size(); ++j)
+    distances +=
+        (j ? ", " : "") + members({member("a", json::string(s.engine_distances[j].a)),
+                                   member("b", json::string(s.engine_distances[j].b)),
+                                   member("median", json::number(s.engine_distances[j].median))});
+  distances += "]";
+  return members({member("split", json::string(s.split)), member("engine_distances", distances),
+                  member("step_check", json::object({{"omega_dt", c.omega_dt},
+                                                     {"dt", c.dt},
+                                                     {"median", c.median},
+                                                     {"apart_median", c.apart}})),
+                  member("k_grid", grid)});
 }
 
 }  // namespace
 
 std::string trajectory_fit_json(const TrajectoryFit& fit) {
-  std::ostringstream o;
-  o << "{\"recording\": " << json::string(fit.recording) << ", \"kind\": \"trajectories\""
-    << ", \"peer\": " << json::string(fit.peer) << ", \"trajectories\": " << fit.trajectories
-    << ", \"samples\": " << fit.samples << ", \"window_s\": " << json::number(fit.window)
-    << ", \"omega_dt\": " << json::number(fit.omega_dt) << ", \"lifted_to_touch\": " << fit.lifted
-    << ", \"median_lift_m\": " << json::number(fit.median_lift)
-    << ", \"mass\": " << json::number(fit.mass) << ", \"inertia\": " << json::number(fit.inertia)
-    << ", \"metric\": " << json::string(kMetric)
-    << ", \"seconds\": " << json::number(fit.seconds, 4) << ", \"models\": [";
-  bool first = true;
+  std::string models = "[", splits = "[";
   for (const TrajectorySplit& s : fit.splits) {
-    for (const TrajectoryModel& m : s.models) {
-      o << (first ? "" : ", ") << "{\"name\": " << json::string(m.name)
-        << ", \"engine\": " << json::string(m.engine) << ", \"split\": " << json::string(m.split)
-        << ", \"train\": " << s.train.size() << ", \"test\": " << s.test.size()
-        << ", \"median\": " << json::number(m.points.median)
-        << ", \"iqr\": " << json::number(m.points.q3 - m.points.q1)
-        << ", \"q1\": " << json::number(m.points.q1) << ", \"q3\": " << json::number(m.points.q3)
-        << ", \"centre_m\": " << quartiles_json(m.centre)
-        << ", \"angle_rad\": " << quartiles_json(m.angle) << ", \"failed\": " << m.failed
-        << ", \"parameters\": {";
-      for (size_t i = 0; i < m.parameters.size(); ++i)
-        o << (i ? ", " : "") << json::string(m.parameters[i].first) << ": "
-          << json::number(m.parameters[i].second);
-      o << "}";
-      if (m.dt > 0.0) o << ", \"dt\": " << json::number(m.dt);
-      if (m.evaluations > 0)
-        o << ", \"train_median\": " << json::number(m.train_median)
-          << ", \"evaluations\": " << m.evaluations;
-      o << "}";
-      first = false;
-    }
+    for (const TrajectoryModel& m : s.models)
+      models += (models.size() > 1 ? ", " : "") + model_json(s, m);
+    splits += (splits.size() > 1 ? ", " : "") + split_json(s);
   }
-  o << "], \"step_checks\": [";
-  for (size_t i = 0; i < fit.splits.size(); ++i) {
-    const TrajectorySplit::StepCheck& c = fit.splits[i].step_check;
-    o << (i ? ", " : "") << "{\"split\": " << json::string(fit.splits[i].split)
-      << ", \"omega_dt\": " << json::number(c.omega_dt) << ", \"dt\": " << json::number(c.dt)
-      << ", \"median\": " << json::number(c.median)
-      << ", \"apart_median\": " << json::number(c.apart) << "}";
-  }
-  o << "]}\n";
-  return o.str();
+  return members(
+             {member("recording", json::string(fit.recording)),
+              member("kind", json::string("trajectories")), member("peer", json::string(fit.peer)),
+              member("trajectories", std::to_string(fit.trajectories)),
+              member("samples", std::to_string(fit.samples)),
+              member("window_s", json::number(fit.window)),
+              member("omega_dt", json::number(fit.omega_dt)),
+              member("lifted_to_touch", std::to_string(fit.lifted)),
+              member("median_lift_m", json::number(fit.median_lift)),
+              member("mass", json::number(fit.mass)), member("inertia", json::number(fit.inertia)),
+              member("metric", json::string(kMetric)),
+              member("seconds", json::number(fit.seconds, 4)), member("models", models + "]"),
+              member("splits", splits + "]")}) +
+         "\n";
 }
 
 std::string trajectory_fit_text(const TrajectoryFit& fit) {
@@ -91,8 +124,18 @@ std::string trajectory_fit_text(const TrajectoryFit& fit) {
         << format_number("%.4f", m.points.median) << "  [" << format_number("%.4f", m.points.q1)
         << ", " << format_number("%.4f", m.points.q3) << "]  "
         << format_number("%.4f", m.centre.median) << "  " << format_number("%.3f", m.angle.median)
-        << "   " << params << "\n";
+        << (params.empty() ? "" : "   " + params) << "\n";
     }
+    if (!s.engine_distances.empty()) {
+      o << "  engines apart per trajectory (median, same metric):";
+      for (const TrajectorySplit::Distance& d : s.engine_distances)
+        o << " " << d.a << "-" << d.b << " " << format_number("%.3g", d.median) << ";";
+      o << "\n";
+    }
+    o << "  the grid's best training median at k (zeta, mu over the grid):";
+    for (const auto& [k, e] : s.k_grid)
+      o << " k " << format_number("%.0e", k) << ": " << format_number("%.4f", e) << ";";
+    o << "\n";
     const TrajectorySplit::StepCheck& c = s.step_check;
     o << "  the penalty fit at omega dt = " << format_number("%g", c.omega_dt) << " (dt "
       << format_number("%.3g", c.dt) << " s): median " << format_number("%.4f", c.median)

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/format.hpp"
 
@@ -50,6 +52,14 @@ inline std::string number(double v) {
 // "%.<digits>g"; null when not finite.
 inline std::string number(double v, int digits) {
   return std::isfinite(v) ? format_number(v, digits) : "null";
+}
+
+// {"name": value, …}: named numbers in the order given.
+inline std::string object(const std::vector<std::pair<std::string, double>>& members) {
+  std::string out = "{";
+  for (size_t i = 0; i < members.size(); ++i)
+    out += (i ? ", " : "") + string(members[i].first) + ": " + number(members[i].second);
+  return out + "}";
 }
 
 }  // namespace contact2d::json

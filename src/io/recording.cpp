@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "io/read_file.hpp"
 #include "io/toml_table.hpp"
@@ -138,11 +139,10 @@ std::vector<RecordedTrajectory> read_trajectories(const std::string& path, bool 
       seen[id] = out.size();
       out.push_back({id, csv.lines[r], velocities, {}, {}, {}});
     } else if (!(t > out.back().t.back())) {
-      std::ostringstream m;
-      m.precision(17);
-      m << path << ":" << csv.lines[r] << ": field 't' = " << t << " is not after the row before's "
-        << out.back().t.back() << " (time must increase within a trajectory)";
-      throw InputError(m.str());
+      throw InputError(path + ":" + std::to_string(csv.lines[r]) +
+                       ": field 't' = " + format_shortest(t) + " is not after the row before's " +
+                       format_shortest(out.back().t.back()) +
+                       " (time must increase within a trajectory)");
     }
     out.back().lines.push_back(csv.lines[r]);
     out.back().t.push_back(t);

@@ -28,10 +28,10 @@ struct RecordedImpact {
 };
 
 struct RecordedTrajectory {
-  int id = 0;               // the CSV's `traj` column
-  int line = 0;             // line of its first row
-  bool velocities = true;   // false: the file gave poses only (a peer's), v = 0
-  std::vector<int> lines;   // line of each sample
+  int id = 0;              // the CSV's `traj` column
+  int line = 0;            // line of its first row
+  bool velocities = true;  // false: the file gave poses only (a peer's), v = 0
+  std::vector<int> lines;  // line of each sample
   std::vector<double> t;
   std::vector<State> states;
 };

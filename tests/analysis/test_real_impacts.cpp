@@ -48,8 +48,9 @@ Recording synthetic(const ContactParams& law, int n) {
   Scene scene = rec.body;
   scene.contact = law;
   const Model model = make_model(scene);
-  // The fit's step: ω·Δt = 0.01 with ω = √(k/m_eff).
-  scene.sim.dt = 0.01 / std::sqrt(law.k / min_effective_mass(model.body));
+  // The fit's step: its ω·Δt with ω = √(k/m_eff).
+  scene.sim.dt =
+      analysis::ImpactFitOptions{}.omega_dt / std::sqrt(law.k / min_effective_mass(model.body));
   std::uint64_t seed = 7;
   ContactSet contacts(model);
   for (int i = 0; i < n; ++i) {
@@ -103,17 +104,18 @@ TEST(ImpactFit, RecoversTheParametersOfImpactsMadeByItsOwnLaw) {
         if (key == name) return value;
       return std::nan("");
     };
-    // Measured (24 impacts, 12 held out): held-out medians 0.0026 (seeded)
-    // and 0.0008 (chronological) — BOBYQA stops at a relative step of 1e-4
-    // in a valley that is flat in k (it returns k = 1.9e5 and 5.8e4 for the
-    // 1e5 that made the data, which is why k is not checked); ζ within
-    // 0.3 %, μ_roll within 0.6 %, μ within 8 % (μ trades with k). Bounds: a
-    // median of 0.01 and 5 %, 15 %, 25 %: a few times what was measured,
-    // far below what a wrong law gives (the baselines: 0.21–0.39).
-    EXPECT_LT(penalty.median, 0.01);
+    // Measured (24 impacts, 12 held out, ω·Δt = 0.02): held-out medians
+    // 0.0045 (seeded) and 0.0076 (chronological) — BOBYQA stops at a relative step of 1e-4 in a
+    // valley that is flat in k (k is not checked: any k above ~1e5 fits alike, as on the real
+    // impacts); ζ and μ_roll within 1 %. μ is bounded from below only: in an impact whose slip
+    // stops before it ends, any μ large enough to stop it gives the same impulse (measured: 0.36
+    // and 0.34 for the 0.2 that made the data at this step, 0.22 at ω·Δt = 0.01), while too small a
+    // μ leaves the slip too fast. Bounds: a median of 0.02, ζ within 5 %, μ_roll within 15 %, μ at
+    // least 80 % of the true one; far from what a wrong law gives (the baselines: 0.21–0.39).
+    EXPECT_LT(penalty.median, 0.02);
     EXPECT_NEAR(parameter("zeta"), zeta, 0.05 * zeta);
     EXPECT_NEAR(parameter("mu_roll"), law.mu_roll, 0.15 * law.mu_roll);
-    EXPECT_NEAR(parameter("mu"), law.mu, 0.25 * law.mu);
+    EXPECT_GT(parameter("mu"), 0.8 * law.mu);
     // The baselines cannot reproduce a penalty contact: far above.
     for (const analysis::ModelFit& m : split.models) {
       if (m.engine == "baseline") {

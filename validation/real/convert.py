@@ -10,11 +10,15 @@
 #   Visualize and Read Data/traj_N.csv                      (only compared with the copy above)
 # Writes, below OUT (default: the folder holding this script):
 #   ellipse/impacts.csv       impact,x0,y0,theta0,vx0,vy0,omega0,x1,y1,theta1,vx1,vy1,omega1,flags
-#   square/trajectories.csv   traj,t,x,y,theta,vx,vy,omega
-#   square/pybullet.csv       traj,t,x,y,theta,vx,vy,omega
+#   square/trajectories.csv   traj,t,x,y,theta,vx,vy,omega   (the first 0.4 s: 101 rows each)
+#   square/pybullet.csv       traj,t,x,y,theta               (the same rows, poses only)
 # The output is byte for byte the same on every run: impact numbers are written
 # as Python's shortest round-trip repr of each double; trajectory numbers are the
-# upstream text, copied unchanged; t = row index / 250 s.
+# upstream values rounded to 1e-7 (m, rad, m/s, rad/s: "%.7f", trailing zeros
+# dropped), far below the tracker's own scatter, which this script measures and
+# prints; t = row index / 250 s. Only the rows the trajectory fit replays are
+# written (t <= 0.4 s, docs/real-trajectories.md): the full 200 rows of every
+# file, as upstream text, would be 26 MB.
 #
 # Needs Python 3 with numpy and scipy. On Debian: apt-get install python3-scipy
 # (it pulls in python3-numpy). Only re-conversion needs them: nothing in the
@@ -37,6 +41,9 @@ VISUAL = "Visualize and Read Data"
 FLAGS = ("flag_sb", "flag_en", "flag_cl", "flag_mc", "flag_de", "flag_ld")
 UPSTREAM_HEADER = "x,z,th,vx,vz,vth"
 FRAME_RATE = 250.0
+ROWS = 101           # t = 0, 0.004, ..., 0.4 s: what the trajectory fit replays
+DECIMALS = 7         # trajectory numbers are rounded to 1e-7 (m, rad, m/s, rad/s)
+SQUARE_HALF = 0.03   # m, half the square's side (upstream README: 0.06 m)
 
 
 def fail(message):
@@ -72,6 +79,14 @@ def convert_ellipse(upstream, out):
     return bounce.shape[1]
 
 
+def fixed(text):
+    # The upstream number rounded to DECIMALS places, trailing zeros dropped.
+    number(text)  # a finite number, or the conversion stops
+    out = "%.*f" % (DECIMALS, float(text))
+    out = out.rstrip("0").rstrip(".")
+    return "0" if out in ("-0", "") else out
+
+
 def read_trajectory(path):
     with open(path, "r", encoding="ascii", newline="") as f:
         rows = [r.rstrip("\r") for r in f.read().split("\n")]
@@ -101,14 +116,46 @@ def trajectory_numbers(folder, prefix):
     return sorted(found)
 
 
-def convert_trajectories(folder, prefix, target):
-    lines = ["traj,t,x,y,theta,vx,vy,omega"]
+def convert_trajectories(folder, prefix, target, columns):
+    # The first ROWS rows of every trajectory, its first `columns` upstream
+    # fields (6: pose and velocity, 3: the pose) rounded by fixed().
+    names = ["x", "y", "theta", "vx", "vy", "omega"][:columns]
+    lines = ["traj,t," + ",".join(names)]
     numbers = trajectory_numbers(folder, prefix)
+    poses = {}
     for n in numbers:
-        for i, fields in enumerate(read_trajectory(os.path.join(folder, "%s_%d.csv" % (prefix, n)))):
-            lines.append(",".join([str(n), repr(i / FRAME_RATE)] + fields))
+        path = os.path.join(folder, "%s_%d.csv" % (prefix, n))
+        body = read_trajectory(path)
+        if len(body) < ROWS:
+            fail("%s: %d rows, the fit needs the first %d" % (path, len(body), ROWS))
+        poses[n] = np.array([[float(f) for f in fields[:3]] for fields in body], dtype=np.float64)
+        for i, fields in enumerate(body[:ROWS]):
+            lines.append(",".join([str(n), repr(i / FRAME_RATE)] + [fixed(f) for f in fields[:columns]]))
     write(target, lines)
-    return numbers, len(lines) - 1
+    return numbers, len(lines) - 1, poses
+
+
+def free_flight_scatter(poses):
+    # The tracker's own scatter: in free flight the pose is a parabola in
+    # time (x, y) or a line (theta; a parabola fitted alike). Per recording,
+    # the RMS residual of a quadratic fit to the rows before the square's
+    # lowest corner first comes within 10 mm of the ground (at least 6 rows);
+    # the median over the recordings, for the position (x and y) and theta.
+    position, angle = [], []
+    for pose in poses.values():
+        x, y, th = pose[:, 0], pose[:, 1], pose[:, 2]
+        corners = [y + SQUARE_HALF * (sx * np.sin(th) + sy * np.cos(th))
+                   for sx in (-1, 1) for sy in (-1, 1)]
+        low = np.min(corners, axis=0)
+        near = np.nonzero(low < 0.01)[0]
+        rows = int(near[0]) if near.size else len(low)
+        if rows < 6:
+            continue
+        t = np.arange(rows) / FRAME_RATE
+        for values, out in ((x, position), (y, position), (th, angle)):
+            fit = np.polyval(np.polyfit(t, values[:rows], 2), t)
+            out.append(math.sqrt(float(np.sum((values[:rows] - fit) ** 2)) / (rows - 3)))
+    return len(angle), float(np.median(position)), float(np.median(angle))
 
 
 def compare_copies(upstream, numbers):
@@ -139,16 +186,22 @@ def main():
     args = parser.parse_args()
 
     impacts = convert_ellipse(args.upstream, args.out)
-    recorded, rows = convert_trajectories(os.path.join(args.upstream, SQUARE), "traj",
-                                          os.path.join(args.out, "square", "trajectories.csv"))
-    replayed, sim_rows = convert_trajectories(os.path.join(args.upstream, VISUAL), "trajSim",
-                                              os.path.join(args.out, "square", "pybullet.csv"))
+    recorded, rows, poses = convert_trajectories(
+        os.path.join(args.upstream, SQUARE), "traj",
+        os.path.join(args.out, "square", "trajectories.csv"), 6)
+    replayed, sim_rows, _ = convert_trajectories(
+        os.path.join(args.upstream, VISUAL), "trajSim",
+        os.path.join(args.out, "square", "pybullet.csv"), 3)
     if replayed != recorded:
         fail("the recorded and the PyBullet trajectories are numbered differently")
     differing = compare_copies(args.upstream, recorded)
     print("ellipse/impacts.csv: %d impacts" % impacts)
     print("square/trajectories.csv: %d trajectories, %d rows" % (len(recorded), rows))
     print("square/pybullet.csv: %d trajectories, %d rows" % (len(replayed), sim_rows))
+    counted, position, angle = free_flight_scatter(poses)
+    print("tracker scatter in free flight (RMS residual of a quadratic fit, median over %d "
+          "recordings): %.2g m (x, y), %.2g rad (theta); the files round to %.0e"
+          % (counted, position, angle, 10.0 ** -DECIMALS))
     if differing:
         print("warning: %d traj_N.csv differ between '%s' and '%s' (the first is used): %s"
               % (len(differing), SQUARE, VISUAL, differing[:10]), file=sys.stderr)
