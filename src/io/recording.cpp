@@ -212,6 +212,21 @@ Recording read_recording(const std::string& path) {
     throw InputError(path + ": body.shape = \"" + shape_text +
                      "\": use point_mass, box, tshape, circle or ellipse");
   body_table.erase("shape");
+  // A recorded body has no defaults: a scene file's (a 0.2 × 0.1 m ellipse,
+  // 1 kg) would silently stand in for a measurement left out.
+  std::vector<const char*> required = {"mass"};
+  switch (*shape) {
+    case Shape::PointMass: break;
+    case Shape::Box: required.insert(required.end(), {"width", "height"}); break;
+    case Shape::TShape: required = {"parts"}; break;
+    case Shape::Circle: required.push_back("radius"); break;
+    case Shape::Ellipse: required.insert(required.end(), {"a", "b"}); break;
+  }
+  for (const char* key : required) {
+    if (!body_table.contains(key))
+      throw InputError(path + ": body." + key + " is required for a recorded " + shape_text +
+                       " (a recording takes no default dimensions or mass)");
+  }
   rec.body = default_scene(*shape);
   rec.body.sim.gravity = gravity;
   read_body(&body_table, rec.body, path);

@@ -109,6 +109,8 @@ std::vector<BadRecording> bad_recordings() {
       {"too_few", kManifest, real_rows(3), "at least 4 are needed"},
       {"bad_kind", std::string(kManifest).replace(8, 7, "bounces"), good,
        "kind = \"bounces\": use \"impacts\" or \"trajectories\""},
+      {"no_b", std::string(kManifest).replace(std::string(kManifest).find("b = 0.025\n"), 10, ""),
+       good, "body.b is required for a recorded ellipse"},
       {"no_frame_rate",
        std::string(kManifest).replace(std::string(kManifest).find("frame_rate = 250.0"), 18,
                                       "frame_rate = 0.0"),
