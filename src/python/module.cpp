@@ -280,8 +280,8 @@ py::dict py_solref(const mujoco::SolrefRequest& request) {
 // contact2d fit on a recording: the JSON the program prints, and per model
 // the held-out impacts' ids, errors, predicted and measured velocities.
 py::dict py_fit(const std::string& path, long long seed, int bootstrap,
-                std::optional<std::vector<std::string>> engines, unsigned threads,
-                bool all_impacts, bool k_profile) {
+                std::optional<std::vector<std::string>> engines, unsigned threads, bool all_impacts,
+                bool k_profile) {
   analysis::ImpactFitOptions options;
   options.seed = static_cast<std::uint64_t>(seed);
   options.bootstrap = bootstrap;
