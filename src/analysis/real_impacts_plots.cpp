@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -128,7 +129,7 @@ void plot_k_profile(const std::string& png_path, const ImpactFit& fit) {
   AtomicFile data_file(png_path + ".dat");
   std::FILE* f = data_file.get();
   const std::string& data = data_file.temp_path();
-  double lo = INFINITY, hi = -INFINITY;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& [k, e] : s.k_profile) {
     std::fprintf(f, "%.6g %.6g\n", k, e);
     lo = std::min(lo, e);
