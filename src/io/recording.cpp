@@ -163,15 +163,7 @@ std::vector<RecordedTrajectory> read_trajectories(const std::string& path, bool 
 
 Recording read_recording(const std::string& path) {
   const std::string text = read_input_file(path, "recording manifest");
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream where;
-    where << path << ":" << e.source().begin.line << ":" << e.source().begin.column
-          << ": malformed TOML: " << e.description();
-    throw InputError(where.str());
-  }
+  const toml::table root = parse_toml(text, path);
   Recording rec;
   rec.path = path;
   TableReader top(&root, "", path);

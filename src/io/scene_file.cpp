@@ -331,15 +331,7 @@ namespace {
 
 Scene read_scene(const std::string& toml_text, const std::string& origin,
                  const std::vector<Override>& overrides) {
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, origin);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream where;
-    where << origin << ":" << e.source().begin.line << ":" << e.source().begin.column
-          << ": malformed TOML: " << e.description();
-    throw InputError(where.str());
-  }
+  toml::table root = parse_toml(toml_text, origin);
   for (const Override& o : overrides) apply_override(root, o);
 
   TableReader top(&root, "", origin);

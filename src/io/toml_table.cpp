@@ -1,5 +1,7 @@
 #include "io/toml_table.hpp"
 
+#include <sstream>
+
 #include "io/scene_file.hpp"
 
 namespace contact2d {
@@ -18,6 +20,17 @@ std::string type_name(const toml::node& node) {
 }
 
 }  // namespace
+
+toml::table parse_toml(const std::string& text, const std::string& origin) {
+  try {
+    return toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << origin << ":" << e.source().begin.line << ":" << e.source().begin.column
+          << ": malformed TOML: " << e.description();
+    throw InputError(where.str());
+  }
+}
 
 void TableReader::number(const char* key, double& out) {
   const toml::node* node = find(key);

@@ -43,6 +43,10 @@ class TableReader {
   std::set<std::string> used_;
 };
 
+// The TOML document `text` read from `origin`; InputError
+// "ORIGIN:LINE:COLUMN: malformed TOML: …" when it is not TOML.
+toml::table parse_toml(const std::string& text, const std::string& origin);
+
 // The [body] keys of a scene file for scene.shape (io/scene_file.cpp): a
 // recording's manifest (io/recording.hpp) describes its body the same way.
 struct Scene;
