@@ -268,6 +268,7 @@ struct Fitter {
     mf.split = sf.split;
     mf.predicted = std::move(predicted);
     mf.errors = errors(mf.predicted, sf.test);
+    for (const Vec3& p : mf.predicted) mf.failed_replays += p.allFinite() ? 0 : 1;
     const Quartiles q = quartiles(mf.errors);
     mf.q1 = q.q1;
     mf.median = q.median;

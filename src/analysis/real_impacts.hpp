@@ -78,8 +78,11 @@ struct ModelFit {
   // Bootstrap spread of each parameter (the 16th and 84th percentiles of
   // the refits), same order as `parameters`; empty without a bootstrap.
   std::vector<std::pair<double, double>> spread;
-  double train_median = 0.0;    // the fitted objective on the training half
-  int evaluations = 0;          // objective evaluations of the fit
+  double train_median = 0.0;  // the fitted objective on the training half
+  int evaluations = 0;        // objective evaluations of the fit
+  // Held-out replays that did not finish (a step not finite): each counts
+  // as an error of 10 in `errors` and is said, never left out silently.
+  int failed_replays = 0;
   std::vector<double> errors;   // per held-out impact, in `test` order
   std::vector<Vec3> predicted;  // v̂ per held-out impact
   double iqr() const { return q3 - q1; }

@@ -24,6 +24,7 @@ std::string impact_fit_json(const ImpactFit& fit) {
         << ", \"train\": " << s.train.size() << ", \"test\": " << s.test.size()
         << ", \"median\": " << json::number(m.median) << ", \"iqr\": " << json::number(m.iqr())
         << ", \"q1\": " << json::number(m.q1) << ", \"q3\": " << json::number(m.q3)
+        << ", \"failed_replays\": " << m.failed_replays
         << ", \"parameters\": " << json::object(m.parameters);
       if (!m.spread.empty()) {
         o << ", \"spread_16_84\": {";
@@ -82,7 +83,11 @@ std::string impact_fit_text(const ImpactFit& fit) {
       o << "  " << m.name << std::string(m.name.size() < 22 ? 22 - m.name.size() : 1, ' ')
         << m.engine << std::string(m.engine.size() < 10 ? 10 - m.engine.size() : 1, ' ')
         << format_number("%.3f", m.median) << "  [" << format_number("%.3f", m.q1) << ", "
-        << format_number("%.3f", m.q3) << "]    " << params << "\n";
+        << format_number("%.3f", m.q3) << "]    " << params
+        << (m.failed_replays > 0 ? "  (" + std::to_string(m.failed_replays) +
+                                       " replays did not finish: each counted as error 10)"
+                                 : std::string())
+        << "\n";
     }
     if (!s.engine_distances.empty()) {
       o << "  engines apart per impact (median, same metric):";
