@@ -52,16 +52,16 @@ constexpr double kTwoFrames = 2.0;  // frames a pre-impact state may be above it
 
 // The state at first touch: lifted along +y when it penetrates, carried
 // along its free flight when it is above the ground.
-struct Touch {
+struct ImpactTouch {
   State state;
   double lift = 0.0;    // m moved up (0 when it did not penetrate)
   double flight = 0.0;  // s of free flight to touch
 };
 
-Touch first_touch(const Model& model, const RecordedImpact& impact, double frame_rate,
-                  const std::string& csv) {
+ImpactTouch first_touch(const Model& model, const RecordedImpact& impact, double frame_rate,
+                        const std::string& csv) {
   ContactSet contacts(model);
-  Touch t;
+  ImpactTouch t;
   t.state = impact.before;
   const double g0 = ground_gap(model, t.state.q, contacts);
   if (g0 <= 0.0) {
@@ -105,8 +105,8 @@ Touch first_touch(const Model& model, const RecordedImpact& impact, double frame
 }
 
 // Runs `stepper` from `start` until the body leaves the ground; the velocity then.
-Vec3 replay(Stepper& stepper, const Model& geometry, const State& start, long long max_steps,
-            ContactSet& contacts) {
+Vec3 replay_impact(Stepper& stepper, const Model& geometry, const State& start, long long max_steps,
+                   ContactSet& contacts) {
   throw_if_cancelled();  // Python's Ctrl-C (core/cancel.hpp): at every impact
   stepper.reset(start);
   stepper.plan(max_steps);
@@ -124,9 +124,9 @@ Vec3 replay(Stepper& stepper, const Model& geometry, const State& start, long lo
   return stepper.state().v;
 }
 
-struct Problem {
+struct ImpactProblem {
   const Scene* body = nullptr;
-  const std::vector<Touch>* touches = nullptr;
+  const std::vector<ImpactTouch>* touches = nullptr;
   const std::vector<RecordedImpact>* impacts = nullptr;
   double m_eff = 0.0;
   unsigned threads = 1;
@@ -134,8 +134,8 @@ struct Problem {
 };
 
 // Predictions of the penalty law on impacts `which`, on the reference.
-std::vector<Vec3> predict_ref(const Problem& pb, const PenaltyParams& p,
-                              const std::vector<size_t>& which) {
+std::vector<Vec3> predict_impacts(const ImpactProblem& pb, const PenaltyParams& p,
+                                  const std::vector<size_t>& which) {
   const Scene scene = penalty_scene(*pb.body, p, pb.m_eff, pb.omega_dt, kWindow);
   const long long steps = step_count(scene.sim);
   std::vector<Vec3> out(which.size());
@@ -144,14 +144,16 @@ std::vector<Vec3> predict_ref(const Problem& pb, const PenaltyParams& p,
     ReferenceStepper stepper(scene);
     ContactSet contacts(stepper.model());
     for (size_t i = c; i < which.size(); i += chunks)
-      out[i] = replay(stepper, stepper.model(), (*pb.touches)[which[i]].state, steps, contacts);
+      out[i] =
+          replay_impact(stepper, stepper.model(), (*pb.touches)[which[i]].state, steps, contacts);
   });
   return out;
 }
 
-std::vector<double> errors_of(const std::vector<Vec3>& predicted, const std::vector<size_t>& which,
-                              const std::vector<RecordedImpact>& impacts, double inertia,
-                              double mass) {
+std::vector<double> impact_errors(const std::vector<Vec3>& predicted,
+                                  const std::vector<size_t>& which,
+                                  const std::vector<RecordedImpact>& impacts, double inertia,
+                                  double mass) {
   std::vector<double> e(which.size());
   for (size_t i = 0; i < which.size(); ++i) {
     const double v = impact_error(predicted[i], impacts[which[i]].after.v, inertia, mass);
@@ -217,7 +219,7 @@ Vec3 best_impulse(const State& s, const Vec2& r, const Vec3& measured, double m,
   return apply_impulse(s, r, pt, pn, m, inertia);
 }
 
-std::vector<double> percentiles(std::vector<double> v) {
+std::vector<double> impact_percentiles(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   auto at = [&v](double p) {
     const double x = p * static_cast<double>(v.size() - 1);
@@ -240,25 +242,25 @@ namespace {
 
 // What every model of a fit reads: the impacts at first touch, their levers,
 // the replay problem and the options.
-struct Fitter {
+struct ImpactFitter {
   const Recording& rec;
   const ImpactFitOptions& options;
   ImpactFit& out;
   Model geometry;
   double m = 0.0, inertia = 0.0;
-  std::vector<Touch> touches;
+  std::vector<ImpactTouch> touches;
   std::vector<Vec2> levers;
-  Problem pb;
+  ImpactProblem pb;
 
   void say(const std::string& line) const {
     if (options.progress) options.progress(line);
   }
   std::vector<double> errors(const std::vector<Vec3>& predicted,
                              const std::vector<size_t>& set) const {
-    return errors_of(predicted, set, out.impacts, inertia, m);
+    return impact_errors(predicted, set, out.impacts, inertia, m);
   }
   double train_median(const PenaltyParams& p, const std::vector<size_t>& set) const {
-    return quartiles(errors(predict_ref(pb, p, set), set)).median;
+    return quartiles(errors(predict_impacts(pb, p, set), set)).median;
   }
   ModelFit model(const std::string& name, const std::string& engine, const SplitFit& sf,
                  std::vector<Vec3> predicted) const {
@@ -288,10 +290,10 @@ struct Fitter {
 // The box of (log10 k, ζ, μ[, μ_roll]) and three starts (little, some and
 // much friction and rolling resistance): the error surface has more than
 // one valley; the best training fit wins.
-struct PenaltySearch {
+struct ImpactSearch {
   std::vector<double> lo = {3.0, 0.0, 0.0}, hi = {9.0, 1.5, 2.0}, step = {0.5, 0.1, 0.1};
   std::vector<std::vector<double>> starts = {{5.0, 0.2, 0.05}, {5.0, 0.2, 0.4}, {7.0, 0.3, 0.0}};
-  explicit PenaltySearch(bool rolling) {
+  explicit ImpactSearch(bool rolling) {
     if (!rolling) return;
     lo.push_back(0.0);
     hi.push_back(0.03);
@@ -307,11 +309,11 @@ PenaltyParams params_of(const std::vector<double>& x) {
 }
 
 // The penalty law fitted on the training half, measured on the other.
-ModelFit fit_penalty(const Fitter& f, const SplitFit& sf, bool rolling, Minimised& best) {
+ModelFit fit_penalty(const ImpactFitter& f, const SplitFit& sf, bool rolling, Minimised& best) {
   const std::string name = rolling ? "penalty" : "penalty_no_rolling";
   f.say("fit: " + sf.split + " split, " + name + " on " + std::to_string(sf.train.size()) +
         " impacts (NLopt BOBYQA, 3 starts)");
-  const PenaltySearch search(rolling);
+  const ImpactSearch search(rolling);
   auto objective = [&](const std::vector<double>& x) {
     return f.train_median(params_of(x), sf.train);
   };
@@ -326,7 +328,7 @@ ModelFit fit_penalty(const Fitter& f, const SplitFit& sf, bool rolling, Minimise
     }
   }
   const PenaltyParams p = params_of(best.x);
-  ModelFit mf = f.model(name, "ref", sf, predict_ref(f.pb, p, sf.test));
+  ModelFit mf = f.model(name, "ref", sf, predict_impacts(f.pb, p, sf.test));
   mf.train_median = best.f;
   mf.evaluations = best.evaluations;
   mf.parameters = f.penalty_parameters(p);
@@ -335,9 +337,9 @@ ModelFit fit_penalty(const Fitter& f, const SplitFit& sf, bool rolling, Minimise
 
 // Refits on training sets drawn with replacement, each from the fit with
 // the search's full first step; the 16th–84th percentile of each parameter.
-void bootstrap(const Fitter& f, const SplitFit& sf, const Minimised& fit, ModelFit& mf) {
+void bootstrap(const ImpactFitter& f, const SplitFit& sf, const Minimised& fit, ModelFit& mf) {
   if (f.options.bootstrap < 2) return;
-  const PenaltySearch search(true);
+  const ImpactSearch search(true);
   std::vector<std::vector<double>> draws(mf.parameters.size());
   std::uint64_t state = f.options.seed ^ 0xb007ull;
   for (int b = 0; b < f.options.bootstrap; ++b) {
@@ -353,13 +355,13 @@ void bootstrap(const Fitter& f, const SplitFit& sf, const Minimised& fit, ModelF
     for (size_t j = 0; j < values.size(); ++j) draws[j].push_back(values[j].second);
   }
   for (const std::vector<double>& d : draws) {
-    const std::vector<double> p = percentiles(d);
+    const std::vector<double> p = impact_percentiles(d);
     mf.spread.emplace_back(p[0], p[1]);
   }
 }
 
 // The training median with log10 k held at 3, 4, …, 9 and ζ, μ, μ_roll refitted.
-void k_profile(const Fitter& f, SplitFit& sf, const Minimised& fit) {
+void k_profile(const ImpactFitter& f, SplitFit& sf, const Minimised& fit) {
   for (int lk = 3; lk <= 9; ++lk) {
     f.say("fit: k profile, k = 1e" + std::to_string(lk) + " N/m");
     const Minimised at = minimise(
@@ -374,7 +376,7 @@ void k_profile(const Fitter& f, SplitFit& sf, const Minimised& fit) {
 
 // The penalty fit replayed on every engine of the options, and the
 // distances between every pair of them (the reference's first).
-void replay_engines(const Fitter& f, SplitFit& sf, const PenaltyParams& best) {
+void replay_engines(const ImpactFitter& f, SplitFit& sf, const PenaltyParams& best) {
   if (f.options.engines.empty()) return;
   const Scene scene = penalty_scene(f.rec.body, best, f.pb.m_eff, f.pb.omega_dt, kWindow);
   const long long steps = step_count(scene.sim);
@@ -389,7 +391,8 @@ void replay_engines(const Fitter& f, SplitFit& sf, const PenaltyParams& best) {
       std::unique_ptr<Stepper> stepper = engines::make_stepper(spec, scene);
       ContactSet contacts(f.geometry);
       for (size_t i = c; i < sf.test.size(); i += threads)
-        predicted[i] = replay(*stepper, f.geometry, f.touches[sf.test[i]].state, steps, contacts);
+        predicted[i] =
+            replay_impact(*stepper, f.geometry, f.touches[sf.test[i]].state, steps, contacts);
     });
     ModelFit mf = f.model("penalty", engine, sf, std::move(predicted));
     mf.parameters = parameters;
@@ -410,7 +413,7 @@ void replay_engines(const Fitter& f, SplitFit& sf, const PenaltyParams& best) {
 }
 
 // The constant predictor, Newton + Coulomb, and the best impulse after the fact.
-void baselines(const Fitter& f, SplitFit& sf) {
+void baselines(const ImpactFitter& f, SplitFit& sf) {
   Vec3 sum = Vec3::Zero();
   for (size_t i : sf.train) sum += f.out.impacts[i].after.v;
   const Vec3 mean = sum / static_cast<double>(sf.train.size());
@@ -477,7 +480,7 @@ ImpactFit fit_impacts(const Recording& rec, const ImpactFitOptions& options) {
   if (out.impacts.size() < 4)
     throw InputError(rec.csv + ": " + std::to_string(out.impacts.size()) +
                      " impacts to fit: at least 4 are needed (2 to train, 2 to test)");
-  Fitter f{rec, options, out, make_model(rec.body), 0.0, 0.0, {}, {}, {}};
+  ImpactFitter f{rec, options, out, make_model(rec.body), 0.0, 0.0, {}, {}, {}};
   f.m = f.geometry.body.mass;
   f.inertia = f.geometry.body.inertia;
   if (!(f.inertia > 0.0))

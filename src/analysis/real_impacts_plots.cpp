@@ -14,23 +14,24 @@ namespace contact2d::analysis {
 
 namespace {
 
-const SplitFit& split_of(const ImpactFit& fit, const std::string& split) {
+const SplitFit& impact_split(const ImpactFit& fit, const std::string& split) {
   for (const SplitFit& s : fit.splits)
     if (s.split == split) return s;
   throw std::runtime_error("real impacts: no split '" + split + "' to plot");
 }
 
-const ModelFit* model_of(const SplitFit& s, const std::string& name, const std::string& engine) {
+const ModelFit* impact_model(const SplitFit& s, const std::string& name,
+                             const std::string& engine) {
   for (const ModelFit& m : s.models)
     if (m.name == name && m.engine == engine) return &m;
   return nullptr;
 }
 
-void flush(std::FILE* f, const std::string& data) {
+void flush_plot_data(std::FILE* f, const std::string& data) {
   if (std::fflush(f) != 0) throw std::runtime_error(data + ": cannot write plot data");
 }
 
-std::string title_of(const ModelFit& m) {
+std::string impact_model_title(const ModelFit& m) {
   return m.name + (m.engine == "baseline" ? std::string() : " (" + m.engine + ")");
 }
 
@@ -38,10 +39,10 @@ std::string title_of(const ModelFit& m) {
 
 void plot_impact_predictions(const std::string& png_path, const ImpactFit& fit,
                              const std::string& split) {
-  const SplitFit& s = split_of(fit, split);
-  const std::vector<const ModelFit*> models = {model_of(s, "penalty", "ref"),
-                                               model_of(s, "newton_coulomb", "baseline"),
-                                               model_of(s, "irb_bound", "baseline")};
+  const SplitFit& s = impact_split(fit, split);
+  const std::vector<const ModelFit*> models = {impact_model(s, "penalty", "ref"),
+                                               impact_model(s, "newton_coulomb", "baseline"),
+                                               impact_model(s, "irb_bound", "baseline")};
   AtomicFile png(png_path);
   AtomicFile data_file(png_path + ".dat");  // never committed: removed on return
   std::FILE* f = data_file.get();
@@ -58,7 +59,7 @@ void plot_impact_predictions(const std::string& png_path, const ImpactFit& fit,
     std::fprintf(f, "\n\n");
     ++blocks;
   }
-  flush(f, data);
+  flush_plot_data(f, data);
   const char* colours[] = {"'#1f77b4'", "'#ff7f0e'", "'#2ca02c'"};
   const char* labels[] = {"v_x after (m/s)", "v_y after (m/s)", "ω after (rad/s)"};
   std::ostringstream g;
@@ -74,7 +75,7 @@ void plot_impact_predictions(const std::string& png_path, const ImpactFit& fit,
       if (!models[j]) continue;
       g << (b ? ", " : "") << gnuplot_quoted(data) << " index " << b << " using " << (c + 1) << ":"
         << (c + 4) << " with points pt 7 ps 0.35 lc rgb " << colours[j] << " title '"
-        << gnuplot_text(title_of(*models[j])) << "'";
+        << gnuplot_text(impact_model_title(*models[j])) << "'";
       ++b;
     }
     g << ", x with lines lc 'black' dt 2 notitle\n";
@@ -87,7 +88,7 @@ void plot_impact_predictions(const std::string& png_path, const ImpactFit& fit,
 
 void plot_impact_errors(const std::string& png_path, const ImpactFit& fit,
                         const std::string& split) {
-  const SplitFit& s = split_of(fit, split);
+  const SplitFit& s = impact_split(fit, split);
   AtomicFile png(png_path);
   AtomicFile data_file(png_path + ".dat");
   std::FILE* f = data_file.get();
@@ -101,9 +102,9 @@ void plot_impact_errors(const std::string& png_path, const ImpactFit& fit,
       std::fprintf(f, "%.6g %.6g\n", e[i],
                    static_cast<double>(i + 1) / static_cast<double>(e.size()));
     std::fprintf(f, "\n\n");
-    titles.push_back(title_of(m) + ": median " + format_number("%.3f", m.median));
+    titles.push_back(impact_model_title(m) + ": median " + format_number("%.3f", m.median));
   }
-  flush(f, data);
+  flush_plot_data(f, data);
   std::ostringstream g;
   g << gnuplot_png(png.temp_path(), 1100, 650) << "set title '"
     << gnuplot_text("held-out error of every model (" + split +
@@ -123,7 +124,7 @@ void plot_impact_errors(const std::string& png_path, const ImpactFit& fit,
 }
 
 void plot_k_profile(const std::string& png_path, const ImpactFit& fit) {
-  const SplitFit& s = split_of(fit, "seeded");
+  const SplitFit& s = impact_split(fit, "seeded");
   if (s.k_profile.empty()) throw std::runtime_error(png_path + ": no profile of k to plot");
   AtomicFile png(png_path);
   AtomicFile data_file(png_path + ".dat");
@@ -135,7 +136,7 @@ void plot_k_profile(const std::string& png_path, const ImpactFit& fit) {
     lo = std::min(lo, e);
     hi = std::max(hi, e);
   }
-  flush(f, data);
+  flush_plot_data(f, data);
   std::ostringstream g;
   g << gnuplot_png(png.temp_path(), 900, 520) << "set title '"
     << gnuplot_text(

@@ -13,19 +13,19 @@
 namespace contact2d::report {
 namespace {
 
-std::string fixed(double v, int digits) {
+std::string impact_fixed(double v, int digits) {
   return format_number(("%." + std::to_string(digits) + "f").c_str(), v);
 }
-std::string sig(double v) { return format_number("%.3g", v); }
+std::string impact_sig(double v) { return format_number("%.3g", v); }
 
-const analysis::ModelFit* find(const analysis::SplitFit& s, const std::string& name,
-                               const std::string& engine) {
+const analysis::ModelFit* find_model(const analysis::SplitFit& s, const std::string& name,
+                                     const std::string& engine) {
   for (const analysis::ModelFit& m : s.models)
     if (m.name == name && m.engine == engine) return &m;
   return nullptr;
 }
 
-std::string what_it_is(const analysis::ModelFit& m) {
+std::string model_description(const analysis::ModelFit& m) {
   if (m.name == "penalty" && m.engine == "ref")
     return "the reference: Kelvin–Voigt k, c, tanh friction μ, rolling resistance μ_roll, fitted";
   if (m.name == "penalty")
@@ -59,12 +59,13 @@ std::string real_impacts_page(const RealImpactsData& d) {
        "`contact2d fit "
     << d.recording << "` (docs/real-impacts.md says how it works).\n\n";
   o << "- **Replayed from first touch:** " << f.lifted
-    << " pre-impact states already penetrated the ground (median " << sig(f.median_lift * 1e3)
+    << " pre-impact states already penetrated the ground (median "
+    << impact_sig(f.median_lift * 1e3)
     << " mm) and were moved up along the normal until the body just touches; the others fly "
        "freely to first touch. Each replay runs until the body leaves the ground.\n"
     << "- **The error of one impact:** ‖W(v̂ − v)‖ / ‖W v‖ over (vx, vy, ω) just after it, "
        "W = diag(1, 1, √(I/m)) (I/m = "
-    << sig(f.inertia / f.mass)
+    << impact_sig(f.inertia / f.mass)
     << " m²). A model's figure: the median over the held-out impacts, and the interquartile "
        "range.\n"
     << "- **Splits:** seeded (shuffled, seed 2026) and chronological (by drop number), 50/50.\n\n";
@@ -76,38 +77,40 @@ std::string real_impacts_page(const RealImpactsData& d) {
       {}};
   if (!f.splits.empty()) {
     for (const analysis::ModelFit& m : f.splits[0].models) {
-      std::vector<std::string> row = {m.name, m.engine, what_it_is(m), fixed(m.median, 3),
-                                      fixed(m.q1, 3) + "–" + fixed(m.q3, 3)};
+      std::vector<std::string> row = {m.name, m.engine, model_description(m),
+                                      impact_fixed(m.median, 3),
+                                      impact_fixed(m.q1, 3) + "–" + impact_fixed(m.q3, 3)};
       const analysis::ModelFit* c =
-          f.splits.size() > 1 ? find(f.splits[1], m.name, m.engine) : nullptr;
-      row.push_back(c ? fixed(c->median, 3) : "—");
-      row.push_back(c ? fixed(c->q1, 3) + "–" + fixed(c->q3, 3) : "—");
+          f.splits.size() > 1 ? find_model(f.splits[1], m.name, m.engine) : nullptr;
+      row.push_back(c ? impact_fixed(c->median, 3) : "—");
+      row.push_back(c ? impact_fixed(c->q1, 3) + "–" + impact_fixed(c->q3, 3) : "—");
       add_row(t, row);
     }
   }
   o << to_markdown(t) << "\n";
   for (const analysis::SplitFit& s : f.splits) {
-    const analysis::ModelFit* ref = find(s, "penalty", "ref");
-    const analysis::ModelFit* bound = find(s, "irb_bound", "baseline");
+    const analysis::ModelFit* ref = find_model(s, "penalty", "ref");
+    const analysis::ModelFit* bound = find_model(s, "irb_bound", "baseline");
     if (ref && bound)
-      o << "- " << s.split << ": the reference's median " << fixed(ref->median, 3) << " is "
+      o << "- " << s.split << ": the reference's median " << impact_fixed(ref->median, 3) << " is "
         << (ref->median < bound->median ? "below" : "not below")
-        << " the best impulse chosen after the fact (" << fixed(bound->median, 3) << ").\n";
+        << " the best impulse chosen after the fact (" << impact_fixed(bound->median, 3) << ").\n";
     for (const analysis::SplitFit::Distance& dist : s.engine_distances)
       o << "- " << s.split << ": " << dist.a << " and " << dist.b
-        << " apart per impact (median, same metric): " << sig(dist.median) << "\n";
+        << " apart per impact (median, same metric): " << impact_sig(dist.median) << "\n";
   }
 
   o << "\n## The fitted parameters\n\n";
   Table p{{"split", "k (N/m)", "ζ", "c (N·s/m)", "μ", "μ_roll (m)"}, {}};
   for (const analysis::SplitFit& s : f.splits) {
-    const analysis::ModelFit* ref = find(s, "penalty", "ref");
+    const analysis::ModelFit* ref = find_model(s, "penalty", "ref");
     if (!ref) continue;
     std::vector<std::string> row = {s.split};
     for (size_t i = 0; i < ref->parameters.size(); ++i) {
-      std::string cell = sig(ref->parameters[i].second);
+      std::string cell = impact_sig(ref->parameters[i].second);
       if (i < ref->spread.size())
-        cell += " (" + sig(ref->spread[i].first) + "–" + sig(ref->spread[i].second) + ")";
+        cell +=
+            " (" + impact_sig(ref->spread[i].first) + "–" + impact_sig(ref->spread[i].second) + ")";
       row.push_back(cell);
     }
     add_row(p, row);
@@ -118,14 +121,16 @@ std::string real_impacts_page(const RealImpactsData& d) {
        "refits the rest.\n\n";
   if (!f.splits.empty() && !f.splits[0].k_profile.empty()) {
     Table k{{"k (N/m)", "training median error"}, {}};
-    for (const auto& [kv, e] : f.splits[0].k_profile) add_row(k, {sig(kv), fixed(e, 4)});
+    for (const auto& [kv, e] : f.splits[0].k_profile)
+      add_row(k, {impact_sig(kv), impact_fixed(e, 4)});
     o << to_markdown(k) << "\n";
   }
 
   o << "## What no model here captures\n\n"
     << "Measured over the seeded split's held-out impacts, the spin changes by "
-    << fixed(d.spin_slope, 2) << " × what a point impulse at the lowest point with the measured "
-    << "change of velocity would give, plus " << sig(d.spin_intercept)
+    << impact_fixed(d.spin_slope, 2)
+    << " × what a point impulse at the lowest point with the measured "
+    << "change of velocity would give, plus " << impact_sig(d.spin_intercept)
     << " rad/s (least squares). No impulse through that point has that freedom; rolling "
        "resistance, a torque, takes up part of it, which is why the penalty law with μ_roll "
        "beats every impulse model. What remains is not in these laws: the plate's edge is not "
