@@ -113,9 +113,12 @@ void plot_impact_errors(const std::string& png_path, const ImpactFit& fit,
     << "set xlabel '|W(v_{predicted} - v)| / |W v| after the impact'\n"
     << "set ylabel 'fraction of held-out impacts'\nset key bottom right font ',10'\n"
     << "set arrow from 0,0.5 to 1.5,0.5 nohead dt 3 lc 'gray50'\nplot ";
+  // The reference's fit (the first model) wide and drawn first: the engines
+  // that replay its parameters follow it closely and are drawn over it,
+  // dashed, so that both stay visible where they coincide.
   for (size_t b = 0; b < titles.size(); ++b) {
-    g << (b ? ", " : "") << gnuplot_quoted(data) << " index " << b
-      << " using 1:2 with steps lw 2 dt " << (b < 2 ? 1 : (b < 4 ? 2 : 4)) << " title '"
+    g << (b ? ", " : "") << gnuplot_quoted(data) << " index " << b << " using 1:2 with steps lw "
+      << (b == 0 ? 6 : 2) << " dt " << (b < 2 ? 1 : (b < 4 ? 2 : 4)) << " title '"
       << gnuplot_text(titles[b]) << "'";
   }
   g << "\n";
