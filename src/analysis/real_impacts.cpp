@@ -448,6 +448,24 @@ void baselines(const ImpactFitter& f, SplitFit& sf) {
   sf.models.push_back(f.model("irb_bound", "baseline", sf, std::move(bound)));
 }
 
+// SplitFit::spin_slope and spin_intercept over the held-out impacts.
+void spin_regression(const ImpactFitter& f, SplitFit& sf) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i : sf.test) {
+    const RecordedImpact& impact = f.out.impacts[i];
+    const Vec3 dv = impact.after.v - impact.before.v;
+    const Vec2& r = f.levers[i];
+    const double point = f.m * (r.x() * dv.y() - r.y() * dv.x()) / f.inertia;
+    sx += point;
+    sy += dv.z();
+    sxx += point * point;
+    sxy += point * dv.z();
+  }
+  const double n = static_cast<double>(sf.test.size());
+  sf.spin_slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  sf.spin_intercept = (sy - sf.spin_slope * sx) / n;
+}
+
 // The seeded and the chronological halves of n impacts.
 std::vector<SplitFit> splits_of(size_t n, std::uint64_t seed) {
   std::vector<size_t> order(n);
@@ -517,6 +535,7 @@ ImpactFit fit_impacts(const Recording& rec, const ImpactFitOptions& options) {
     sf.models.push_back(fit_penalty(f, sf, false, unused));
     replay_engines(f, sf, params_of(best.x));
     baselines(f, sf);
+    spin_regression(f, sf);
     out.splits.push_back(std::move(sf));
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -102,6 +102,12 @@ struct SplitFit {
   // k's profile: the training mean error with log10 k fixed at each point of
   // the grid and ζ, μ, μ_roll refitted (how well k is determined).
   std::vector<std::pair<double, double>> k_profile;
+  // What no impulse at the lowest point captures: least squares over the
+  // held-out impacts of the measured spin change, Δω = spin_slope·Δω_point
+  // + spin_intercept, Δω_point = m·(r_x·Δv_y − r_y·Δv_x)/I the change a
+  // point impulse at the lowest point r (at first touch) would make with
+  // the measured change of velocity Δv.
+  double spin_slope = 0.0, spin_intercept = 0.0;
 };
 
 struct ImpactFit {

@@ -48,7 +48,8 @@ std::string impact_fit_json(const ImpactFit& fit) {
       o << (j ? ", " : "") << "{\"a\": " << json::string(s.engine_distances[j].a)
         << ", \"b\": " << json::string(s.engine_distances[j].b)
         << ", \"median\": " << json::number(s.engine_distances[j].median) << "}";
-    o << "], \"k_profile\": [";
+    o << "], \"spin_slope\": " << json::number(s.spin_slope)
+      << ", \"spin_intercept\": " << json::number(s.spin_intercept) << ", \"k_profile\": [";
     for (size_t j = 0; j < s.k_profile.size(); ++j)
       o << (j ? ", " : "") << "{\"k\": " << json::number(s.k_profile[j].first)
         << ", \"train_median\": " << json::number(s.k_profile[j].second) << "}";
@@ -95,8 +96,11 @@ std::string impact_fit_text(const ImpactFit& fit) {
         o << " " << d.a << "-" << d.b << " " << format_number("%.3g", d.median) << ";";
       o << "\n";
     }
+    o << "  held out, the spin changes by " << format_number("%.2f", s.spin_slope)
+      << " x what a point impulse at the lowest point would give with the measured dv, plus "
+      << format_number("%.3g", s.spin_intercept) << " rad/s (least squares)\n";
     if (!s.k_profile.empty()) {
-      o << "  k profile (training mean error, zeta, mu, mu_roll refitted):";
+      o << "  k profile (training median error, zeta, mu, mu_roll refitted):";
       for (const auto& [k, e] : s.k_profile)
         o << " k " << format_number("%.0e", k) << ": " << format_number("%.4f", e) << ";";
       o << "\n";

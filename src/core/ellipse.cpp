@@ -89,7 +89,7 @@ bool ellipse_obstacle_contact(const Obstacle& obstacle, double a, double b, cons
   const Vec2 c = rim.point(phi);
   Vec2 normal;
   double depth = -signed_distance(obstacle, c, normal);
-  if (-best_f > depth) {  // the bracket's ends can only be better by rounding
+  if (-best_f > depth) {  // the search's point no deeper than the best sample: keep the sample
     phi = best * kStep;
     const Vec2 c_best = rim.point(phi);
     depth = -signed_distance(obstacle, c_best, normal);

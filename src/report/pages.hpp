@@ -35,10 +35,6 @@ struct RealImpactsData {
   std::string recording;  // the manifest's path
   analysis::ImpactFit fit;
   std::string not_run;  // why there is no fit (empty when there is one)
-  // Least squares over the seeded split's held-out impacts: the measured
-  // spin change Δω = slope·Δω_point + intercept, Δω_point the change a
-  // point impulse at the lowest point would make with the measured Δv.
-  double spin_slope = 0.0, spin_intercept = 0.0;
   std::vector<std::string> pictures;  // file names, beside the page
 };
 std::string real_impacts_page(const RealImpactsData& data);

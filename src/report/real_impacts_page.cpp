@@ -126,12 +126,14 @@ std::string real_impacts_page(const RealImpactsData& d) {
     o << to_markdown(k) << "\n";
   }
 
-  o << "## What no model here captures\n\n"
-    << "Measured over the seeded split's held-out impacts, the spin changes by "
-    << impact_fixed(d.spin_slope, 2)
-    << " × what a point impulse at the lowest point with the measured "
-    << "change of velocity would give, plus " << impact_sig(d.spin_intercept)
-    << " rad/s (least squares). No impulse through that point has that freedom; rolling "
+  o << "## What no model here captures\n\n";
+  if (!f.splits.empty())
+    o << "Measured over the seeded split's held-out impacts, the spin changes by "
+      << impact_fixed(f.splits.front().spin_slope, 2)
+      << " × what a point impulse at the lowest point (at first touch) with the measured "
+      << "change of velocity would give, plus " << impact_sig(f.splits.front().spin_intercept)
+      << " rad/s (least squares). ";
+  o << "No impulse through that point has that freedom; rolling "
        "resistance, a torque, takes up part of it, which is why the penalty law with μ_roll "
        "beats every impulse model. What remains is not in these laws: the plate's edge is not "
        "a point (it rocks through the contact), the 250 Hz camera's velocities are finite "

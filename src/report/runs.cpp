@@ -19,7 +19,6 @@
 #include "analysis/tables.hpp"
 #include "analysis/trajectory_error.hpp"
 #include "core/divergence.hpp"
-#include "core/ellipse.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "engines/engines.hpp"
@@ -449,27 +448,6 @@ RealImpactsData real_impacts_run(const std::string& recording, const std::string
   analysis::plot_k_profile(prefix + "k_profile.png", d.fit);
   d.pictures = {"real_impacts.predictions.png", "real_impacts.errors.png",
                 "real_impacts.k_profile.png"};
-  // The spin: measured Δω against a point impulse's at the lowest point,
-  // P = m·Δv, Δω_point = (r_x·P_y − r_y·P_x)/I; least squares with an
-  // intercept over the seeded split's held-out impacts.
-  const analysis::SplitFit& seeded = d.fit.splits.front();
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(seeded.test.size());
-  const Model model = make_model(rec.body);
-  for (size_t i : seeded.test) {
-    const RecordedImpact& impact = d.fit.impacts[i];
-    const Vec3 dv = impact.after.v - impact.before.v;
-    Vec2 r = Vec2(0.0, -body_extent(model.body));
-    if (shape_features(rec.body.shape).smooth)
-      r = ellipse_lowest_point(rec.body.a, rec.body.b, impact.before.q.z());
-    const double point = model.body.mass * (r.x() * dv.y() - r.y() * dv.x()) / model.body.inertia;
-    sx += point;
-    sy += dv.z();
-    sxx += point * point;
-    sxy += point * dv.z();
-  }
-  d.spin_slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  d.spin_intercept = (sy - d.spin_slope * sx) / n;
   return d;
 }
 

@@ -439,8 +439,8 @@ TEST(ReportPages, RealImpactsShowsEveryModelAndSplit) {
     s.engine_distances = {{"ref", "mujoco", 0.0136}};
     d.fit.splits.push_back(s);
   }
-  d.spin_slope = 0.35;
-  d.spin_intercept = 18.0;
+  d.fit.splits.front().spin_slope = 0.35;
+  d.fit.splits.front().spin_intercept = 18.0;
   const std::string page = real_impacts_page(d);
   EXPECT_NE(page.find("| penalty | ref |"), std::string::npos) << page;
   EXPECT_NE(page.find("| 0.370 | 0.250–0.600 | 0.366 | 0.250–0.600 |"), std::string::npos) << page;
