@@ -34,7 +34,7 @@ std::string versions_page(const analysis::VersionTable& table);
 struct RealImpactsData {
   std::string recording;  // the manifest's path
   analysis::ImpactFit fit;
-  std::string not_run;  // why there is no fit (empty when there is one)
+  std::string not_run;                // why there is no fit (empty when there is one)
   std::vector<std::string> pictures;  // file names, beside the page
 };
 std::string real_impacts_page(const RealImpactsData& data);
