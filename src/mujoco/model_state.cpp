@@ -64,6 +64,8 @@ void read_model_arrays(const mjModel* m, ModelState& s) {
     s.body_names.push_back(name_of(m, mjOBJ_BODY, b, "body"));
     s.body_weld.push_back(m->body_weldid[b]);
     s.body_mass.push_back(m->body_mass[b]);
+    for (std::ptrdiff_t k = 0; k < 3; ++k)
+      s.body_inertia.push_back(m->body_inertia[3 * static_cast<std::ptrdiff_t>(b) + k]);
     s.body_invweight0.push_back(m->body_invweight0[2 * static_cast<std::ptrdiff_t>(b)]);
     s.body_invweight0.push_back(m->body_invweight0[2 * static_cast<std::ptrdiff_t>(b) + 1]);
   }
@@ -95,9 +97,17 @@ void read_contacts(const mjModel* m, mjData* d, ModelState& s) {
     c.geom2 = con.geom2;
     c.body1 = m->geom_bodyid[con.geom1];
     c.body2 = m->geom_bodyid[con.geom2];
-    for (int p = 0; p < m->npair; ++p)
-      c.explicit_pair |= (m->pair_geom1[p] == con.geom1 && m->pair_geom2[p] == con.geom2) ||
-                         (m->pair_geom1[p] == con.geom2 && m->pair_geom2[p] == con.geom1);
+    // 2.2.2's mj_collideGeoms: a pair's own margin and gap, else the larger geom's.
+    c.margin = std::max(m->geom_margin[con.geom1], m->geom_margin[con.geom2]);
+    c.gap = std::max(m->geom_gap[con.geom1], m->geom_gap[con.geom2]);
+    for (int p = 0; p < m->npair; ++p) {
+      if ((m->pair_geom1[p] == con.geom1 && m->pair_geom2[p] == con.geom2) ||
+          (m->pair_geom1[p] == con.geom2 && m->pair_geom2[p] == con.geom1)) {
+        c.explicit_pair = true;
+        c.margin = m->pair_margin[p];
+        c.gap = m->pair_gap[p];
+      }
+    }
     c.dist = con.dist - con.includemargin;
     for (size_t k = 0; k < 3; ++k) {
       c.pos[k] = con.pos[k];

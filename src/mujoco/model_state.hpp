@@ -103,6 +103,10 @@ struct StateContact {
   std::array<double, 5> friction{};
   std::array<double, 2> solref{};
   std::array<double, 5> solimp{};
+  // The margin and gap MuJoCo gave the geom pair (an explicit pair: its own;
+  // else 2.2.2 takes the larger geom's, 3.x adds the two geoms'), m;
+  // MuJoCo keeps margin − gap as con.includemargin.
+  double margin = 0.0, gap = 0.0;
   double A = 0.0;
   double A_t = 0.0;  // the larger of the two tangent directions' (condim ≥ 3; else 0), 1/kg
   // condim ≥ 3: the two tangent rows of the contact frame and M⁻¹ times
@@ -131,6 +135,7 @@ struct ModelState {
   std::vector<std::string> body_names, geom_names;  // "#id" when unnamed
   std::vector<int> body_weld;                       // body_weldid
   std::vector<double> body_mass;
+  std::vector<double> body_inertia;      // 3 per body: body_inertia (principal, about the COM)
   std::vector<double> body_invweight0;   // 2 per body: translational, rotational
   std::vector<int> body_parent;          // body_parentid
   std::vector<std::string> body_joints;  // the body's own joints' types, "slide, slide, hinge"

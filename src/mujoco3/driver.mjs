@@ -220,6 +220,7 @@ function readState(m, d, r) {
     geom_names: [],
     body_weld: Array.from(m.body_weldid),
     body_mass: Array.from(m.body_mass),
+    body_inertia: Array.from(m.body_inertia),
     body_invweight0: Array.from(m.body_invweight0),
     geom_body: Array.from(m.geom_bodyid),
     body_parent: Array.from(m.body_parentid),
@@ -303,10 +304,16 @@ function readState(m, d, r) {
       } else {
         for (let k = 0; k < rows; ++k) quadratic += f[k] > 0;
       }
+      // MuJoCo 3's collision driver: a pair's own margin and gap, else the two geoms' summed.
       let explicitPair = false;
+      let margin = m.geom_margin[g1] + m.geom_margin[g2], gap = m.geom_gap[g1] + m.geom_gap[g2];
       for (let p = 0; p < m.npair; ++p) {
         const p1 = m.pair_geom1[p], p2 = m.pair_geom2[p];
-        if ((p1 === g1 && p2 === g2) || (p1 === g2 && p2 === g1)) explicitPair = true;
+        if ((p1 === g1 && p2 === g2) || (p1 === g2 && p2 === g1)) {
+          explicitPair = true;
+          margin = m.pair_margin[p];
+          gap = m.pair_gap[p];
+        }
       }
       out.contacts.push({
         geom1: g1,
@@ -321,6 +328,8 @@ function readState(m, d, r) {
         friction: Array.from(con.friction),
         solref: Array.from(con.solref),
         solimp: Array.from(con.solimp),
+        margin,
+        gap,
         A,
         A_t,
         tangents: tangents.map((t) => ({row: sparse(t.row), solved: sparse(t.solved)})),

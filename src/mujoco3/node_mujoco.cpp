@@ -226,6 +226,8 @@ mujoco::StateContact contact_of(const json::Value& c) {
   fill("solref", out.solref);
   fill("solimp", out.solimp);
   out.condim = static_cast<int>(number_of(c.get("condim")));
+  out.margin = number_of(c.get("margin"));
+  out.gap = number_of(c.get("gap"));
   out.A = number_of(c.get("A"));
   out.A_t = number_of(c.get("A_t"));
   out.force = number_of(c.get("force"));
@@ -267,11 +269,11 @@ bool fits_together(const mujoco::ModelState& s) {
   const size_t nbody = s.body_names.size(), ngeom = s.geom_names.size();
   const auto nv = static_cast<size_t>(s.nv);
   bool sound = s.body_weld.size() == nbody && s.body_mass.size() == nbody &&
-               s.body_invweight0.size() == 2 * nbody && s.geom_body.size() == ngeom &&
-               s.body_parent.size() == nbody && s.body_joints.size() == nbody &&
-               s.geom_mu.size() == ngeom && s.geom_condim.size() == ngeom &&
-               s.geom_collides.size() == ngeom && s.bias.size() == nv && s.qvel.size() == nv &&
-               s.qacc.size() == nv;
+               s.body_inertia.size() == 3 * nbody && s.body_invweight0.size() == 2 * nbody &&
+               s.geom_body.size() == ngeom && s.body_parent.size() == nbody &&
+               s.body_joints.size() == nbody && s.geom_mu.size() == ngeom &&
+               s.geom_condim.size() == ngeom && s.geom_collides.size() == ngeom &&
+               s.bias.size() == nv && s.qvel.size() == nv && s.qacc.size() == nv;
   for (const int b : s.geom_body) sound = sound && b >= 0 && static_cast<size_t>(b) < nbody;
   auto in = [](int i, size_t n) { return i >= 0 && static_cast<size_t>(i) < n; };
   for (const mujoco::StateContact& c : s.contacts) {
@@ -323,6 +325,7 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
   s.geom_names = texts(a.get("geom_names"));
   s.body_weld = ints(a.get("body_weld"));
   s.body_mass = numbers_of(a.get("body_mass"));
+  s.body_inertia = numbers_of(a.get("body_inertia"));
   s.body_invweight0 = numbers_of(a.get("body_invweight0"));
   s.geom_body = ints(a.get("geom_body"));
   s.body_parent = ints(a.get("body_parent"));
