@@ -230,11 +230,11 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
     const double R = (1.0 - r.d_now) / r.d_now * r.normal_weight;
     r.unsettled = std::abs(r.B * r.normal_speed + r.normal_accel) / R;
     if (r.unsettled > 0.01 * r.load)
-      r.depth_note = "not at rest along its normal (v = " + format_number(r.normal_speed) +
+      r.depth_note = "still moving along its normal (v = " + format_number(r.normal_speed) +
                      " m/s, a = " + format_number(r.normal_accel) +
-                     " m/s²: " + format_number(100.0 * r.unsettled / r.load) +
-                     " % of its force is not its rest load), MuJoCo's depth now is not yet this "
-                     "one (a longer --settle)";
+                     " m/s²): the motion's part of MuJoCo's force, (B·v + J·qacc)/R = " +
+                     format_number(r.unsettled) + " N, is " + format_number(r.unsettled / r.load) +
+                     "× its load, so MuJoCo's depth now is not yet this one (a longer --settle)";
   }
   double k_max = 0.0, c_max = 0.0;
   regime(r.dmax, k_max, c_max, r.omega_max, r.zeta_max);
@@ -663,6 +663,52 @@ void add_bounces(const ModelState& s, InspectReport& rep) {
   }
 }
 
+// Each moving kinematic tree's weight against what its contacts with the
+// rest push it up by (TreeLoad).
+std::vector<TreeLoad> tree_loads(const ModelState& s, const std::vector<InspectRow>& rows) {
+  const size_t nbody = s.body_mass.size();
+  std::vector<int> root(nbody, 0);
+  for (size_t b = 1; b < nbody; ++b) {
+    const int parent = s.body_parent[b];
+    root[b] = parent == 0 ? static_cast<int>(b) : root[static_cast<size_t>(parent)];
+  }
+  const double g = std::sqrt(s.gravity[0] * s.gravity[0] + s.gravity[1] * s.gravity[1] +
+                             s.gravity[2] * s.gravity[2]);
+  std::map<int, TreeLoad> trees;
+  for (size_t b = 1; b < nbody; ++b) {
+    const auto top = static_cast<size_t>(root[b]);
+    if (s.body_weld[top] == 0) continue;  // welded to the world: it does not move
+    auto [it, fresh] = trees.emplace(root[b], TreeLoad{});
+    TreeLoad& t = it->second;
+    if (fresh) {
+      t.root = s.body_names[top];
+      t.free = s.body_joints[top].rfind("free", 0) == 0;
+    }
+    ++t.bodies;
+    t.mass += s.body_mass[b];
+  }
+  for (auto& [r, t] : trees) t.weight = t.mass * g;
+  if (g > 0.0)
+    for (const InspectRow& row : rows) {
+      const int t1 = root[static_cast<size_t>(row.body1)],
+                t2 = root[static_cast<size_t>(row.body2)];
+      if (t1 == t2 || !std::isfinite(row.load)) continue;  // inside one tree: no support
+      double up = 0.0;                                     // n·up
+      for (size_t i = 0; i < 3; ++i) up -= row.normal[i] * s.gravity[i] / g;
+      if (auto it = trees.find(t2); it != trees.end()) {
+        it->second.support += row.load * up;
+        ++it->second.contacts;
+      }
+      if (auto it = trees.find(t1); it != trees.end()) {
+        it->second.support -= row.load * up;
+        ++it->second.contacts;
+      }
+    }
+  std::vector<TreeLoad> out;
+  for (auto& [r, t] : trees) out.push_back(t);
+  return out;
+}
+
 // The report's contacts from the state: MuJoCo's loads (or the estimate),
 // then everything that follows from each contact's parameters.
 InspectReport begin_report(const ModelState& s, const InspectOptions& options) {
@@ -689,6 +735,7 @@ InspectReport begin_report(const ModelState& s, const InspectOptions& options) {
   estimate_loads(s, rep, options.estimate_loads);
   const Context ctx{&s, integrator_of(s), !s.elliptic, options.slope};
   for (InspectRow& r : rep.contacts) evaluate(ctx, r, rep.warnings, label_of(r));
+  rep.trees = tree_loads(s, rep.contacts);
   if (!options.body.empty()) {
     if (std::find(s.body_names.begin(), s.body_names.end(), options.body) == s.body_names.end())
       throw InputError("--body " + options.body + ": no body of that name in " + options.path);
@@ -775,6 +822,130 @@ std::string no_contacts_hint(const InspectReport& rep) {
   return out;
 }
 
+// Columns padded to their widest cell (UTF-8 counted by code points),
+// two spaces apart, each line indented by two.
+std::string text_table(const std::vector<std::vector<std::string>>& rows) {
+  auto width = [](const std::string& text) {
+    size_t n = 0;
+    for (const char ch : text) n += (static_cast<unsigned char>(ch) & 0xC0) != 0x80 ? 1 : 0;
+    return n;
+  };
+  std::vector<size_t> widths;
+  for (const auto& row : rows)
+    for (size_t i = 0; i < row.size(); ++i) {
+      if (widths.size() <= i) widths.push_back(0);
+      widths[i] = std::max(widths[i], width(row[i]));
+    }
+  std::string out;
+  for (const auto& row : rows) {
+    std::string line = " ";
+    for (size_t i = 0; i < row.size(); ++i)
+      line +=
+          " " + row[i] +
+          (i + 1 < row.size() ? std::string(widths[i] - width(row[i]) + 1, ' ') : std::string());
+    out += line + "\n";
+  }
+  return out;
+}
+
+// The per-body table, with its header.
+std::string bodies_text(const InspectReport& rep) {
+  std::vector<std::vector<std::string>> rows = {{"body", "contacts", "load (sum)",
+                                                 "deepest rest depth", "effective mass",
+                                                 "ω·Δt / limit", "bounce at 1 m/s"}};
+  for (const BodySummary& b : rep.bodies) {
+    std::string mass = "-";
+    if (std::isfinite(b.mass_min))
+      mass = format_number(b.mass_min) +
+             (b.mass_max > b.mass_min ? "–" + format_number(b.mass_max) : std::string()) + " kg";
+    rows.push_back({b.name, std::to_string(b.contacts), format_number(b.load) + " N",
+                    std::isfinite(b.deepest) ? format_number(b.deepest) + " m" : std::string("-"),
+                    mass, format_number(b.stability) + (b.stability >= 1.0 ? " UNSTABLE" : ""),
+                    std::isfinite(b.bounce) ? "e = " + format_number(b.bounce) + " ± " +
+                                                  format_number(b.bounce_spread / 2.0)
+                                            : std::string("-")});
+  }
+  return "\nper body (load: its contacts' loads summed; effective mass 1/A at its contacts; the "
+         "stiffest contact's ω·Δt over the integrator's limit; bounce: its contacts hitting "
+         "together at 1 m/s as MuJoCo steps them at Δt):\n" +
+         text_table(rows);
+}
+
+// A tree's carried share of its weight, in percent.
+double carried(const TreeLoad& t) { return t.weight > 0.0 ? 100.0 * t.support / t.weight : kNaN; }
+
+// Load against weight per kinematic tree: every tree when there are a few,
+// else one line and the trees more than 1 % off.
+std::string trees_text(const InspectReport& rep) {
+  std::vector<const TreeLoad*> touching;
+  for (const TreeLoad& t : rep.trees)
+    if (t.contacts > 0) touching.push_back(&t);
+  if (touching.empty() ||
+      !(rep.gravity[0] != 0.0 || rep.gravity[1] != 0.0 || rep.gravity[2] != 0.0))
+    return "";
+  std::ostringstream o;
+  double weight = 0.0, support = 0.0, low = INFINITY, high = -INFINITY;
+  for (const TreeLoad* t : touching) {
+    weight += t->weight;
+    support += t->support;
+    low = std::min(low, carried(*t));
+    high = std::max(high, carried(*t));
+  }
+  o << "\nload against weight, per kinematic tree (what its contacts with the world and other "
+       "trees push it up by, Σ f·(n·up), against Σ m·|g|: equal at rest for a tree only "
+       "contacts hold"
+    << (rep.at_rest ? "" : "; the model is not at rest") << "):\n";
+  const size_t n = touching.size();
+  if (n > 1)
+    o << "  " << n << " trees with contacts (of " << rep.trees.size() << "): they carry "
+      << format_number(support) << " N of their " << format_number(weight) << " N ("
+      << format_number(weight > 0.0 ? 100.0 * support / weight : kNaN) << " %), each "
+      << format_number(low) << (high > low ? "–" + format_number(high) : std::string())
+      << " % of its own\n";
+  std::vector<std::vector<std::string>> rows = {
+      {"tree", "bodies", "mass", "weight", "carried", "share"}};
+  size_t listed = 0;
+  for (const TreeLoad* t : touching) {
+    const bool far = !(std::abs(carried(*t) - 100.0) <= 1.0);
+    if (n > 8 && !far) continue;
+    if (++listed > 8) continue;
+    rows.push_back({t->root, std::to_string(t->bodies), format_number(t->mass) + " kg",
+                    format_number(t->weight) + " N", format_number(t->support) + " N",
+                    format_number(carried(*t)) + " %" +
+                        (t->free ? std::string()
+                                 : " (jointed to the world: its joints hold "
+                                   "the rest)")});
+  }
+  if (rows.size() > 1) {
+    if (n > 8) o << "  more than 1 % off:\n";
+    o << text_table(rows);
+    if (listed > 8) o << "  … and " << listed - 8 << " more\n";
+  } else if (n > 8) {
+    o << "  none is more than 1 % off\n";
+  }
+  return o.str();
+}
+
+// The first thing said about a state that is not at rest: how long MuJoCo
+// takes to get there (settle_time), once.
+std::string not_at_rest_text(const InspectReport& rep) {
+  std::string out = "NOT AT REST: MuJoCo is still moving after " + format_number(rep.settled) +
+                    " s (largest |qvel| " + format_number(rep.speed) + ", |qacc| " +
+                    format_number(rep.accel) + "; at rest: ≤ " + format_number(kRestSpeed) +
+                    " and ≤ " + format_number(kRestAccel) + "). ";
+  if (std::isfinite(rep.rest_after))
+    out += "It is at rest after " + format_number(rep.rest_after) + " s: run with --settle " +
+           format_number(rep.rest_after) + ".";
+  else if (std::isinf(rep.rest_after))
+    out += "It is not at rest after " + format_number(rep.rest_search) +
+           " s either (it creeps, flaps or falls): the numbers below are for this instant.";
+  else
+    out += "A longer --settle brings it closer to rest.";
+  return out +
+         " Until then the loads below are MuJoCo's forces at this instant and each rest depth is "
+         "where that load would rest, not where the contact is now\n";
+}
+
 void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow& r) {
   o << (r.active ? "contact " + std::to_string(r.contact) : std::string("pair")) << ": "
     << r.body1_name << " / " << r.body2_name << " (geoms " << r.geom1_name << ", " << r.geom2_name
@@ -820,13 +991,18 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
       << ", ζ = " << format_number(r.zeta_max) << "): " << rep.integrator << "'s limit "
       << format_number(r.limit) << " (" << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
   }
+  // Not at rest, the first lines said so once: a contact's own note only
+  // says which way it moves.
+  const std::string note = rep.at_rest || r.depth_note.empty() ? r.depth_note
+                           : std::isfinite(r.penetration)      ? "moving along its normal"
+                                                               : "slipping or lifting";
   if (std::isfinite(r.load))
     o << "  load " << format_number(r.load) << " N" << (rep.loads_estimated ? " (estimate)" : "")
       << ", rest depth "
-      << (r.depth_note.empty() ? format_number(r.penetration) + " m"
-          : std::isfinite(r.penetration)
-              ? format_number(r.penetration) + " m (" + r.depth_note + ")"
-              : "not known: " + r.depth_note)
+      << (note.empty()                   ? format_number(r.penetration) + " m"
+          : std::isfinite(r.penetration) ? format_number(r.penetration) + " m (" + note + ")"
+          : rep.at_rest                  ? "not known: " + note
+                                         : "- (" + note + ")")
       << "\n";
   else
     o << "  static load: not known (not in contact now)\n";
@@ -906,6 +1082,7 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
 std::string format_inspect_text(const InspectReport& rep) {
   std::ostringstream o;
   o << "model " << rep.path << " at " << state_name(rep) << ", MuJoCo " << rep.version << "\n";
+  if (!rep.contacts.empty() && !rep.at_rest) o << not_at_rest_text(rep);
   if (!rep.load_warning.empty()) o << "MuJoCo warns while loading: " << rep.load_warning << "\n";
   o << "integrator " << rep.integrator << ", timestep " << format_number(rep.dt) << " s, cone "
     << rep.cone << ", impratio " << format_number(rep.impratio)
@@ -929,28 +1106,8 @@ std::string format_inspect_text(const InspectReport& rep) {
       << "\n";
   }
   if (!rep.body.empty()) o << "only body " << rep.body << "'s contacts and pairs (--body)\n";
-  if (!rep.bodies.empty()) {
-    o << "\nper body: contacts, load (sum), deepest rest depth, effective mass at its contacts, "
-         "stiffest ω·Δt / the integrator's limit, bounce (its contacts hitting together at 1 m/s "
-         "as MuJoCo steps them at Δt)\n";
-    size_t width = 4;
-    for (const BodySummary& b : rep.bodies) width = std::max(width, b.name.size());
-    for (const BodySummary& b : rep.bodies) {
-      o << "  " << b.name << std::string(width - b.name.size(), ' ') << "  " << b.contacts << "  "
-        << format_number(b.load) << " N  "
-        << (std::isfinite(b.deepest) ? format_number(b.deepest) + " m" : std::string("-")) << "  ";
-      if (std::isfinite(b.mass_min))
-        o << format_number(b.mass_min)
-          << (b.mass_max > b.mass_min ? "–" + format_number(b.mass_max) : std::string()) << " kg";
-      else
-        o << "-";
-      o << "  " << format_number(b.stability) << (b.stability >= 1.0 ? " UNSTABLE" : "") << "  "
-        << (std::isfinite(b.bounce)
-                ? "e = " + format_number(b.bounce) + " ± " + format_number(b.bounce_spread / 2.0)
-                : std::string("-"))
-        << "\n";
-    }
-  }
+  if (!rep.bodies.empty()) o << bodies_text(rep);
+  o << trees_text(rep);
   // A contact whose text is that of the one before (but for its index), as
   // a box's corners on a plane: one line naming them.
   std::string previous_body;
@@ -1011,7 +1168,9 @@ std::string format_inspect_json(const InspectReport& rep) {
     << ",\n  \"gravity\": " << json_array(rep.gravity.data(), 3)
     << ",\n  \"slope\": " << (rep.slope ? json::number(*rep.slope) : "null")
     << ",\n  \"balanced\": " << (rep.balanced ? "true" : "false")
-    << ",\n  \"residual\": " << json::number(rep.residual)
+    << ",\n  \"residual\": " << json::number(rep.residual) << ",\n  \"rest_after\": "
+    << (std::isfinite(rep.rest_after) ? json::number(rep.rest_after) : "null")
+    << ",\n  \"rest_search\": " << json::number(rep.rest_search)
     << ",\n  \"body\": " << (rep.body.empty() ? "null" : json::string(rep.body))
     << ",\n  \"bodies\": [";
   for (size_t i = 0; i < rep.bodies.size(); ++i) {
@@ -1025,7 +1184,15 @@ std::string format_inspect_json(const InspectReport& rep) {
       << ", \"bounce\": " << json::number(b.bounce)
       << ", \"bounce_spread\": " << json::number(b.bounce_spread) << "}";
   }
-  o << (rep.bodies.empty() ? "]" : "\n  ]") << ",\n  \"contacts\": [";
+  o << (rep.bodies.empty() ? "]" : "\n  ]") << ",\n  \"trees\": [";
+  for (size_t i = 0; i < rep.trees.size(); ++i) {
+    const TreeLoad& t = rep.trees[i];
+    o << (i ? ",\n    " : "\n    ") << "{\"root\": " << json::string(t.root)
+      << ", \"bodies\": " << t.bodies << ", \"mass\": " << json::number(t.mass)
+      << ", \"weight\": " << json::number(t.weight) << ", \"support\": " << json::number(t.support)
+      << ", \"contacts\": " << t.contacts << ", \"free\": " << (t.free ? "true" : "false") << "}";
+  }
+  o << (rep.trees.empty() ? "]" : "\n  ]") << ",\n  \"contacts\": [";
   for (size_t i = 0; i < rep.contacts.size(); ++i) {
     o << (i ? ",\n" : "\n");
     json_row(o, rep.contacts[i]);

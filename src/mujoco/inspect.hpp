@@ -56,6 +56,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -142,6 +143,21 @@ struct BodySummary {
   double bounce = 0.0, bounce_spread = 0.0;
 };
 
+// One kinematic tree (a child of the world and every body below it): its
+// weight Σ m·|g| against what the contacts with other trees and the world
+// push it up by, Σ f·(n·up) (up = −g/|g|; a contact pushes geom2 along its
+// normal n, geom1 against it). At rest a free tree's contacts carry its
+// weight; a tree jointed to the world shares it with its joints.
+struct TreeLoad {
+  std::string root;  // the tree's top body
+  int bodies = 0;
+  double mass = 0.0;     // kg
+  double weight = 0.0;   // Σ m·|g|, N
+  double support = 0.0;  // Σ f·(n·up) over its contacts with the rest, N
+  int contacts = 0;      // its contacts with the rest (the world, other trees)
+  bool free = false;     // its top body has a free joint (nothing but contacts holds it)
+};
+
 struct InspectReport {
   std::string path, key;
   std::string version;   // MuJoCo's
@@ -158,8 +174,19 @@ struct InspectReport {
   std::array<double, 3> gravity{};
   bool refsafe_enabled = true;
   std::optional<double> slope;
-  bool balanced = true;   // the contacts' normal forces alone hold the model at rest
-  double residual = 0.0;  // |Jₙᵀ·f − qfrc_bias| / |qfrc_bias|
+  // The least-squares split (estimate_loads): whether normal forces alone can
+  // hold the model against gravity at this configuration (qvel = 0), within
+  // a relative residual of 1e-6 and with no force pulling; computed whether
+  // or not --estimate-loads is asked.
+  bool balanced = true;
+  double residual = 0.0;        // |Jₙᵀ·f − qfrc_bias| / |qfrc_bias|
+  std::vector<TreeLoad> trees;  // every moving tree, in body order (all contacts, not --body's)
+  // When the state is not at rest: the settle time after which MuJoCo is
+  // (rest_search: how far it was looked for; rest_after NaN: not looked
+  // for, +∞: not at rest within rest_search s either). Filled by
+  // settle_time() (mujoco3/inspect_versions.hpp), which re-reads the model.
+  double rest_after = std::numeric_limits<double>::quiet_NaN();
+  double rest_search = 0.0;
   std::vector<InspectRow> contacts;
   std::vector<BodySummary> bodies;  // every moving body with a contact, in body order
   std::string body;                 // --body: the one body listed
