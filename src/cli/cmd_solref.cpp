@@ -1,5 +1,5 @@
 // contact2d solref (--k N/m | --penetration M | --contact-time S) (--c N·s/m | --restitution E)
-//                  --dt S (--mass KG [--joint J] [--inertia I --lever R]
+//                  [--dt S] (--mass KG [--joint J] [--inertia I --lever R]
 //                  [--pivot P] | --model FILE --body NAME) [--mu μ] [--mu-roll M]
 //                  [--mapping NAME|all] [--contacts N] [--json]
 // MuJoCo's solref, solimp, impratio and cone for a user's own model, and
@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "cli/common.hpp"
+#include "core/input_error.hpp"
 #include "mujoco/solref_request.hpp"
 #include "mujoco3/own_model.hpp"
 
@@ -26,6 +27,8 @@ int solref(const SolrefOptions& options) {
       options.request,
       [](const std::string& line) { std::cerr << "contact2d: note: " << line << "\n"; });
   std::cout << (options.json ? mj::format_report_json(report) : mj::format_report_text(report));
+  // --apply refused after the report (no mapping fits): the report says why.
+  if (!report.apply_refused.empty()) throw InputError(report.apply_refused);
   return kExitOk;
 }
 
@@ -48,7 +51,8 @@ Command add_solref(CLI::App& app) {
   cmd->add_option("--penetration", options->request.targets.penetration,
                   "Target static depth per contact under gravity, m (> 0): k from it (the "
                   "calibrated mapping's rest depth)");
-  cmd->add_option("--dt", options->request.dt, "MuJoCo's timestep, s (> 0)")->required();
+  cmd->add_option("--dt", options->request.dt,
+                  "MuJoCo's timestep, s (> 0; with --model default: the model's timestep)");
   CLI::Option* mass = cmd->add_option("--mass", options->request.mass, "Body mass, kg (> 0)");
   cmd->add_option("--joint", options->request.joint,
                   "How the body is jointed: free | planar (slide x, slide z, hinge) | slide (one, "

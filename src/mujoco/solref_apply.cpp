@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <initializer_list>
 
 #include "core/format.hpp"
 #include "core/input_error.hpp"
@@ -18,19 +19,125 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string numbers(std::initializer_list<double> values) {
+std::string apply_numbers(std::initializer_list<double> values) {
   std::string out;
   for (double v : values) out += (out.empty() ? "" : " ") + format_exact(v);
   return out;
 }
 
-tinyxml2::XMLElement* find_body(tinyxml2::XMLElement* parent, const std::string& name) {
+bool is_named(const tinyxml2::XMLElement* e, const char* element, const std::string& name) {
+  const char* n = e->Attribute("name");
+  return std::string(e->Name()) == element && n && name == n;
+}
+
+tinyxml2::XMLElement* find_named(tinyxml2::XMLElement* parent, const char* element,
+                                 const std::string& name) {
   for (tinyxml2::XMLElement* e = parent->FirstChildElement(); e; e = e->NextSiblingElement()) {
-    const char* n = e->Attribute("name");
-    if (std::string(e->Name()) == "body" && n && name == n) return e;
-    if (tinyxml2::XMLElement* found = find_body(e, name)) return found;
+    if (is_named(e, element, name)) return e;
+    if (tinyxml2::XMLElement* found = find_named(e, element, name)) return found;
   }
   return nullptr;
+}
+
+// Every element named `element` below `parent`, in document order.
+void collect(tinyxml2::XMLElement* parent, const char* element,
+             std::vector<tinyxml2::XMLElement*>& out) {
+  for (tinyxml2::XMLElement* e = parent->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    if (std::string(e->Name()) == element) out.push_back(e);
+    collect(e, element, out);
+  }
+}
+
+// The unnamed geom `g` in the model's own file: the index_in_body-th <geom>
+// child of its body (MuJoCo numbers a body's geoms in the order they are
+// written), or null when the body's geoms are not all written there.
+tinyxml2::XMLElement* find_geom(tinyxml2::XMLElement* root, const GeomRef& g) {
+  tinyxml2::XMLElement* body =
+      g.body == "world" ? root->FirstChildElement("worldbody") : find_named(root, "body", g.body);
+  if (!body) return nullptr;
+  int index = 0;
+  for (tinyxml2::XMLElement* e = body->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string name = e->Name();
+    if (name == "include" || name == "frame" || name == "replicate") return nullptr;
+    if (name == "geom" && index++ == g.index_in_body) return e;
+  }
+  return nullptr;
+}
+
+// The model's <pair> of these two geoms, written in its own file.
+tinyxml2::XMLElement* find_pair(tinyxml2::XMLElement* root, const std::string& a,
+                                const std::string& b) {
+  std::vector<tinyxml2::XMLElement*> pairs;
+  collect(root, "pair", pairs);
+  for (tinyxml2::XMLElement* p : pairs) {
+    const char* g1 = p->Attribute("geom1");
+    const char* g2 = p->Attribute("geom2");
+    if (g1 && g2 && ((a == g1 && b == g2) || (a == g2 && b == g1))) return p;
+  }
+  return nullptr;
+}
+
+const char* const kFileAttributes[] = {"file",     "fileright", "fileleft", "fileup",
+                                       "filedown", "filefront", "fileback"};
+
+// A file the model names relative to its folder, resolved there.
+bool relative(const char* path) { return path && *path && !fs::path(path).is_absolute(); }
+
+// The model written to another folder than its own: its relative file
+// references made absolute, so that it loads there as it did. MuJoCo
+// resolves <include file> against the model's folder; a mesh's, skin's or
+// height field's file against <compiler meshdir>, a texture's against
+// texturedir (assetdir, 3.x: both), each itself relative to the model's
+// folder, or against the folder when unset. A folder set is made absolute and
+// the files under it stay as they are. An <include>d file that names files
+// relative to the model's folder cannot be rewritten here: InputError.
+void rebase(tinyxml2::XMLElement* root, const fs::path& model_dir, const std::string& out) {
+  std::vector<tinyxml2::XMLElement*> compilers, includes;
+  collect(root, "compiler", compilers);
+  bool meshdir = false, texturedir = false;
+  for (tinyxml2::XMLElement* c : compilers) {
+    for (const char* dir : {"meshdir", "texturedir", "assetdir"}) {
+      const char* value = c->Attribute(dir);
+      if (!value) continue;
+      if (std::string(dir) != "texturedir") meshdir = true;
+      if (std::string(dir) != "meshdir") texturedir = true;
+      if (relative(value)) c->SetAttribute(dir, (model_dir / value).lexically_normal().c_str());
+    }
+  }
+  std::vector<tinyxml2::XMLElement*> all;
+  collect(root, "include", includes);
+  for (const char* element : {"mesh", "skin", "hfield", "texture", "include", "model"})
+    collect(root, element, all);
+  for (tinyxml2::XMLElement* e : all) {
+    const std::string name = e->Name();
+    const bool under_dir = name == "texture" ? texturedir : name == "include" ? false : meshdir;
+    if (under_dir) continue;
+    for (const char* attribute : kFileAttributes) {
+      const char* value = e->Attribute(attribute);
+      if (relative(value))
+        e->SetAttribute(attribute, (model_dir / value).lexically_normal().c_str());
+    }
+  }
+  // An included file's own references resolve against the model's folder too.
+  for (tinyxml2::XMLElement* include : includes) {
+    const std::string file = include->Attribute("file") ? include->Attribute("file") : "";
+    tinyxml2::XMLDocument doc;
+    const std::string text = read_input_file(file, "--model's <include>");
+    if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS || !doc.RootElement())
+      continue;  // MuJoCo says what is wrong with it when it loads the model
+    std::vector<tinyxml2::XMLElement*> inner;
+    for (const char* element :
+         {"compiler", "mesh", "skin", "hfield", "texture", "include", "model"})
+      collect(doc.RootElement(), element, inner);
+    for (tinyxml2::XMLElement* e : inner)
+      for (const char* attribute : {"file", "fileright", "fileleft", "fileup", "filedown",
+                                    "filefront", "fileback", "meshdir", "texturedir", "assetdir"})
+        if (relative(e->Attribute(attribute)))
+          throw InputError("--apply " + out + ": " + file + " (an <include> of the model) names " +
+                           e->Attribute(attribute) +
+                           " relative to the model's folder: write the output in " +
+                           model_dir.string());
+  }
 }
 
 }  // namespace
@@ -40,9 +147,6 @@ Applied apply_solref(const SolrefReport& report, const MappingOutcome& o, const 
                      const StateReader& read) {
   const fs::path model_dir = fs::absolute(model).parent_path().lexically_normal();
   const fs::path out_path = fs::absolute(out).lexically_normal();
-  if (out_path.parent_path() != model_dir)
-    throw InputError("--apply " + out + ": write it in the model's folder " + model_dir.string() +
-                     " (the model's includes, meshes and textures resolve from there)");
   std::error_code same_error;
   if (out_path == fs::absolute(model).lexically_normal() ||
       fs::equivalent(out_path, fs::absolute(model), same_error))
@@ -56,12 +160,22 @@ Applied apply_solref(const SolrefReport& report, const MappingOutcome& o, const 
   tinyxml2::XMLElement* root = doc.RootElement();
   if (!root || std::string(root->Name()) != "mujoco")
     throw InputError("--model " + model + ": its root element is not <mujoco>");
-  tinyxml2::XMLElement* b = find_body(root, body);
-  if (!b)
-    throw InputError("--apply " + out + ": body '" + body + "' is not in " + model +
-                     " itself (an <include>d file?): apply the snippet by hand");
   const SolverSettings& s = o.settings;
   const SolrefInput& in = report.input;
+  const std::vector<RestPair> pairs = rest_pairs(in, o);
+  if (pairs.empty())
+    throw InputError("--apply " + out + ": body '" + body + "' touches nothing after settling " +
+                     format_number(settle.settle) +
+                     " s, so there is no contact to apply the mapping to (a longer --settle, or "
+                     "--key a keyframe where it rests)");
+  for (tinyxml2::XMLElement* option = root->FirstChildElement("option"); option;
+       option = option->NextSiblingElement("option")) {
+    const char* collision = option->Attribute("collision");
+    if (collision && std::string(collision) == "dynamic")
+      throw InputError("--apply " + out +
+                       ": the model's <option collision=\"dynamic\"> ignores "
+                       "<pair>s; apply the default class snippet by hand");
+  }
   if (s.elliptic || (o.condim > 1 && s.impratio != 1.0)) {
     tinyxml2::XMLElement* option = root->FirstChildElement("option");
     if (!option) {
@@ -72,36 +186,87 @@ Applied apply_solref(const SolrefReport& report, const MappingOutcome& o, const 
     if (o.condim > 1 && s.impratio != 1.0)
       option->SetAttribute("impratio", format_exact(s.impratio).c_str());
   }
-  for (tinyxml2::XMLElement* g = b->FirstChildElement("geom"); g;
-       g = g->NextSiblingElement("geom")) {
-    g->SetAttribute("solref", numbers({s.solref[0], s.solref[1]}).c_str());
-    g->SetAttribute(
-        "solimp",
-        numbers({s.solimp[0], s.solimp[1], s.solimp[2], s.solimp[3], s.solimp[4]}).c_str());
-    g->SetAttribute("priority", "1");
-    if (o.condim > 0) g->SetAttribute("condim", o.condim);
-    if (o.condim > 1) g->SetAttribute("friction", numbers({in.mu, 0.0, in.mu_roll}).c_str());
+  // One <pair> per geom pair the body rests on (solref_tool.hpp's
+  // RestPair): only those contacts change, and only in solref and solimp
+  // (with --mu also condim and friction). A pair the model has already is
+  // edited in place (a second one would double its contacts).
+  tinyxml2::XMLElement* contact = nullptr;
+  for (const RestPair& p : pairs) {
+    const std::string a = pair_name(p.geom1), b = pair_name(p.geom2);
+    if (p.explicit_pair) {
+      tinyxml2::XMLElement* existing = find_pair(root, a, b);
+      if (!existing)
+        throw InputError("--apply " + out + ": the <pair> of " + a + " and " + b + " is not in " +
+                         model + " itself (an <include>d file?): apply the pair snippet by hand");
+      existing->SetAttribute("solref", apply_numbers({s.solref[0], s.solref[1]}).c_str());
+      existing->SetAttribute(
+          "solimp",
+          apply_numbers({s.solimp[0], s.solimp[1], s.solimp[2], s.solimp[3], s.solimp[4]}).c_str());
+      if (o.condim > 0) {
+        existing->SetAttribute("condim", p.condim);
+        existing->SetAttribute(
+            "friction", apply_numbers({p.friction[0], p.friction[1], p.friction[2], p.friction[3],
+                                       p.friction[4]})
+                            .c_str());
+      }
+      continue;
+    }
+    for (const GeomRef* g : {&p.geom1, &p.geom2}) {
+      if (g->named) continue;
+      tinyxml2::XMLElement* element = find_geom(root, *g);
+      if (!element)
+        throw InputError("--apply " + out + ": " + g->name + " (geom " +
+                         std::to_string(g->index_in_body + 1) + " of body '" + g->body +
+                         "') has no name and is not written in " + model +
+                         " itself: name it, then apply again");
+      element->SetAttribute("name", pair_name(*g).c_str());
+    }
+    if (!contact) {
+      contact = doc.NewElement("contact");
+      root->InsertEndChild(contact);
+      contact->InsertNewComment(
+          " contact2d solref --apply: the body's contacts at rest, condim, friction, margin and "
+          "gap as MuJoCo mixed them ");
+    }
+    // The pair's attributes, parsed from the one text the snippet prints.
+    tinyxml2::XMLDocument element_doc;
+    const std::string pair_text =
+        "<pair geom1=\"" + a + "\" geom2=\"" + b + "\"" + pair_attributes(p, s) + "/>";
+    element_doc.Parse(pair_text.c_str());
+    contact->InsertEndChild(element_doc.RootElement()->DeepClone(&doc));
   }
+  // MuJoCo settles the written model from its temporary file, before it
+  // takes the output's name: a model it refuses leaves no file. That file
+  // sits beside the output (or in $TMPDIR for a FIFO or device): in another
+  // folder than the model's, its references are rebased.
+  AtomicFile file(out);
+  if (fs::absolute(file.temp_path()).parent_path().lexically_normal() != model_dir)
+    rebase(root, model_dir, out);
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
-  {
-    AtomicFile file(out);
-    std::fputs(printer.CStr(), file.get());
-    file.commit();
-  }
-
+  std::fputs(printer.CStr(), file.get());
+  if (std::fflush(file.get()) != 0)
+    throw InputError("--apply " + out + ": cannot write " + file.temp_path());
   StateRequest request = settle;
-  request.path = out;
+  request.path = file.temp_path();
   request.option = "--apply";
   const ModelBody applied_body = read_model_body(read(request), out, body);
+  file.commit();
   Applied applied;
   applied.path = out;
   applied.mapping = std::string(mapping_name(o.mapping));
   applied.settled = applied_body.settle_seconds;
   applied.at_rest = applied_body.at_rest;
+  applied.pairs = static_cast<int>(pairs.size());
   for (const SettledContact& c : applied_body.contacts) {
     AppliedContact a;
     static_cast<SettledContact&>(a) = c;
+    const std::string g1 = c.ref1.named ? c.ref1.name : pair_name(c.ref1);
+    const std::string g2 = c.ref2.named ? c.ref2.name : pair_name(c.ref2);
+    a.mapped = std::any_of(pairs.begin(), pairs.end(), [&](const RestPair& p) {
+      const std::string p1 = pair_name(p.geom1), p2 = pair_name(p.geom2);
+      return (p1 == g1 && p2 == g2) || (p1 == g2 && p2 == g1);
+    });
     // The contact's Â (both bodies'), with the cone's φ as the report has it.
     a.predicted = static_penetration(s.solimp, o.K,
                                      c.inv_weight * o.normal_weight / report.inv_weight, a.load);

@@ -1,13 +1,17 @@
 // `contact2d solref --model F --body B --apply OUT.xml`: the user's model
 // with the recommended mapping written into it, then read back.
 //
-// The snippet goes onto the body's own <geom> elements (each gets the
-// mapping's solref, solimp, priority 1 so its values win over what it
-// touches, and, with --mu, condim and friction) and into <option> (cone,
-// impratio), by editing the MJCF with tinyxml2: comments, classes and every
-// other element stay as they were. OUT.xml must sit in the model's folder,
-// where the model's includes, meshes and textures resolve, and must not be
-// the model itself.
+// The mapping goes into <pair>s, one per geom pair the body rests on
+// (solref_tool.hpp's RestPair: the mapping's solref and solimp, every other
+// field as MuJoCo resolved it for those geoms, --mu's condim and friction),
+// and into <option> (cone, impratio), by editing the MJCF with tinyxml2:
+// comments, classes and every other element stay as they were. Not on the
+// body's geoms with priority: that copies the geom's condim and friction
+// over the mixing MuJoCo does, and reaches every other contact of the geom.
+// An unnamed geom a pair needs is named contact2d_geomID; a pair the model
+// has is edited in place. OUT.xml may sit in any folder: elsewhere than the
+// model's, its relative file references are made absolute (an <include>d
+// file's cannot be, and is refused). It must not be the model itself.
 //
 // Then MuJoCo (the version the report is for) settles OUT.xml as it settled
 // the model, and each of the body's contacts is listed with MuJoCo's load
@@ -24,9 +28,10 @@
 
 namespace contact2d::mujoco {
 
-// Throws InputError naming --apply (OUT elsewhere than the model's folder,
-// the model itself, the body not in the model's own file) or --model (MuJoCo
-// refuses OUT.xml); no file is left when it throws before writing.
+// Throws InputError naming --apply (OUT is the model itself, the body rests
+// on nothing, an unnamed geom or a pair not in the model's own file, an
+// <include> with relative references when OUT is elsewhere) or --model
+// (MuJoCo refuses OUT.xml); no file is left when it throws.
 Applied apply_solref(const SolrefReport& report, const MappingOutcome& outcome,
                      const std::string& model, const std::string& body, const std::string& out,
                      const StateRequest& settle, const StateReader& read);

@@ -45,6 +45,11 @@ void read_body_into(const SolrefRequest& options, SolrefInput& in,
   in.joint = body.joint.value_or(Joint::Free);
   if (in.keep_friction) in.user_friction = body.friction;
   in.settled_contacts = body.contacts;
+  in.model_version = body.version;
+  if (!options.dt) {
+    in.dt = body.timestep;
+    in.dt_source = "the model's timestep";
+  }
   in.tangential_inv_mass = body.tangential_inv_mass;
   const std::string settled =
       "after settling " + format_number(body.settle_seconds, 6) + " s with mj_step" +
@@ -83,12 +88,37 @@ void read_body_into(const SolrefRequest& options, SolrefInput& in,
 
 }  // namespace
 
+namespace {
+
+// Every option the request lacks, in one message: k, c, Δt and the body
+// each need one of their options.
+void require_options(const SolrefRequest& options) {
+  std::vector<std::string> missing;
+  const SolrefTargets& t = options.targets;
+  if (!options.k && !t.penetration && !t.contact_time)
+    missing.push_back("--k (or --penetration, or --contact-time with --restitution)");
+  if (!options.c && !t.restitution) missing.push_back("--c (or --restitution)");
+  if (!options.dt && options.model.empty())
+    missing.push_back("--dt (with --model: the model's timestep)");
+  if (!options.mass && options.model.empty())
+    missing.push_back("--mass, or --model FILE --body NAME");
+  if (!options.model.empty() && options.body.empty()) missing.push_back("--body NAME");
+  if (missing.empty()) return;
+  std::string text;
+  for (size_t i = 0; i < missing.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == missing.size() ? " and " : ", ") + missing[i];
+  throw InputError("missing " + text);
+}
+
+}  // namespace
+
 SolrefReport solref_request(const SolrefRequest& options,
                             const std::function<void(const std::string&)>& note,
                             const StateReader& read) {
   auto tell = [&note](const std::string& line) {
     if (note) note(line);
   };
+  require_options(options);
   const auto mappings = chosen_mappings(options.mapping);
   if (options.engine != "mujoco" && options.engine != "mujoco3")
     throw InputError("--engine " + options.engine +
@@ -100,7 +130,7 @@ SolrefReport solref_request(const SolrefRequest& options,
   in.slope = options.slope;
   in.k = options.k.value_or(1.0);  // a placeholder until solve_targets when a target gives it
   in.c = options.c.value_or(0.0);
-  in.dt = options.dt;
+  in.dt = options.dt.value_or(0.0);  // --model without --dt: its timestep (read_body_into)
   in.inertia = options.inertia;
   in.lever = options.lever;
   in.pivot = options.pivot;
@@ -137,6 +167,7 @@ SolrefReport solref_request(const SolrefRequest& options,
     validate([&] {  // the numbers first: a bad --k is named before the file is read
       SolrefInput probe = in;
       probe.mass = 1.0;
+      if (!options.dt) probe.dt = 1e-3;  // the model's, read next
       probe.joint = in.pivot > 0.0 ? Joint::Hinge : Joint::Free;
       if (probe.joint == Joint::Hinge && !(probe.lever > 0.0)) probe.lever = 1.0;
       return probe;
@@ -160,15 +191,21 @@ SolrefReport solref_request(const SolrefRequest& options,
         "generate --engine mujoco3 --mapping compensated --friction damper` builds "
         "(docs/mujoco3.md)");
   SolrefReport report = solref_report(in, mappings);
+  report.fit_hint = fit_hint(report);
   // One mapping asked for by name and it cannot express k, c: bad input.
   if (report.mappings.size() == 1 && !report.mappings[0].unavailable.empty())
     throw InputError(report.mappings[0].unavailable);
   if (!options.apply.empty()) {
     // The recommendation is printed first; --mapping NAME applies that one.
     const MappingOutcome& chosen = report.mappings.front();
-    if (!chosen.unavailable.empty() || (options.mapping == "all" && report.recommendation.empty()))
-      throw InputError("--apply " + options.apply +
-                       ": no mapping is fit for a model to build on here (the report says why)");
+    if (!chosen.unavailable.empty() ||
+        (options.mapping == "all" && report.recommendation.empty())) {
+      report.apply_refused = "--apply " + options.apply +
+                             ": not written: no mapping is fit for a model to build on here "
+                             "(the report above says why)" +
+                             (report.fit_hint.empty() ? "" : "; t" + report.fit_hint.substr(1));
+      return report;
+    }
     StateRequest settle;
     settle.key = options.key;
     settle.settle = options.settle;

@@ -20,7 +20,7 @@ namespace contact2d::mujoco {
 
 struct SolrefRequest {
   std::optional<double> k, c;  // --k, --c
-  double dt = 0.0;             // --dt (required)
+  std::optional<double> dt;    // --dt; absent: --model's own timestep (required without --model)
   SolrefTargets targets;       // --restitution, --contact-time, --penetration
   std::optional<double> mass;  // --mass
   std::optional<double> mu;    // --mu; absent: the snippets keep the user's friction

@@ -21,6 +21,8 @@ namespace {
 constexpr double kMinImp = 1e-4;    // MuJoCo's mjMINIMP
 constexpr double kMaxImp = 0.9999;  // MuJoCo's mjMAXIMP
 constexpr double kMinVal = 1e-15;   // MuJoCo's mjMINVAL
+// The default class's solmix without --mu (outcome()).
+constexpr double kSolmixWins = 1e30;
 
 void require(bool ok, const std::string& option, double value, const std::string& range) {
   if (!ok) throw InputError(option + " " + format_number(value, 6) + ": must be " + range);
@@ -172,11 +174,31 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
   o.nominal_penetration = report.load / in.k;
   creep_on_slope(in, report.inv_weight, o, elliptic, condim);
   const std::string options = option_line(o);
-  o.default_snippet = options + "<default>\n  <default class=\"contact2d\">\n    <geom" +
-                      contact_attributes(in, o, false) +
-                      " priority=\"1\"/>\n  </default>\n</default>\n";
-  o.pair_snippet = options + "<contact>\n  <pair geom1=\"BODY_GEOM\" geom2=\"ground\"" +
-                   contact_attributes(in, o, true) + "/>\n</contact>\n";
+  // Without --mu the class must change solref and solimp alone. MuJoCo mixes
+  // two geoms of equal priority (engine_collision_driver.c): condim, friction
+  // by the larger, margin and gap by the larger (2.2.2) or the sum (3.x),
+  // solimp and a standard-form solref weighted by solmix, s₁/(s₁ + s₂), a
+  // direct-form (negative) solref by the smaller per element. solmix 1e30
+  // against MuJoCo's default 1 rounds that weight to 1 (or to 1e-30 on the
+  // other geom's side, below half an ulp of any solref or solimp): the
+  // class's values. priority would copy condim and friction from the class's
+  // geom too, the defect it replaces; with --mu that is what is asked for.
+  o.default_snippet =
+      options + "<default>\n  <default class=\"contact2d\">\n    <geom" +
+      contact_attributes(in, o, false) +
+      (o.condim == 0 ? " solmix=\"" + format_exact(kSolmixWins) + "\"" : " priority=\"1\"") +
+      "/>\n  </default>\n</default>\n";
+  const std::vector<RestPair> pairs = rest_pairs(in, o);
+  if (pairs.empty()) {
+    o.pair_snippet = options + "<contact>\n  <pair geom1=\"BODY_GEOM\" geom2=\"ground\"" +
+                     contact_attributes(in, o, true) + "/>\n</contact>\n";
+  } else {
+    o.pair_snippet = options + "<contact>\n";
+    for (const RestPair& p : pairs)
+      o.pair_snippet += "  <pair geom1=\"" + pair_name(p.geom1) + "\" geom2=\"" +
+                        pair_name(p.geom2) + "\"" + pair_attributes(p, o.settings) + "/>\n";
+    o.pair_snippet += "</contact>\n";
+  }
   return o;
 }
 
@@ -462,6 +484,97 @@ SolrefReport solref_report(const SolrefInput& input, const std::vector<Mapping>&
   return report;
 }
 
+namespace {
+
+// The largest x in [x·1e-6, x] at which `fits` holds, by bisection on log x
+// (fits(x) false, and fit below some value: ω·Δt and ω grow with Δt and k),
+// rounded down to 3 significant digits; NaN when it does not hold at x·1e-6.
+template <typename Fits>
+double largest_fit(double x, Fits fits) {
+  double lo = x * 1e-6, hi = x;
+  if (!fits(lo)) return NAN;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (fits(mid) ? lo : hi) = mid;
+  }
+  const double scale = std::pow(10.0, std::floor(std::log10(lo)) - 2.0);
+  const double rounded = std::floor(lo / scale) * scale;
+  return fits(rounded) ? rounded : lo;
+}
+
+}  // namespace
+
+std::string fit_hint(const SolrefReport& report) {
+  if (!report.recommendation.empty()) return "";
+  const SolrefInput& in = report.input;
+  const std::vector<Mapping> calibrated{Mapping::Calibrated};
+  auto fits_with = [&](auto change) {
+    SolrefInput probe = in;
+    change(probe);
+    try {
+      return !solref_report(probe, calibrated).recommendation.empty();
+    } catch (const InputError&) {
+      return false;
+    }
+  };
+  const double dt =
+      largest_fit(in.dt, [&](double x) { return fits_with([x](SolrefInput& p) { p.dt = x; }); });
+  const double k =
+      largest_fit(in.k, [&](double x) { return fits_with([x](SolrefInput& p) { p.k = x; }); });
+  if (!std::isfinite(dt) && !std::isfinite(k)) return "";
+  std::string hint = "Try";
+  if (std::isfinite(dt))
+    hint += " --dt " + format_number(dt, 3) +
+            " (the largest Δt at which a mapping fits k = " + format_number(in.k) +
+            " N/m, c = " + format_number(in.c) + " N·s/m)";
+  if (std::isfinite(k))
+    hint += std::string(std::isfinite(dt) ? " or" : "") + " --k " + format_number(k, 3) +
+            " (the largest k a mapping fits at Δt = " + format_number(in.dt) +
+            " s, c = " + format_number(in.c) + " N·s/m)";
+  else
+    hint += "; no k fits at Δt = " + format_number(in.dt) + " s with c = " + format_number(in.c) +
+            " N·s/m (its damping alone is past the limit)";
+  return hint + ".";
+}
+
+std::vector<RestPair> rest_pairs(const SolrefInput& in, const MappingOutcome& o) {
+  std::vector<RestPair> pairs;
+  for (const SettledContact& c : in.settled_contacts) {
+    const bool seen = std::any_of(pairs.begin(), pairs.end(), [&](const RestPair& p) {
+      return (p.geom1.id == c.ref1.id && p.geom2.id == c.ref2.id) ||
+             (p.geom1.id == c.ref2.id && p.geom2.id == c.ref1.id);
+    });
+    if (seen) continue;
+    RestPair p;
+    p.geom1 = c.ref1;
+    p.geom2 = c.ref2;
+    p.explicit_pair = c.explicit_pair;
+    p.margin = c.margin;
+    p.gap = c.gap;
+    if (o.condim > 0) {  // --mu: the mapping's condim and friction
+      p.condim = o.condim;
+      p.friction = {in.mu, in.mu, 0.0, in.mu_roll, in.mu_roll};
+    } else {
+      p.condim = c.condim;
+      p.friction = c.friction;
+    }
+    pairs.push_back(p);
+  }
+  return pairs;
+}
+
+std::string pair_name(const GeomRef& geom) {
+  return geom.named ? geom.name : "contact2d_geom" + std::to_string(geom.id);
+}
+
+std::string pair_attributes(const RestPair& p, const SolverSettings& s) {
+  return " condim=\"" + std::to_string(p.condim) + "\" friction=\"" +
+         join({p.friction[0], p.friction[1], p.friction[2], p.friction[3], p.friction[4]}) +
+         "\" margin=\"" + format_exact(p.margin) + "\" gap=\"" + format_exact(p.gap) +
+         "\" solref=\"" + join({s.solref[0], s.solref[1]}) + "\" solimp=\"" +
+         join({s.solimp[0], s.solimp[1], s.solimp[2], s.solimp[3], s.solimp[4]}) + "\"";
+}
+
 ModelBody read_model_body(const ModelState& state, const std::string& path,
                           const std::string& body) {
   int id = -1;
@@ -474,6 +587,7 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
   const auto bi = static_cast<size_t>(id);
   ModelBody out;
   out.version = state.version;
+  out.timestep = state.timestep;
   out.mass = state.body_mass[bi];
   out.inv_weight = state.body_invweight0[2 * bi];
   out.load_warning = state.load_warning;
@@ -526,11 +640,28 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
     if (state.contacts[i].body1 == id || state.contacts[i].body2 == id)
       own.push_back(static_cast<int>(i));
   out.tangential_inv_mass = coupled_tangential_inverse_mass(state, own);
+  auto ref = [&state](int g) {
+    GeomRef r;
+    r.id = g;
+    r.name = state.geom_names[static_cast<size_t>(g)];
+    r.named = r.name != "geom #" + std::to_string(g);  // model_state.hpp's unnamed geom
+    const int b = state.geom_body[static_cast<size_t>(g)];
+    r.body = state.body_names[static_cast<size_t>(b)];
+    for (int k = 0; k < g; ++k) r.index_in_body += state.geom_body[static_cast<size_t>(k)] == b;
+    return r;
+  };
   for (const StateContact& c : state.contacts) {
     if (c.body1 != id && c.body2 != id) continue;
     SettledContact sc;
     sc.geom1 = state.geom_names[static_cast<size_t>(c.geom1)];
     sc.geom2 = state.geom_names[static_cast<size_t>(c.geom2)];
+    sc.ref1 = ref(c.geom1);
+    sc.ref2 = ref(c.geom2);
+    sc.condim = c.condim;
+    sc.friction = c.friction;
+    sc.margin = c.margin;
+    sc.gap = c.gap;
+    sc.explicit_pair = c.explicit_pair;
     sc.A = c.A;
     sc.A_t = c.A_t;
     sc.load = std::max(0.0, c.force);
@@ -540,6 +671,21 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
     out.contacts.push_back(sc);
   }
   out.rest_contacts = static_cast<int>(out.contacts.size());
+  // The friction the cone's effect is computed with: the most loaded
+  // contact's, as MuJoCo mixed the two geoms (the body's own geom alone
+  // says nothing of the partner's larger condim or friction).
+  const SettledContact* most = nullptr;
+  for (const SettledContact& c : out.contacts)
+    if (!most || c.load > most->load) most = &c;
+  if (most) {
+    out.friction.mu = most->friction[0];
+    out.friction.condim = most->condim;
+    out.friction.source = "contact " + most->geom1 + " – " + most->geom2 +
+                          " as MuJoCo mixes it: μ = " + format_number(most->friction[0]) +
+                          ", condim " + std::to_string(most->condim) +
+                          (out.friction.elliptic ? ", elliptic" : ", pyramidal") +
+                          " cone, impratio " + format_number(out.friction.impratio);
+  }
   return out;
 }
 
@@ -562,15 +708,20 @@ void measured_text(std::ostringstream& o, const SolrefReport& r) {
 void applied_text(std::ostringstream& o, const SolrefReport& r) {
   if (!r.applied) return;
   const Applied& a = *r.applied;
-  o << "\napplied: " << a.path << " is the model with " << a.mapping
-    << " on the body's geoms; MuJoCo settled it " << format_number(a.settled) << " s ("
+  o << "\napplied: " << a.path << " is the model with " << a.mapping << " in " << a.pairs
+    << " <pair>" << (a.pairs == 1 ? "" : "s") << " (the geom pairs the body rests on); MuJoCo "
+    << r.input.model_version << " settled it " << format_number(a.settled) << " s ("
     << (a.at_rest ? "at rest" : "NOT at rest") << "):\n";
   if (a.contacts.empty()) o << "  the body has no contacts there\n";
-  for (const AppliedContact& c : a.contacts)
+  for (const AppliedContact& c : a.contacts) {
     o << "  " << c.geom1 << " – " << c.geom2 << ": load " << format_number(c.load) << " N, depth "
-      << format_number(c.penetration)
-      << " m (the mapping's at that load: " << format_number(c.predicted) << " m, "
-      << format_number(100.0 * (c.penetration - c.predicted) / c.predicted) << " %)\n";
+      << format_number(c.penetration);
+    if (c.mapped)
+      o << " m (the mapping's at that load: " << format_number(c.predicted) << " m, "
+        << format_number(100.0 * (c.penetration - c.predicted) / c.predicted) << " %)\n";
+    else
+      o << " m (not a pair --apply wrote: the model's own contact law)\n";
+  }
 }
 
 }  // namespace
@@ -584,7 +735,8 @@ std::string format_report_text(const SolrefReport& r) {
     o << "No mapping is fit for a model to build on here (calibrated, exact and seed; each "
          "printed below says why).\n";
   o << "\nk = " << format_number(in.k) << " N/m, c = " << format_number(in.c)
-    << " N·s/m per MuJoCo contact, Δt = " << format_number(in.dt) << " s; body: " << in.body_source
+    << " N·s/m per MuJoCo contact, Δt = " << format_number(in.dt) << " s"
+    << (in.dt_source.empty() ? "" : " (" + in.dt_source + ")") << "; body: " << in.body_source
     << "\n";
   if (!in.targets_note.empty()) o << "from your targets: " << in.targets_note << "\n";
   const bool hinge = in.joint == Joint::Hinge;
@@ -681,13 +833,37 @@ std::string format_report_text(const SolrefReport& r) {
         << (std::isfinite(m.creep) ? "creep " + format_number(m.creep) + " m/s" : m.creep_note)
         << "\n";
     o << "  MJCF, a default class (put class=\"contact2d\" on the body's contact geoms; "
-         "priority 1 makes its values win over the ground's):\n";
+      << (m.condim == 0
+              ? "solmix 1e30 makes its solref and solimp outweigh the other geom's while "
+                "condim, friction, margin and gap mix as before, on every contact of those geoms"
+              : "priority 1 makes its condim, friction, solref and solimp win over the other "
+                "geom's")
+      << "):\n";
     std::istringstream a(m.default_snippet);
     for (std::string line; std::getline(a, line);) o << "    " << line << "\n";
-    o << "  or, for a contact with the ground, a pair (replace BODY_GEOM and ground):\n";
+    if (in.settled_contacts.empty())
+      o << "  or, for a contact with the ground, a pair (replace BODY_GEOM and ground; a pair "
+           "takes no condim, friction, margin or gap from its geoms: without them it has "
+           "MuJoCo's pair defaults, condim 3, friction 1 1 0.005 0.0001 0.0001):\n";
+    else
+      o << "  or pairs, one per geom pair the body rests on (only those contacts change; "
+        << (m.condim == 0
+                ? "condim, friction, margin and gap as MuJoCo " + in.model_version + " mixed them"
+                : "margin and gap as MuJoCo " + in.model_version + " mixed them")
+        << "):\n";
     std::istringstream b(m.pair_snippet);
     for (std::string line; std::getline(b, line);) o << "    " << line << "\n";
+    std::vector<int> told;
+    for (const RestPair& p : rest_pairs(in, m)) {
+      for (const GeomRef* g : {&p.geom1, &p.geom2}) {
+        if (g->named || std::find(told.begin(), told.end(), g->id) != told.end()) continue;
+        told.push_back(g->id);
+        o << "    (" << g->name << " has no name; a pair needs one: name it " << pair_name(*g)
+          << ", geom " << g->index_in_body + 1 << " of body '" << g->body << "')\n";
+      }
+    }
   }
+  if (!r.fit_hint.empty()) o << "\n" << r.fit_hint << "\n";
   applied_text(o, r);
   return o.str();
 }
@@ -720,7 +896,10 @@ std::string format_report_json(const SolrefReport& r) {
   }
   o << "]"
     << ",\n  \"nominal_penetration\": " << json::number(r.load / in.k)
-    << ",\n  \"recommendation\": " << json::string(r.recommendation) << ",\n  \"mappings\": [";
+    << ",\n  \"recommendation\": " << json::string(r.recommendation)
+    << ",\n  \"fit_hint\": " << json::string(r.fit_hint)
+    << ",\n  \"dt_source\": " << json::string(in.dt_source.empty() ? "--dt" : in.dt_source)
+    << ",\n  \"mappings\": [";
   bool first = true;
   for (const MappingOutcome& m : r.mappings) {
     o << (first ? "\n" : ",\n") << "    {\n      \"mapping\": \"" << mapping_name(m.mapping)
@@ -763,14 +942,15 @@ std::string format_report_json(const SolrefReport& r) {
   } else {
     const Applied& a = *r.applied;
     o << "{\"path\": " << json::string(a.path) << ", \"mapping\": " << json::string(a.mapping)
-      << ", \"settled\": " << json::number(a.settled)
+      << ", \"pairs\": " << a.pairs << ", \"settled\": " << json::number(a.settled)
       << ", \"at_rest\": " << (a.at_rest ? "true" : "false") << ", \"settled_contacts\": [";
     for (size_t i = 0; i < a.contacts.size(); ++i) {
       const AppliedContact& c = a.contacts[i];
       o << (i ? ", " : "") << "{\"geom1\": " << json::string(c.geom1)
         << ", \"geom2\": " << json::string(c.geom2) << ", \"load\": " << json::number(c.load)
         << ", \"penetration\": " << json::number(c.penetration)
-        << ", \"predicted\": " << json::number(c.predicted) << "}";
+        << ", \"predicted\": " << (c.mapped ? json::number(c.predicted) : "null")
+        << ", \"mapped\": " << (c.mapped ? "true" : "false") << "}";
     }
     o << "]}";
   }

@@ -73,9 +73,26 @@ struct ContactMechanics {
   double inv_mass = 0.0;
   double load = 0.0;
 };
+// A geom of a contact, as a <pair> must name it: MuJoCo's name or, for an
+// unnamed geom (which MuJoCo and this tool show as "geom #ID"), where it
+// sits in the model file: its body and its place among that body's geoms.
+struct GeomRef {
+  std::string name;       // MuJoCo's name, or "geom #ID"
+  bool named = true;      // false: the model gives it no name
+  int id = -1;            // MuJoCo's geom id
+  std::string body;       // its body's name ("world": the <worldbody>)
+  int index_in_body = 0;  // 0: the body's first geom
+};
 // One of the body's contacts in the settled model, as MuJoCo has it.
 struct SettledContact {
   std::string geom1, geom2;
+  GeomRef ref1, ref2;
+  // What MuJoCo resolved for the geom pair (its mixing of the two geoms'
+  // values, or an explicit <pair>'s): what --apply's pairs write back.
+  int condim = 1;
+  std::array<double, 5> friction{};
+  double margin = 0.0, gap = 0.0;
+  bool explicit_pair = false;
   double A = 0.0;            // n·J·M⁻¹·Jᵀ·n at the contact, 1/kg
   double A_t = 0.0;          // the same along its larger tangent direction (condim ≥ 3)
   double load = 0.0;         // MuJoCo's normal force, N
@@ -84,10 +101,11 @@ struct SettledContact {
 };
 
 struct SolrefInput {
-  double k = 0.0;     // N/m, per MuJoCo contact
-  double c = 0.0;     // N·s/m, per MuJoCo contact
-  double dt = 0.0;    // s, MuJoCo's timestep
-  double mass = 0.0;  // kg
+  double k = 0.0;         // N/m, per MuJoCo contact
+  double c = 0.0;         // N·s/m, per MuJoCo contact
+  double dt = 0.0;        // s, MuJoCo's timestep
+  std::string dt_source;  // "" (--dt) or where Δt comes from, for the text
+  double mass = 0.0;      // kg
   Joint joint = Joint::Free;
   double inertia = 0.0;  // kg·m² about the COM, the axis the lever turns the body (0: no rotation)
   double lever = 0.0;    // m, distance of the contact point from the COM across the normal
@@ -107,6 +125,7 @@ struct SolrefInput {
   std::optional<ContactMechanics> measured;
   std::string measured_source;
   std::vector<SettledContact> settled_contacts;
+  std::string model_version;  // the MuJoCo that settled --model ("2.2.2", "3.14.0")
   // The tangential inverse mass of the body's settled contacts slipping
   // together (their friction rows' J·M⁻¹·Jᵀ, largest eigenvalue):
   // calibrated's impratio cap 1/(Δt·A_t·c) uses it in place of 1/m.
@@ -172,15 +191,39 @@ struct MappingOutcome {
   std::string pair_snippet;          // <option> + <contact><pair>
 };
 
+// solref --model: one <pair> per geom pair among the body's contacts at
+// rest, with the mapping's solref and solimp and every other field as
+// MuJoCo resolved it for that geom pair (condim, friction, margin, gap), or
+// --mu's condim and friction. A pair takes nothing from its geoms (MuJoCo's
+// pair defaults are condim 3, friction 1 1 0.005 0.0001 0.0001, margin and
+// gap 0), and MuJoCo then skips the geom pair in its own collision pass, so
+// the pair changes the contact's solref and solimp and nothing else, and only
+// for those two geoms (not the body's other contacts).
+struct RestPair {
+  GeomRef geom1, geom2;
+  int condim = 1;
+  std::array<double, 5> friction{};
+  double margin = 0.0, gap = 0.0;
+  bool explicit_pair = false;  // the model has a <pair> for them already: edit it
+};
+std::vector<RestPair> rest_pairs(const SolrefInput& input, const MappingOutcome& outcome);
+// The name a pair gives an unnamed geom (--apply names it so in the file).
+std::string pair_name(const GeomRef& geom);
+// A pair's attributes but the geoms' names: condim, friction, margin, gap,
+// solref, solimp.
+std::string pair_attributes(const RestPair& pair, const SolverSettings& settings);
+
 // solref --apply: the model with the recommended mapping written into it
 // (mujoco/solref_apply.hpp), settled again: the body's contacts there.
 struct AppliedContact : SettledContact {
   double predicted = 0.0;  // the mapping's rest depth at its load, m
+  bool mapped = false;     // a geom pair --apply gave the mapping (else its own law: no prediction)
 };
 
 struct Applied {
   std::string path;
   std::string mapping;
+  int pairs = 0;  // the <pair>s written or edited
   double settled = 0.0;
   bool at_rest = false;
   std::vector<AppliedContact> contacts;
@@ -193,8 +236,19 @@ struct SolrefReport {
   double load = 0.0;  // f = m·g/contacts, N per contact (hinge: m·g·pivot/(lever·contacts))
   std::vector<MappingOutcome> mappings;  // the recommended one first
   std::string recommendation;            // the mapping to use and why ("" when none is fit)
-  std::optional<Applied> applied;        // --apply
+  // No mapping fit: the largest Δt (at this k) and the largest k (at this
+  // Δt) at which one is, as "Try --dt … or --k …" (fit_hint); else "".
+  std::string fit_hint;
+  std::optional<Applied> applied;  // --apply
+  // --apply that was not carried out (no mapping is fit), with why: the
+  // report is still printed, then this is the command's error.
+  std::string apply_refused;
 };
+
+// The report's fit_hint: bisection over Δt and over k of solref_report's
+// recommendation (ω·Δt grows with both; the physical ω with k). "" when a
+// mapping is fit or none is at any Δt or k down to a millionth.
+std::string fit_hint(const SolrefReport& report);
 
 // The mappings `contact2d solref` offers for a user's own model, in the
 // order it prints them: the recommended one first. Compensated is not
@@ -220,13 +274,16 @@ double static_penetration(const std::array<double, 5>& solimp, double K, double 
 // A body of a MuJoCo model file: mass, body_invweight0 (translational), its
 // joints, its friction, and the contacts MuJoCo makes for it at rest.
 struct ModelBody {
-  std::string version;  // the MuJoCo that compiled and settled the model
+  std::string version;    // the MuJoCo that compiled and settled the model
+  double timestep = 0.0;  // the model's <option timestep>, s
   double mass = 0.0;
   double inv_weight = 0.0;
   std::optional<Joint> joint;  // none: a joint set other than the four
   std::string joints;          // the body's joints as MuJoCo types, e.g. "slide, slide, hinge"
-  UserFriction friction;       // of the body's first colliding geom, and the model's cone
-  int rest_contacts = 0;       // MuJoCo contacts of the body after settling
+  // The friction of the body's most loaded contact at rest as MuJoCo mixed
+  // it (else its first colliding geom's), and the model's cone.
+  UserFriction friction;
+  int rest_contacts = 0;  // MuJoCo contacts of the body after settling
   std::vector<SettledContact> contacts;
   double tangential_inv_mass =
       0.0;  // its contacts' friction rows slipping together (model_state.hpp)

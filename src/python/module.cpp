@@ -271,6 +271,7 @@ py::dict py_solref(const mujoco::SolrefRequest& request) {
       return mujoco3::solref(request, [&notes](const std::string& line) { notes.push_back(line); });
     });
   });
+  if (!report.apply_refused.empty()) throw InputError(report.apply_refused);
   py::dict out;
   out["json"] = mujoco::format_report_json(report);
   out["notes"] = notes;
@@ -507,9 +508,9 @@ void bind_commands(py::module_& m) {
   m.def("_inspect", &py_inspect);
   m.def("_fit", &py_fit);
   m.def("_solref",
-        [](std::optional<double> k, std::optional<double> c, double dt, std::optional<double> mass,
-           const std::string& mapping, std::optional<std::string> joint, double inertia,
-           double lever, double pivot, std::optional<double> mu, double mu_roll,
+        [](std::optional<double> k, std::optional<double> c, std::optional<double> dt,
+           std::optional<double> mass, const std::string& mapping, std::optional<std::string> joint,
+           double inertia, double lever, double pivot, std::optional<double> mu, double mu_roll,
            const std::string& model, const std::string& body, std::optional<int> contacts,
            std::optional<double> restitution, std::optional<double> contact_time,
            std::optional<double> penetration, const std::string& engine, double settle,

@@ -352,6 +352,87 @@ TEST(SolrefCli, BadInputExitsTwoWithOneLine) {
   fs::remove(broken);
 }
 
+// Every missing option in one line: a first try without options names all
+// that the command needs, not the first of them.
+TEST(SolrefCli, MissingOptionsAreNamedTogether) {
+  const CliResult none = run_cli("");
+  EXPECT_EQ(none.status, 2) << none.err;
+  EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
+  for (const char* option : {"--k", "--c", "--dt", "--mass", "--model"})
+    EXPECT_NE(none.err.find(option), std::string::npos) << option << "\n" << none.err;
+  const fs::path path = temp_file("missing.xml", user_model(1.0, 1e-4));
+  const CliResult some = run_cli("--k 1e4 --model '" + path.string() + "'");
+  fs::remove(path);
+  EXPECT_EQ(some.status, 2) << some.err;
+  EXPECT_EQ(std::count(some.err.begin(), some.err.end(), '\n'), 1) << some.err;
+  EXPECT_NE(some.err.find("--c (or --restitution) and --body NAME"), std::string::npos) << some.err;
+  EXPECT_EQ(some.err.find("--dt"), std::string::npos) << some.err;  // the model has one
+}
+
+// --model without --dt: the model's own timestep (user_model's is 1e-4 s,
+// written in the file), said so; the numbers the same as with --dt 1e-4.
+TEST(SolrefCli, DtDefaultsToTheModelsTimestep) {
+  const fs::path path = temp_file("dt.xml", user_model(1.0, 1e-4));
+  const CliResult without =
+      run_cli("--k 1e4 --c 100 --model '" + path.string() + "' --body ball --json");
+  const CliResult with =
+      run_cli("--k 1e4 --c 100 --dt 1e-4 --model '" + path.string() + "' --body ball --json");
+  const CliResult text = run_cli("--k 1e4 --c 100 --model '" + path.string() + "' --body ball");
+  fs::remove(path);
+  ASSERT_EQ(without.status, 0) << without.err;
+  ASSERT_EQ(with.status, 0) << with.err;
+  EXPECT_NE(without.out.find("\"dt\": 0.0001,"), std::string::npos) << without.out;
+  EXPECT_NE(without.out.find("\"dt_source\": \"the model's timestep\""), std::string::npos);
+  std::string same = with.out;
+  const std::string given = "\"dt_source\": \"--dt\"";
+  same.replace(same.find(given), given.size(), "\"dt_source\": \"the model's timestep\"");
+  EXPECT_EQ(without.out, same);
+  EXPECT_NE(text.out.find("Δt = 0.0001 s (the model's timestep)"), std::string::npos) << text.out;
+}
+
+// No mapping fits (ω·Δt = 1000 rad/s · 0.01 s = 10, past MuJoCo Euler's
+// limit): --apply prints the report, then fails with one line that gives
+// the largest Δt and the largest k that fit, and writes no file. Each hint
+// is checked by asking again: at the printed value a mapping fits, and at
+// 1 % more (past the 3 digits it is rounded down to) none does.
+TEST(SolrefCli, NoFitPrintsTheReportAndTheLargestDtAndK) {
+  const fs::path path = temp_file("nofit.xml", user_model(1.0, 1e-2));
+  const fs::path out = temp_file("nofit_applied.xml", "");
+  fs::remove(out);
+  const std::string base = " --model '" + path.string() + "' --body ball";
+  const CliResult r = run_cli("--k 1e6 --c 100" + base + " --apply '" + out.string() + "'");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.out.find("No mapping is fit"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\ncalibrated\n"), std::string::npos) << r.out;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  auto after = [&](const std::string& option) {
+    const size_t at = r.err.find(" " + option + " ");
+    EXPECT_NE(at, std::string::npos) << option << "\n" << r.err;
+    return at == std::string::npos ? 0.0 : std::stod(r.err.substr(at + option.size() + 2));
+  };
+  const double dt = after("--dt"), k = after("--k");
+  EXPECT_GT(dt, 0.0);
+  EXPECT_LT(dt, 1e-2);
+  EXPECT_GT(k, 0.0);
+  EXPECT_LT(k, 1e6);
+  auto fits = [&](const std::string& options) {
+    const CliResult again = run_cli(options + base);
+    EXPECT_EQ(again.status, 0) << again.err;
+    return again.out.rfind("Use ", 0) == 0;
+  };
+  char text[128];
+  std::snprintf(text, sizeof text, "--k 1e6 --c 100 --dt %.17g", dt);
+  EXPECT_TRUE(fits(text)) << text;
+  std::snprintf(text, sizeof text, "--k 1e6 --c 100 --dt %.17g", dt * 1.01);
+  EXPECT_FALSE(fits(text)) << text;
+  std::snprintf(text, sizeof text, "--k %.17g --c 100 --dt 0.01", k);
+  EXPECT_TRUE(fits(text)) << text;
+  std::snprintf(text, sizeof text, "--k %.17g --c 100 --dt 0.01", k * 1.01);
+  EXPECT_FALSE(fits(text)) << text;
+  fs::remove(path);
+}
+
 // --json: every key a consumer reads, per mapping; --model gives the
 // body_invweight0 it read.
 TEST(SolrefCli, JsonKeys) {

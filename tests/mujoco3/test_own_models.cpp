@@ -72,6 +72,7 @@ void expect_rests_as_printed(const mj::SolrefReport& report, bool determinate) {
   ASSERT_FALSE(a.contacts.empty());
   const mj::AppliedContact* most = &a.contacts.front();
   for (const mj::AppliedContact& c : a.contacts) {
+    if (!c.mapped) continue;  // a contact the pairs do not cover keeps the model's own law
     EXPECT_NEAR(c.penetration, c.predicted, 0.02 * c.predicted) << c.geom1 << " " << c.geom2;
     if (c.load > most->load) most = &c;
   }

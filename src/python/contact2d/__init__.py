@@ -181,7 +181,8 @@ def _path(value, name, function, optional=False):
                     f"{', or empty' if optional else ''}), not {type(value).__name__}")
 
 
-def solref(k: Optional[float] = None, c: Optional[float] = None, *, dt: float,
+def solref(k: Optional[float] = None, c: Optional[float] = None, *,
+           dt: Optional[float] = None,
            mass: Optional[float] = None, mapping: str = "all", joint: Optional[str] = None,
            inertia: float = 0.0, lever: float = 0.0, pivot: float = 0.0,
            mu: Optional[float] = None, mu_roll: float = 0.0,
@@ -195,7 +196,8 @@ def solref(k: Optional[float] = None, c: Optional[float] = None, *, dt: float,
     as ``contact2d solref --json`` (docs/cli.md): that JSON object as a dict.
 
     Each keyword is the option of the same name, in its unit: ``k`` N/m and
-    ``c`` N·s/m per MuJoCo contact; ``dt`` s (MuJoCo's timestep, required);
+    ``c`` N·s/m per MuJoCo contact; ``dt`` s (MuJoCo's timestep; with
+    ``model`` it defaults to the model's own, else it is required);
     ``mass`` kg; ``inertia`` kg·m²; ``lever`` and ``pivot`` m; ``mu``
     (dimensionless) and ``mu_roll`` m; ``restitution`` in (0, 1);
     ``contact_time`` s; ``penetration`` m (a static depth per contact);
