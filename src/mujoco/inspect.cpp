@@ -938,7 +938,8 @@ std::string not_at_rest_text(const InspectReport& rep) {
            format_number(rep.rest_after) + ".";
   else if (std::isinf(rep.rest_after))
     out += "It is not at rest after " + format_number(rep.rest_search) +
-           " s either (it creeps, flaps or falls): the numbers below are for this instant.";
+           " s either (the longest settle tried): try --settle " +
+           format_number(2.0 * rep.rest_search) + " or longer.";
   else
     out += "A longer --settle brings it closer to rest.";
   return out +

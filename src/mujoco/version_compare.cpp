@@ -240,7 +240,7 @@ VersionComparison compare_versions(const ModelState& v2, InspectReport r2, const
     c.causes.push_back(std::to_string(c.margins.size()) +
                        " geom pairs in contact have another margin or gap: 2.2.2 takes the larger "
                        "geom's, 3.x adds the two geoms' (a <pair> keeps its own)");
-  if (!both_rest)
+  if (!both_rest && (!r2.contacts.empty() || !r3.contacts.empty()))
     c.causes.push_back(std::string("the state is not at rest on ") +
                        (!r2.at_rest && !r3.at_rest ? "either version"
                         : r2.at_rest               ? "3.x"
