@@ -104,8 +104,9 @@ struct StateContact {
   std::array<double, 2> solref{};
   std::array<double, 5> solimp{};
   // The margin and gap MuJoCo gave the geom pair (an explicit pair: its own;
-  // else 2.2.2 takes the larger geom's, 3.x adds the two geoms'), m;
-  // MuJoCo keeps margin − gap as con.includemargin.
+  // else 2.2.2 takes the larger geom's, 3.x adds the two geoms'), m. 2.2.2
+  // detects a contact within the margin and keeps margin − gap as
+  // con.includemargin; 3.x detects within margin + gap and keeps the margin.
   double margin = 0.0, gap = 0.0;
   double A = 0.0;
   double A_t = 0.0;  // the larger of the two tangent directions' (condim ≥ 3; else 0), 1/kg

@@ -105,7 +105,8 @@ TEST(Mujoco3Ellipse, OneGroundContactAtTheSupportPointAsOnMujoco222) {
   node->reset(loaded.id, qpos_init, {v.x(), v.y(), v.z()});
   std::vector<double> batch;
   bool bad = false;
-  ASSERT_EQ(node->step(loaded.id, static_cast<int>(steps - 1), batch, bad), steps - 1);
+  ASSERT_EQ(node->step(loaded.id, static_cast<int>(steps - 1), loaded.nq + loaded.nv, batch, bad),
+            steps - 1);
   node->free(loaded.id);
   ASSERT_FALSE(bad);
   const size_t width = 2 * static_cast<size_t>(nq);
