@@ -705,6 +705,7 @@ std::vector<TreeLoad> tree_loads(const ModelState& s, const std::vector<InspectR
       }
     }
   std::vector<TreeLoad> out;
+  out.reserve(trees.size());
   for (auto& [r, t] : trees) out.push_back(t);
   return out;
 }
@@ -884,7 +885,8 @@ std::string trees_text(const InspectReport& rep) {
       !(rep.gravity[0] != 0.0 || rep.gravity[1] != 0.0 || rep.gravity[2] != 0.0))
     return "";
   std::ostringstream o;
-  double weight = 0.0, support = 0.0, low = INFINITY, high = -INFINITY;
+  double weight = 0.0, support = 0.0;
+  double low = std::numeric_limits<double>::infinity(), high = -low;
   for (const TreeLoad* t : touching) {
     weight += t->weight;
     support += t->support;

@@ -92,6 +92,58 @@ std::vector<MeshGeom> mesh_geoms(const mjModel* m) {
   return out;
 }
 
+namespace {
+
+// The mesh cause (the header): the bodies' mass differences against their
+// mesh geoms' two volumes; sets c.implied_density and its sentence. Returns
+// each mesh-carrying body's Σ (V_mesh − V_box).
+std::map<int, double> mesh_cause(const ModelState& v2, const ModelState& v3, VersionComparison& c) {
+  // The mesh cause: the mass differences of the bodies with mesh geoms
+  // against the volumes' difference.
+  const size_t nbody = std::min(v2.body_mass.size(), v3.body_mass.size());
+  double dm = 0.0, dv = 0.0, unexplained = 0.0;
+  std::map<int, double> mesh_dv;  // body → Σ (V_mesh − V_box)
+  for (const MeshGeom& mg : c.meshes) mesh_dv[mg.body] += mg.mesh_volume - mg.box_volume;
+  for (size_t b = 1; b < nbody; ++b) {
+    const double d = v3.body_mass[b] - v2.body_mass[b];
+    if (std::abs(d) <= kVersionTolerance * std::max(v2.body_mass[b], 1e-12)) continue;
+    if (auto it = mesh_dv.find(static_cast<int>(b)); it != mesh_dv.end() && it->second != 0.0) {
+      dm += d;
+      dv += it->second;
+    } else {
+      unexplained += std::abs(d);
+    }
+  }
+  c.implied_density = dv != 0.0 ? dm / dv : kNoNumber;
+  const bool found = std::isfinite(c.implied_density) && c.implied_density > 0.0;
+  if (found) {
+    std::string geoms;
+    for (const MeshGeom& mg : c.meshes)
+      if (std::abs(mg.mesh_volume - mg.box_volume) > 0.0)
+        geoms += (geoms.empty() ? "" : ", ") + mg.geom_name + " (mesh " + mg.mesh_name + ", body " +
+                 v2.body_names[static_cast<size_t>(mg.body)] + ": " + format_number(mg.box_volume) +
+                 " m³ as 2.2.2's box, " + format_number(mg.mesh_volume) + " m³ as the mesh)";
+    c.causes.push_back(
+        "3.1's mesh volume: MuJoCo infers a mesh geom's mass from a volume, 2.2.2 the volume of "
+        "the box with the mesh's inertia per unit mass, 3.1 and later the mesh's own (legacy) "
+        "volume; measured on 2.2.2's mesh: " +
+        geoms + "; the measured mass difference is that volume difference at " +
+        format_number(c.implied_density) + " kg/m³" +
+        (std::abs(c.implied_density / 1000.0 - 1.0) < 1e-3 ? " (MuJoCo's default density)"
+                                                           : " (the geoms' density if it "
+                                                             "explains them)") +
+        "; the body's inertia, Â, its contacts' A, k and c and its load follow. Give the mesh "
+        "geom an explicit mass (or the body an <inertial>) and both versions "
+        "agree: the box has the mesh's inertia per unit mass");
+  }
+  if (unexplained > 0.0)
+    c.causes.push_back("masses that differ on bodies with no mesh geom (" +
+                       format_number(unexplained) + " kg): no version change contact2d knows");
+  return mesh_dv;
+}
+
+}  // namespace
+
 VersionComparison compare_versions(const ModelState& v2, InspectReport r2, const ModelState& v3,
                                    InspectReport r3, std::vector<MeshGeom> meshes) {
   VersionComparison c;
@@ -139,46 +191,8 @@ VersionComparison compare_versions(const ModelState& v2, InspectReport r2, const
       tv.support[v] = t.support;
       tv.contacts[v] = t.contacts;
     }
-  // The mesh cause: the mass differences of the bodies with mesh geoms
-  // against the volumes' difference.
-  double dm = 0.0, dv = 0.0, unexplained = 0.0;
-  std::map<int, double> mesh_dv;  // body → Σ (V_mesh − V_box)
-  for (const MeshGeom& mg : c.meshes) mesh_dv[mg.body] += mg.mesh_volume - mg.box_volume;
-  for (size_t b = 1; b < nbody; ++b) {
-    const double d = v3.body_mass[b] - v2.body_mass[b];
-    if (std::abs(d) <= kVersionTolerance * std::max(v2.body_mass[b], 1e-12)) continue;
-    if (auto it = mesh_dv.find(static_cast<int>(b)); it != mesh_dv.end() && it->second != 0.0) {
-      dm += d;
-      dv += it->second;
-    } else {
-      unexplained += std::abs(d);
-    }
-  }
-  c.implied_density = dv != 0.0 ? dm / dv : kNoNumber;
-  const bool mesh_cause = std::isfinite(c.implied_density) && c.implied_density > 0.0;
-  if (mesh_cause) {
-    std::string geoms;
-    for (const MeshGeom& mg : c.meshes)
-      if (std::abs(mg.mesh_volume - mg.box_volume) > 0.0)
-        geoms += (geoms.empty() ? "" : ", ") + mg.geom_name + " (mesh " + mg.mesh_name + ", body " +
-                 v2.body_names[static_cast<size_t>(mg.body)] + ": " + format_number(mg.box_volume) +
-                 " m³ as 2.2.2's box, " + format_number(mg.mesh_volume) + " m³ as the mesh)";
-    c.causes.push_back(
-        "3.1's mesh volume: MuJoCo infers a mesh geom's mass from a volume, 2.2.2 the volume of "
-        "the box with the mesh's inertia per unit mass, 3.1 and later the mesh's own (legacy) "
-        "volume; measured on 2.2.2's mesh: " +
-        geoms + "; the measured mass difference is that volume difference at " +
-        format_number(c.implied_density) + " kg/m³" +
-        (std::abs(c.implied_density / 1000.0 - 1.0) < 1e-3 ? " (MuJoCo's default density)"
-                                                           : " (the geoms' density if it "
-                                                             "explains them)") +
-        "; the body's inertia, Â, its contacts' A, k and c and its load follow. Give the mesh "
-        "geom an explicit mass (or the body an <inertial>) and both versions "
-        "agree: the box has the mesh's inertia per unit mass");
-  }
-  if (unexplained > 0.0)
-    c.causes.push_back("masses that differ on bodies with no mesh geom (" +
-                       format_number(unexplained) + " kg): no version change contact2d knows");
+  const std::map<int, double> mesh_dv = mesh_cause(v2, v3, c);  // body → Σ (V_mesh − V_box)
+  const bool mesh_cause_found = std::isfinite(c.implied_density) && c.implied_density > 0.0;
   // Each body's cause.
   std::map<std::string, bool> tree_changed;
   for (const BodyVersions& b : c.bodies)
@@ -193,7 +207,7 @@ VersionComparison compare_versions(const ModelState& v2, InspectReport r2, const
     const bool mass = std::abs(b.mass_change) > kVersionTolerance ||
                       std::abs(b.inertia_change) > kVersionTolerance;
     if (mass)
-      why.push_back(mesh_cause && mesh_dv.count(static_cast<int>(id)) != 0
+      why.push_back(mesh_cause_found && mesh_dv.count(static_cast<int>(id)) != 0
                         ? "mass: 3.1's mesh volume"
                         : "mass: not a known version change");
     if (std::abs(b.invweight_change) > kVersionTolerance) {
