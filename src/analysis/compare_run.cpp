@@ -145,6 +145,47 @@ std::vector<RunProblem> run_problems(const Comparison& c) {
   return problems;
 }
 
+namespace {
+
+// MuJoCo 3's friction damper (docs/mujoco3.md) matches the tanh law where a
+// body slides or rolls to rest, and falls behind it where a landing loads a
+// contact many times the weight: its friction is viscous with b fixed at the
+// resting load, where tanh grips with μ·F_n. Which one this scene is, is
+// measured: the run again with MuJoCo's shared damper, both against the
+// reference.
+void damper_check(Comparison& c) {
+  if (!(c.scene.contact.mu > 0.0)) return;
+  for (size_t i = 1; i < c.runs.size(); ++i) {
+    const ComparedRun& r = c.runs[i];
+    if (r.spec.kind != "mujoco3" || engines::option_value(r.spec, "friction") != "damper") continue;
+    engines::EngineSpec shared = r.spec;
+    shared.set("friction", "shared");
+    double without = NAN;
+    try {
+      without =
+          error_between(c.runs[0].run.trajectory, engines::run_engine(shared, c.scene).trajectory)
+              .max_pos;
+    } catch (const std::exception&) {
+      continue;  // the shared damper cannot run it: nothing to compare
+    }
+    const double with = r.vs_first.max_pos;
+    const bool helps = with < without;
+    c.diagnosis.damper_notes.push_back(
+        r.label + ": MuJoCo 3's friction damper is on. Against the reference this run is " +
+        format_number(with, 3) + " m apart, and " + format_number(without, 3) +
+        " m with MuJoCo's shared damper (" + shared.name() + "): here it " +
+        (helps ? "helps, as where a body slides or rolls to rest on its resting load"
+               : "hurts: its friction is viscous with b fixed at the resting load, and where a "
+                 "landing loads a contact many times the weight the reference's tanh law grips "
+                 "and the damper lets it slip (the shipped T lands on a corner and tips the "
+                 "other way); run " +
+                     shared.name() + " for this scene") +
+        " (docs/mujoco3.md).");
+  }
+}
+
+}  // namespace
+
 void measure(Comparison& c, double converged_tol, bool diagnosis, const DiagnosisOptions& options) {
   c.converged = converged_solution(c.scene, converged_tol);
   const Trajectory& first = c.runs[0].run.trajectory;
@@ -164,6 +205,7 @@ void measure(Comparison& c, double converged_tol, bool diagnosis, const Diagnosi
         "Not run: its causes (the mapping, refsafe, the friction cone at its impratio) are "
         "those of an engine with soft constraints such as MuJoCo, and " +
         others + (c.runs.size() > 2 ? " have none." : " has none.");
+    damper_check(c);
     return;
   }
   const size_t i = c.diagnosed;
@@ -171,6 +213,7 @@ void measure(Comparison& c, double converged_tol, bool diagnosis, const Diagnosi
   if (!c.early.empty()) how.early = &c.early;
   c.diagnosis = diagnose(c.scene, c.runs[i].spec, c.runs[0].run, c.runs[i].run, pair(c, i),
                          registry_runner(), how);
+  damper_check(c);
 }
 
 ThreeWay pair(const Comparison& c, size_t i) {
@@ -233,7 +276,10 @@ void json_diagnosis(std::ostringstream& o, const Diagnosis& d) {
   o << "], \"not_rerun\": [";
   for (size_t i = 0; i < d.not_rerun.size(); ++i)
     o << (i ? ", " : "") << json::string(d.not_rerun[i]);
-  o << "], \"not_rerun_why\": " << json::string(d.not_rerun_why);
+  o << "], \"not_rerun_why\": " << json::string(d.not_rerun_why) << ", \"damper_notes\": [";
+  for (size_t i = 0; i < d.damper_notes.size(); ++i)
+    o << (i ? ", " : "") << json::string(d.damper_notes[i]);
+  o << "]";
 }
 
 }  // namespace

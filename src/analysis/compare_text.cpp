@@ -76,6 +76,8 @@ std::string engines_text(const Comparison& c) {
 // ruled out and what was not re-run.
 void diagnosis_text(std::ostringstream& out, const Comparison& c) {
   const Diagnosis& d = c.diagnosis;
+  if (!d.damper_notes.empty()) out << "\nFriction damper:\n";
+  for (const std::string& note : d.damper_notes) out << wrapped(note, "  ");
   if (!d.ran) {
     if (!d.summary.empty()) out << "\nDiagnosis:\n" << wrapped(d.summary, "  ");
     return;

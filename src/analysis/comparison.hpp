@@ -150,6 +150,11 @@ struct Diagnosis {
   // difference (empty after a full diagnosis), and why, in one sentence.
   std::vector<std::string> not_rerun;
   std::string not_rerun_why;
+  // MuJoCo 3's friction damper, where a run has it on a scene with
+  // friction (compare's measure): that run against the reference with it
+  // and re-run with MuJoCo's shared damper, and what that says, one
+  // paragraph per run.
+  std::vector<std::string> damper_notes;
 };
 
 // A MuJoCo run of the first tier that depends on the scene and the engine

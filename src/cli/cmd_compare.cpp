@@ -40,6 +40,7 @@ namespace {
 struct CompareOptions {
   SceneOptions scene;
   std::vector<std::string> engines;  // --engines; empty: every engine built in but the reference
+  std::string engine;                // --engine: one engine, as --engines with one name
   EngineOptions engine_options;      // --mapping, --geometry, --model-dt: the engines' own
   std::string csv;
   std::string plot;
@@ -87,11 +88,16 @@ void write_csv(AtomicFile& out, const Comparison& c) {
 
 int compare(const CompareOptions& options) {
   options.outputs.check();
+  if (!options.engine.empty() && !options.engines.empty())
+    throw InputError("--engine " + options.engine +
+                     ": not with --engines (put every engine in --engines)");
+  const std::vector<std::string> names =
+      options.engine.empty() ? options.engines : std::vector<std::string>{options.engine};
   const engines::OptionValues given(options.engine_options.values.begin(),
                                     options.engine_options.values.end());
   Comparison c = analysis::prepare_comparison(
       options.scene.load(),
-      analysis::comparison_engines(options.engines, given, options.engine_options.model_dt,
+      analysis::comparison_engines(names, given, options.engine_options.model_dt,
                                    options.scene.path, flag_spelling));
   if (!options.video.empty()) {
 #ifdef CONTACT2D_WITH_WINDOW
@@ -178,6 +184,20 @@ int compare(const CompareOptions& options) {
   return kExitOk;
 }
 
+// What compare runs without --engines, for its help: the engines built
+// into this program, by name and title.
+std::string built_in_engines() {
+  std::string list, named;
+  for (const engines::EngineInfo* info : engines::engine_list()) {
+    if (info->make == nullptr || info->kind == "ref") continue;
+    std::string& to = info->compared_by_default ? list : named;
+    to += (to.empty() ? "" : " and ") + std::string(info->kind) + " (" + std::string(info->title) +
+          ")";
+  }
+  return (list.empty() ? "the reference alone" : list) +
+         (named.empty() ? "" : "; " + named + " only when named");
+}
+
 }  // namespace
 
 Command add_compare(CLI::App& app) {
@@ -190,10 +210,13 @@ Command add_compare(CLI::App& app) {
                   "Comma-separated engines to compare with the reference, each measured against "
                   "it and the converged solution: " +
                       engines::engine_names_help() +
-                      "; a name carries its options (mujoco:exact:boxes) (default: every engine "
-                      "built in, with --mapping and --geometry)")
+                      "; a name carries its options (mujoco:exact:boxes) (default: " +
+                      built_in_engines() + ", each with --mapping and --geometry)")
       ->type_name("ENGINE")
       ->delimiter(',');
+  cmd->add_option("--engine", options->engine,
+                  "One engine to compare with the reference, as --engines with one name")
+      ->type_name("ENGINE");
   options->outputs.file(*cmd, "--csv", options->csv,
                         "Write the trajectories side by side to this file", "FILE.csv");
   cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
