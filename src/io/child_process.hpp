@@ -1,17 +1,27 @@
 // A child process spoken to over its standard input and output (one
 // connected socket pair each way, so that writing to a child that died is
 // an error, EPIPE, and never the SIGPIPE that would end this program). Its
-// standard error goes to a pipe that is read only when it fails, for the
-// last thing it said.
+// standard error goes to a pipe that is drained whenever this side waits
+// (a chatty child never blocks on it); the last 64 kB are kept for the
+// message when it fails.
 //
 // The child runs in a process group of its own: a Ctrl-C at the terminal
 // reaches this program (io/interrupt.hpp), which exits; the child then sees
-// its input close and ends. The destructor closes the input, waits up to a
-// second for the child to exit and kills it otherwise.
+// its input close and ends. It dies with this program in every case: the
+// kernel sends it SIGKILL when the thread that started it ends
+// (PR_SET_PDEATHSIG; so the whole program's end, however it comes), and one
+// started with `dies_on_interrupt` is killed by the interrupt handler. The
+// destructor closes the input, waits up to a second for the child to exit
+// and kills it otherwise.
+//
+// Every wait has a deadline (set_deadline; none by default) and looks at
+// core/cancel.hpp's request every 20 ms: a child that does not answer in
+// time, or a wait cancelled, kills the child.
 #pragma once
 
 #include <sys/types.h>
 
+#include <chrono>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -47,11 +57,23 @@ class ChildProcess {
   // interrupt handler (io/interrupt.hpp, register_child) from the moment it
   // exists, so an interrupt kills it before removing the files, and it
   // cannot create one after.
+  // `dies_on_interrupt`: registered the same way, for a child that writes
+  // no file but must not outlive an interrupt (MuJoCo 3's Node).
+  // A relative argv[0] with a '/', and relative PATH entries, are this
+  // program's working folder's, not `directory`'s.
   ChildProcess(const std::vector<std::string>& argv, const std::string& directory = {},
-               bool writes_output = false);
+               bool writes_output = false, bool dies_on_interrupt = false);
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
+
+  // The time by which every write and read below must be done: past it the
+  // child is killed and the call throws ChildProcessError "process N did
+  // not answer within S s" (and says whether it was stopped). `seconds`
+  // from now; infinity (the default) waits without end.
+  void set_deadline(double seconds);
+  // A cancel requested (core/cancel.hpp) while waiting kills the child and
+  // throws Cancelled.
 
   // Writes all of `text` to its input; throws ChildProcessError when it
   // cannot (the child is gone).
@@ -67,16 +89,26 @@ class ChildProcess {
   ChildEnding finish();
 
   pid_t pid() const { return pid_; }
+  // Whether it has not ended (reaps it when it has).
+  bool running();
   // Why it ended, once its output ended: "exited with status 1", "killed
   // by signal 9 (Killed)", with the last line it wrote to standard error.
   std::string ending();
 
  private:
-  void fill();  // reads more output into buffer_; false at end
+  void fill();  // reads more output into buffer_; throws at end
+  // Waits until `fd` is ready for `events` (draining standard error
+  // meanwhile), until the deadline (throws) or a cancel (throws).
+  void wait_ready(int fd, short events);
+  void drain_error();  // what standard error holds now, into error_tail_
+  [[noreturn]] void give_up(const std::string& why);
+  double deadline_seconds_ = 0.0;  // as set, for the message
+  std::chrono::steady_clock::time_point deadline_ = std::chrono::steady_clock::time_point::max();
+  std::string error_tail_;  // the last 64 kB of its standard error
   pid_t pid_ = -1;
   int in_ = -1;   // its standard input (our end)
   int out_ = -1;  // its standard output (our end)
-  int err_ = -1;  // its standard error (our end, read on failure only)
+  int err_ = -1;  // its standard error (our end)
   std::string buffer_;
   size_t start_ = 0;  // the unread part of buffer_ begins here
   bool reaped_ = false;

@@ -25,7 +25,9 @@ struct Slot {
 };
 Slot g_slots[kSlots];
 std::mutex g_register;  // between threads that register; never taken by the handler
-constexpr int kChildren = 16;
+// Gnuplot, ffmpeg and the bench, and MuJoCo 3's Node processes: one per
+// thread that runs it, up to --threads' 256, beside the writers.
+constexpr int kChildren = 512;
 std::atomic<int> g_children[kChildren];  // a pid, or 0: free
 // Held sections in progress, on every thread, and whether the handler has
 // begun. The handler runs on a thread that holds none (its signals wait

@@ -43,11 +43,13 @@ int register_temporary(const std::string& path);
 // The file was renamed or removed: forget it (slot -1 is ignored).
 void unregister_temporary(int slot);
 
-// A child process writing one of those files (gnuplot, ffmpeg, the bench):
-// on an interrupt it is killed and reaped before the files are removed, so
-// it cannot create one after. Several at a time (the report runs its
-// sections on several threads); returns its slot (-1 when all 16 are in
-// use: it is then not killed).
+// A child process writing one of those files (gnuplot, ffmpeg, the bench),
+// or one that must not outlive the program (MuJoCo 3's Node processes): on
+// an interrupt it is killed and reaped before the files are removed, so it
+// cannot create one after. Several at a time (the report runs its sections
+// on several threads, each with its own Node); returns its slot (-1 when
+// all 512 are in use: it is then not killed here, and still dies with the
+// program, io/child_process.hpp).
 int register_child(int pid);
 
 // The child was reaped: forget it (slot -1 is ignored).

@@ -1,5 +1,10 @@
 #include "io/read_file.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 
 #include "core/input_error.hpp"
@@ -24,6 +29,25 @@ std::string read_input_file(const std::string& path, const std::string& what, st
   }
   if (in.bad()) throw InputError(path + ": cannot read " + what + " (read error)");
   return text;
+}
+
+void check_input_file(const std::string& path, const std::string& what, std::size_t limit) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0)
+    throw InputError(path + ": cannot read " + what + " (" + std::strerror(errno) + ")");
+  const auto refuse = [&](const std::string& why) {
+    throw InputError(path + ": cannot read " + what + " (" + why + ")");
+  };
+  if (S_ISDIR(info.st_mode)) refuse("a folder, not a file");
+  if (S_ISCHR(info.st_mode) || S_ISBLK(info.st_mode))
+    refuse("a device, not a regular file: it could be read without end");
+  if (S_ISFIFO(info.st_mode) || S_ISSOCK(info.st_mode))
+    refuse("a pipe or socket, not a regular file: it could be read without end");
+  if (!S_ISREG(info.st_mode)) refuse("not a regular file");
+  if (static_cast<unsigned long long>(info.st_size) > limit)
+    refuse("larger than " + std::to_string(limit >> 20) +
+           " MiB, where one is a few kB: is it the right file?");
+  if (::access(path.c_str(), R_OK) != 0) refuse(std::strerror(errno));
 }
 
 }  // namespace contact2d

@@ -8,44 +8,72 @@
 //             a "step" answer is followed by "bytes" bytes of little-endian
 //             float64: per step taken, qpos (nq) then qvel (nv).
 //
-// ops: hello → {version, package}; load {xml} → {id, nq, nv, body_pos,
-// body_invweight0, timestep}; free {id}; reset {id, qpos, qvel} (mj_resetData,
-// then the given state); applied {id, body, xfrc};
+// ops: hello {protocol} → {version, package, node, protocol} (the
+// protocol is PROTOCOL on both sides: a driver of another checkout, reached
+// through $CONTACT2D_MUJOCO3_DIR, refuses to speak; so does the C++ side);
+// load {xml} → {id, nq, nv, body_pos, body_invweight0, timestep}; free {id};
+// reset {id, qpos, qvel} (mj_resetData, then the given state); applied {id,
+// body, xfrc};
 // step {id, n} → {steps, bad, bytes}: up to n mj_step, stopping after the
 // first one that left a bad number in qpos or qvel (MuJoCo's autoreset is
-// off, so it stays there); rewind {id, n}: back to the state before the last
-// "step" and n steps again (a changed applied force takes effect there);
+// off, so it stays there); bytes is exactly steps·(nq+nv)·8; rewind {id, n}:
+// back to the state before the last "step" and n steps again (a changed
+// applied force takes effect there);
 // counters {id} → {warnings: ["text (N times)"]};
-// state {path, key, settle} → a user's model file at one state, the fields
-// of mujoco/model_state.hpp's ModelState (the model is loaded, settled,
-// read and freed within the request).
+// a user's model file at one state, in requests of bounded work so that the
+// C++ side can give each a deadline and cancel between them:
+//   open {path, key, settle, option} → {handle, steps}: staged, compiled,
+//     reset (to the keyframe) and checked; steps = the settling steps asked;
+//   settle {handle, n, ms} → {done}: up to n mj_step, fewer when ms ms of
+//     wall time have passed (done ≥ 1 when n ≥ 1);
+//   read {handle} → the fields of mujoco/model_state.hpp's ModelState, and
+//     the model freed; close {handle}: freed without reading.
 //
-// Everything MuJoCo prints (its warnings) is collected and returned as
-// "messages" on the next answer, so stdout carries only the protocol.
-import {lstatSync, readdirSync, readFileSync} from 'node:fs';
-import {basename, dirname, join} from 'node:path';
+// An answer {"ok": false, "error": ..., "fatal": true} means MuJoCo's
+// WebAssembly aborted (its memory is then unusable): the driver exits after
+// it. Every error carries what MuJoCo printed during the request ("Cannot
+// enlarge memory ..."), which is otherwise returned as "messages" on the
+// next answer, so stdout carries only the protocol.
+import {closeSync, fstatSync, openSync, readdirSync, readFileSync, readSync, statSync} from 'node:fs';
+import {dirname, isAbsolute, join, resolve} from 'node:path';
 import {createInterface} from 'node:readline';
 import {fileURLToPath} from 'node:url';
+
+// The version of this protocol; node_mujoco.hpp's kProtocol.
+const PROTOCOL = 2;
 
 const here = dirname(fileURLToPath(import.meta.url));
 const messages = [];
 const collect = (text) => messages.push(String(text));
 
-let loadMujoco;
+// Node ends with its parent: its input closing ends it (below), and so does
+// the parent's death seen here (every request is bounded work, so the event
+// loop runs at least every second or so). The C++ side also has the kernel
+// send SIGKILL at its death (PR_SET_PDEATHSIG), which reaches a busy Node.
+const parent = process.ppid;
+setInterval(() => {
+  if (process.ppid !== parent) process.exit(0);
+}, 500).unref();
+
+let mj, packageVersion;
 try {
-  ({default: loadMujoco} = await import('@mujoco/mujoco'));
+  const {default: loadMujoco} = await import('@mujoco/mujoco');
+  packageVersion =
+      JSON.parse(readFileSync(join(here, 'node_modules', '@mujoco', 'mujoco', 'package.json'),
+                              'utf8'))
+          .version;
+  mj = await loadMujoco({print: collect, printErr: collect});
 } catch (e) {
+  // Answered to the first request (hello); the C++ side makes it an input
+  // error (exit 2) naming the command that reinstalls the package.
+  const said = messages.length ? messages.map(oneLine).join('; ') + ': ' : '';
   process.stdout.write(JSON.stringify({
     ok: false,
-    error: 'cannot import @mujoco/mujoco: ' + String(e && e.message ? e.message : e).split('\n')[0]
-  }) + '\n');
-  process.exit(3);
+    error: 'cannot import @mujoco/mujoco: ' + said +
+        String(e && e.message ? e.message : e).split('\n')[0]
+  }) + '\n', () => process.exit(3));
+  await new Promise(() => {});
 }
-const packageVersion =
-    JSON.parse(
-            readFileSync(join(here, 'node_modules', '@mujoco', 'mujoco', 'package.json'), 'utf8'))
-        .version;
-const mj = await loadMujoco({print: collect, printErr: collect});
 
 const models = new Map();  // id → {m, d, saved}
 let nextId = 1;
@@ -55,10 +83,19 @@ function oneLine(e) {
   return text.replace(/\s+/g, ' ').trim();
 }
 
-function entry(request) {
-  const e = models.get(request.id);
-  if (!e) throw new Error(`no model ${request.id}`);
+function entry(id) {
+  const e = models.get(id);
+  if (!e) throw new Error(`no model ${id}`);
   return e;
+}
+
+// A model and its data freed (and its staged files, for a user's model).
+function close(id) {
+  const e = entry(id);
+  models.delete(id);
+  e.d.delete();
+  e.m.delete();
+  if (e.stage) e.stage.remove();
 }
 
 function badCounters(d) {
@@ -90,61 +127,198 @@ function restore(e) {
   d.qacc_warmstart.set(s.warm);
 }
 
-// The package cannot read the disk: the model file is copied into MuJoCo's
-// in-memory file system and, when MuJoCo cannot load it alone (an include,
-// a mesh, a texture beside it), its whole folder, at most kStageBytes in
-// all; removed after the request.
+// The package cannot read the disk: the model is copied into MuJoCo's
+// in-memory file system at its own absolute path, so that every name in it
+// resolves there as on the disk (../, absolute paths). First the file
+// alone; when MuJoCo cannot load it so, its folder (an include, a mesh, a
+// texture beside it), then, one at a time, each file MuJoCo still names
+// and cannot open (outside the folder, under a symlink). Sizes are checked
+// before anything is read: at most kStageBytes in all; the file's kind too
+// (a device or a FIFO would be read without end). Removed after the
+// request.
 const kStageBytes = 256 * 1024 * 1024;
-function stageFile(path) {
-  const root = '/model';
-  mj.FS.mkdirTree(root);
-  mj.FS.writeFile(root + '/' + basename(path), readFileSync(path));
-  return {root, file: root + '/' + basename(path)};
-}
+const utf8 = new TextDecoder('utf-8', {fatal: true});
 
-function stage(path) {
-  const root = '/model';
-  let bytes = 0;
-  const copy = (from, to) => {
-    mj.FS.mkdirTree(to);
-    for (const entry of readdirSync(from, {withFileTypes: true})) {
-      const source = join(from, entry.name), target = to + '/' + entry.name;
-      if (entry.isDirectory()) {
-        copy(source, target);
-      } else if (entry.isFile()) {
-        const data = readFileSync(source);
-        bytes += data.length;
-        if (bytes > kStageBytes) {
-          throw new Error(`the model's folder ${dirname(path)} holds more than ` +
-                          `${kStageBytes / 1048576} MiB (MuJoCo 3 reads a copy of it)`);
-        }
-        mj.FS.writeFile(target, data);
+class Stage {
+  constructor(model) {
+    this.model = resolve(model);
+    this.files = [];  // staged, in order
+    this.dirs = [];   // created, in order
+    this.bytes = 0;
+  }
+  mkdirs(dir) {
+    const missing = [];
+    for (let d = dir; d !== '/' && !this.exists(d); d = dirname(d)) missing.unshift(d);
+    for (const d of missing) {
+      mj.FS.mkdir(d);
+      this.dirs.push(d);
+    }
+  }
+  exists(path) {
+    try {
+      mj.FS.stat(path);
+      return true;
+    } catch {
+      return false;
+    }
+  }
+  // One file of the disk at its path (or at `as`); false when it is staged
+  // already. `why` names where the name came from, for the one line of a
+  // refusal.
+  file(path, why, as = path) {
+    if (this.exists(as)) return false;
+    let info;
+    try {
+      info = statSync(path);  // follows a symlink, as MuJoCo 2.2.2 does
+    } catch (e) {
+      const said = e.code === 'ENOENT' ? 'no such file' : e.code || oneLine(e);
+      throw new Error(`${path}${why}: cannot read it (${said})`);
+    }
+    if (!info.isFile()) {
+      throw new Error(`${path}${why}: not a regular file (MuJoCo 3 reads a copy of what the ` +
+                      'model names, and this would not end)');
+    }
+    this.add(info.size, path);
+    const fd = openSync(path, 'r');
+    let data;
+    try {
+      // Exactly the size stat said: a file that grows is not read on.
+      data = Buffer.alloc(info.size);
+      let at = 0;
+      while (at < data.length) {
+        const n = readSync(fd, data, at, data.length - at, at);
+        if (n <= 0) break;
+        at += n;
       }
+      if (fstatSync(fd).size !== info.size) throw new Error(`${path}${why}: changed while read`);
+    } finally {
+      closeSync(fd);
     }
-  };
-  try {
-    copy(dirname(path), root);
-  } catch (e) {
-    unstage(root);
-    throw e;
+    this.mkdirs(dirname(as));
+    mj.FS.writeFile(as, data);
+    this.files.push(as);
+    return true;
   }
-  return {root, file: root + '/' + basename(path)};
+  add(size, path) {
+    this.bytes += size;
+    if (this.bytes > kStageBytes) {
+      throw new Error(`${path}: the model's files come to more than ${kStageBytes / 1048576} ` +
+                      'MiB (MuJoCo 3 reads a copy of them in memory)');
+    }
+  }
+  // The model's folder, sizes first (names that are not UTF-8 cannot be
+  // named by a model, which is UTF-8 text: they are left out).
+  folder() {
+    const copy = (from) => {
+      for (const entry of readdirSync(Buffer.from(from), {withFileTypes: true, encoding: 'buffer'})) {
+        let name;
+        try {
+          name = utf8.decode(entry.name);
+        } catch {
+          continue;
+        }
+        const source = join(from, name);
+        let info;
+        try {
+          info = statSync(source);
+        } catch {
+          continue;  // a dangling symlink: MuJoCo says so if the model names it
+        }
+        if (info.isDirectory()) {
+          if (entry.isDirectory()) copy(source);  // a symlinked folder is followed on demand only
+        } else if (info.isFile()) {
+          this.add(info.size, dirname(this.model));
+        }
+      }
+    };
+    const staged = this.bytes;
+    copy(dirname(this.model));
+    this.bytes = staged;  // counted again as read
+    const read = (from) => {
+      for (const entry of readdirSync(Buffer.from(from), {withFileTypes: true, encoding: 'buffer'})) {
+        let name;
+        try {
+          name = utf8.decode(entry.name);
+        } catch {
+          continue;
+        }
+        const source = join(from, name);
+        let info;
+        try {
+          info = statSync(source);
+        } catch {
+          continue;
+        }
+        if (info.isDirectory()) {
+          if (entry.isDirectory()) read(source);
+        } else if (info.isFile()) {
+          this.file(source, '');
+          // MuJoCo 3 reads a '\\' in a model's file names as '/' (2.2.2 as
+          // a character of the name): the file is staged under both.
+          if (name.includes('\\')) {
+            try {
+              this.file(source, '', join(from, name.replaceAll('\\', '/')));
+            } catch {
+              // a folder of that name exists: the model cannot mean both
+            }
+          }
+        }
+      }
+    };
+    read(dirname(this.model));
+  }
+  remove() {
+    for (const f of this.files.reverse()) mj.FS.unlink(f);
+    for (const d of this.dirs.reverse()) mj.FS.rmdir(d);
+    this.files = [];
+    this.dirs = [];
+  }
 }
 
-function unstage(path) {
-  let info;
+// The name of the file MuJoCo could not open, resolved as 2.2.2 resolves it
+// (an include's file relative to the model's folder; an asset's path comes
+// whole), or null.
+function missingFile(error, model) {
+  const found = /Error opening file '([^']*)'/.exec(error) ||
+      /could not open file '([^']*)'/i.exec(error) || /resource not found[^']*'([^']*)'/.exec(error);
+  if (!found) return null;
+  return isAbsolute(found[1]) ? found[1] : resolve(dirname(model), found[1]);
+}
+
+// MuJoCo 3 compiling the model at `path` from its staged copy.
+function compile(path, where) {
+  const stage = new Stage(path);
+  const before = messages.length;
   try {
-    info = mj.FS.stat(path);
-  } catch {
-    return;
-  }
-  if (mj.FS.isDir(info.mode)) {
-    for (const name of mj.FS.readdir(path)) {
-      if (name !== '.' && name !== '..') unstage(path + '/' + name);
+    stage.file(stage.model, '');
+    const attempt = () => {
+      try {
+        return {m: mj.MjModel.from_xml_path(stage.model)};
+      } catch (e) {
+        // What MuJoCo printed on the way is part of its refusal ("Cannot
+        // enlarge memory ..." before a bad_alloc).
+        const said = messages.splice(before).map(oneLine).filter((t) => t);
+        return {error: oneLine(e) + (said.length ? ` (MuJoCo: ${said.join('; ')})` : '')};
+      }
+    };
+    let tried = attempt();
+    if (tried.error) {
+      stage.folder();
+      tried = attempt();
     }
-    mj.FS.rmdir(path);
-  } else {
-    mj.FS.unlink(path);
+    for (let more = 0; tried.error && more < 10000; ++more) {
+      const file = missingFile(tried.error, stage.model);
+      if (!file || !stage.file(file, ` (named by ${where}${path})`)) break;
+      tried = attempt();
+    }
+    if (tried.error) {
+      throw new Error(`${where}${path}: MuJoCo ${mj.mj_versionString()} cannot load the model: ` +
+                      tried.error);
+    }
+    return {m: tried.m, stage, loadWarning: messages.splice(before).map(oneLine).join('; ')};
+  } catch (e) {
+    stage.remove();
+    throw e;
   }
 }
 
@@ -159,8 +333,9 @@ function nameAt(m, adr) {
 
 const integrators = ['Euler', 'RK4', 'implicit', 'implicitfast'];
 
-function readState(m, d, r) {
-  const nv = m.nv, nbody = m.nbody, ngeom = m.ngeom;
+// The model reset to its keyframe (or qpos0) and checked; the steps of the
+// settling asked for.
+function prepareState(m, d, r) {
   const obj = mj.mjtObj;
   let key = -1;
   if (r.key) {
@@ -186,8 +361,13 @@ function readState(m, d, r) {
                       ` has a number that is not finite (${d.qpos[i]} at qpos[${i}])`);
     }
   }
-  const steps = Math.min(1000000, Math.round(r.settle / m.opt.timestep));
-  for (let i = 0; i < steps; ++i) mj.mj_step(m, d);
+  return Math.min(1000000, Math.round(r.settle / m.opt.timestep));
+}
+
+// The settled state (`steps` taken by "settle") as plain numbers.
+function readState(m, d, r, steps) {
+  const nv = m.nv, nbody = m.nbody, ngeom = m.ngeom;
+  const where = `${r.option ? r.option + ' ' : ''}${r.path}: `;
   mj.mj_forward(m, d);
   if (badCounters(d) > 0) {
     // Marked so the C++ side makes it an engine failure (exit 3), not bad input.
@@ -354,8 +534,18 @@ function readState(m, d, r) {
 }
 
 const ops = {
-  hello: () =>
-      ({version: mj.mj_versionString(), package: packageVersion, node: process.versions.node}),
+  hello: (r) => {
+    if (r.protocol !== PROTOCOL) {
+      throw new Error(`${join(here, 'driver.mjs')} speaks protocol ${PROTOCOL}, contact2d ` +
+                      `${r.protocol}: CONTACT2D_MUJOCO3_DIR names another checkout's driver`);
+    }
+    return {
+      version: mj.mj_versionString(),
+      package: packageVersion,
+      node: process.versions.node,
+      protocol: PROTOCOL
+    };
+  },
   load: (r) => {
     const m = mj.MjModel.from_xml_string(r.xml);
     // Bad numbers stay in qpos/qvel, where "step" sees them at once, instead
@@ -375,14 +565,11 @@ const ops = {
     };
   },
   free: (r) => {
-    const e = entry(r);
-    e.d.delete();
-    e.m.delete();
-    models.delete(r.id);
+    close(r.id);
     return {};
   },
   reset: (r) => {
-    const e = entry(r);
+    const e = entry(r.id);
     mj.mj_resetData(e.m, e.d);
     e.d.qpos.set(r.qpos);
     e.d.qvel.set(r.qvel);
@@ -390,14 +577,15 @@ const ops = {
     return {};
   },
   applied: (r) => {
-    const e = entry(r);
+    const e = entry(r.id);
     e.d.xfrc_applied.set(r.xfrc, 6 * r.body);
     return {};
   },
   step: (r) => {
-    const e = entry(r);
+    const e = entry(r.id);
     const { m, d } = e;
     const nq = m.nq, nv = m.nv, width = nq + nv;
+    if (!Number.isInteger(r.n) || r.n < 1 || r.n > 1 << 20) throw new Error(`step n = ${r.n}`);
     const out = new Float64Array(r.n * width);
     save(e);
     // Views into MuJoCo's memory, taken again if a step ever moved it.
@@ -422,46 +610,55 @@ const ops = {
     return { steps, bad, bytes: bytes.length, payload: bytes };
   },
   rewind: (r) => {
-    const e = entry(r);
+    const e = entry(r.id);
     if (!e.saved) throw new Error('rewind without a step');
     restore(e);
     for (let i = 0; i < r.n; ++i) mj.mj_step(e.m, e.d);
     return {};
   },
-  state: (r) => {
-    let {root, file} = stageFile(r.path);
+  open: (r) => {
+    const where = r.option ? r.option + ' ' : '';
+    const {m, stage, loadWarning} = compile(r.path, where);
+    let d;
     try {
-      const before = messages.length;
-      let m;
-      try {
-        m = mj.MjModel.from_xml_path(file);
-      } catch {
-        // Alone it does not load: with its folder (includes, meshes), or
-        // MuJoCo's message about the model itself.
-        messages.splice(before);
-        unstage(root);
-        ({root, file} = stage(r.path));
-        try {
-          m = mj.MjModel.from_xml_path(file);
-        } catch (e) {
-          throw new Error(`${r.option ? r.option + ' ' : ''}${r.path}: MuJoCo ` +
-                          `${mj.mj_versionString()} cannot load the model: ${oneLine(e)}`);
-        }
-      }
-      const loadWarning = messages.splice(before).map(oneLine).join('; ');
-      const d = new mj.MjData(m);
-      try {
-        return {...readState(m, d, r), load_warning: loadWarning};
-      } finally {
-        d.delete();
-        m.delete();
-      }
-    } finally {
-      unstage(root);
+      d = new mj.MjData(m);
+      const steps = prepareState(m, d, r);
+      const handle = nextId++;
+      models.set(handle, {m, d, saved: null, stage, request: r, steps, taken: 0, loadWarning});
+      return {handle, steps};
+    } catch (e) {
+      if (d) d.delete();
+      m.delete();
+      stage.remove();
+      throw e;
     }
   },
+  settle: (r) => {
+    const e = entry(r.handle);
+    if (!Number.isInteger(r.n) || r.n < 0) throw new Error(`settle n = ${r.n}`);
+    const until = performance.now() + r.ms;
+    let done = 0;
+    while (done < r.n && (done === 0 || performance.now() < until)) {
+      mj.mj_step(e.m, e.d);
+      ++done;
+    }
+    e.taken += done;
+    return {done};
+  },
+  read: (r) => {
+    const e = entry(r.handle);
+    try {
+      return {...readState(e.m, e.d, e.request, e.taken), load_warning: e.loadWarning};
+    } finally {
+      close(r.handle);
+    }
+  },
+  close: (r) => {
+    close(r.handle);
+    return {};
+  },
   counters: (r) => {
-    const {d} = entry(r);
+    const {d} = entry(r.id);
     const out = [];
     for (let i = 0; i < mj.mjtWarning.mjNWARNING.value; ++i) {
       const n = d.warning.get(i).number;
@@ -474,18 +671,26 @@ const ops = {
 const input = createInterface({input: process.stdin, crlfDelay: Infinity});
 input.on('line', (line) => {
   let answer;
+  const before = messages.length;
   try {
     const request = JSON.parse(line);
     const op = ops[request.op];
     if (!op) throw new Error(`unknown op ${request.op}`);
     answer = {ok: true, ...op(request)};
   } catch (e) {
-    answer = {ok: false, error: oneLine(e)};
+    // What MuJoCo printed on the way ("Cannot enlarge memory ...") is part
+    // of the error: its own text, not only the abort that followed.
+    const said = messages.splice(before).map(oneLine).filter((t) => t);
+    const text = oneLine(e);
+    answer = {ok: false, error: said.length ? `${text} (MuJoCo: ${said.join('; ')})` : text};
+    // An abort leaves the WebAssembly instance unusable: say so and end.
+    if (e instanceof WebAssembly.RuntimeError || /^Aborted\(/.test(text)) answer.fatal = true;
   }
   const payload = answer.payload;
   delete answer.payload;
   if (messages.length) answer.messages = messages.splice(0).map(oneLine);
   process.stdout.write(JSON.stringify(answer) + '\n');
   if (payload) process.stdout.write(payload);
+  if (answer.fatal) process.stdout.write('', () => process.exit(3));
 });
 input.on('close', () => process.exit(0));

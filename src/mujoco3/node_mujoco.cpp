@@ -1,16 +1,25 @@
 #include "mujoco3/node_mujoco.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 #include <filesystem>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
+#include "core/cancel.hpp"
+#include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "io/child_process.hpp"
 #include "io/json.hpp"
 #include "io/json_reader.hpp"
+#include "io/read_file.hpp"
 
 #ifndef CONTACT2D_MUJOCO3_DIR
 #error "CONTACT2D_MUJOCO3_DIR: the folder of driver.mjs (CMakeLists.txt sets it)"
@@ -28,14 +37,21 @@ std::string fix_command() {
 
 bool is_file(const std::string& path) { return ::access(path.c_str(), R_OK) == 0; }
 
-// `node` in PATH ("" when none).
+// `node` in PATH as an absolute path ("" when none): a relative PATH entry
+// is this program's working folder's, and Node runs in package_directory().
 std::string find_node() {
   const char* path = std::getenv("PATH");
   std::stringstream dirs(path ? path : "");
   std::string dir;
   while (std::getline(dirs, dir, ':')) {
     std::string candidate = (dir.empty() ? "." : dir) + "/node";
-    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+    struct stat info {};
+    if (::access(candidate.c_str(), X_OK) == 0 && ::stat(candidate.c_str(), &info) == 0 &&
+        S_ISREG(info.st_mode)) {
+      std::error_code error;
+      const std::filesystem::path absolute = std::filesystem::absolute(candidate, error);
+      return error ? candidate : absolute.lexically_normal().string();
+    }
   }
   return {};
 }
@@ -49,17 +65,138 @@ std::string read_text(const std::string& path) {
 
 std::string text_of(const json::Value* v) { return v ? v->text : std::string(); }
 
+// An answer that lacks a key or has one of the wrong kind: the Node side
+// broke the protocol (Node::checked makes it an EngineError).
+struct BadAnswer : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+const char* kind_name(json::Value::Kind kind) {
+  switch (kind) {
+    case json::Value::Kind::Null: return "null";
+    case json::Value::Kind::Bool: return "a boolean";
+    case json::Value::Kind::Number: return "a number";
+    case json::Value::Kind::String: return "a string";
+    case json::Value::Kind::Array: return "an array";
+    case json::Value::Kind::Object: return "an object";
+  }
+  return "?";
+}
+
+// The member `key` of `v`, of that kind; never a default.
+const json::Value& need(const json::Value& v, const std::string& key, json::Value::Kind kind) {
+  const json::Value* found = v.get(key);
+  if (found == nullptr) throw BadAnswer("no \"" + key + "\"");
+  if (found->kind != kind)
+    throw BadAnswer("\"" + key + "\" is " + kind_name(found->kind) + ", not " + kind_name(kind));
+  return *found;
+}
+
+double need_number(const json::Value& v, const std::string& key) {
+  return need(v, key, json::Value::Kind::Number).number;
+}
+
+// A whole number within [low, high].
+long long need_integer(const json::Value& v, const std::string& key, long long low = 0,
+                       long long high = std::numeric_limits<int>::max()) {
+  const double x = need_number(v, key);
+  if (!(x >= static_cast<double>(low) && x <= static_cast<double>(high)) || x != std::floor(x))
+    throw BadAnswer("\"" + key + "\" is " + json::number(x) + ", not a whole number in [" +
+                    std::to_string(low) + ", " + std::to_string(high) + "]");
+  return static_cast<long long>(x);
+}
+
+bool need_flag(const json::Value& v, const std::string& key) {
+  return need(v, key, json::Value::Kind::Bool).text == "true";
+}
+
+std::string need_text(const json::Value& v, const std::string& key) {
+  return need(v, key, json::Value::Kind::String).text;
+}
+
+// An array of numbers (`size` of them unless it is npos).
+std::vector<double> need_numbers(const json::Value& v, const std::string& key,
+                                 size_t size = std::string::npos) {
+  const json::Value& list = need(v, key, json::Value::Kind::Array);
+  if (size != std::string::npos && list.items.size() != size)
+    throw BadAnswer("\"" + key + "\" has " + std::to_string(list.items.size()) + " numbers, not " +
+                    std::to_string(size));
+  std::vector<double> out;
+  out.reserve(list.items.size());
+  for (const json::Value& item : list.items) {
+    if (item.kind != json::Value::Kind::Number)
+      throw BadAnswer("\"" + key + "\" holds " + kind_name(item.kind) + ", not a number");
+    out.push_back(item.number);
+  }
+  return out;
+}
+
+std::vector<int> need_integers(const json::Value& v, const std::string& key) {
+  std::vector<int> out;
+  for (const double x : need_numbers(v, key)) {
+    if (!(std::abs(x) <= std::numeric_limits<int>::max()) || x != std::floor(x))
+      throw BadAnswer("\"" + key + "\" holds " + json::number(x) + ", not a whole number");
+    out.push_back(static_cast<int>(x));
+  }
+  return out;
+}
+
+std::vector<std::string> need_texts(const json::Value& v, const std::string& key) {
+  std::vector<std::string> out;
+  for (const json::Value& item : need(v, key, json::Value::Kind::Array).items) {
+    if (item.kind != json::Value::Kind::String)
+      throw BadAnswer("\"" + key + "\" holds " + kind_name(item.kind) + ", not a string");
+    out.push_back(item.text);
+  }
+  return out;
+}
+
+std::vector<bool> need_flags(const json::Value& v, const std::string& key) {
+  std::vector<bool> out;
+  for (const json::Value& item : need(v, key, json::Value::Kind::Array).items) {
+    if (item.kind != json::Value::Kind::Bool)
+      throw BadAnswer("\"" + key + "\" holds " + kind_name(item.kind) + ", not a boolean");
+    out.push_back(item.text == "true");
+  }
+  return out;
+}
+
+// The deadline of an answer: $CONTACT2D_MUJOCO3_TIMEOUT seconds (60 by
+// default: Node's start and the package's import take ~1 s, several on a
+// loaded machine) plus the work asked, at `per_unit` seconds each.
+double deadline(double units = 0.0, double per_unit = 0.0) {
+  double base = 60.0;
+  if (const char* set = std::getenv("CONTACT2D_MUJOCO3_TIMEOUT"); set && *set) {
+    char* end = nullptr;
+    const double x = std::strtod(set, &end);
+    if (end != set && *end == '\0' && x > 0.0) base = x;
+  }
+  return base + units * per_unit;
+}
+
+// A step of one of the scenes' models takes microseconds (~60 µs while
+// the JIT warms up); a user's model settles in slices of kSliceMs.
+constexpr double kStepSeconds = 2e-3;
+constexpr double kSliceMs = 50.0;
+
+// Memory a Node running MuJoCo 3 takes (measured 95–140 MB).
+constexpr double kNodeBytes = 140e6;
+std::atomic<int> g_nodes{0};  // running in this process
+
+double available_memory() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string name;
+  double kb = 0.0;
+  std::string unit;
+  while (meminfo >> name >> kb >> unit)
+    if (name == "MemAvailable:") return kb * 1024.0;
+  return -1.0;  // unknown: not limited here
+}
+
 std::string numbers(const std::vector<double>& values) {
   std::string out = "[";
   for (size_t i = 0; i < values.size(); ++i) out += (i ? "," : "") + json::number(values[i]);
   return out + "]";
-}
-
-std::vector<double> numbers_of(const json::Value* v) {
-  std::vector<double> out;
-  if (v == nullptr) return out;
-  for (const json::Value& item : v->items) out.push_back(item.number);
-  return out;
 }
 
 }  // namespace
@@ -94,170 +231,234 @@ std::string missing() {
   return {};
 }
 
+std::string too_many_nodes(int running, double available_bytes) {
+  if (running < 1 || available_bytes < 0.0 || available_bytes >= 2.0 * kNodeBytes) return {};
+  const int fits = running + std::max(0, static_cast<int>(available_bytes / kNodeBytes) - 1);
+  return "mujoco3: " + std::to_string(running) +
+         " MuJoCo 3 processes run already (Node.js, one per thread that runs MuJoCo 3, each " +
+         "95-140 MB) and " + std::to_string(static_cast<long long>(available_bytes / 1e6)) +
+         " MB of memory are available: run with --threads " + std::to_string(fits) + " or fewer";
+}
+
 struct Node::Answer {
   json::Value value;
-  const json::Value* get(const std::string& key) const { return value.get(key); }
 };
 
 std::shared_ptr<Node> Node::of_this_thread() {
   thread_local std::shared_ptr<Node> node;
-  if (!node || node->failed_) node.reset(new Node());
+  // One that died while idle (killed, out of memory) is replaced too: the
+  // next call must not fail for it.
+  if (!node || node->failed_ || !node->process_->running()) node.reset(new Node());
   return node;
 }
 
 Node::Node() {
   const std::string why = missing();
   if (!why.empty()) throw InputError(why);
+  const std::string crowded = too_many_nodes(g_nodes.load(), available_memory());
+  if (!crowded.empty()) throw InputError(crowded);
   try {
     process_ = std::make_unique<ChildProcess>(std::vector<std::string>{find_node(), "driver.mjs"},
-                                              package_directory());
+                                              package_directory(), /*writes_output=*/false,
+                                              /*dies_on_interrupt=*/true);
   } catch (const ChildProcessError& e) {
     throw InputError("mujoco3: " + std::string(e.what()) + ": " + fix_command());
   }
-  const Answer hello = request(R"({"op":"hello"})");
-  const std::string version = text_of(hello.get("version"));
+  ++g_nodes;
+  const Answer hello = request(
+      "hello", R"({"op":"hello","protocol":)" + std::to_string(kProtocol) + "}", deadline());
+  const auto [version, node, protocol] = checked("hello", [&] {
+    return std::make_tuple(need_text(hello.value, "version"), need_text(hello.value, "node"),
+                           need_integer(hello.value, "protocol"));
+  });
+  if (protocol != kProtocol)
+    throw InputError("mujoco3: " + package_directory() + "/driver.mjs speaks protocol " +
+                     std::to_string(protocol) + ", contact2d " + std::to_string(kProtocol) +
+                     ": CONTACT2D_MUJOCO3_DIR names another checkout's driver");
   if (version != kVersion)
     throw InputError("mujoco3: Node loaded MuJoCo " + version + ", contact2d is pinned to " +
                      std::string(kVersion) + ": " + fix_command());
-  const int node_major =
-      static_cast<int>(std::strtol(text_of(hello.get("node")).c_str(), nullptr, 10));
+  const int node_major = static_cast<int>(std::strtol(node.c_str(), nullptr, 10));
   if (node_major < kOldestNode)
-    throw InputError("mujoco3: Node " + text_of(hello.get("node")) + " is older than " +
-                     std::to_string(kOldestNode) +
+    throw InputError("mujoco3: Node " + node + " is older than " + std::to_string(kOldestNode) +
                      ", which @mujoco/mujoco needs: " + fix_command());
 }
 
-Node::~Node() = default;
+Node::~Node() {
+  if (process_) --g_nodes;
+}
 
 int Node::pid() const { return static_cast<int>(process_->pid()); }
 
-Node::Answer Node::request(const std::string& line, const std::string& origin, bool verbatim) {
+template <typename F>
+auto Node::checked(const std::string& op, F&& read) -> decltype(read()) {
+  try {
+    return read();
+  } catch (const BadAnswer& e) {
+    failed_ = true;
+    throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
+                      " answered " + op + " with " + e.what() + " (" + fix_command() + ")");
+  }
+}
+
+void Node::lost(const std::string& why) {
+  failed_ = true;
+  throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
+                    " failed: " + why + " (" + fix_command() + ")");
+}
+
+Node::Answer Node::request(const std::string& op, const std::string& line, double seconds,
+                           const std::string& origin, bool verbatim) {
   Answer a;
   std::string text;
   try {
+    process_->set_deadline(seconds);
     process_->write(line + "\n");
     text = process_->read_line();
-    a.value = json::parse(text, "the MuJoCo 3 process's answer");
+    a.value = json::parse(text, "the MuJoCo 3 process's answer to " + op);
+  } catch (const Cancelled&) {  // the process was killed with the wait
+    failed_ = true;
+    throw;
   } catch (const std::exception& e) {
-    failed_ = true;
-    throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
-                      " failed: " + e.what() + " (" + fix_command() + ")");
+    lost(e.what());
   }
-  if (const json::Value* said = a.get("messages"))
+  if (a.value.kind != json::Value::Kind::Object) lost("its answer to " + op + " is not an object");
+  if (const json::Value* said = a.value.get("messages"))
     for (const json::Value& m : said->items) messages_.push_back(m.text);
-  if (text_of(a.get("ok")) != "true") {
-    const std::string error = text_of(a.get("error"));
-    if (verbatim && error.rfind("diverged: ", 0) == 0) throw EngineError(error.substr(10));
-    if (verbatim) throw InputError(error);
-    if (!origin.empty())
-      throw InputError(origin + ": MuJoCo " + std::string(kVersion) +
-                       " cannot load the model: " + error);
-    // The driver could not import the package: it says so, then exits.
+  const bool ok = checked(op, [&] { return need_flag(a.value, "ok"); });
+  if (ok) return a;
+  const std::string error = checked(op, [&] { return need_text(a.value, "error"); });
+  if (const json::Value* fatal = a.value.get("fatal"); fatal && fatal->text == "true")
+    failed_ = true;  // MuJoCo's WebAssembly aborted: the process ends
+  if (op == "hello") {
+    // The driver could not import the package, or speaks another protocol.
     failed_ = true;
-    throw EngineError("mujoco3: " + error + " (" + fix_command() + ")");
+    throw InputError("mujoco3: " + error + " (" + fix_command() + ")");
   }
-  return a;
+  if (verbatim && error.rfind("diverged: ", 0) == 0) throw EngineError(error.substr(10));
+  if (verbatim && !failed_) throw InputError(error);
+  if (!origin.empty())
+    throw InputError(origin + ": MuJoCo " + std::string(kVersion) +
+                     " cannot load the model: " + error);
+  failed_ = true;
+  throw EngineError("mujoco3: MuJoCo " + std::string(kVersion) + " failed at " + op + ": " + error);
 }
 
 LoadedModel Node::load(const std::string& xml, const std::string& origin) {
-  const Answer a = request(R"({"op":"load","xml":)" + json::string(xml) + "}", origin);
-  LoadedModel m;
-  m.id = static_cast<int>(a.get("id")->number);
-  m.nq = static_cast<int>(a.get("nq")->number);
-  m.nv = static_cast<int>(a.get("nv")->number);
-  m.nbody = static_cast<int>(a.get("nbody")->number);
-  m.timestep = a.get("timestep")->number;
-  m.body_pos = numbers_of(a.get("body_pos"));
-  m.body_invweight0 = numbers_of(a.get("body_invweight0"));
-  return m;
+  // Compiling: ~1 µs per byte of MJCF on a loaded machine, and ten times that.
+  const Answer a = request("load", R"({"op":"load","xml":)" + json::string(xml) + "}",
+                           deadline(static_cast<double>(xml.size()), 1e-5), origin);
+  return checked("load", [&] {
+    LoadedModel m;
+    m.id = static_cast<int>(need_integer(a.value, "id", 1));
+    m.nq = static_cast<int>(need_integer(a.value, "nq"));
+    m.nv = static_cast<int>(need_integer(a.value, "nv"));
+    m.nbody = static_cast<int>(need_integer(a.value, "nbody", 1));
+    m.timestep = need_number(a.value, "timestep");
+    m.body_pos = need_numbers(a.value, "body_pos", 3 * static_cast<size_t>(m.nbody));
+    m.body_invweight0 = need_numbers(a.value, "body_invweight0", 2 * static_cast<size_t>(m.nbody));
+    return m;
+  });
 }
 
-void Node::free(int id) { request(R"({"op":"free","id":)" + std::to_string(id) + "}"); }
+void Node::free(int id) {
+  request("free", R"({"op":"free","id":)" + std::to_string(id) + "}", deadline());
+}
 
 void Node::reset(int id, const std::vector<double>& qpos, const std::vector<double>& qvel) {
-  request(R"({"op":"reset","id":)" + std::to_string(id) + R"(,"qpos":)" + numbers(qpos) +
-          R"(,"qvel":)" + numbers(qvel) + "}");
+  request("reset",
+          R"({"op":"reset","id":)" + std::to_string(id) + R"(,"qpos":)" + numbers(qpos) +
+              R"(,"qvel":)" + numbers(qvel) + "}",
+          deadline());
 }
 
 void Node::applied(int id, int body, const std::array<double, 6>& xfrc) {
-  request(R"({"op":"applied","id":)" + std::to_string(id) + R"(,"body":)" + std::to_string(body) +
-          R"(,"xfrc":)" + numbers({xfrc.begin(), xfrc.end()}) + "}");
+  request("applied",
+          R"({"op":"applied","id":)" + std::to_string(id) + R"(,"body":)" + std::to_string(body) +
+              R"(,"xfrc":)" + numbers({xfrc.begin(), xfrc.end()}) + "}",
+          deadline());
 }
 
-int Node::step(int id, int n, std::vector<double>& out, bool& bad) {
-  const Answer a =
-      request(R"({"op":"step","id":)" + std::to_string(id) + R"(,"n":)" + std::to_string(n) + "}");
-  const auto bytes = static_cast<size_t>(a.get("bytes")->number);
-  bad = text_of(a.get("bad")) == "true";
+int Node::step(int id, int n, int width, std::vector<double>& out, bool& bad) {
+  const Answer a = request(
+      "step", R"({"op":"step","id":)" + std::to_string(id) + R"(,"n":)" + std::to_string(n) + "}",
+      deadline(n, kStepSeconds));
+  // Exactly the steps' qpos and qvel, checked before a byte is read.
+  const auto [steps, bytes] = checked("step", [&] {
+    bad = need_flag(a.value, "bad");
+    const long long taken = need_integer(a.value, "steps", 0, n);
+    const long long size = need_integer(a.value, "bytes", 0, std::numeric_limits<long long>::max());
+    const long long expected = taken * width * static_cast<long long>(sizeof(double));
+    if (size != expected)
+      throw BadAnswer("\"bytes\" " + std::to_string(size) + " where " + std::to_string(taken) +
+                      " steps of nq + nv = " + std::to_string(width) + " doubles are " +
+                      std::to_string(expected));
+    return std::make_pair(static_cast<int>(taken), static_cast<size_t>(size));
+  });
   out.resize(bytes / sizeof(double));
   try {
     process_->read_bytes(out.data(), bytes);
-  } catch (const std::exception& e) {
+  } catch (const Cancelled&) {
     failed_ = true;
-    throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
-                      " failed: " + e.what() + " (" + fix_command() + ")");
+    throw;
+  } catch (const std::exception& e) {
+    lost(e.what());
   }
-  return static_cast<int>(a.get("steps")->number);
+  return steps;
 }
 
 void Node::rewind(int id, int n) {
-  request(R"({"op":"rewind","id":)" + std::to_string(id) + R"(,"n":)" + std::to_string(n) + "}");
+  request("rewind",
+          R"({"op":"rewind","id":)" + std::to_string(id) + R"(,"n":)" + std::to_string(n) + "}",
+          deadline(n, kStepSeconds));
 }
 
 namespace {
 
-// One contact of the driver's "state" answer (mujoco/model_state.hpp).
+// One contact of the driver's "read" answer (mujoco/model_state.hpp); every
+// key is required (a missing one throws BadAnswer, never reads as 0).
 mujoco::StateContact contact_of(const json::Value& c) {
-  auto number_of = [](const json::Value* v) { return v ? v->number : 0.0; };
   mujoco::StateContact out;
-  out.geom1 = static_cast<int>(number_of(c.get("geom1")));
-  out.geom2 = static_cast<int>(number_of(c.get("geom2")));
-  out.body1 = static_cast<int>(number_of(c.get("body1")));
-  out.body2 = static_cast<int>(number_of(c.get("body2")));
-  out.explicit_pair = text_of(c.get("explicit_pair")) == "true";
-  out.dist = number_of(c.get("dist"));
+  out.geom1 = static_cast<int>(need_integer(c, "geom1"));
+  out.geom2 = static_cast<int>(need_integer(c, "geom2"));
+  out.body1 = static_cast<int>(need_integer(c, "body1"));
+  out.body2 = static_cast<int>(need_integer(c, "body2"));
+  out.explicit_pair = need_flag(c, "explicit_pair");
+  out.dist = need_number(c, "dist");
   auto fill = [&](const char* key, auto& array) {
-    const std::vector<double> v = numbers_of(c.get(key));
-    for (size_t i = 0; i < array.size() && i < v.size(); ++i) array[i] = v[i];
+    const std::vector<double> v = need_numbers(c, key);
+    if (v.size() < array.size())
+      throw BadAnswer(std::string("a contact's \"") + key + "\" has " + std::to_string(v.size()) +
+                      " numbers, not " + std::to_string(array.size()));
+    for (size_t i = 0; i < array.size(); ++i) array[i] = v[i];
   };
   fill("pos", out.pos);
   fill("normal", out.normal);
   fill("friction", out.friction);
   fill("solref", out.solref);
   fill("solimp", out.solimp);
-  out.condim = static_cast<int>(number_of(c.get("condim")));
-  out.margin = number_of(c.get("margin"));
-  out.gap = number_of(c.get("gap"));
-  out.A = number_of(c.get("A"));
-  out.A_t = number_of(c.get("A_t"));
-  out.force = number_of(c.get("force"));
-  out.rows = static_cast<int>(number_of(c.get("rows")));
-  out.quadratic = static_cast<int>(number_of(c.get("quadratic")));
+  out.condim = static_cast<int>(need_integer(c, "condim"));
+  out.margin = need_number(c, "margin");
+  out.gap = need_number(c, "gap");
+  out.A = need_number(c, "A");
+  out.A_t = need_number(c, "A_t");
+  out.force = need_number(c, "force");
+  out.rows = static_cast<int>(need_integer(c, "rows"));
+  out.quadratic = static_cast<int>(need_integer(c, "quadratic"));
   // The normal row and M⁻¹ times it arrive sparse: non-zero columns and values.
-  auto sparse = [&](const char* index_key, const char* value_key) {
+  auto sparse = [&](const json::Value& v, const char* index_key, const char* value_key) {
     mujoco::SparseRow row;
-    const std::vector<double> index = numbers_of(c.get(index_key));
-    row.value = numbers_of(c.get(value_key));
-    for (const double i : index) row.index.push_back(static_cast<int>(i));
+    row.index = need_integers(v, index_key);
+    row.value = need_numbers(v, value_key);
     return row;
   };
-  out.jacobian = sparse("jacobian_index", "jacobian_value");
-  out.solved = sparse("solved_index", "solved_value");
-  if (const json::Value* tangents = c.get("tangents")) {
-    for (size_t k = 0; k < 2 && k < tangents->items.size(); ++k) {
-      const json::Value& t = tangents->items[k];
-      auto read_row = [&](const char* key) {
-        mujoco::SparseRow row;
-        if (const json::Value* r = t.get(key)) {
-          for (const double i : numbers_of(r->get("index")))
-            row.index.push_back(static_cast<int>(i));
-          row.value = numbers_of(r->get("value"));
-        }
-        return row;
-      };
-      out.tangent[k] = read_row("row");
-      out.tangent_solved[k] = read_row("solved");
-    }
+  out.jacobian = sparse(c, "jacobian_index", "jacobian_value");
+  out.solved = sparse(c, "solved_index", "solved_value");
+  const json::Value& tangents = need(c, "tangents", json::Value::Kind::Array);
+  for (size_t k = 0; k < 2 && k < tangents.items.size(); ++k) {
+    const json::Value& t = tangents.items[k];
+    out.tangent[k] = sparse(need(t, "row", json::Value::Kind::Object), "index", "value");
+    out.tangent_solved[k] = sparse(need(t, "solved", json::Value::Kind::Object), "index", "value");
   }
   return out;
 }
@@ -293,56 +494,88 @@ bool fits_together(const mujoco::ModelState& s) {
 
 mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
   const std::string path = std::filesystem::absolute(r.path).string();
-  const Answer a = request(R"({"op":"state","path":)" + json::string(path) + R"(,"key":)" +
-                               json::string(r.key) + R"(,"settle":)" + json::number(r.settle) +
-                               R"(,"option":)" + json::string(r.option) + "}",
-                           {}, true);
-  mujoco::ModelState s;
-  auto texts = [](const json::Value* v) {
-    std::vector<std::string> out;
-    if (v)
-      for (const json::Value& item : v->items) out.push_back(item.text);
-    return out;
-  };
-  auto ints = [](const json::Value* v) {
-    std::vector<int> out;
-    for (double x : numbers_of(v)) out.push_back(static_cast<int>(x));
-    return out;
-  };
-  auto number = [](const json::Value* v) { return v ? v->number : 0.0; };
-  s.version = text_of(a.get("version"));
-  s.load_warning = text_of(a.get("load_warning"));
-  s.messages = texts(a.get("step_warnings"));
-  s.timestep = number(a.get("timestep"));
-  s.integrator = text_of(a.get("integrator"));
-  s.elliptic = text_of(a.get("elliptic")) == "true";
-  s.impratio = number(a.get("impratio"));
-  const std::vector<double> g = numbers_of(a.get("gravity"));
-  for (size_t i = 0; i < 3 && i < g.size(); ++i) s.gravity[i] = g[i];
-  s.refsafe = text_of(a.get("refsafe")) == "true";
-  s.disabled = text_of(a.get("disabled"));
-  s.body_names = texts(a.get("body_names"));
-  s.geom_names = texts(a.get("geom_names"));
-  s.body_weld = ints(a.get("body_weld"));
-  s.body_mass = numbers_of(a.get("body_mass"));
-  s.body_inertia = numbers_of(a.get("body_inertia"));
-  s.body_invweight0 = numbers_of(a.get("body_invweight0"));
-  s.geom_body = ints(a.get("geom_body"));
-  s.body_parent = ints(a.get("body_parent"));
-  s.body_joints = texts(a.get("body_joints"));
-  s.geom_mu = numbers_of(a.get("geom_mu"));
-  s.geom_condim = ints(a.get("geom_condim"));
-  if (const json::Value* list = a.get("geom_collides"))
-    for (const json::Value& v : list->items) s.geom_collides.push_back(v.text == "true");
-  s.nv = static_cast<int>(number(a.get("nv")));
-  s.settled = number(a.get("settled"));
-  s.speed = number(a.get("speed"));
-  s.accel = number(a.get("accel"));
-  s.bias = numbers_of(a.get("bias"));
-  s.qvel = numbers_of(a.get("qvel"));
-  s.qacc = numbers_of(a.get("qacc"));
-  if (const json::Value* list = a.get("contacts"))
-    for (const json::Value& c : list->items) s.contacts.push_back(contact_of(c));
+  // What Node will read, checked here first: a device or a FIFO would be
+  // read without end, a huge file whole (the cap scene files have).
+  check_input_file(r.path, "the model");
+  // Staging copies at most 256 MiB, at ~50 MB/s on a loaded machine.
+  const Answer opened = request("open",
+                                R"({"op":"open","path":)" + json::string(path) + R"(,"key":)" +
+                                    json::string(r.key) + R"(,"settle":)" + json::number(r.settle) +
+                                    R"(,"option":)" + json::string(r.option) + "}",
+                                deadline(256.0, 0.02), {}, true);
+  const auto [handle, steps] = checked("open", [&] {
+    return std::make_pair(need_integer(opened.value, "handle", 1),
+                          need_integer(opened.value, "steps", 0, 1000000));
+  });
+  const std::string id = std::to_string(handle);
+  // Settling in slices of ~kSliceMs each (their steps grow while a slice is
+  // short), a cancel looked at between them (core/cancel.hpp: a Python
+  // Ctrl-C); the model is closed when one comes.
+  long long done = 0, slice = 16;
+  try {
+    while (done < steps) {
+      throw_if_cancelled();
+      const long long n = std::min(slice, steps - done);
+      const auto start = std::chrono::steady_clock::now();
+      const Answer a = request("settle",
+                               R"({"op":"settle","handle":)" + id + R"(,"n":)" + std::to_string(n) +
+                                   R"(,"ms":)" + json::number(kSliceMs) + "}",
+                               deadline(static_cast<double>(n), kStepSeconds), {}, true);
+      const long long taken =
+          checked("settle", [&] { return need_integer(a.value, "done", 1, n); });
+      done += taken;
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
+      if (taken == n && ms < kSliceMs / 2) slice = std::min<long long>(2 * slice, 1 << 20);
+    }
+    throw_if_cancelled();
+  } catch (const Cancelled&) {
+    if (!failed_) {
+      try {
+        request("close", R"({"op":"close","handle":)" + id + "}", deadline(), {}, true);
+      } catch (const std::exception&) {  // then it is gone: the next user starts another
+      }
+    }
+    throw;
+  }
+  const Answer a = request("read", R"({"op":"read","handle":)" + id + "}", deadline(), {}, true);
+  mujoco::ModelState s = checked("read", [&] {
+    mujoco::ModelState s;
+    s.version = need_text(a.value, "version");
+    s.load_warning = need_text(a.value, "load_warning");
+    s.messages = need_texts(a.value, "step_warnings");
+    s.timestep = need_number(a.value, "timestep");
+    s.integrator = need_text(a.value, "integrator");
+    s.elliptic = need_flag(a.value, "elliptic");
+    s.impratio = need_number(a.value, "impratio");
+    const std::vector<double> g = need_numbers(a.value, "gravity", 3);
+    for (size_t i = 0; i < 3; ++i) s.gravity[i] = g[i];
+    s.refsafe = need_flag(a.value, "refsafe");
+    s.disabled = need_text(a.value, "disabled");
+    s.body_names = need_texts(a.value, "body_names");
+    s.geom_names = need_texts(a.value, "geom_names");
+    s.body_weld = need_integers(a.value, "body_weld");
+    s.body_mass = need_numbers(a.value, "body_mass");
+    s.body_inertia = need_numbers(a.value, "body_inertia");
+    s.body_invweight0 = need_numbers(a.value, "body_invweight0");
+    s.geom_body = need_integers(a.value, "geom_body");
+    s.body_parent = need_integers(a.value, "body_parent");
+    s.body_joints = need_texts(a.value, "body_joints");
+    s.geom_mu = need_numbers(a.value, "geom_mu");
+    s.geom_condim = need_integers(a.value, "geom_condim");
+    s.geom_collides = need_flags(a.value, "geom_collides");
+    s.nv = static_cast<int>(need_integer(a.value, "nv"));
+    s.settled = need_number(a.value, "settled");
+    s.speed = need_number(a.value, "speed");
+    s.accel = need_number(a.value, "accel");
+    s.bias = need_numbers(a.value, "bias");
+    s.qvel = need_numbers(a.value, "qvel");
+    s.qacc = need_numbers(a.value, "qacc");
+    for (const json::Value& c : need(a.value, "contacts", json::Value::Kind::Array).items)
+      s.contacts.push_back(contact_of(c));
+    return s;
+  });
   if (!fits_together(s)) {
     failed_ = true;
     throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
@@ -352,15 +585,16 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
 }
 
 mujoco::ModelState read_model_state(const mujoco::StateRequest& request) {
+  // Before check_state_request, which opens it: opening a FIFO waits for a writer.
+  check_input_file(request.path, "the model");
   mujoco::check_state_request(request);
   return Node::of_this_thread()->state(request);
 }
 
 std::vector<std::string> Node::counters(int id) {
-  const Answer a = request(R"({"op":"counters","id":)" + std::to_string(id) + "}");
-  std::vector<std::string> out;
-  for (const json::Value& w : a.get("warnings")->items) out.push_back(w.text);
-  return out;
+  const Answer a =
+      request("counters", R"({"op":"counters","id":)" + std::to_string(id) + "}", deadline());
+  return checked("counters", [&] { return need_texts(a.value, "warnings"); });
 }
 
 std::vector<std::string> Node::take_messages() {

@@ -7,10 +7,21 @@
 // requests of up to thousands of steps each, never one round trip per step.
 //
 // Errors are one line. What is missing to start (Node, the package, the
-// pinned version) is an InputError naming the command that fixes it, before
-// any work; MuJoCo 3 refusing a model is an InputError with its message; a
-// Node process that dies or breaks the protocol mid-run is an EngineError
+// pinned version, a driver of another protocol) is an InputError naming the
+// command that fixes it, before any work; MuJoCo 3 refusing a model is an
+// InputError with its message (and what MuJoCo printed); a Node process
+// that dies, breaks the protocol (a key missing or of the wrong kind, a
+// step's bytes not steps·(nq+nv)·8) or fails mid-run is an EngineError
 // (core/input_error.hpp).
+//
+// The process never outlives, outgrows or outwaits the program: it dies
+// with it (io/child_process.hpp: PR_SET_PDEATHSIG, the interrupt handler,
+// and the driver watching its parent); every answer has a deadline scaled
+// to the work asked ($CONTACT2D_MUJOCO3_TIMEOUT seconds, 60 by default,
+// plus 2 ms a step), past which Node is killed and the run fails; a user's
+// model settles in slices of ~50 ms with a cancel looked at between them,
+// and a cancel while waiting kills Node (core/cancel.hpp); another Node is
+// not started when the memory left would not hold it (too_many_nodes).
 #pragma once
 
 #include <array>
@@ -29,6 +40,14 @@ namespace contact2d::mujoco3 {
 
 // The version of @mujoco/mujoco this build is pinned to.
 inline constexpr std::string_view kVersion = "3.14.0";
+// The version of the protocol spoken with driver.mjs (its PROTOCOL): hello
+// carries it both ways and either side refuses another.
+inline constexpr int kProtocol = 2;
+
+// Why another Node process should not start when `running` run already
+// and `available_bytes` of memory are available (negative: unknown), as
+// one line saying what --threads fits; empty when it may.
+std::string too_many_nodes(int running, double available_bytes);
 
 // The folder of driver.mjs, package.json, package-lock.json and
 // node_modules/: $CONTACT2D_MUJOCO3_DIR, else the source tree's src/mujoco3.
@@ -65,10 +84,10 @@ class Node {
   void reset(int id, const std::vector<double>& qpos, const std::vector<double>& qvel);
   // xfrc_applied of `body`.
   void applied(int id, int body, const std::array<double, 6>& xfrc);
-  // Up to n mj_step; after each, qpos (nq) then qvel (nv) appended to `out`
-  // (cleared first). Stops after a step that raised a bad-number counter
-  // (bad = true). Returns the steps taken.
-  int step(int id, int n, std::vector<double>& out, bool& bad);
+  // Up to n mj_step; after each, qpos (nq) then qvel (nv), `width` = nq +
+  // nv doubles, appended to `out` (cleared first). Stops after a step that
+  // raised a bad-number counter (bad = true). Returns the steps taken.
+  int step(int id, int n, int width, std::vector<double>& out, bool& bad);
   // Back to the state before the last step() and n steps again.
   void rewind(int id, int n);
   // A user's model file at one state (mujoco/model_state.hpp), as 3.14
@@ -85,9 +104,15 @@ class Node {
  private:
   Node();
   struct Answer;
-  // origin non-empty: an error is MuJoCo refusing that model; `verbatim`:
-  // an error is the driver's own line, an InputError.
-  Answer request(const std::string& line, const std::string& origin = {}, bool verbatim = false);
+  // The answer to `line` (the request `op`) within `seconds`. origin
+  // non-empty: an error is MuJoCo refusing that model; `verbatim`: an
+  // error is the driver's own line, an InputError.
+  Answer request(const std::string& op, const std::string& line, double seconds,
+                 const std::string& origin = {}, bool verbatim = false);
+  // read() of an answer to `op`; a missing or mistyped key is an EngineError.
+  template <typename F>
+  auto checked(const std::string& op, F&& read) -> decltype(read());
+  [[noreturn]] void lost(const std::string& why);  // failed: an EngineError
 
   std::unique_ptr<ChildProcess> process_;
   std::vector<std::string> messages_;

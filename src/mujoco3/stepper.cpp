@@ -111,7 +111,7 @@ void Mujoco3Stepper::fetch() {
   } else {
     next_batch_ = std::min(2 * next_batch_, kMaxBatch);
   }
-  batch_steps_ = node_->step(loaded_.id, n, batch_, batch_bad_);
+  batch_steps_ = node_->step(loaded_.id, n, loaded_.nq + loaded_.nv, batch_, batch_bad_);
   read_ = 0;
   if (batch_steps_ <= 0) throw EngineError("mujoco3: MuJoCo 3 took no step");
 }
