@@ -228,6 +228,15 @@ std::string replay_section(const ReplayComparison& r) {
 // that measures closer when it is another.
 std::string recommendation(const ReadmeData& d) {
   const OverallWinner w = overall_winner(mapping_means(d.kelvin_voigt, d.scenes, d.mappings));
+  // The runs behind the geometric means: each scene under each mapping.
+  std::string scene_list, mapping_list;
+  for (const std::string& s : d.scenes) scene_list += (scene_list.empty() ? "" : ", ") + s;
+  for (const std::string& m : d.mappings) mapping_list += (mapping_list.empty() ? "" : ", ") + m;
+  const std::string behind =
+      ": the geometric mean over SCENE = " + scene_list +
+      " of the largest position difference of\n`contact2d compare validation/scenes/SCENE.toml "
+      "--set contact.damping=kelvin_voigt --mapping MAPPING`, MAPPING = " +
+      mapping_list;
   // One recommendation: a model to build on is calibrated's (it sets only
   // solref, solimp and options); compensated, when it measures closer, is
   // named as the comparison's tool, not as a second recommendation.
@@ -239,12 +248,14 @@ std::string recommendation(const ReadmeData& d) {
     out +=
         " With MuJoCo's own damping law (Kelvin–Voigt) its geometric-mean error over the "
         "built-in scenes is\n" +
-        format_significant(w.ratio_to_next) + "× below the next best mapping (section 2).";
+        format_significant(w.ratio_to_next) + "× below the next best mapping (section 2" + behind +
+        ").";
   } else {
     out += " For comparing the two engines, `--mapping " + w.mapping +
            "` comes closer: with MuJoCo's own damping law (Kelvin–Voigt) its geometric-mean error "
            "over the built-in scenes is\n" +
-           format_significant(w.ratio_to_next) + "× below the next best mapping (section 2)" +
+           format_significant(w.ratio_to_next) + "× below the next best mapping (section 2" +
+           behind + ")" +
            (w.mapping == "compensated"
                 ? ", but it moves the contact geoms onto a massless body at a long lever "
                   "(docs/mujoco.md): a structure for comparing, not for a model to build on."
@@ -262,8 +273,10 @@ std::string closeness_by_band(const ReadmeData& d) {
   std::string out;
   out += "**How close MuJoCo then is** — " + count_words(rc.count) +
          " random scenes (section 6), Δt = 1e-4, semi-implicit Euler against MuJoCo's Euler;\n"
-         "each row of section 6 re-runs with `contact2d compare " +
-         d.random_dir + "/sNN.toml` (add `--set contact.mu=0` for the frictionless columns):\n\n";
+         "each scene of section 6, in the band of its ζ, re-runs with `contact2d compare " +
+         d.random_dir +
+         "/sNN.toml`\n(add `--set contact.mu=0` for the frictionless columns, `--mapping "
+         "compensated` for the compensated rows):\n\n";
   Table t{{"damping ratio", "mapping", "scenes",
            "without friction: within " + sci(rc.pos_goal) + " m and " + sci(rc.angle_goal) + " rad",
            "without friction: median / largest position difference (m)",
@@ -297,7 +310,9 @@ std::string friction_parts_table(const ReadmeData& d) {
   constexpr double kFrictionGoal = 1e-3;
   out +=
       "\n**With friction** the difference is MuJoCo's friction law. Taken apart on the same "
-      "random scenes (medians; `friction.md` has the method and every 2.2.2 setting tried):\n\n";
+      "random scenes (medians; with friction: the commands above, and the rest: their "
+      "diagnosis's\n`friction_law` re-run, the distance it leaves; `friction.md` has the method, "
+      "the cone's shape and its push\ntoo, and every 2.2.2 setting tried):\n\n";
   Table parts{{"mapping", "with friction", "within " + sci(kFrictionGoal) + " m",
                "the cone's shape", "its push", "the rest: the reference under MuJoCo's law",
                "the rest within " + sci(kFrictionGoal) + " m"},
@@ -323,6 +338,21 @@ std::string builtin_verdict(const ReadmeData& d) {
   double frictionless = 0.0, friction = 0.0;
   double builtin_shape = 0.0, builtin_push = 0.0, builtin_rest = 0.0;
   int frictionless_reached = 0, frictionless_count = 0;
+  // The goal's damping values, from the labels ("box, c = 200, friction").
+  std::vector<std::string> dampings;
+  for (const GoalCase& c : d.goals) {
+    const size_t at = c.label.find(", c = ");
+    if (at == std::string::npos) continue;
+    const std::string value = c.label.substr(at + 6, c.label.find(',', at + 6) - (at + 6));
+    if (std::find(dampings.begin(), dampings.end(), value) == dampings.end())
+      dampings.push_back(value);
+  }
+  const bool no_roll = std::any_of(d.goals.begin(), d.goals.end(), [](const GoalCase& c) {
+    return c.label.find("no rolling resistance") != std::string::npos;
+  });
+  std::string c_values;
+  for (size_t i = 0; i < dampings.size(); ++i)
+    c_values += (i == 0 ? "" : i + 1 == dampings.size() ? " and " : ", ") + dampings[i];
   for (const GoalCase& c : d.goals) {
     const bool without = c.label.find("frictionless") != std::string::npos;
     (without ? frictionless : friction) =
@@ -343,11 +373,14 @@ std::string builtin_verdict(const ReadmeData& d) {
          " cases within " + sci(rc.pos_goal) + " m and " + sci(rc.angle_goal) + " rad (largest " +
          format_significant(frictionless) + " m), with friction up to " +
          format_significant(friction) +
-         " m apart: `contact2d compare validation/scenes/SCENE.toml --set "
-         "contact.damping=kelvin_voigt`\n"
-         "(add `--set contact.mu=0 --set contact.mu_roll=0` for the frictionless line); with the "
-         "reference running\nMuJoCo's own friction law (`--set contact.friction_law=soft_cone`, "
-         "at the model's impratio) they are at most " +
+         " m apart: `contact2d compare validation/scenes/SCENE.toml --dt 1e-4 --set "
+         "contact.damping=kelvin_voigt --set contact.c=C`\nfor C = " +
+         c_values + " (add `--set contact.mu=0 --set contact.mu_roll=0` for the frictionless line" +
+         (no_roll ? ", and\nwith friction the circle also with `--set contact.mu_roll=0`"
+                  : std::string()) +
+         "); with the reference running MuJoCo's own friction law\n(the same command's diagnosis, "
+         "its `friction_law` re-run: `--set "
+         "contact.friction_law=soft_cone` at the model's impratio)\nthey are at most " +
          format_significant(builtin_rest) +
          " m apart.\n\n"
          "**Why they still differ**: with friction, MuJoCo's friction law — measured on the "
