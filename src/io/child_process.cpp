@@ -70,7 +70,7 @@ std::string resolve_program(const std::string& name) {
   for (;;) {
     const size_t end = dirs.find(':', start);
     const std::string dir = dirs.substr(start, end == std::string::npos ? end : end - start);
-    const std::string candidate = absolute((dir.empty() ? "." : dir) + "/" + name);
+    std::string candidate = absolute((dir.empty() ? "." : dir) + "/" + name);
     if (runnable(candidate)) return candidate;
     if (end == std::string::npos) return {};
     start = end + 1;
