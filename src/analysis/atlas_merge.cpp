@@ -19,18 +19,21 @@
 #include "core/input_error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/plot.hpp"
+#include "io/read_file.hpp"
 
 namespace contact2d::analysis {
 namespace {
 
 namespace fs = std::filesystem;
 
+// A shard's files, bounded as every input is (io/read_file.hpp): its
+// points.csv holds one row per point (158 bytes on average in the report's
+// atlas), so 256 MiB is over a million points in one shard.
+constexpr std::size_t kMaxShardFileBytes = 256u << 20;
+
 std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return read_input_file(path, "an atlas shard's file", kMaxShardFileBytes,
+                         "larger than 256 MiB: not a shard's file, or a device or FIFO");
 }
 
 std::vector<std::string> lines_of(const std::string& text) {

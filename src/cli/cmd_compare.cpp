@@ -205,6 +205,7 @@ Command add_compare(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "compare", "Run the reference solver and MuJoCo on a scene and compare them");
   options->scene.add_to(*cmd);
+  options->outputs.input("scene file", options->scene.path);
   options->engine_options.add_to(*cmd);
   cmd->add_option("--engines", options->engines,
                   "Comma-separated engines to compare with the reference, each measured against "

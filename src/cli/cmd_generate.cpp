@@ -56,6 +56,7 @@ Command add_generate(CLI::App& app) {
   auto options = std::make_shared<GenerateOptions>();
   CLI::App* cmd = app.add_subcommand("generate", "Write the MuJoCo MJCF model of a scene");
   options->scene.add_to(*cmd);
+  options->outputs.input("scene file", options->scene.path);
   options->engine_options.add_to(*cmd);
   cmd->add_option("--engine", options->engine,
                   "The MuJoCo the model is for: mujoco (2.2.2) or mujoco3 (3.14: the model that "

@@ -30,9 +30,10 @@ std::string shortest(double v) {
   return format_number(v, 17);
 }
 
-std::optional<std::uint64_t> parse_seed(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  const bool digits = text.find_first_not_of("0123456789") == std::string::npos;
+std::optional<std::uint64_t> parse_seed(const std::optional<std::string>& given) {
+  if (!given) return std::nullopt;
+  const std::string& text = *given;
+  const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
   errno = 0;
   const unsigned long long v = digits ? std::strtoull(text.c_str(), nullptr, 10) : 0;
   if (!digits || errno == ERANGE) {
@@ -44,7 +45,8 @@ std::optional<std::uint64_t> parse_seed(const std::string& text) {
 struct PlayOptions {
   std::string pitch;
   std::string engine = "ref";
-  std::string seed;  // checked by parse_seed: CLI11 would wrap "-3" into 2^64 − 3
+  // Checked here, given empty included: CLI11 would wrap "-3" into 2^64 − 3.
+  std::optional<std::string> seed;
   std::string record_input;
   std::string replay;
   bool headless = false;
@@ -52,8 +54,8 @@ struct PlayOptions {
   long long frames = 0;
   bool no_vsync = false;
   bool help_on_start = false;
-  std::string level;   // checked by parse_level
-  std::string policy;  // checked by parse_policy
+  std::optional<std::string> level;   // checked by parse_level
+  std::optional<std::string> policy;  // checked by parse_policy
   long long seeds = 0;
   OutputOptions outputs;  // --record-input, --record
 };
@@ -66,14 +68,14 @@ int play(const PlayOptions& o) {
     throw InputError("--frames counts window frames: it cannot be used with --headless");
   const std::optional<std::uint64_t> seed_option = parse_seed(o.seed);
   std::optional<Level> level_option;
-  if (!o.level.empty()) {
-    level_option = parse_level(o.level);
-    if (!level_option) throw InputError("--level " + o.level + ": must be easy, normal or hard");
+  if (o.level) {
+    level_option = parse_level(*o.level);
+    if (!level_option) throw InputError("--level " + *o.level + ": must be easy, normal or hard");
   }
   std::optional<Policy> policy;
-  if (!o.policy.empty()) {
-    policy = parse_policy(o.policy);
-    if (!policy) throw InputError("--policy " + o.policy + ": must be blind or scripted");
+  if (o.policy) {
+    policy = parse_policy(*o.policy);
+    if (!policy) throw InputError("--policy " + *o.policy + ": must be blind or scripted");
     if (!o.headless) throw InputError("--policy plays without a window: it needs --headless");
     if (!o.replay.empty())
       throw InputError("--policy plays its own keys: it cannot be used with --replay");
@@ -107,7 +109,7 @@ int play(const PlayOptions& o) {
     }
     seed = replay->seed;
     if (level_option && *level_option != replay->level) {
-      throw InputError("--level " + o.level + " conflicts with the replay's level " +
+      throw InputError("--level " + o.level.value_or("") + " conflicts with the replay's level " +
                        std::string(level_name(replay->level)) +
                        " (a replay plays at its own level; drop --level)");
     }
@@ -193,6 +195,8 @@ Command add_play(CLI::App& app) {
   cmd->add_option("--replay", o->replay,
                   "Play back a replay file (its seed, its inputs; live keys are ignored)")
       ->type_name("FILE");
+  o->outputs.input("pitch file", o->pitch);
+  o->outputs.input("replay file", o->replay);
   cmd->add_flag("--headless", o->headless,
                 "No window: run as fast as possible and print the JSON line");
   o->outputs.file(*cmd, "--record", o->record,

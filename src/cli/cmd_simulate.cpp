@@ -61,6 +61,7 @@ Command add_simulate(CLI::App& app) {
   CLI::App* cmd =
       app.add_subcommand("simulate", "Run one engine on a scene and write its trajectory");
   options->scene.add_to(*cmd);
+  options->outputs.input("scene file", options->scene.path);
   add_engine_kind_option(*cmd, options->engine, "");
   options->outputs.file(*cmd, "--csv", options->csv,
                         "Write the trajectory (t,x,y,theta,vx,vy,omega) to this file", "FILE.csv");

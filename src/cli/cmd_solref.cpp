@@ -19,10 +19,13 @@ namespace {
 struct SolrefOptions {
   contact2d::mujoco::SolrefRequest request;
   bool json = false;
+  const CLI::Option* apply = nullptr;  // given empty: an error, as for every output
 };
 
 int solref(const SolrefOptions& options) {
   namespace mj = contact2d::mujoco;
+  if (options.apply->count() > 0 && options.request.apply.empty())
+    throw InputError("--apply: empty; name the file to write");
   const mj::SolrefReport report = contact2d::mujoco3::solref(
       options.request,
       [](const std::string& line) { std::cerr << "contact2d: note: " << line << "\n"; });
@@ -77,10 +80,11 @@ Command add_solref(CLI::App& app) {
                   "default 3)");
   cmd->add_option("--slope", options->request.slope,
                   "Slope in degrees, [0, 90): each mapping's creep speed under friction");
-  cmd->add_option("--apply", options->request.apply,
-                  "--model: write the model with the recommended mapping on the body's geoms to "
-                  "this file (in the model's folder), settle it and list the body's contacts "
-                  "there");
+  options->apply = cmd->add_option(
+      "--apply", options->request.apply,
+      "--model: write the model with the recommended mapping on the body's geoms to "
+      "this file (in the model's folder), settle it and list the body's contacts "
+      "there");
   cmd->add_option("--key", options->request.key,
                   "--model: the keyframe the settling starts from (default qpos0)");
   mass->excludes(model);

@@ -1,5 +1,7 @@
 #include "cli/common.hpp"
 
+#include <filesystem>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -51,6 +53,10 @@ CLI::Option* OutputOptions::directory(CLI::App& cmd, const std::string& names, s
   return option;
 }
 
+void OutputOptions::input(const std::string& name, const std::string& path) {
+  inputs_.emplace_back(name, &path);
+}
+
 void OutputOptions::check() const {
   for (const Entry& e : entries_) {
     // Not given and no default: that output is not wanted.
@@ -59,6 +65,12 @@ void OutputOptions::check() const {
       check_output_directory(e.name, *e.path);
     } else {
       check_output_file(e.name, *e.path);
+      for (const auto& [name, input] : inputs_) {
+        std::error_code ec;
+        if (!input->empty() && std::filesystem::equivalent(*e.path, *input, ec))
+          throw InputError(e.name + " " + *e.path + ": is the " + name +
+                           " this run reads; name a new file");
+      }
     }
   }
 }
@@ -240,6 +252,7 @@ void AnalysisOptions::add_to(CLI::App& cmd, const std::string& csv_help,
       ->check(CLI::IsMember(engines::engine_names()));
   outputs.file(cmd, "--csv", csv, csv_help, "FILE.csv");
   outputs.file(cmd, "--plot", plot, plot_help, "FILE.png");
+  outputs.input("scene file", path);
   cmd.add_option("--threads", threads, "Worker threads (default: one per core)")
       ->type_name("N")
       ->check(CLI::Range(1u, 256u));

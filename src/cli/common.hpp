@@ -32,6 +32,9 @@ class OutputOptions {
                     const std::string& help, const std::string& type_name);
   CLI::Option* directory(CLI::App& cmd, const std::string& names, std::string& path,
                          const std::string& help);
+  // An input the outputs must not overwrite (the scene file, a pitch, a
+  // replay): check() refuses an output that is the same file.
+  void input(const std::string& name, const std::string& path);
   void check() const;  // throws InputError
 
  private:
@@ -42,6 +45,7 @@ class OutputOptions {
     bool directory;
   };
   std::vector<Entry> entries_;
+  std::vector<std::pair<std::string, const std::string*>> inputs_;
 };
 
 // The scene argument and the overrides every scene-running command accepts.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/rng.hpp"
+#include "io/read_file.hpp"
 #include "io/scene_file.hpp"
 #include "io/toml_table.hpp"
 
@@ -200,11 +201,7 @@ Pitch load_pitch(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError(path + ": cannot read pitch file (it is a directory)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read pitch file (missing or unreadable)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_pitch(text.str(), path);
+  return parse_pitch(read_input_file(path, "pitch file"), path);
 }
 
 Pitch default_pitch() { return parse_pitch(kDefaultPitchToml, kBuiltInOrigin); }

@@ -11,6 +11,7 @@
 
 #include "core/input_error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/read_file.hpp"
 
 namespace contact2d::game {
 namespace {
@@ -151,11 +152,8 @@ Replay parse_replay(const std::string& text, const std::string& origin) {
 }
 
 Replay read_replay(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read replay file (missing or unreadable)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_replay(text.str(), path);
+  // One line per key change: a goal's is about 1 kB, far below the cap.
+  return parse_replay(read_input_file(path, "replay file"), path);
 }
 
 std::string format_replay(const Replay& replay) {

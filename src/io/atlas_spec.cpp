@@ -258,6 +258,7 @@ void read_atlas_axes(AtlasSpec& spec, const toml::table& root, const std::string
 AtlasSpec parse_atlas_spec(const std::string& text, const std::string& origin,
                            const std::string& base_dir) {
   toml::table root;
+  check_toml_shape(text, origin);
   try {
     root = toml::parse(text, origin);
   } catch (const toml::parse_error& e) {

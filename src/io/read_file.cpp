@@ -18,6 +18,12 @@ std::string read_input_file(const std::string& path, const std::string& what) {
 
 std::string read_input_file(const std::string& path, const std::string& what, std::size_t limit,
                             const std::string& why) {
+  // A regular file's size is known before it is read: one past the cap is
+  // refused at once (a sparse file of terabytes reads as zeros).
+  struct stat info {};
+  if (::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
+      static_cast<unsigned long long>(info.st_size) > limit)
+    throw InputError(path + ": cannot read " + what + " (" + why + ")");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read " + what + " (missing or unreadable)");
   std::string text;

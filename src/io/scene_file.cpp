@@ -274,6 +274,7 @@ void apply_override(toml::table& root, const Override& o) {
   const std::string leaf(path);
   // Read the value as TOML; a bare word that is not TOML is a string.
   toml::table value_doc;
+  check_toml_shape("v = " + o.value, option_text(o));
   try {
     value_doc = toml::parse("v = " + o.value);
   } catch (const toml::parse_error&) {

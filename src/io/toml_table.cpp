@@ -1,5 +1,7 @@
 #include "io/toml_table.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <sstream>
 
 #include "io/scene_file.hpp"
@@ -21,7 +23,55 @@ std::string type_name(const toml::node& node) {
 
 }  // namespace
 
+void check_toml_shape(const std::string& text, const std::string& origin) {
+  // Outside strings and comments: the dots of one run of key characters
+  // (bare-key characters, dots, blanks and quoted parts: a.b, "a" . 'b'),
+  // and how deep brackets and braces nest. A float has one dot, a date one.
+  int line = 1, dots = 0, depth = 0;
+  auto refuse = [&](const std::string& what) {
+    throw InputError(origin + ":" + std::to_string(line) + ": " + what);
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (ch == '"' || ch == '\'') {  // a string: skipped whole, the run goes on
+      const bool multi = text.compare(i, 3, std::string(3, ch)) == 0;
+      const std::string close = multi ? std::string(3, ch) : std::string(1, ch);
+      std::size_t j = i + close.size();
+      for (; j < text.size(); ++j) {
+        if (text[j] == '\n') {
+          if (!multi) break;  // malformed: toml++ says where
+          ++line;
+        }
+        if (ch == '"' && text[j] == '\\') {
+          ++j;
+          continue;
+        }
+        if (text.compare(j, close.size(), close) == 0) break;
+      }
+      i = std::min(text.size(), j + close.size()) - 1;
+      continue;
+    }
+    if (ch == '#') {  // a comment, to the end of the line
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+      continue;
+    }
+    const bool key_char = std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' ||
+                          ch == '+' || ch == ' ' || ch == '\t' || ch == '.';
+    if (ch == '.' && ++dots > kMaxTomlDepth)
+      refuse("a key of more than " + std::to_string(kMaxTomlDepth) + " dotted parts");
+    if (!key_char) dots = 0;
+    if (ch == '[' || ch == '{') {
+      if (++depth > kMaxTomlDepth)
+        refuse("arrays or tables nested more than " + std::to_string(kMaxTomlDepth) + " deep");
+    } else if (ch == ']' || ch == '}') {
+      depth = std::max(0, depth - 1);
+    }
+    if (ch == '\n') ++line;
+  }
+}
+
 toml::table parse_toml(const std::string& text, const std::string& origin) {
+  check_toml_shape(text, origin);
   try {
     return toml::parse(text, origin);
   } catch (const toml::parse_error& e) {

@@ -44,8 +44,17 @@ class TableReader {
 };
 
 // The TOML document `text` read from `origin`; InputError
-// "ORIGIN:LINE:COLUMN: malformed TOML: …" when it is not TOML.
+// "ORIGIN:LINE:COLUMN: malformed TOML: …" when it is not TOML, and
+// check_toml_shape's before it is parsed.
 toml::table parse_toml(const std::string& text, const std::string& origin);
+
+// toml++ parses a dotted key and nested arrays by recursion, one frame per
+// part: a 100 kB file with a key of 40,000 parts (a.a.a…) overflowed the
+// stack (exit 139). InputError "ORIGIN:LINE: …" for a key of more than
+// kMaxTomlDepth dotted parts, or arrays and tables nested deeper, before
+// toml++ sees the text.
+inline constexpr int kMaxTomlDepth = 64;
+void check_toml_shape(const std::string& text, const std::string& origin);
 
 // The [body] keys of a scene file for scene.shape (io/scene_file.cpp): a
 // recording's manifest (io/recording.hpp) describes its body the same way.

@@ -222,7 +222,16 @@ LoadedState load_model_state(const StateRequest& r) {
       throw InputError((key >= 0 ? "--key " + r.key + ": its qpos" : prefix(r) + "qpos0") +
                        " has a number that is not finite (" + format_number(d->qpos[i]) +
                        " at qpos[" + std::to_string(i) + "])");
-  const long steps = std::min(kMaxSettleSteps, std::lround(r.settle / m->opt.timestep));
+  // At most kMaxSettleSteps, said so when the settle asked for more (a
+  // settle of 1e16 s would overflow lround).
+  const double wanted = r.settle / m->opt.timestep;
+  const long steps =
+      wanted >= static_cast<double>(kMaxSettleSteps) ? kMaxSettleSteps : std::lround(wanted);
+  if (wanted > static_cast<double>(kMaxSettleSteps))
+    messages.push_back("--settle " + format_number(r.settle) + " s is more than the " +
+                       std::to_string(kMaxSettleSteps) + " steps a settle takes: settled " +
+                       format_number(static_cast<double>(kMaxSettleSteps) * m->opt.timestep) +
+                       " s");
   for (long i = 0; i < steps; ++i) {
     if ((i & 1023) == 0) throw_if_cancelled();  // a Python Ctrl-C (core/cancel.hpp)
     mj_step(m, d);
