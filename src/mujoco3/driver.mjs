@@ -137,6 +137,7 @@ function restore(e) {
 // (a device or a FIFO would be read without end). Removed after the
 // request.
 const kStageBytes = 256 * 1024 * 1024;
+const kStageFiles = 10000;
 const utf8 = new TextDecoder('utf-8', {fatal: true});
 
 class Stage {
@@ -206,10 +207,14 @@ class Stage {
                       'MiB (MuJoCo 3 reads a copy of them in memory)');
     }
   }
-  // The model's folder, sizes first (names that are not UTF-8 cannot be
-  // named by a model, which is UTF-8 text: they are left out).
+  // The model's folder, each file's size known before it is read: what
+  // would not fit in kStageBytes, or past kStageFiles files, is left for
+  // MuJoCo to ask for (below), so an unrelated big sibling changes nothing.
+  // Names that are not UTF-8 cannot be named by a model, which is UTF-8
+  // text: they are left out. A symlinked folder is followed on demand only.
   folder() {
-    const copy = (from) => {
+    let files = 0;
+    const read = (from) => {
       for (const entry of readdirSync(Buffer.from(from), {withFileTypes: true, encoding: 'buffer'})) {
         let name;
         try {
@@ -225,37 +230,17 @@ class Stage {
           continue;  // a dangling symlink: MuJoCo says so if the model names it
         }
         if (info.isDirectory()) {
-          if (entry.isDirectory()) copy(source);  // a symlinked folder is followed on demand only
-        } else if (info.isFile()) {
-          this.add(info.size, dirname(this.model));
-        }
-      }
-    };
-    const staged = this.bytes;
-    copy(dirname(this.model));
-    this.bytes = staged;  // counted again as read
-    const read = (from) => {
-      for (const entry of readdirSync(Buffer.from(from), {withFileTypes: true, encoding: 'buffer'})) {
-        let name;
-        try {
-          name = utf8.decode(entry.name);
-        } catch {
-          continue;
-        }
-        const source = join(from, name);
-        let info;
-        try {
-          info = statSync(source);
-        } catch {
-          continue;
-        }
-        if (info.isDirectory()) {
           if (entry.isDirectory()) read(source);
-        } else if (info.isFile()) {
-          this.file(source, '');
+        } else if (info.isFile() && this.bytes + info.size <= kStageBytes &&
+                   ++files <= kStageFiles) {
+          try {
+            this.file(source, '');
+          } catch {
+            continue;  // unreadable: MuJoCo asks for it below if the model names it
+          }
           // MuJoCo 3 reads a '\\' in a model's file names as '/' (2.2.2 as
           // a character of the name): the file is staged under both.
-          if (name.includes('\\')) {
+          if (name.includes('\\') && this.bytes + info.size <= kStageBytes) {
             try {
               this.file(source, '', join(from, name.replaceAll('\\', '/')));
             } catch {

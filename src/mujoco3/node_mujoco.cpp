@@ -175,8 +175,9 @@ double deadline(double units = 0.0, double per_unit = 0.0) {
 }
 
 // A step of one of the scenes' models takes microseconds (~60 µs while
-// the JIT warms up); a user's model settles in slices of kSliceMs.
-constexpr double kStepSeconds = 2e-3;
+// the JIT warms up): 0.5 ms each is room for a machine ten times slower. A
+// user's model settles in slices of kSliceMs (their steps sized to it).
+constexpr double kStepSeconds = 5e-4;
 constexpr double kSliceMs = 50.0;
 
 // Memory a Node running MuJoCo 3 takes (measured 95–140 MB).

@@ -18,7 +18,7 @@
 // with it (io/child_process.hpp: PR_SET_PDEATHSIG, the interrupt handler,
 // and the driver watching its parent); every answer has a deadline scaled
 // to the work asked ($CONTACT2D_MUJOCO3_TIMEOUT seconds, 60 by default,
-// plus 2 ms a step), past which Node is killed and the run fails; a user's
+// plus 0.5 ms a step), past which Node is killed and the run fails; a user's
 // model settles in slices of ~50 ms with a cancel looked at between them,
 // and a cancel while waiting kills Node (core/cancel.hpp); another Node is
 // not started when the memory left would not hold it (too_many_nodes).
