@@ -235,7 +235,7 @@ std::string recommendation(const ReadmeData& d) {
   const std::string behind =
       ": the geometric mean over SCENE = " + scene_list +
       " of the largest position difference of\n`contact2d compare validation/scenes/SCENE.toml "
-      "--set contact.damping=kelvin_voigt --mapping MAPPING`, MAPPING = " +
+      "--set contact.damping=kelvin_voigt --mapping MAPPING --allow-nonphysical`, MAPPING = " +
       mapping_list;
   // One recommendation: a model to build on is calibrated's (it sets only
   // solref, solimp and options); compensated, when it measures closer, is
@@ -311,8 +311,10 @@ std::string friction_parts_table(const ReadmeData& d) {
   out +=
       "\n**With friction** the difference is MuJoCo's friction law. Taken apart on the same "
       "random scenes (medians; with friction: the commands above, and the rest: their "
-      "diagnosis's\n`friction_law` re-run, the distance it leaves; `friction.md` has the method, "
-      "the cone's shape and its push\ntoo, and every 2.2.2 setting tried):\n\n";
+      "diagnosis's\n`friction_law` re-run, the distance it leaves (where they agree and no "
+      "diagnosis runs: add `--set contact.friction_law=soft_cone --set contact.cone_ratio=I`, I "
+      "the impratio\ncompare prints); `friction.md` has the method, the cone's shape and its push "
+      "too, and every 2.2.2 setting tried):\n\n";
   Table parts{{"mapping", "with friction", "within " + sci(kFrictionGoal) + " m",
                "the cone's shape", "its push", "the rest: the reference under MuJoCo's law",
                "the rest within " + sci(kFrictionGoal) + " m"},
