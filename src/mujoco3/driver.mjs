@@ -66,11 +66,17 @@ try {
 } catch (e) {
   // Answered to the first request (hello); the C++ side makes it an input
   // error (exit 2) naming the command that reinstalls the package.
-  const said = messages.length ? messages.map(oneLine).join('; ') + ': ' : '';
+  // Emscripten's note on file URIs is noise here; anything else it printed
+  // is said after the error.
+  const first = String(e && e.message ? e.message : e).split('\n')[0];
+  const inner = first.replace(/^Aborted\((.*)\)$/, '$1');
+  const said = messages.map(oneLine).filter(
+      (t) => t && !/^warning: Loading from a file URI/.test(t) && !first.includes(t) &&
+          !t.includes(inner));
   process.stdout.write(JSON.stringify({
     ok: false,
-    error: 'cannot import @mujoco/mujoco: ' + said +
-        String(e && e.message ? e.message : e).split('\n')[0]
+    error: 'cannot import @mujoco/mujoco: ' + first +
+        (said.length ? ` (MuJoCo: ${said.join('; ')})` : '')
   }) + '\n', () => process.exit(3));
   await new Promise(() => {});
 }

@@ -180,6 +180,17 @@ double deadline(double units = 0.0, double per_unit = 0.0) {
 constexpr double kStepSeconds = 5e-4;
 constexpr double kSliceMs = 50.0;
 
+// A start that failed for memory (V8's or WebAssembly's own words), and
+// what to say of it.
+bool short_of_memory(const std::string& said) {
+  for (const char* sign : {"Out of memory", "out of memory", "Cannot allocate", "OOM"})
+    if (said.find(sign) != std::string::npos) return true;
+  return false;
+}
+constexpr const char* kMemoryHint =
+    ": MuJoCo 3's WebAssembly could not reserve its memory (Node reserves several GB of address "
+    "space for it): is virtual memory limited (ulimit -v)?";
+
 // Memory a Node running MuJoCo 3 takes (measured 95–140 MB).
 constexpr double kNodeBytes = 140e6;
 std::atomic<int> g_nodes{0};  // running in this process
@@ -321,6 +332,11 @@ Node::Answer Node::request(const std::string& op, const std::string& line, doubl
     failed_ = true;
     throw;
   } catch (const std::exception& e) {
+    if (op == "hello" && short_of_memory(e.what())) {  // it could not start
+      failed_ = true;
+      throw InputError("mujoco3: Node could not start MuJoCo " + std::string(kVersion) + ": " +
+                       e.what() + kMemoryHint);
+    }
     lost(e.what());
   }
   if (a.value.kind != json::Value::Kind::Object) lost("its answer to " + op + " is not an object");
@@ -334,6 +350,7 @@ Node::Answer Node::request(const std::string& op, const std::string& line, doubl
   if (op == "hello") {
     // The driver could not import the package, or speaks another protocol.
     failed_ = true;
+    if (short_of_memory(error)) throw InputError("mujoco3: " + error + kMemoryHint);
     throw InputError("mujoco3: " + error + " (" + fix_command() + ")");
   }
   if (verbatim && error.rfind("diverged: ", 0) == 0) throw EngineError(error.substr(10));

@@ -579,6 +579,15 @@ TEST_F(NodeProcess, AStartFailureSaysWhy) {
   EXPECT_EQ(r.status, 3) << r.err;
   expect_single_line(r.err, "RangeError: no room to start");
   EXPECT_EQ(r.err.find("Node.js v"), std::string::npos) << r.err;
+  // Under a limit of virtual memory WebAssembly cannot reserve its memory
+  // (before: "exited with status 1: Node.js v20...").
+  for (const char* limit : {"1500000", "600000"}) {
+    const Result limited =
+        run("simulate box.toml --engine mujoco3",
+            std::string("sh -c 'ulimit -v ") + limit + " && exec \"$0\" \"$@\"'");
+    EXPECT_EQ(limited.status, 2) << limit << ": " << limited.err;
+    expect_single_line(limited.err, "is virtual memory limited (ulimit -v)?");
+  }
 }
 
 // A relative PATH entry finds node as the shell does, from the working
