@@ -40,6 +40,7 @@
 #include "mujoco/inspect.hpp"
 #include "mujoco/mjcf.hpp"
 #include "mujoco/solref_request.hpp"
+#include "mujoco3/inspect_versions.hpp"
 #include "mujoco3/own_model.hpp"
 #include "python/interruptible.hpp"
 
@@ -340,7 +341,7 @@ py::dict py_fit(const std::string& path, long long seed, int bootstrap,
 
 py::dict py_inspect(const std::string& path, const std::string& key, bool pairs,
                     std::optional<double> slope, double settle, bool estimate_loads,
-                    const std::string& engine) {
+                    const std::string& engine, bool rest_search) {
   mujoco::InspectOptions options;
   options.path = path;
   options.key = key;
@@ -348,8 +349,14 @@ py::dict py_inspect(const std::string& path, const std::string& key, bool pairs,
   options.slope = slope;
   options.settle = settle;
   options.estimate_loads = estimate_loads;
-  const mujoco::InspectReport report = python::interruptible(
-      [&] { return reading(path, [&] { return mujoco3::inspect(options, engine); }); });
+  // As the program: when the model is not at rest, how long it takes to be.
+  const mujoco::InspectReport report = python::interruptible([&] {
+    return reading(path, [&] {
+      mujoco::InspectReport r = mujoco3::inspect(options, engine);
+      if (rest_search) mujoco3::settle_time(r, options, engine);
+      return r;
+    });
+  });
   std::vector<std::string> notes;
   if (!report.load_warning.empty())
     notes.push_back("MuJoCo warns while loading " + path + ": " + report.load_warning);

@@ -226,7 +226,7 @@ def solref(k: Optional[float] = None, c: Optional[float] = None, *,
 
 def inspect(path: Union[str, os.PathLike], key: str = "", pairs: bool = False,
             slope: Optional[float] = None, settle: float = 0.0, estimate_loads: bool = False,
-            engine: str = "mujoco") -> dict:
+            engine: str = "mujoco", rest_search: bool = True) -> dict:
     """Any MJCF model's contacts in physical units, as
     ``contact2d inspect --json`` (docs/inspect.md): that JSON object as a
     dict. ``path``: the MJCF file (str or os.PathLike); ``key``: the
@@ -235,10 +235,13 @@ def inspect(path: Union[str, os.PathLike], key: str = "", pairs: bool = False,
     degrees in [0, 90), each contact's creep speed under friction;
     ``pairs``: every geom pair's distance; ``estimate_loads``: loads from a
     body's weight where MuJoCo has none; ``engine``: ``"mujoco"`` for 2.2.2
-    or ``"mujoco3"`` for 3.14."""
+    or ``"mujoco3"`` for 3.14; ``rest_search``: when the model is not at
+    rest, settle it longer to say how long it takes (``--no-rest-search``
+    is ``rest_search=False``)."""
     run = _contact2d._inspect(_path(path, "path", "inspect"), key, pairs,
                               _number(slope, "slope", "inspect", "degrees"),
-                              _number(settle, "settle", "inspect", "s"), estimate_loads, engine)
+                              _number(settle, "settle", "inspect", "s"), estimate_loads, engine,
+                              bool(rest_search))
     _notes(run["notes"])
     return json.loads(run["json"])
 
