@@ -301,7 +301,7 @@ void ChildProcess::give_up(const std::string& why) {
     if (close != std::string::npos && close + 2 < line.size()) state = line.substr(close + 2, 1);
   }
   ::kill(pid_, SIGKILL);
-  if (!reaped_ && wait_for(pid_, status_, 5.0)) reaped_ = true;
+  if (!reaped_ && wait_for(pid_, status_, 5.0)) set_reaped();
   throw ChildProcessError("process " + std::to_string(pid_) + " " + why +
                           (state == "T" || state == "t" ? " (it was stopped)" : "") + ": killed");
 }
@@ -310,7 +310,7 @@ void ChildProcess::wait_ready(int fd, short events) {
   for (;;) {
     if (cancel_requested()) {  // a Python Ctrl-C: the child's work is dropped with it
       ::kill(pid_, SIGKILL);
-      if (!reaped_ && wait_for(pid_, status_, 5.0)) reaped_ = true;
+      if (!reaped_ && wait_for(pid_, status_, 5.0)) set_reaped();
       throw Cancelled();
     }
     const auto now = std::chrono::steady_clock::now();
@@ -382,10 +382,18 @@ void ChildProcess::read_bytes(void* out, size_t size) {
   }
 }
 
+void ChildProcess::set_reaped() {
+  reaped_ = true;
+  // Its pid may be another process's from now on: the interrupt handler
+  // must not kill it.
+  unregister_child(child_slot_);
+  child_slot_ = -1;
+}
+
 bool ChildProcess::running() {
   if (pid_ <= 0 || reaped_) return false;
   const pid_t r = ::waitpid(pid_, &status_, WNOHANG);
-  if (r == pid_ || (r < 0 && errno == ECHILD)) reaped_ = true;
+  if (r == pid_ || (r < 0 && errno == ECHILD)) set_reaped();
   return !reaped_;
 }
 
@@ -393,7 +401,7 @@ std::string ChildProcess::ending() {
   if (pid_ <= 0) return "was not started";
   if (!reaped_) {
     if (!wait_for(pid_, status_, 2.0)) return "stopped answering (still running)";
-    reaped_ = true;
+    set_reaped();
   }
   std::string text;
   if (WIFEXITED(status_)) {

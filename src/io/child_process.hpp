@@ -102,6 +102,7 @@ class ChildProcess {
   void wait_ready(int fd, short events);
   void drain_error();  // what standard error holds now, into error_tail_
   [[noreturn]] void give_up(const std::string& why);
+  void set_reaped();               // waitpid returned it: forgotten by the interrupt handler too
   double deadline_seconds_ = 0.0;  // as set, for the message
   std::chrono::steady_clock::time_point deadline_ = std::chrono::steady_clock::time_point::max();
   std::string error_tail_;  // the last 64 kB of its standard error
