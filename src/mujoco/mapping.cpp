@@ -126,10 +126,13 @@ void set_friction_damper(SolverSettings& s, const ContactParams& contact, const 
   const double pi = 3.14159265358979323846;
   const double a_t = max_tangential_inverse_mass(body);
   const double weight = body.mass * gravity / resting_points(body);
-  // α = 0 is Coulomb's step: the cap is the slope.
+  // α = 0 is Coulomb's step: the cap is the slope. Without a resting load
+  // (gravity 0) the matched slope is 0, a damper with no friction at all:
+  // there every load is an impact's, and the cap, which follows Coulomb
+  // under load closest (docs/mujoco3.md), is the slope.
   const double tanh_matched = std::sqrt(6.0) / pi * contact.mu * contact.alpha * weight;
   const double cap = 1.0 / (dt * a_t);
-  s.stick_slope = contact.alpha > 0.0 ? std::min(tanh_matched, cap) : cap;
+  s.stick_slope = contact.alpha > 0.0 && weight > 0.0 ? std::min(tanh_matched, cap) : cap;
   const double d = s.solimp[0];
   const double regulariser = (1.0 - d) / d * s.inv_mass;
   s.friction_ratio = 1e3 * a_t * s.stick_slope / (regulariser * contact.c);

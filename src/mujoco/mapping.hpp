@@ -201,7 +201,8 @@ double solref_scale(const SolverSettings& settings);
 //   impratio = b/(φ·c).
 // Only over compensated (whose R ≈ 1e10·A_max leaves room for a small φ;
 // under calibrated φ ≤ 1e-4 breaks, docs/mujoco3.md). A scene without
-// friction (μ = 0) is left as it is.
+// friction (μ = 0) is left as it is; one without a resting load (gravity
+// 0: m·g = 0, so b would be 0 and impratio 0/0) takes b at its cap.
 void set_friction_damper(SolverSettings& s, const ContactParams& contact, const RigidBody& body,
                          double dt, double gravity);
 

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <initializer_list>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "core/input_error.hpp"
@@ -777,6 +779,28 @@ double read_inv_mass(const Scene& scene, const MjcfOptions& options, int split) 
   return model->body_invweight0[options.mapping == Mapping::Compensated ? 4 : 2];
 }
 
+// No number that is not finite goes into a model (MuJoCo reads "nan" and
+// runs it, diverging at the first step): every attribute's every token
+// that reads whole as a number is checked. InputError names the element,
+// the attribute and its value.
+void refuse_non_finite(const XMLElement* element) {
+  for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); a; a = a->Next()) {
+    std::istringstream tokens(a->Value());
+    for (std::string token; tokens >> token;) {
+      char* end = nullptr;
+      const double v = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() + token.size() && !std::isfinite(v))
+        throw InputError("the model would have " + std::string(a->Name()) + "=\"" + a->Value() +
+                         "\" on <" + element->Name() +
+                         ">: a number that is not finite, which MuJoCo would run (a scene value "
+                         "out of what this mapping can express)");
+    }
+  }
+  for (const XMLElement* child = element->FirstChildElement(); child;
+       child = child->NextSiblingElement())
+    refuse_non_finite(child);
+}
+
 }  // namespace
 
 int contact_condim(const ContactParams& contact) {
@@ -813,6 +837,7 @@ std::string write_mjcf(const Scene& scene, const MjcfOptions& options,
   add_obstacles(doc, world, scene, true);
   add_pairs(doc, root, scene, settings, layout);
   add_keyframe(doc, root, scene, layout);
+  refuse_non_finite(root);
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
   return printer.CStr();
