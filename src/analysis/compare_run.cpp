@@ -131,6 +131,18 @@ void run_engines(Comparison& c, bool early_diagnosis) {
   c.early.clear();
   for (size_t i = 0; i < early.size(); ++i)
     if (made[i]) c.early.emplace_back(early[i].cause, std::move(*made[i]));
+  // A contact the engine's geometry cannot make leads what it says: a
+  // divergence that follows it is not the engine's step.
+  for (size_t i = 1; i < c.runs.size(); ++i) {
+    EngineRun& run = c.runs[i].run;
+    const std::string missed =
+        missed_obstacle_contact(c.scene, c.runs[i].spec, run.trajectory, c.runs[0].run.trajectory);
+    if (missed.empty()) continue;
+    if (run.trajectory.divergence)
+      run.divergence_message = missed + " What followed: " + run.divergence_message;
+    else
+      run.warnings.push_back(missed);
+  }
 }
 
 std::vector<RunProblem> run_problems(const Comparison& c) {

@@ -132,6 +132,23 @@ std::string comparison_json(const Comparison& c, const std::string& scene_label)
 // compare prints them under "Versions"; --json has them as "version_notes".
 std::vector<std::string> version_notes(const Comparison& c);
 
+// A contact the reference's model has on an engine's own trajectory and
+// the engine's geometry cannot make: an obstacle's corner pressing into the
+// body's face, away from its corners, where MuJoCo's corners geometry (a
+// sphere at each corner of the body) has no geom, so MuJoCo makes no
+// contact and the body passes into the obstacle. One paragraph naming the
+// first time, the obstacle, the depth and the geometry that sees it; empty
+// when there is none (no obstacle, a body without corners, another
+// geometry, no such state). Also, on MuJoCo 2.2.2, a corner sinking into a
+// box obstacle: its sphere–box collider gives a sphere whose centre is
+// inside the box the depth −radius whatever the true depth
+// (engine_collision_box.c), and the corners' spheres (radius 1e-9 m) are
+// inside as soon as they touch, so the contact has no spring; named when a
+// corner is more than twice as deep in a box obstacle as the reference's
+// deepest obstacle contact (`reference`: its trajectory).
+std::string missed_obstacle_contact(const Scene& scene, const engines::EngineSpec& spec,
+                                    const Trajectory& run, const Trajectory& reference);
+
 // Energy of the scene's body at the first and last sample of a run, J.
 struct Energies {
   double initial = 0.0;

@@ -811,6 +811,70 @@ Diagnosis diagnose(const Scene& scene, const engines::EngineSpec& mujoco, const 
   return dg;
 }
 
+std::string missed_obstacle_contact(const Scene& scene, const engines::EngineSpec& spec,
+                                    const Trajectory& run, const Trajectory& reference) {
+  if (scene.obstacles.empty() || !shape_features(scene.shape).corners) return "";
+  if (engines::option_value(spec, "geometry") != "corners") return "";
+  const Model model = make_model(scene);
+  ContactSet contacts(model);
+  // A contact point farther than this from every corner of the body is not
+  // a corner's (1 % of the body's smallest extent between two corners).
+  double spacing = std::numeric_limits<double>::infinity();
+  const std::vector<Vec2>& points = model.body.points;
+  for (size_t i = 0; i < points.size(); ++i)
+    for (size_t j = i + 1; j < points.size(); ++j)
+      spacing = std::min(spacing, (points[i] - points[j]).norm());
+  const double tolerance = 0.01 * spacing;
+  double deepest_reference = 0.0;  // of its obstacle contacts
+  for (const Sample& s : reference.samples) {
+    if (!s.state.q.allFinite()) break;
+    find_contacts(model, s.state.q, contacts);
+    for (const Contact& k : contacts)
+      if (k.obstacle >= 0) deepest_reference = std::max(deepest_reference, k.depth);
+  }
+  const bool v2 = spec.kind == "mujoco";
+  for (const Sample& s : run.samples) {
+    const Vec3& q = s.state.q;
+    if (!q.allFinite()) break;
+    find_contacts(model, q, contacts);
+    const double c = std::cos(q.z()), sn = std::sin(q.z());
+    for (const Contact& k : contacts) {
+      if (k.obstacle < 0) continue;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const Vec2& p : points) {
+        const Vec2 r(c * p.x() - sn * p.y(), sn * p.x() + c * p.y());
+        nearest = std::min(nearest, (r - k.r()).norm());
+      }
+      if (nearest <= tolerance) {  // a corner's contact: MuJoCo's sphere is there
+        const bool box =
+            scene.obstacles[static_cast<size_t>(k.obstacle)].shape == ObstacleShape::Box;
+        if (v2 && box && k.depth > 2.0 * deepest_reference + 1e-6)
+          return "MuJoCo 2.2.2 has no spring where the reference has one: at t = " +
+                 format_number(s.t, 4) + " s a corner of the body is " + format_number(k.depth, 3) +
+                 " m inside obstacle " + std::to_string(k.obstacle) +
+                 ", more than twice the reference's deepest (" +
+                 format_number(deepest_reference, 3) +
+                 " m). 2.2.2's sphere-box collider gives a sphere whose centre is inside the box "
+                 "the depth -radius whatever the true depth, and the corners geometry's spheres "
+                 "(radius 1e-9 m) are inside as soon as they touch, so only the damper acts and "
+                 "the body sinks in. MuJoCo 3 computes the depth (the engine mujoco3), or use "
+                 "the geometry that avoids it: mujoco:" +
+                 engines::option_value(spec, "mapping") + ":boxes (--geometry boxes).";
+        continue;
+      }
+      return "MuJoCo has no contact where the reference has one: at t = " + format_number(s.t, 4) +
+             " s a corner of obstacle " + std::to_string(k.obstacle) + " is " +
+             format_number(k.depth, 3) + " m inside the body's face (" + format_number(nearest, 3) +
+             " m from its nearest corner), and the corners geometry puts MuJoCo's geoms at the "
+             "body's corners only, so MuJoCo makes no contact there and the body passes into "
+             "the obstacle. Use the geometry that sees it: " +
+             std::string(spec.kind) + ":" + engines::option_value(spec, "mapping") +
+             ":boxes (--geometry boxes).";
+    }
+  }
+  return "";
+}
+
 std::vector<std::string> version_notes(const Comparison& c) {
   // An option's value, or the fallback the engine gives it when left out.
   auto value = [](const engines::EngineSpec& spec, std::string_view name) {

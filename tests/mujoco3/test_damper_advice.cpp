@@ -128,6 +128,46 @@ TEST(DamperAdvice, RunsWithoutGravity) {
   EXPECT_LT(with, without);
 }
 
+// MuJoCo 3 computes the depth of a sphere whose centre is inside a box
+// (2.2.2 gives it −radius: tests/mujoco/test_compare_engines.cpp): the
+// corners geometry's box rests on a wide platform as the reference does.
+TEST(DamperAdvice, MujocoThreeRestsOnABoxObstacle) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const std::string text = R"(scene = "box"
+[body]
+mass = 1
+width = 0.4
+height = 0.1
+[contact]
+k = 1e4
+c = 50
+mu = 0.5
+damping = "kelvin_voigt"
+[initial]
+y = 0.5
+[sim]
+dt = 1e-4
+duration = 0.4
+[[obstacle]]
+type = "box"
+x = 0.05
+y = 0.15
+width = 1.0
+height = 0.3
+)";
+  analysis::Comparison c = analysis::prepare_comparison(
+      parse_scene(text, "platform.toml"),
+      analysis::comparison_engines({"mujoco3"}, {}, 0.0, "platform.toml",
+                                   [](std::string_view n) { return "--" + std::string(n); }));
+  analysis::run_engines(c, false);
+  EXPECT_FALSE(c.runs[1].run.trajectory.divergence.has_value()) << c.runs[1].run.divergence_message;
+  for (const std::string& w : c.runs[1].run.warnings)
+    EXPECT_EQ(w.find("has no"), std::string::npos);
+  // The reference rests 1 mm into the platform's top (0.3 m) under its
+  // half-height 0.05 m: 0.349 m; MuJoCo 3 within 1 mm of it.
+  EXPECT_NEAR(c.runs[1].run.trajectory.samples.back().state.q.y(), 0.349, 1e-3);
+}
+
 // No damper, no note; --engine is --engines with one name, and not both.
 TEST(DamperAdvice, EngineIsOneNameOfEnginesAndTheDefaultIsSaid) {
   CONTACT2D_NEEDS_MUJOCO3();
