@@ -276,7 +276,6 @@ Node::Node() {
   } catch (const ChildProcessError& e) {
     throw InputError("mujoco3: " + std::string(e.what()) + ": " + fix_command());
   }
-  ++g_nodes;
   const Answer hello = request(
       "hello", R"({"op":"hello","protocol":)" + std::to_string(kProtocol) + "}", deadline());
   const auto [version, node, protocol] = checked("hello", [&] {
@@ -294,10 +293,12 @@ Node::Node() {
   if (node_major < kOldestNode)
     throw InputError("mujoco3: Node " + node + " is older than " + std::to_string(kOldestNode) +
                      ", which @mujoco/mujoco needs: " + fix_command());
+  counted_ = true;
+  ++g_nodes;
 }
 
 Node::~Node() {
-  if (process_) --g_nodes;
+  if (counted_) --g_nodes;
 }
 
 int Node::pid() const { return static_cast<int>(process_->pid()); }
@@ -321,6 +322,11 @@ void Node::lost(const std::string& why) {
 
 Node::Answer Node::request(const std::string& op, const std::string& line, double seconds,
                            const std::string& origin, bool verbatim) {
+  // One that failed is not spoken to again (what it would answer cannot be
+  // trusted): its holders (a stepper freeing its model) hear so at once.
+  if (failed_)
+    throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
+                      " failed before " + op);
   Answer a;
   std::string text;
   try {

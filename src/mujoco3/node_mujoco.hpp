@@ -116,7 +116,8 @@ class Node {
 
   std::unique_ptr<ChildProcess> process_;
   std::vector<std::string> messages_;
-  bool failed_ = false;  // it died or broke the protocol: the next user starts another
+  bool failed_ = false;   // it died or broke the protocol: the next user starts another
+  bool counted_ = false;  // started and answered hello: one of g_nodes
 };
 
 // mujoco/model_state.hpp's read_model_state, in MuJoCo 3.14 (this
