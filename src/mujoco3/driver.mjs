@@ -1,6 +1,6 @@
 // MuJoCo 3 (the WebAssembly package @mujoco/mujoco, pinned by
 // package-lock.json) for contact2d's mujoco3 engine. The C++ side
-// (mujoco3/node_process.cpp) starts one `node driver.mjs` per thread and
+// (mujoco3/node_mujoco.cpp) starts one `node driver.mjs` per thread and
 // talks to it over stdin/stdout:
 //
 //   request   one JSON line {"op": ..., ...}

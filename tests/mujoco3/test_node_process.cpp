@@ -315,42 +315,56 @@ TEST_F(NodeProcess, ModelsLoadAsOnMujoco222) {
 }
 
 // Node dies with contact2d on SIGINT, SIGTERM and SIGKILL, in the middle of
-// a settle of minutes (before: it settled on under PID 1 for ~17 min).
+// a settle of minutes (before: it settled on under PID 1 for ~17 min). The
+// three programs run side by side.
 TEST_F(NodeProcess, NodeDiesWithTheProgramOnEverySignal) {
   CONTACT2D_NEEDS_MUJOCO3();
   write("work/slow.xml", slow_model());
-  for (const int signal : {SIGINT, SIGTERM, SIGKILL}) {
+  const std::vector<int> signals = {SIGINT, SIGTERM, SIGKILL};
+  std::vector<pid_t> programs;
+  for (size_t i = 0; i < signals.size(); ++i) {
     const pid_t program = ::fork();
     ASSERT_GE(program, 0);
     if (program == 0) {
       ::chdir((dir_ / "work").c_str());
       for (int s : {SIGINT, SIGTERM}) ::signal(s, SIG_DFL);  // ctest may start us with them ignored
-      const int null = ::open((dir_ / "stdout").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+      const int null =
+          ::open((dir_ / ("out" + std::to_string(i))).c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
       ::dup2(null, STDOUT_FILENO);
       ::dup2(null, STDERR_FILENO);
       ::execl(CONTACT2D_BINARY, CONTACT2D_BINARY, "inspect", "slow.xml", "--engine", "mujoco3",
               "--settle", "1e300", static_cast<char*>(nullptr));
       ::_exit(127);
     }
-    // Its Node, then a second of settling.
-    std::vector<int> nodes;
-    const auto start = Clock::now();
-    while (nodes.empty() && since(start) < 30) {
-      nodes = children_of(program, "driver.mjs");
+    programs.push_back(program);
+  }
+  // Their Nodes, then settling for a while.
+  std::vector<int> nodes(programs.size(), 0);
+  const auto start = Clock::now();
+  for (size_t i = 0; i < programs.size(); ++i) {
+    while (nodes[i] == 0 && since(start) < 30) {
+      const std::vector<int> found = children_of(programs[i], "driver.mjs");
+      if (!found.empty()) nodes[i] = found[0];
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
-    ASSERT_EQ(nodes.size(), 1u) << strsignal(signal);
-    std::this_thread::sleep_for(std::chrono::milliseconds(2500));
-    ASSERT_FALSE(gone(nodes[0])) << "Node ended before the signal";
-    ::kill(program, signal);
-    int status = 0;
-    ::waitpid(program, &status, 0);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  for (size_t i = 0; i < programs.size(); ++i) {
+    const char* name = strsignal(signals[i]);
+    if (nodes[i] == 0 || gone(nodes[i])) {
+      ADD_FAILURE() << name << ": no Node settling before the signal";
+      ::kill(programs[i], SIGKILL);
+      ::waitpid(programs[i], nullptr, 0);
+      continue;
+    }
+    ::kill(programs[i], signals[i]);
+    ::waitpid(programs[i], nullptr, 0);
     const auto sent = Clock::now();
-    const bool ended = wait_gone(nodes[0], 10.0);
-    std::printf("%s: Node %s %.3f s after the signal\n", strsignal(signal),
-                ended ? "gone" : "still running", since(sent));
-    EXPECT_TRUE(ended) << strsignal(signal);
-    if (!ended) ::kill(nodes[0], SIGKILL);
+    const bool ended = wait_gone(nodes[i], 10.0);
+    std::printf("%s: Node %s %.3f s after the signal\n", name, ended ? "gone" : "still running",
+                since(sent));
+    EXPECT_TRUE(ended) << name;
+    if (!ended) ::kill(nodes[i], SIGKILL);
   }
 }
 
