@@ -96,7 +96,7 @@ double need_number(const json::Value& v, const std::string& key) {
   return need(v, key, json::Value::Kind::Number).number;
 }
 
-// A whole number within [low, high].
+// A whole number within [low, high] (|high| at most 2^53, exact as a double).
 long long need_integer(const json::Value& v, const std::string& key, long long low = 0,
                        long long high = std::numeric_limits<int>::max()) {
   const double x = need_number(v, key);
@@ -411,7 +411,7 @@ int Node::step(int id, int n, int width, std::vector<double>& out, bool& bad) {
   const auto [steps, bytes] = checked("step", [&] {
     bad = need_flag(a.value, "bad");
     const long long taken = need_integer(a.value, "steps", 0, n);
-    const long long size = need_integer(a.value, "bytes", 0, std::numeric_limits<long long>::max());
+    const long long size = need_integer(a.value, "bytes", 0, 1LL << 53);
     const long long expected = taken * width * static_cast<long long>(sizeof(double));
     if (size != expected)
       throw BadAnswer("\"bytes\" " + std::to_string(size) + " where " + std::to_string(taken) +
