@@ -10,6 +10,7 @@
 #include "core/cancel.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
+#include "io/read_file.hpp"
 
 namespace contact2d::mujoco {
 namespace {
@@ -171,8 +172,9 @@ void check_state_request(const StateRequest& r) {
   if (!(r.settle >= 0.0 && std::isfinite(r.settle)))
     throw InputError("--settle " + format_number(r.settle) +
                      ": must be a time in seconds, >= 0 and finite");
-  std::ifstream file(r.path);
-  if (!file) throw InputError(prefix(r) + "cannot open the file");
+  // A regular file within the cap, checked without opening it: opening a
+  // FIFO blocks until a writer comes, and a device reads without end.
+  check_input_file(r.path, "the MJCF file");
 }
 
 LoadedState load_model_state(const StateRequest& r) {

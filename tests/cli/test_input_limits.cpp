@@ -8,6 +8,7 @@
 // negative settle). Each case runs in a private folder with private files:
 // the huge ones are sparse (no disk is used), never the machine's devices.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -152,6 +153,23 @@ TEST_F(InputLimits, EmptyValuesAreErrors) {
 }
 
 #ifdef CONTACT2D_WITH_MUJOCO
+// A model that is a FIFO (a private one) blocked MuJoCo 2.2.2's inspect in
+// open() until a writer came: refused before it is opened.
+TEST_F(InputLimits, AModelThatIsAFifoIsRefusedUnopened) {
+  ASSERT_EQ(::mkfifo((dir_ / "m.xml").c_str(), 0600), 0);
+  // Under timeout: before the fix the run never ended (exit 124 here).
+  const std::string err = (dir_ / "err").string();
+  const int raw =
+      std::system(("cd '" + dir_.string() +
+                   "' && timeout 20 '" CONTACT2D_EXE "' inspect m.xml --no-rest-search 2>'" + err +
+                   "' >/dev/null")
+                      .c_str());
+  EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 2);
+  const std::string said = slurp(err);
+  EXPECT_NE(said.find("m.xml: cannot read the MJCF file (a pipe or socket"), std::string::npos)
+      << said;
+}
+
 // --settle 1e17 s overflowed lround (settled −1.8e16 s, exit 0): capped at
 // the 1e6 steps a settle takes, and said. The model's timestep is 0.01 s,
 // so the settle is 1e4 s.
