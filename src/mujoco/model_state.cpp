@@ -174,7 +174,11 @@ void check_state_request(const StateRequest& r) {
                      ": must be a time in seconds, >= 0 and finite");
   // A regular file within the cap, checked without opening it: opening a
   // FIFO blocks until a writer comes, and a device reads without end.
-  check_input_file(r.path, "the MJCF file");
+  try {
+    check_input_file(r.path, "the MJCF file");
+  } catch (const InputError& e) {  // "PATH: cannot read …", named by its option
+    throw InputError((r.option.empty() ? "" : r.option + " ") + e.what());
+  }
 }
 
 LoadedState load_model_state(const StateRequest& r) {

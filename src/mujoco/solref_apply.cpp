@@ -140,34 +140,11 @@ void rebase(tinyxml2::XMLElement* root, const fs::path& model_dir, const std::st
   }
 }
 
-}  // namespace
-
-Applied apply_solref(const SolrefReport& report, const MappingOutcome& o, const std::string& model,
-                     const std::string& body, const std::string& out, const StateRequest& settle,
-                     const StateReader& read) {
-  const fs::path model_dir = fs::absolute(model).parent_path().lexically_normal();
-  const fs::path out_path = fs::absolute(out).lexically_normal();
-  std::error_code same_error;
-  if (out_path == fs::absolute(model).lexically_normal() ||
-      fs::equivalent(out_path, fs::absolute(model), same_error))
-    throw InputError("--apply " + out + ": is the model itself; name a new file");
-  check_output_file("--apply", out);
-
-  tinyxml2::XMLDocument doc;
-  const std::string text = read_input_file(model, "--model");
-  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
-    throw InputError("--model " + model + ": not XML (" + std::string(doc.ErrorStr()) + ")");
-  tinyxml2::XMLElement* root = doc.RootElement();
-  if (!root || std::string(root->Name()) != "mujoco")
-    throw InputError("--model " + model + ": its root element is not <mujoco>");
+// <option>: the mapping's cone and impratio; a model that ignores <pair>s
+// (collision="dynamic") is refused.
+void write_options(tinyxml2::XMLDocument& doc, tinyxml2::XMLElement* root, const MappingOutcome& o,
+                   const std::string& out) {
   const SolverSettings& s = o.settings;
-  const SolrefInput& in = report.input;
-  const std::vector<RestPair> pairs = rest_pairs(in, o);
-  if (pairs.empty())
-    throw InputError("--apply " + out + ": body '" + body + "' touches nothing after settling " +
-                     format_number(settle.settle) +
-                     " s, so there is no contact to apply the mapping to (a longer --settle, or "
-                     "--key a keyframe where it rests)");
   for (tinyxml2::XMLElement* option = root->FirstChildElement("option"); option;
        option = option->NextSiblingElement("option")) {
     const char* collision = option->Attribute("collision");
@@ -186,6 +163,12 @@ Applied apply_solref(const SolrefReport& report, const MappingOutcome& o, const 
     if (o.condim > 1 && s.impratio != 1.0)
       option->SetAttribute("impratio", format_exact(s.impratio).c_str());
   }
+}
+
+void write_pairs(tinyxml2::XMLDocument& doc, tinyxml2::XMLElement* root,
+                 const std::vector<RestPair>& pairs, const MappingOutcome& o,
+                 const std::string& model, const std::string& out) {
+  const SolverSettings& s = o.settings;
   // One <pair> per geom pair the body rests on (solref_tool.hpp's
   // RestPair): only those contacts change, and only in solref and solimp
   // (with --mu also condim and friction). A pair the model has already is
@@ -235,6 +218,38 @@ Applied apply_solref(const SolrefReport& report, const MappingOutcome& o, const 
     element_doc.Parse(pair_text.c_str());
     contact->InsertEndChild(element_doc.RootElement()->DeepClone(&doc));
   }
+}
+
+}  // namespace
+
+Applied apply_solref(const SolrefReport& report, const MappingOutcome& o, const std::string& model,
+                     const std::string& body, const std::string& out, const StateRequest& settle,
+                     const StateReader& read) {
+  const fs::path model_dir = fs::absolute(model).parent_path().lexically_normal();
+  const fs::path out_path = fs::absolute(out).lexically_normal();
+  std::error_code same_error;
+  if (out_path == fs::absolute(model).lexically_normal() ||
+      fs::equivalent(out_path, fs::absolute(model), same_error))
+    throw InputError("--apply " + out + ": is the model itself; name a new file");
+  check_output_file("--apply", out);
+
+  tinyxml2::XMLDocument doc;
+  const std::string text = read_input_file(model, "--model");
+  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
+    throw InputError("--model " + model + ": not XML (" + std::string(doc.ErrorStr()) + ")");
+  tinyxml2::XMLElement* root = doc.RootElement();
+  if (!root || std::string(root->Name()) != "mujoco")
+    throw InputError("--model " + model + ": its root element is not <mujoco>");
+  const SolverSettings& s = o.settings;
+  const SolrefInput& in = report.input;
+  const std::vector<RestPair> pairs = rest_pairs(in, o);
+  if (pairs.empty())
+    throw InputError("--apply " + out + ": body '" + body + "' touches nothing after settling " +
+                     format_number(settle.settle) +
+                     " s, so there is no contact to apply the mapping to (a longer --settle, or "
+                     "--key a keyframe where it rests)");
+  write_options(doc, root, o, out);
+  write_pairs(doc, root, pairs, o, model, out);
   // MuJoCo settles the written model from its temporary file, before it
   // takes the output's name: a model it refuses leaves no file. That file
   // sits beside the output (or in $TMPDIR for a FIFO or device): in another

@@ -726,6 +726,102 @@ void applied_text(std::ostringstream& o, const SolrefReport& r) {
 
 }  // namespace
 
+namespace {
+
+// One mapping's block of the text: its numbers, then the snippets.
+void mapping_text(std::ostringstream& o, const SolrefReport& r, const MappingOutcome& m) {
+  const SolrefInput& in = r.input;
+  o << "\n"
+    << mapping_name(m.mapping)
+    << (r.recommendation.rfind(std::string(mapping_name(m.mapping)) + ":", 0) == 0
+            ? " (recommended)"
+            : "")
+    << "\n";
+  if (!m.unavailable.empty()) {
+    o << "  " << (m.mapping == Mapping::Compensated ? "" : "not available: ") << m.unavailable
+      << "\n";
+    return;
+  }
+  if (!m.unfit.empty()) o << "  DO NOT USE for a model to build on: " << m.unfit << "\n";
+  const SolverSettings& s = m.settings;
+  o << "  solref = \"" << join({s.solref[0], s.solref[1]}) << "\"  solimp = \""
+    << join({s.solimp[0], s.solimp[1], s.solimp[2], s.solimp[3], s.solimp[4]}) << "\"  cone = "
+    << (s.elliptic      ? "elliptic"
+        : m.condim == 0 ? "yours (not written)"
+                        : "pyramidal")
+    << "  impratio = "
+    << (m.condim == 1   ? std::string("1 (condim 1: no friction rows)")
+        : m.condim == 0 ? "yours (not written)"
+                        : format_number(s.impratio))
+    << "\n";
+  if (s.solref[0] > 0.0) {
+    o << "  refsafe: "
+      << (s.refsafe_clamped
+              ? "BITES: timeconst " + format_number(s.solref[0]) + " s < 2Δt; MuJoCo uses " +
+                    format_number(m.timeconst_used) + " s, a softer contact than k"
+              : "does not bite (timeconst " + format_number(s.solref[0]) +
+                    " s ≥ 2Δt = " + format_number(2.0 * in.dt) + " s)")
+      << "\n";
+  } else {
+    o << "  refsafe: does not apply (direct form)\n";
+  }
+  if (m.normal_weight != r.inv_weight)
+    o << "  pyramidal cone with friction" << (m.condim == 0 ? " (yours)" : "")
+      << ": the normal sees Â·μ²(1 + μ²)/((condim − 1)·impratio) "
+         "= "
+      << format_number(m.normal_weight) << " 1/kg in place of Â (a stiffer contact)\n";
+  o << "  MuJoCo: K = " << format_number(m.K) << " 1/s², B = " << format_number(m.B)
+    << " 1/s, impedance d = " << format_number(m.impedance) << " (max), "
+    << format_number(m.impedance_at_rest) << " at rest\n";
+  o << "  natural frequency ω = " << format_number(m.omega)
+    << " rad/s, ζ = " << format_number(m.zeta)
+    << " (the reference: ω = " << format_number(std::sqrt(in.k * r.inv_mass))
+    << ", ζ = " << format_number(in.c * r.inv_mass / (2.0 * std::sqrt(in.k * r.inv_mass))) << ")\n";
+  o << "  ω·Δt = " << format_number(m.omega_dt) << ": limit " << format_number(m.euler_limit)
+    << " for MuJoCo's Euler and implicit (" << (m.omega_dt < m.euler_limit ? "ok" : "EXCEEDED")
+    << "), " << format_number(m.rk4_limit) << " for RK4 ("
+    << (m.omega_dt < m.rk4_limit ? "ok" : "EXCEEDED") << ")\n";
+  o << "  static penetration = " << format_number(m.static_penetration)
+    << " m = " << format_number(m.static_penetration / m.nominal_penetration)
+    << " × f/k (per contact)\n";
+  if (in.slope)
+    o << "  slope " << format_number(*in.slope) << "°: "
+      << (std::isfinite(m.creep) ? "creep " + format_number(m.creep) + " m/s" : m.creep_note)
+      << "\n";
+  o << "  MJCF, a default class (put class=\"contact2d\" on the body's contact geoms; "
+    << (m.condim == 0
+            ? "solmix 1e30 makes its solref and solimp outweigh the other geom's while "
+              "condim, friction, margin and gap mix as before, on every contact of those geoms"
+            : "priority 1 makes its condim, friction, solref and solimp win over the other "
+              "geom's")
+    << "):\n";
+  std::istringstream a(m.default_snippet);
+  for (std::string line; std::getline(a, line);) o << "    " << line << "\n";
+  if (in.settled_contacts.empty())
+    o << "  or, for a contact with the ground, a pair (replace BODY_GEOM and ground; a pair "
+         "takes no condim, friction, margin or gap from its geoms: without them it has "
+         "MuJoCo's pair defaults, condim 3, friction 1 1 0.005 0.0001 0.0001):\n";
+  else
+    o << "  or pairs, one per geom pair the body rests on (only those contacts change; "
+      << (m.condim == 0
+              ? "condim, friction, margin and gap as MuJoCo " + in.model_version + " mixed them"
+              : "margin and gap as MuJoCo " + in.model_version + " mixed them")
+      << "):\n";
+  std::istringstream b(m.pair_snippet);
+  for (std::string line; std::getline(b, line);) o << "    " << line << "\n";
+  std::vector<int> told;
+  for (const RestPair& p : rest_pairs(in, m)) {
+    for (const GeomRef* g : {&p.geom1, &p.geom2}) {
+      if (g->named || std::find(told.begin(), told.end(), g->id) != told.end()) continue;
+      told.push_back(g->id);
+      o << "    (" << g->name << " has no name; a pair needs one: name it " << pair_name(*g)
+        << ", geom " << g->index_in_body + 1 << " of body '" << g->body << "')\n";
+    }
+  }
+}
+
+}  // namespace
+
 std::string format_report_text(const SolrefReport& r) {
   const SolrefInput& in = r.input;
   std::ostringstream o;
@@ -773,96 +869,7 @@ std::string format_report_text(const SolrefReport& r) {
     o << "friction: no --mu, so the snippets write no condim and no friction: your geoms keep "
          "theirs (the pyramidal cone's effect on the rest depth is computed with "
       << in.user_friction.source << "); --mu writes them\n";
-  for (const MappingOutcome& m : r.mappings) {
-    o << "\n"
-      << mapping_name(m.mapping)
-      << (r.recommendation.rfind(std::string(mapping_name(m.mapping)) + ":", 0) == 0
-              ? " (recommended)"
-              : "")
-      << "\n";
-    if (!m.unavailable.empty()) {
-      o << "  " << (m.mapping == Mapping::Compensated ? "" : "not available: ") << m.unavailable
-        << "\n";
-      continue;
-    }
-    if (!m.unfit.empty()) o << "  DO NOT USE for a model to build on: " << m.unfit << "\n";
-    const SolverSettings& s = m.settings;
-    o << "  solref = \"" << join({s.solref[0], s.solref[1]}) << "\"  solimp = \""
-      << join({s.solimp[0], s.solimp[1], s.solimp[2], s.solimp[3], s.solimp[4]}) << "\"  cone = "
-      << (s.elliptic      ? "elliptic"
-          : m.condim == 0 ? "yours (not written)"
-                          : "pyramidal")
-      << "  impratio = "
-      << (m.condim == 1   ? std::string("1 (condim 1: no friction rows)")
-          : m.condim == 0 ? "yours (not written)"
-                          : format_number(s.impratio))
-      << "\n";
-    if (s.solref[0] > 0.0) {
-      o << "  refsafe: "
-        << (s.refsafe_clamped
-                ? "BITES: timeconst " + format_number(s.solref[0]) + " s < 2Δt; MuJoCo uses " +
-                      format_number(m.timeconst_used) + " s, a softer contact than k"
-                : "does not bite (timeconst " + format_number(s.solref[0]) +
-                      " s ≥ 2Δt = " + format_number(2.0 * in.dt) + " s)")
-        << "\n";
-    } else {
-      o << "  refsafe: does not apply (direct form)\n";
-    }
-    if (m.normal_weight != r.inv_weight)
-      o << "  pyramidal cone with friction" << (m.condim == 0 ? " (yours)" : "")
-        << ": the normal sees Â·μ²(1 + μ²)/((condim − 1)·impratio) "
-           "= "
-        << format_number(m.normal_weight) << " 1/kg in place of Â (a stiffer contact)\n";
-    o << "  MuJoCo: K = " << format_number(m.K) << " 1/s², B = " << format_number(m.B)
-      << " 1/s, impedance d = " << format_number(m.impedance) << " (max), "
-      << format_number(m.impedance_at_rest) << " at rest\n";
-    o << "  natural frequency ω = " << format_number(m.omega)
-      << " rad/s, ζ = " << format_number(m.zeta)
-      << " (the reference: ω = " << format_number(std::sqrt(in.k * r.inv_mass))
-      << ", ζ = " << format_number(in.c * r.inv_mass / (2.0 * std::sqrt(in.k * r.inv_mass)))
-      << ")\n";
-    o << "  ω·Δt = " << format_number(m.omega_dt) << ": limit " << format_number(m.euler_limit)
-      << " for MuJoCo's Euler and implicit (" << (m.omega_dt < m.euler_limit ? "ok" : "EXCEEDED")
-      << "), " << format_number(m.rk4_limit) << " for RK4 ("
-      << (m.omega_dt < m.rk4_limit ? "ok" : "EXCEEDED") << ")\n";
-    o << "  static penetration = " << format_number(m.static_penetration)
-      << " m = " << format_number(m.static_penetration / m.nominal_penetration)
-      << " × f/k (per contact)\n";
-    if (in.slope)
-      o << "  slope " << format_number(*in.slope) << "°: "
-        << (std::isfinite(m.creep) ? "creep " + format_number(m.creep) + " m/s" : m.creep_note)
-        << "\n";
-    o << "  MJCF, a default class (put class=\"contact2d\" on the body's contact geoms; "
-      << (m.condim == 0
-              ? "solmix 1e30 makes its solref and solimp outweigh the other geom's while "
-                "condim, friction, margin and gap mix as before, on every contact of those geoms"
-              : "priority 1 makes its condim, friction, solref and solimp win over the other "
-                "geom's")
-      << "):\n";
-    std::istringstream a(m.default_snippet);
-    for (std::string line; std::getline(a, line);) o << "    " << line << "\n";
-    if (in.settled_contacts.empty())
-      o << "  or, for a contact with the ground, a pair (replace BODY_GEOM and ground; a pair "
-           "takes no condim, friction, margin or gap from its geoms: without them it has "
-           "MuJoCo's pair defaults, condim 3, friction 1 1 0.005 0.0001 0.0001):\n";
-    else
-      o << "  or pairs, one per geom pair the body rests on (only those contacts change; "
-        << (m.condim == 0
-                ? "condim, friction, margin and gap as MuJoCo " + in.model_version + " mixed them"
-                : "margin and gap as MuJoCo " + in.model_version + " mixed them")
-        << "):\n";
-    std::istringstream b(m.pair_snippet);
-    for (std::string line; std::getline(b, line);) o << "    " << line << "\n";
-    std::vector<int> told;
-    for (const RestPair& p : rest_pairs(in, m)) {
-      for (const GeomRef* g : {&p.geom1, &p.geom2}) {
-        if (g->named || std::find(told.begin(), told.end(), g->id) != told.end()) continue;
-        told.push_back(g->id);
-        o << "    (" << g->name << " has no name; a pair needs one: name it " << pair_name(*g)
-          << ", geom " << g->index_in_body + 1 << " of body '" << g->body << "')\n";
-      }
-    }
-  }
+  for (const MappingOutcome& m : r.mappings) mapping_text(o, r, m);
   if (!r.fit_hint.empty()) o << "\n" << r.fit_hint << "\n";
   applied_text(o, r);
   return o.str();
