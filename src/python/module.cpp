@@ -380,6 +380,9 @@ py::object load(const py::object& given, const std::vector<std::string>& sets) {
     throw py::type_error("Scene.load(): path must be a path (str or os.PathLike), not " +
                          py::str(py::type::of(given).attr("__name__")).cast<std::string>());
   const std::string path = py::module_::import("os").attr("fspath")(given).cast<std::string>();
+  // The C library stops a path at a NUL: 'box.toml\x00junk' opened box.toml.
+  if (path.find('\0') != std::string::npos)
+    throw py::value_error("Scene.load(): path has a NUL character, which no file name can hold");
   std::vector<Override> overrides;
   overrides.reserve(sets.size());
   for (const std::string& s : sets) overrides.push_back(parse_override(s));

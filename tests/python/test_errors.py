@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import contact2d
-from conftest import program_error, run_program
+from conftest import SOURCE_DIR as SOURCE, program_error, run_program
 
 BOX = "validation/scenes/box.toml"
 
@@ -194,3 +194,22 @@ def test_version_is_the_programs():
     """__version__ is the project's version, as `contact2d --version` prints it."""
     out, _ = run_program("--version")
     assert out.split()[1] == contact2d.__version__
+
+
+def test_a_path_with_a_nul_is_refused():
+    # The C library stopped the path at the NUL: 'box.toml\x00junk' loaded box.toml.
+    path = str(SOURCE / "validation/scenes/box.toml") + "\x00junk"
+    with pytest.raises(ValueError, match="NUL character"):
+        contact2d.Scene.load(path)
+    with pytest.raises(ValueError, match="NUL character"):
+        contact2d.simulate(path)
+    with pytest.raises(ValueError, match="NUL character"):
+        contact2d.inspect(str(SOURCE / "docs/examples/inspect.xml") + "\x00x")
+
+
+def test_settle_none_names_the_keyword():
+    # pybind11's raw "incompatible function arguments" before.
+    with pytest.raises(TypeError, match=r"inspect\(\): settle must be a number \(s\), not None"):
+        contact2d.inspect(str(SOURCE / "docs/examples/inspect.xml"), settle=None)
+    with pytest.raises(TypeError, match=r"solref\(\): settle must be a number \(s\), not None"):
+        contact2d.solref(k=1e4, c=10, dt=1e-3, mass=1, settle=None)

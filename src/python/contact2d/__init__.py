@@ -173,10 +173,21 @@ def generate(scene: SceneLike, mapping: str = "", geometry: str = "", model_dt: 
     return run["xml"]
 
 
+def _required(value, name, function, unit):
+    """A number that has no "absent": None is a TypeError naming the keyword."""
+    if value is None:
+        raise TypeError(f"{function}(): {name} must be a number ({unit}), not None")
+    return value
+
+
 def _path(value, name, function, optional=False):
     """A path given as str or os.PathLike, as str; "" stays "" when optional."""
     if isinstance(value, (str, os.PathLike)):
-        return os.fspath(value)
+        path = os.fspath(value)
+        if "\0" in path:  # the C library would stop the path there
+            raise ValueError(f"{function}(): {name} has a NUL character, which no file "
+                             "name can hold")
+        return path
     raise TypeError(f"{function}(): {name} must be a path (str or os.PathLike"
                     f"{', or empty' if optional else ''}), not {type(value).__name__}")
 
@@ -217,7 +228,8 @@ def solref(k: Optional[float] = None, c: Optional[float] = None, *,
                              number(restitution, "restitution", "dimensionless"),
                              number(contact_time, "contact_time", "s"),
                              number(penetration, "penetration", "m"), engine,
-                             number(settle, "settle", "s"), key,
+                             _required(number(settle, "settle", "s"), "settle", "solref", "s"),
+                             key,
                              _path(apply, "apply", "solref", True),
                              number(slope, "slope", "degrees"))
     _notes(run["notes"])
@@ -240,7 +252,8 @@ def inspect(path: Union[str, os.PathLike], key: str = "", pairs: bool = False,
     is ``rest_search=False``)."""
     run = _contact2d._inspect(_path(path, "path", "inspect"), key, pairs,
                               _number(slope, "slope", "inspect", "degrees"),
-                              _number(settle, "settle", "inspect", "s"), estimate_loads, engine,
+                              _required(_number(settle, "settle", "inspect", "s"), "settle",
+                                        "inspect", "s"), estimate_loads, engine,
                               bool(rest_search))
     _notes(run["notes"])
     return json.loads(run["json"])
