@@ -738,9 +738,11 @@ InspectReport begin_report(const ModelState& s, const InspectOptions& options) {
   for (InspectRow& r : rep.contacts) evaluate(ctx, r, rep.warnings, label_of(r));
   rep.trees = tree_loads(s, rep.contacts);
   if (!options.body.empty()) {
-    if (std::find(s.body_names.begin(), s.body_names.end(), options.body) == s.body_names.end())
-      throw InputError("--body " + options.body + ": no body of that name in " + options.path);
-    rep.body = options.body;
+    if (std::find(s.body_names.begin(), s.body_names.end(), printable_name(options.body)) ==
+        s.body_names.end())
+      throw InputError("--body " + printable_name(options.body) + ": no body of that name in " +
+                       options.path);
+    rep.body = printable_name(options.body);
     // The least-squares loads above used every contact; only the listing is filtered.
     rep.contacts.erase(std::remove_if(rep.contacts.begin(), rep.contacts.end(),
                                       [&](const InspectRow& r) { return !involves(r, rep.body); }),

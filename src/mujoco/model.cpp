@@ -3,6 +3,7 @@
 #include <cstring>
 #include <mutex>
 
+#include "core/format.hpp"
 #include "core/input_error.hpp"
 
 namespace contact2d::mujoco {
@@ -94,9 +95,23 @@ std::vector<std::string> warning_counters(const mjData* data) {
   return out;
 }
 
+std::string printable_name(const std::string& name) {
+  std::string out;
+  for (const char ch : name) {
+    const auto byte = static_cast<unsigned char>(ch);
+    if (byte < 0x20 || byte == 0x7f) {
+      out += format_text("\\x%02x", byte);
+    } else {
+      if (ch == '\\') out += '\\';
+      out += ch;
+    }
+  }
+  return out;
+}
+
 std::string name_of(const mjModel* m, int type, int id, const char* what) {
   const char* name = mj_id2name(m, type, id);
-  if (name && name[0]) return name;
+  if (name && name[0]) return printable_name(name);
   if (type == mjOBJ_BODY && id == 0) return "world";
   return std::string(what) + " #" + std::to_string(id);
 }

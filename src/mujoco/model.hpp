@@ -59,6 +59,14 @@ std::vector<std::string> warning_counters(const mjData* data);
 // A model object's name; "world" for body 0; "<what> #id" when unnamed.
 std::string name_of(const mjModel* m, int type, int id, const char* what);
 
+// A model's name as the tool prints and stores it: a control character
+// (ESC, a newline: a model is anybody's) as \xNN, and a backslash as \\, so
+// that a name can neither move the terminal's cursor nor break a line.
+// name_of gives names so, MuJoCo 3's reader makes them so
+// (make_names_printable), and an option naming a body is compared after
+// the same escaping.
+std::string printable_name(const std::string& name);
+
 // A contact's normal row of the Jacobian, n·(J_p(body2) − J_p(body1)) at pos.
 std::vector<double> normal_jacobian(const mjModel* m, const mjData* d, int body1, int body2,
                                     const std::array<double, 3>& pos,

@@ -89,10 +89,13 @@ void read_model_arrays(const mjModel* m, ModelState& s) {
   }
 }
 
-// Every contact in the constraint problem, with its rows' numbers.
+// Every contact in the constraint problem, with its rows' numbers: one
+// within its gap (exclude 1) or otherwise left out of it has no rows, and
+// is not listed (as the driver of mujoco3 reads 3.14).
 void read_contacts(const mjModel* m, mjData* d, ModelState& s) {
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& con = d->contact[i];
+    if (con.exclude != 0 || con.efc_address < 0) continue;
     StateContact c;
     c.geom1 = con.geom1;
     c.geom2 = con.geom2;
@@ -140,9 +143,8 @@ void read_contacts(const mjModel* m, mjData* d, ModelState& s) {
     mj_contactForce(m, d, i, force);
     c.force = force[0];
     c.rows = m->opt.cone == mjCONE_ELLIPTIC || con.dim == 1 ? con.dim : 2 * (con.dim - 1);
-    if (con.efc_address >= 0)
-      c.quadratic = quadratic_rows(d->efc_force + con.efc_address, c.rows,
-                                   m->opt.cone == mjCONE_ELLIPTIC && con.dim > 1, con.friction);
+    c.quadratic = quadratic_rows(d->efc_force + con.efc_address, c.rows,
+                                 m->opt.cone == mjCONE_ELLIPTIC && con.dim > 1, con.friction);
     s.contacts.push_back(c);
   }
 }
@@ -272,8 +274,13 @@ LoadedState load_model_state(const StateRequest& r) {
   mju_zero(d->qvel, m->nv);
   mj_forward(m, d);
   s.bias.assign(d->qfrc_bias, d->qfrc_bias + m->nv);
-  s.messages = messages;
+  s.messages = messages;  // names: name_of gives them printable
   return out;
+}
+
+void make_names_printable(ModelState& state) {
+  for (std::vector<std::string>* names : {&state.body_names, &state.geom_names})
+    for (std::string& name : *names) name = printable_name(name);
 }
 
 ModelState read_model_state(const StateRequest& request) {

@@ -182,4 +182,8 @@ double coupled_tangential_inverse_mass(const ModelState& state, const std::vecto
 // The request's checks shared by both versions (InputError naming the option).
 void check_state_request(const StateRequest& request);
 
+// MuJoCo 3's names made printable as 2.2.2's name_of makes them
+// (model.hpp's printable_name).
+void make_names_printable(ModelState& state);
+
 }  // namespace contact2d::mujoco

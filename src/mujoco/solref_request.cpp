@@ -39,7 +39,7 @@ void read_body_into(const SolrefRequest& options, SolrefInput& in,
     tell("MuJoCo warns while loading " + options.model + ": " + body.load_warning);
   in.mass = body.mass;
   in.inv_weight = body.inv_weight;
-  in.body_source = options.model + ", body '" + options.body +
+  in.body_source = options.model + ", body '" + printable_name(options.body) +
                    "' (joints: " + (body.joints.empty() ? std::string("none") : body.joints) +
                    "), MuJoCo " + body.version;
   in.joint = body.joint.value_or(Joint::Free);
@@ -66,10 +66,10 @@ void read_body_into(const SolrefRequest& options, SolrefInput& in,
                          most->geom2 + ", the most loaded of the body's " +
                          std::to_string(body.contacts.size());
     if (!(most->A > 0.0))
-      throw InputError("--body " + options.body +
+      throw InputError("--body " + printable_name(options.body) +
                        ": its joints cannot move its contact along the normal (A = 0)");
   } else if (!body.joint) {
-    tell("body '" + options.body + "' has no contacts " + settled +
+    tell("body '" + printable_name(options.body) + "' has no contacts " + settled +
          " and is not on one of the joint sets free, planar, slide, hinge; A is taken as 1/m + "
          "r²/I");
   }
@@ -174,7 +174,8 @@ SolrefReport solref_request(const SolrefRequest& options,
     }());
     read_body_into(options, in, tell, read);
   } else {
-    if (!options.body.empty()) throw InputError("--body " + options.body + ": needs --model FILE");
+    if (!options.body.empty())
+      throw InputError("--body " + printable_name(options.body) + ": needs --model FILE");
     if (!options.mass) throw InputError("--mass or --model: one of them is required");
     in.mass = *options.mass;
     in.body_source = "--mass " + format_number(in.mass, 6);

@@ -579,9 +579,9 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
                           const std::string& body) {
   int id = -1;
   for (size_t b = 0; b < state.body_names.size(); ++b)
-    if (state.body_names[b] == body) id = static_cast<int>(b);
+    if (state.body_names[b] == printable_name(body)) id = static_cast<int>(b);
   if (id <= 0)
-    throw InputError("--body " + body + ": " +
+    throw InputError("--body " + printable_name(body) + ": " +
                      (id == 0 ? std::string("is the world body, which does not move")
                               : "no body of that name in " + path));
   const auto bi = static_cast<size_t>(id);
@@ -592,11 +592,12 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
   out.inv_weight = state.body_invweight0[2 * bi];
   out.load_warning = state.load_warning;
   if (!(out.mass > 0.0))
-    throw InputError("--body " + body + ": has mass " + format_number(out.mass) + " kg in " + path +
-                     "; it must be > 0");
+    throw InputError("--body " + printable_name(body) + ": has mass " + format_number(out.mass) +
+                     " kg in " + path + "; it must be > 0");
   if (!(out.inv_weight > 0.0))
-    throw InputError("--body " + body + ": body_invweight0 is " + format_number(out.inv_weight) +
-                     " in " + path + " (the body has no translational joint)");
+    throw InputError("--body " + printable_name(body) + ": body_invweight0 is " +
+                     format_number(out.inv_weight) + " in " + path +
+                     " (the body has no translational joint)");
   // The joint set, from the body's own joints (a body inside another moving
   // body is none of the four).
   out.joints = state.body_joints[bi];

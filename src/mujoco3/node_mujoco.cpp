@@ -612,7 +612,9 @@ mujoco::ModelState read_model_state(const mujoco::StateRequest& request) {
   // Before check_state_request, which opens it: opening a FIFO waits for a writer.
   check_input_file(request.path, "the model");
   mujoco::check_state_request(request);
-  return Node::of_this_thread()->state(request);
+  mujoco::ModelState state = Node::of_this_thread()->state(request);
+  mujoco::make_names_printable(state);
+  return state;
 }
 
 std::vector<std::string> Node::counters(int id) {

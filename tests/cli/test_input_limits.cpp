@@ -170,6 +170,22 @@ TEST_F(InputLimits, AModelThatIsAFifoIsRefusedUnopened) {
       << said;
 }
 
+// A model's names are anybody's: ESC and a newline in a body's and a
+// geom's name were printed raw by inspect (a name could recolour the
+// terminal or forge a line). Printed as \xNN; --body still finds the body.
+TEST_F(InputLimits, NamesWithControlCharactersArePrintedEscaped) {
+  std::ofstream(dir_ / "m.xml") << "<mujoco><worldbody><geom name=\"fl\033[31moor\" type=\"plane\""
+                                   " size=\"1 1 0.1\"/><body name=\"b&#10;x\" pos=\"0 0 0.1\">"
+                                   "<freejoint/><geom type=\"sphere\" size=\"0.1\"/></body>"
+                                   "</worldbody></mujoco>\n";
+  const Outcome r = run("inspect m.xml --settle 1 --no-rest-search --body 'b\nx'");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find('\033'), std::string::npos);
+  EXPECT_NE(r.out.find("world / b\\x0ax (geoms fl\\x1b[31moor, geom #1)"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("only body b\\x0ax's contacts"), std::string::npos) << r.out;
+}
+
 // --settle 1e17 s overflowed lround (settled −1.8e16 s, exit 0): capped at
 // the 1e6 steps a settle takes, and said. The model's timestep is 0.01 s,
 // so the settle is 1e4 s.
