@@ -15,8 +15,9 @@
 // reset {id, qpos, qvel} (mj_resetData, then the given state); applied {id,
 // body, xfrc};
 // step {id, n} → {steps, bad, bytes}: up to n mj_step, stopping after the
-// first one that left a bad number in qpos or qvel (MuJoCo's autoreset is
-// off, so it stays there); bytes is exactly steps·(nq+nv)·8; rewind {id, n}:
+// first one that raised MuJoCo's bad-number counters (qpos, qvel, qacc: the
+// test of 2.2.2's MujocoStepper; MuJoCo's autoreset is off, so the state
+// stays there); bytes is exactly steps·(nq+nv)·8; rewind {id, n}:
 // back to the state before the last "step" and n steps again (a changed
 // applied force takes effect there);
 // counters {id} → {warnings: ["text (N times)"]};
@@ -131,6 +132,44 @@ function restore(e) {
   d.qvel.set(s.qvel);
   d.act.set(s.act);
   d.qacc_warmstart.set(s.warm);
+}
+
+// Up to n mj_step into out (qpos, qvel per step); the count taken. A step
+// is bad as on 2.2.2 (mujoco/stepper.cpp): it raised MuJoCo's bad-number
+// counters (mj_checkPos and mj_checkVel on the state it started from,
+// mj_checkAcc on qacc; mju_isBad: NaN or beyond mjMAXVAL = 1e10). Reading
+// the counters costs more than the step, so they are read only after a step
+// that left a bad number in qpos, qvel or qacc, and once at the end (the
+// caller). e.found: this call stopped at a bad step.
+function runSteps(e, out, n, before) {
+  const {m, d} = e;
+  const nq = m.nq, width = nq + m.nv;
+  // Views into MuJoCo's memory, taken again if a step ever moved it.
+  let qpos = d.qpos, qvel = d.qvel, qacc = d.qacc;
+  e.found = false;
+  // A counter already raised: every step is bad, as on 2.2.2.
+  if (before > 0) n = 1;
+  let steps = 0;
+  while (steps < n) {
+    mj.mj_step(m, d);
+    if (qpos.length !== nq) ({qpos, qvel, qacc} = d);
+    const at = steps * width;
+    out.set(qpos, at);
+    out.set(qvel, at + nq);
+    ++steps;
+    let suspect = before > 0;
+    for (let i = at; i < at + width; ++i) {
+      if (!(Math.abs(out[i]) <= 1e10)) suspect = true;
+    }
+    for (let i = 0; i < qacc.length; ++i) {
+      if (!(Math.abs(qacc[i]) <= 1e10)) suspect = true;
+    }
+    if (suspect && badCounters(d) > before) {
+      e.found = true;
+      break;
+    }
+  }
+  return steps;
 }
 
 // The package cannot read the disk: the model is copied into MuJoCo's
@@ -579,23 +618,22 @@ const ops = {
     if (!Number.isInteger(r.n) || r.n < 1 || r.n > 1 << 20) throw new Error(`step n = ${r.n}`);
     const out = new Float64Array(r.n * width);
     save(e);
-    // Views into MuJoCo's memory, taken again if a step ever moved it.
-    let qpos = d.qpos, qvel = d.qvel;
-    let steps = 0, bad = false;
-    while (steps < r.n) {
-      mj.mj_step(m, d);
-      if (qpos.length !== nq) ({ qpos, qvel } = d);
-      const at = steps * width;
-      out.set(qpos, at);
-      out.set(qvel, at + nq);
-      ++steps;
-      // MuJoCo's own test (mju_isBad: NaN or beyond mjMAXVAL = 1e10), on
-      // qpos and qvel; a bad qacc makes qvel bad in the same step. Reading
-      // the warning counters instead costs more than the step.
-      for (let i = at; i < at + width; ++i) {
-        if (!(Math.abs(out[i]) <= 1e10)) bad = true;
-      }
-      if (bad) break;
+    const before = badCounters(d);
+    let steps = runSteps(e, out, r.n, before);
+    const bad = before > 0 || badCounters(d) > before;
+    if (bad && !e.found && before === 0) {
+      // A counter rose at a step the cheap test did not look at (RK4's
+      // qacc after the step is not the one MuJoCo tested): the batch again
+      // from its start, the counters read after every step, to find it.
+      restore(e);
+      const now = badCounters(d);
+      steps = 0;
+      do {
+        mj.mj_step(m, d);
+        out.set(d.qpos, steps * width);
+        out.set(d.qvel, steps * width + nq);
+        ++steps;
+      } while (badCounters(d) === now && steps < r.n);
     }
     const bytes = Buffer.from(out.buffer, 0, steps * width * 8);
     return { steps, bad, bytes: bytes.length, payload: bytes };

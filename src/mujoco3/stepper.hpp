@@ -10,8 +10,10 @@
 // still unread rewinds MuJoCo to the step read last before applying it, so
 // the trajectory is the one a step-by-step run gives, bit for bit.
 //
-// A step that raised MuJoCo's bad-number counters (qpos, qvel, qacc: MuJoCo
-// then resets mjData itself) is StepStatus::NonFinite, as on 2.2.2.
+// A step that raised MuJoCo's bad-number counters (qpos, qvel, qacc; the
+// driver reads them, autoreset off, so the state stays where it went bad)
+// is StepStatus::NonFinite, as on 2.2.2 (where MuJoCo resets mjData): the
+// same steps on both versions.
 #pragma once
 
 #include <memory>

@@ -1,0 +1,163 @@
+// MuJoCo 3 read and reported as MuJoCo 2.2.2 is (issue 49, section 4): the
+// same steps found bad, the same contacts listed, one Node per worker, and
+// only the steps taken reported.
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/stepper.hpp"
+#include "io/scene_file.hpp"
+#include "mujoco/mjcf.hpp"
+#include "mujoco/model_state.hpp"
+#include "mujoco/stepper.hpp"
+#include "mujoco3/node_mujoco.hpp"
+#include "mujoco3/stepper.hpp"
+#include "mujoco3_test_util.hpp"
+
+namespace contact2d {
+namespace {
+
+// The first step that is NonFinite (0: none in `limit`).
+template <typename S>
+long long first_bad_step(S& stepper, long long limit) {
+  for (long long i = 1; i <= limit; ++i) {
+    if (stepper.step() == StepStatus::NonFinite) return i;
+  }
+  return 0;
+}
+
+Scene pushed_point_mass() {
+  return parse_scene(
+      "scene = \"point_mass\"\n[body]\nmass = 1\nhalf_height = 0.02\n"
+      "[contact]\nk = 3e4\nc = 40\nalpha = 150\nmu = 0.5\ndamping = \"kelvin_voigt\"\n"
+      "[initial]\ny = 0.4\n[sim]\ndt = 2e-4\nduration = 1\n",
+      "test scene");
+}
+
+// A force of 1e11 N on 1 kg: |qacc| = 1e11 > mjMAXVAL at once, while qvel
+// grows by 2e7 m/s a step and stays below 1e10 for 500 steps. 2.2.2 finds
+// the first step bad (mjWARN_BADQACC); MuJoCo 3 found step 500 (|qvel| only).
+TEST(As222, BadAccelerationIsTheSameStep) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const Scene scene = pushed_point_mass();
+  const Vec3 push(1e11, 0.0, 0.0);
+  mujoco::MujocoStepper v2(scene, mujoco::MjcfOptions{});
+  v2.set_applied(push);
+  mujoco3::Mujoco3Stepper v3(scene, mujoco::MjcfOptions{});
+  v3.set_applied(push);
+  v3.plan(2000);
+  EXPECT_EQ(first_bad_step(v2, 2000), 1);
+  EXPECT_EQ(first_bad_step(v3, 2000), 1);
+}
+
+// A bad position or speed is MuJoCo's mj_checkPos/mj_checkVel at the start
+// of the next step on both versions: the same step, under Euler and RK4
+// (whose qacc after the step is not the one MuJoCo tested).
+TEST(As222, BadSpeedIsTheSameStep) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  for (const Integrator integrator : {Integrator::SemiImplicitEuler, Integrator::RK4}) {
+    Scene scene = pushed_point_mass();
+    scene.sim.integrator = integrator;
+    // Upwards, clear of the ground: qacc 2e9, |qpos| = 40·n² passes 1e10 after
+    // step 15,811 (qvel at 25,000); mj_checkPos finds it in the next (RK4's
+    // stages one step later).
+    const Vec3 push(0.0, 2e9, 0.0);
+    mujoco::MujocoStepper v2(scene, mujoco::MjcfOptions{});
+    v2.set_applied(push);
+    mujoco3::Mujoco3Stepper v3(scene, mujoco::MjcfOptions{});
+    v3.set_applied(push);
+    v3.plan(30000);
+    const long long a = first_bad_step(v2, 30000);
+    EXPECT_GE(a, 15812) << integrator_name(integrator);
+    EXPECT_LE(a, 15813) << integrator_name(integrator);
+    EXPECT_EQ(first_bad_step(v3, 30000), a) << integrator_name(integrator);
+  }
+}
+
+// What agrees between the versions' lists of one model's contacts: the
+// count, each contact's geoms, condim, friction, solref, solimp and dist
+// (rounding: 1e-12 m), and, where the model's masses agree, A and the
+// normal force (relative 1e-6: the solvers stop at their tolerance).
+// `masses`: false for the mug, whose mass differs by design (docs/mujoco.md,
+// "One model on both versions": the mesh volume).
+// `path3`: the file 3.14 reads, when not `path`.
+void expect_same_contacts(const std::string& path, double settle, bool masses,
+                          const std::string& path3 = {}) {
+  mujoco::StateRequest request;
+  request.path = path;
+  request.settle = settle;
+  const mujoco::ModelState a = mujoco::read_model_state(request);
+  if (!path3.empty()) request.path = path3;
+  const mujoco::ModelState b = mujoco3::read_model_state(request);
+  ASSERT_EQ(a.contacts.size(), b.contacts.size()) << path;
+  for (size_t i = 0; i < a.contacts.size(); ++i) {
+    const mujoco::StateContact& x = a.contacts[i];
+    const mujoco::StateContact& y = b.contacts[i];
+    const std::string at = path + " contact " + std::to_string(i);
+    EXPECT_EQ(x.geom1, y.geom1) << at;
+    EXPECT_EQ(x.geom2, y.geom2) << at;
+    EXPECT_EQ(x.condim, y.condim) << at;
+    for (size_t k = 0; k < 5; ++k) EXPECT_EQ(x.friction[k], y.friction[k]) << at;
+    for (size_t k = 0; k < 2; ++k) EXPECT_EQ(x.solref[k], y.solref[k]) << at;
+    for (size_t k = 0; k < 5; ++k) EXPECT_EQ(x.solimp[k], y.solimp[k]) << at;
+    EXPECT_NEAR(x.dist, y.dist, 1e-12) << at;
+    if (!masses) continue;
+    EXPECT_NEAR(x.A, y.A, 1e-6 * std::abs(x.A)) << at;
+    EXPECT_NEAR(x.force, y.force, 1e-6 * std::abs(x.force) + 1e-9) << at;
+  }
+}
+
+// Two spheres on a plane, both detected by their pairs, one within its gap
+// (dist 0.05 m, active only within 0.02 m): that one is no contact of the
+// constraint problem (exclude 1), and neither version lists it. The
+// versions read margin and gap differently (docs/mujoco.md, "One model on
+// both versions"): 2.2.2 detects within the margin (0.1) and makes active
+// within margin − gap; 3.x detects within margin + gap and makes active
+// within the margin (0.02).
+std::string gap_model(double margin, double gap) {
+  const std::string pair =
+      "margin=\"" + std::to_string(margin) + "\" gap=\"" + std::to_string(gap) + "\"/>\n";
+  return "<mujoco>\n  <worldbody>\n"
+         "    <geom name=\"floor\" type=\"plane\" size=\"5 5 0.1\"/>\n"
+         "    <body pos=\"0 0 0.11\"><freejoint/><geom name=\"a\" type=\"sphere\" "
+         "size=\"0.1\"/></body>\n"
+         "    <body pos=\"1 0 0.15\"><freejoint/><geom name=\"b\" type=\"sphere\" "
+         "size=\"0.1\"/></body>\n"
+         "  </worldbody>\n  <contact>\n"
+         "    <pair geom1=\"floor\" geom2=\"a\" " +
+         pair + "    <pair geom1=\"floor\" geom2=\"b\" " + pair + "  </contact>\n</mujoco>\n";
+}
+
+TEST(As222, ContactsInAGapAreListedByNeither) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  namespace fs = std::filesystem;
+  const std::string stem = "contact2d_as222_gap_" + std::to_string(getpid());
+  const fs::path v2 = fs::temp_directory_path() / (stem + "_v2.xml");
+  const fs::path v3 = fs::temp_directory_path() / (stem + "_v3.xml");
+  std::ofstream(v2) << gap_model(0.1, 0.08);
+  std::ofstream(v3) << gap_model(0.02, 0.08);
+  mujoco::StateRequest request;
+  request.path = v2.string();
+  EXPECT_EQ(mujoco::read_model_state(request).contacts.size(), 1U);
+  request.path = v3.string();
+  EXPECT_EQ(mujoco3::read_model_state(request).contacts.size(), 1U);
+  expect_same_contacts(v2.string(), 0.0, true, v3.string());
+  fs::remove(v2);
+  fs::remove(v3);
+}
+
+TEST(As222, DebianSamplesListTheSameContacts) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const std::string humanoid = "/usr/share/mujoco/model/humanoid/humanoid.xml";
+  const std::string mug = "/usr/share/mujoco/model/mug/mug.xml";
+  if (!std::filesystem::exists(humanoid) || !std::filesystem::exists(mug))
+    GTEST_SKIP() << "Debian's MuJoCo samples are not installed";
+  expect_same_contacts(humanoid, 0.0, true);
+  expect_same_contacts(mug, 0.0, false);
+}
+
+}  // namespace
+}  // namespace contact2d
