@@ -31,6 +31,7 @@
 #include "analysis/compare_run.hpp"
 #include "analysis/real_impacts.hpp"
 #include "analysis/tables.hpp"
+#include "core/cancel.hpp"
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "core/scene.hpp"
@@ -402,6 +403,10 @@ void bind_exceptions() {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const RunFailed& e) {
       PyErr_SetString(PyExc_RuntimeError, e.what());
+    } catch (const Cancelled&) {
+      // Another thread's Ctrl-C (interruptible.hpp): contact2d.Cancelled.
+      PyErr_SetString(py::module_::import("contact2d").attr("Cancelled").ptr(),
+                      "cancelled: Ctrl-C on the main thread ends every contact2d call in progress");
     }
   });
 }

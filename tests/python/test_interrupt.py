@@ -68,3 +68,44 @@ def test_ctrl_c_stops_the_call_with_keyboard_interrupt(call):
     print(f"{call}: KeyboardInterrupt {latency:.4f} s after SIGINT; whole script {wall:.2f} s")
     assert latency < 30.0, done.stdout
     assert lines[1].startswith("box [ref, semi_implicit_euler, dt = 0.001 s"), done.stdout
+
+
+OTHER_THREAD_SCRIPT = r"""
+import os, signal, threading, time
+import contact2d
+signal.signal(signal.SIGINT, signal.default_int_handler)
+scene = contact2d.Scene.load("validation/scenes/box.toml")
+caught = []
+def other():
+    try:
+        contact2d.simulate(scene, dt=1e-5, duration=1e4)
+        caught.append("finished")
+    except contact2d.Cancelled as e:
+        caught.append("Cancelled " + str(e))
+    except Exception as e:
+        caught.append(type(e).__name__ + " " + str(e))
+worker = threading.Thread(target=other)
+worker.start()
+time.sleep(0.5)
+threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+try:
+    contact2d.simulate(scene, dt=1e-5, duration=1e4)
+    print("main finished")
+except KeyboardInterrupt:
+    print("main interrupted")
+worker.join(60)
+print(caught[0] if caught else "worker still running")
+"""
+
+
+def test_ctrl_c_ends_other_threads_calls_with_cancelled():
+    # Before: the other thread's call raised an undocumented
+    # "RuntimeError: cancelled" (issue 50); it is contact2d.Cancelled, a
+    # RuntimeError, with a message that says why.
+    done = subprocess.run([sys.executable, "-c", OTHER_THREAD_SCRIPT], capture_output=True,
+                          text=True, env=os.environ, timeout=120, check=False)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert lines[0] == "main interrupted", done.stdout
+    assert lines[1].startswith("Cancelled cancelled: Ctrl-C on the main thread"), done.stdout
+    assert issubclass(contact2d.Cancelled, RuntimeError)

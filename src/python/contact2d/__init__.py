@@ -28,7 +28,8 @@ from ._contact2d import __version__
 from . import _contact2d
 
 __all__ = [
-    "BoxPart", "COLUMNS", "Contact", "Contact2dNote", "Fit", "FitModel", "Scene", "Sim",
+    "BoxPart", "COLUMNS", "Cancelled", "Contact", "Contact2dNote", "Fit", "FitModel", "Scene",
+    "Sim",
     "Simulation", "State", "__version__", "compare", "fit", "generate", "inspect",
     "mujoco_available", "simulate", "solref",
 ]
@@ -60,6 +61,13 @@ COLUMNS = ("t", "x", "y", "theta", "vx", "vy", "omega")
 
 class Contact2dNote(UserWarning):
     """A note the program prints on stderr ("contact2d: note: ...")."""
+
+
+class Cancelled(RuntimeError):
+    """A call ended by Ctrl-C (or another signal the main thread's handler
+    raised on) while it ran on another thread: Python delivers the signal
+    to the main thread, whose own call raises KeyboardInterrupt, and every
+    contact2d call in progress is ended with it, its work dropped."""
 
 
 def _notes(lines):
