@@ -235,11 +235,8 @@ LoadedState load_model_state(const StateRequest& r) {
   const double wanted = r.settle / m->opt.timestep;
   const long steps =
       wanted >= static_cast<double>(kMaxSettleSteps) ? kMaxSettleSteps : std::lround(wanted);
-  if (wanted > static_cast<double>(kMaxSettleSteps))
-    messages.push_back("--settle " + format_number(r.settle) + " s is more than the " +
-                       std::to_string(kMaxSettleSteps) + " steps a settle takes: settled " +
-                       format_number(static_cast<double>(kMaxSettleSteps) * m->opt.timestep) +
-                       " s");
+  if (const std::string note = settle_cap_note(r.settle, m->opt.timestep); !note.empty())
+    messages.push_back(note);
   for (long i = 0; i < steps; ++i) {
     if ((i & 1023) == 0) throw_if_cancelled();  // a Python Ctrl-C (core/cancel.hpp)
     mj_step(m, d);
@@ -276,6 +273,13 @@ LoadedState load_model_state(const StateRequest& r) {
   s.bias.assign(d->qfrc_bias, d->qfrc_bias + m->nv);
   s.messages = messages;  // names: name_of gives them printable
   return out;
+}
+
+std::string settle_cap_note(double settle, double timestep) {
+  if (!(settle / timestep > static_cast<double>(kMaxSettleSteps))) return "";
+  return "--settle " + format_number(settle) + " s is more than the " +
+         std::to_string(kMaxSettleSteps) + " steps a settle takes: settled " +
+         format_number(static_cast<double>(kMaxSettleSteps) * timestep) + " s";
 }
 
 void make_names_printable(ModelState& state) {

@@ -182,6 +182,11 @@ double coupled_tangential_inverse_mass(const ModelState& state, const std::vecto
 // The request's checks shared by both versions (InputError naming the option).
 void check_state_request(const StateRequest& request);
 
+// "--settle S s is more than the N steps a settle takes: settled T s" when
+// the settle asks for more than kMaxSettleSteps at this timestep, else "":
+// both versions add it to the state's messages.
+std::string settle_cap_note(double settle, double timestep);
+
 // MuJoCo 3's names made printable as 2.2.2's name_of makes them
 // (model.hpp's printable_name).
 void make_names_printable(ModelState& state);

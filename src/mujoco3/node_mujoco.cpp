@@ -614,6 +614,9 @@ mujoco::ModelState read_model_state(const mujoco::StateRequest& request) {
   mujoco::check_state_request(request);
   mujoco::ModelState state = Node::of_this_thread()->state(request);
   mujoco::make_names_printable(state);
+  if (const std::string note = mujoco::settle_cap_note(request.settle, state.timestep);
+      !note.empty())
+    state.messages.push_back(note);
   return state;
 }
 
