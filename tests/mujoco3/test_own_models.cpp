@@ -390,5 +390,24 @@ TEST_F(OwnArticulated, AnIncludeBesideTheModelIsFound) {
   }
 }
 
+// A settle past the 1e6 steps a settle takes is capped and said on both
+// versions (2.2.2 overflowed lround at 1e17 s; MuJoCo 3 capped silently):
+// timestep 0.01 s, so 1e4 s.
+TEST_F(OwnArticulated, ASettlePastTheStepCapIsSaidOnBothVersions) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const std::string path = write(R"(<mujoco><option timestep="0.01"/><worldbody>
+  <body name="b" pos="0 0 1"><joint type="slide" axis="0 0 1"/><geom type="sphere" size="0.1"/>
+  </body></worldbody></mujoco>
+)");
+  for (const Version& v : kVersions) {
+    SCOPED_TRACE(v.name);
+    const mj::ModelState s = v.read({path, "", 1e17, ""});
+    EXPECT_EQ(s.settled, 1e4);
+    ASSERT_FALSE(s.messages.empty());
+    EXPECT_EQ(s.messages.back(),
+              "--settle 1e+17 s is more than the 1000000 steps a settle takes: settled 10000 s");
+  }
+}
+
 }  // namespace
 }  // namespace contact2d
