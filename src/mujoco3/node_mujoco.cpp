@@ -8,10 +8,15 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdlib>
+#include <deque>
 #include <fstream>
+#include <future>
 #include <limits>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 #include "core/cancel.hpp"
 #include "core/format.hpp"
@@ -205,6 +210,83 @@ double available_memory() {
   return -1.0;  // unknown: not limited here
 }
 
+std::atomic<long> g_node_starts{0};  // started in this process
+
+// The thread that starts every Node process: it lives as long as the
+// program, so a process outlives the worker that first used it (the kernel
+// kills a child when the thread that forked it ends) and ends with the
+// program. Never freed: a detached thread waits on it until exit.
+struct NodeStarter {
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::deque<std::packaged_task<std::unique_ptr<ChildProcess>()>> tasks;
+};
+
+std::unique_ptr<ChildProcess> start_node_process() {
+  static NodeStarter* const starter = [] {
+    auto* made = new NodeStarter;
+    std::thread([made] {
+      for (;;) {
+        std::unique_lock<std::mutex> lock(made->mutex);
+        made->wake.wait(lock, [made] { return !made->tasks.empty(); });
+        auto task = std::move(made->tasks.front());
+        made->tasks.pop_front();
+        lock.unlock();
+        task();
+      }
+    }).detach();
+    return made;
+  }();
+  std::packaged_task<std::unique_ptr<ChildProcess>()> task([] {
+    return std::make_unique<ChildProcess>(std::vector<std::string>{find_node(), "driver.mjs"},
+                                          package_directory(), /*writes_output=*/false,
+                                          /*dies_on_interrupt=*/true);
+  });
+  std::future<std::unique_ptr<ChildProcess>> started = task.get_future();
+  {
+    const std::lock_guard<std::mutex> lock(starter->mutex);
+    starter->tasks.push_back(std::move(task));
+  }
+  starter->wake.notify_one();
+  return started.get();
+}
+
+// Processes whose thread ended, for the next thread that needs one. Never
+// destroyed (no Node's destructor after the interrupt handler's registry
+// is gone): at the program's end the kernel kills them (the starter thread
+// ends).
+std::mutex g_idle_nodes_mutex;
+std::vector<std::shared_ptr<Node>>& idle_nodes() {
+  static auto* const nodes = new std::vector<std::shared_ptr<Node>>;
+  return *nodes;
+}
+
+// A thread's process; at the thread's end an idle one goes to idle_nodes().
+struct ThreadNode {
+  std::shared_ptr<Node> node;
+  ThreadNode() = default;
+  ThreadNode(const ThreadNode&) = delete;
+  ThreadNode& operator=(const ThreadNode&) = delete;
+  ~ThreadNode() {
+    // Another owner (a stepper that outlived the thread) may still use it.
+    if (!node || node.use_count() != 1 || !node->usable()) return;
+    node->take_messages();
+    const std::lock_guard<std::mutex> lock(g_idle_nodes_mutex);
+    idle_nodes().push_back(std::move(node));
+  }
+};
+
+std::shared_ptr<Node> idle_node() {
+  const std::lock_guard<std::mutex> lock(g_idle_nodes_mutex);
+  std::vector<std::shared_ptr<Node>>& nodes = idle_nodes();
+  while (!nodes.empty()) {
+    std::shared_ptr<Node> node = std::move(nodes.back());
+    nodes.pop_back();
+    if (node->usable()) return node;  // else it died while idle
+  }
+  return nullptr;
+}
+
 std::string numbers(const std::vector<double>& values) {
   std::string out = "[";
   for (size_t i = 0; i < values.size(); ++i) out += (i ? "," : "") + json::number(values[i]);
@@ -257,12 +339,18 @@ struct Node::Answer {
 };
 
 std::shared_ptr<Node> Node::of_this_thread() {
-  thread_local std::shared_ptr<Node> node;
+  thread_local ThreadNode held;
   // One that died while idle (killed, out of memory) is replaced too: the
   // next call must not fail for it.
-  if (!node || node->failed_ || !node->process_->running()) node.reset(new Node());
-  return node;
+  if (held.node && held.node->usable()) return held.node;
+  held.node = idle_node();
+  if (!held.node) held.node.reset(new Node());
+  return held.node;
 }
+
+long Node::starts() { return g_node_starts.load(); }
+
+bool Node::usable() const { return !failed_ && process_->running(); }
 
 Node::Node() {
   const std::string why = missing();
@@ -270,9 +358,8 @@ Node::Node() {
   const std::string crowded = too_many_nodes(g_nodes.load(), available_memory());
   if (!crowded.empty()) throw InputError(crowded);
   try {
-    process_ = std::make_unique<ChildProcess>(std::vector<std::string>{find_node(), "driver.mjs"},
-                                              package_directory(), /*writes_output=*/false,
-                                              /*dies_on_interrupt=*/true);
+    process_ = start_node_process();
+    ++g_node_starts;
   } catch (const ChildProcessError& e) {
     throw InputError("mujoco3: " + std::string(e.what()) + ": " + fix_command());
   }

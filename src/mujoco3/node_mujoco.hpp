@@ -69,9 +69,16 @@ struct LoadedModel {
 
 class Node {
  public:
-  // This thread's process: started on first use, and again after the last
-  // one failed (InputError when missing()).
+  // This thread's process: on first use an idle one of the process's (one
+  // whose thread ended: a worker of an earlier analysis::parallel_for), else
+  // started, and again after the last one failed (InputError when
+  // missing()). Processes are started from one thread that lives as long as
+  // the program (PR_SET_PDEATHSIG kills a child when the thread that
+  // started it ends), so a process pays Node's start (about 1 s) once per
+  // worker, not once per parallel_for.
   static std::shared_ptr<Node> of_this_thread();
+  // Node processes started by this program so far.
+  static long starts();
   ~Node();
   Node(const Node&) = delete;
   Node& operator=(const Node&) = delete;
@@ -100,6 +107,8 @@ class Node {
   std::vector<std::string> take_messages();
   // The process's id (tests kill it).
   int pid() const;
+  // Neither failed nor ended: another request may be sent.
+  bool usable() const;
 
  private:
   Node();

@@ -6,8 +6,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <set>
 #include <string>
 
+#include "analysis/engine.hpp"
 #include "core/stepper.hpp"
 #include "io/scene_file.hpp"
 #include "mujoco/mjcf.hpp"
@@ -157,6 +160,34 @@ TEST(As222, DebianSamplesListTheSameContacts) {
     GTEST_SKIP() << "Debian's MuJoCo samples are not installed";
   expect_same_contacts(humanoid, 0.0, true);
   expect_same_contacts(mug, 0.0, false);
+}
+
+// The Node processes of the threads that ran `tasks` tasks in parallel_for
+// (each loads a model and steps it).
+std::set<int> nodes_of_parallel_for(size_t tasks) {
+  const Scene scene = pushed_point_mass();
+  std::mutex mutex;
+  std::set<int> pids;
+  analysis::parallel_for(tasks, 2, [&](size_t) {
+    mujoco3::Mujoco3Stepper stepper(scene, mujoco::MjcfOptions{});
+    stepper.step();
+    const int pid = mujoco3::Node::of_this_thread()->pid();
+    const std::lock_guard<std::mutex> lock(mutex);
+    pids.insert(pid);
+  });
+  return pids;
+}
+
+// parallel_for starts threads on every call; their Nodes outlive them, so
+// a second and third call start none (before: one per worker and call).
+TEST(As222, NodeStartsOncePerWorker) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const std::set<int> first = nodes_of_parallel_for(8);
+  const long starts = mujoco3::Node::starts();
+  for (int call = 0; call < 2; ++call) {
+    for (const int pid : nodes_of_parallel_for(8)) EXPECT_EQ(first.count(pid), 1U) << pid;
+  }
+  EXPECT_EQ(mujoco3::Node::starts(), starts);
 }
 
 }  // namespace
