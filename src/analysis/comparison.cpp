@@ -487,10 +487,20 @@ void explain_friction(Finding& f, const std::string& falls, const DiagnosisInput
                  "(the push c·μ·|v_t| on the normal force), so contacts open and close. "
                  "Without friction in both engines, " +
                  falls + "."
-           : "Friction laws differ: the reference's is −μ·Fn·tanh(α·v_t); MuJoCo's elliptic "
-             "cone is viscous inside the cone and, while sliding, its damper's slip term adds "
-             "to the normal force (the body hops). Without friction in both engines, " +
-                 falls + ".";
+      : engines::option_value(in.mujoco, "friction") == "damper"
+          ? "Friction laws differ: the reference's is −μ·Fn·tanh(α·v_t); MuJoCo 3's friction "
+            "damper is viscous inside its elliptic cone with a stick slope fixed at the "
+            "resting load (where tanh's grows with the load)" +
+                (scene.contact.mu_roll > 0.0
+                     ? std::string(", and its one cone holds sliding and rolling under one "
+                                   "budget, so a body that slides feels no rolling torque "
+                                   "(tanh's rolling resistance acts at once)")
+                     : std::string()) +
+                ". Without friction in both engines, " + falls + "."
+          : "Friction laws differ: the reference's is −μ·Fn·tanh(α·v_t); MuJoCo's elliptic "
+            "cone is viscous inside the cone and, while sliding, its damper's slip term adds "
+            "to the normal force (the body hops). Without friction in both engines, " +
+                falls + ".";
   if (!f.phases.empty()) {
     double grown = 0.0;
     for (const SlidingPhase& p : f.phases) grown += std::max(0.0, p.distance1 - p.distance0);

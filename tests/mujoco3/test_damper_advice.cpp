@@ -168,6 +168,29 @@ height = 0.3
   EXPECT_NEAR(c.runs[1].run.trajectory.samples.back().state.q.y(), 0.349, 1e-3);
 }
 
+// The diagnosis of a damper run describes the damper, not the shared
+// damper's push (it said "its damper's slip term adds to the normal force
+// (the body hops)", which the damper removes): on the rolling disc, its one
+// cone for sliding and rolling.
+TEST(DamperAdvice, TheDiagnosisDescribesTheDamper) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const Output r = run_compare(scene("circle") +
+                               " --set contact.damping=kelvin_voigt --engine "
+                               "mujoco3:compensated:corners:damper");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string flat;
+  for (char ch : r.out) {
+    if (ch == '\n') ch = ' ';
+    if (!(ch == ' ' && !flat.empty() && flat.back() == ' ')) flat += ch;
+  }
+  EXPECT_NE(flat.find("1. friction: Friction laws differ: the reference's is −μ·Fn·tanh(α·v_t); "
+                      "MuJoCo 3's friction damper is viscous inside its elliptic cone"),
+            std::string::npos)
+      << flat;
+  EXPECT_NE(flat.find("so a body that slides feels no rolling torque"), std::string::npos);
+  EXPECT_EQ(flat.find("the body hops"), std::string::npos) << flat;
+}
+
 // No damper, no note; --engine is --engines with one name, and not both.
 TEST(DamperAdvice, EngineIsOneNameOfEnginesAndTheDefaultIsSaid) {
   CONTACT2D_NEEDS_MUJOCO3();
