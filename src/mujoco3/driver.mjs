@@ -113,15 +113,24 @@ function badCounters(d) {
       w.get(mj.mjtWarning.mjWARN_BADQACC.value).number;
 }
 
-// The state a "rewind" returns to: everything mj_step reads that changes.
+// The state a "rewind" returns to: everything mj_step reads that changes,
+// and MuJoCo's warning counters, so that after a rewind they count the
+// steps taken since, not those of the batch run ahead and not read.
 function save(e) {
   const d = e.d;
+  const warnings = [];
+  for (let i = 0; i < mj.mjtWarning.mjNWARNING.value; ++i) {
+    const w = d.warning.get(i);
+    warnings.push([w.number, w.lastinfo]);
+    w.delete();
+  }
   e.saved = {
     time: d.time,
     qpos: d.qpos.slice(),
     qvel: d.qvel.slice(),
     act: d.act.slice(),
-    warm: d.qacc_warmstart.slice()
+    warm: d.qacc_warmstart.slice(),
+    warnings
   };
 }
 
@@ -132,6 +141,13 @@ function restore(e) {
   d.qvel.set(s.qvel);
   d.act.set(s.act);
   d.qacc_warmstart.set(s.warm);
+  s.warnings.forEach(([number, lastinfo], i) => {
+    const w = d.warning.get(i);
+    w.number = number;
+    w.lastinfo = lastinfo;
+    d.warning.set(i, w);
+    w.delete();
+  });
 }
 
 // Up to n mj_step into out (qpos, qvel per step); the count taken. A step

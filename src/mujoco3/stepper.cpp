@@ -45,7 +45,9 @@ Mujoco3Stepper::Mujoco3Stepper(const Scene& scene, const std::string& xml,
       xml_(xml),
       node_(Node::of_this_thread()),
       contacts_(model_) {
+  node_->take_messages();  // another's, on this thread's Node
   loaded_ = node_->load(xml_, origin);
+  collect_messages();
   x0_ = loaded_.body_pos.at(3);
   y0_ = loaded_.body_pos.at(5);
   turns_ = shape_features(scene.shape).turns;
@@ -78,6 +80,7 @@ void Mujoco3Stepper::reset(const State& state) {
     qvel[2] = state.v.z();
   }
   node_->reset(loaded_.id, qpos, qvel);
+  collect_messages();
   batch_steps_ = read_ = 0;
   planned_ = 0;
   std::vector<double> both = qpos;
@@ -93,7 +96,11 @@ void Mujoco3Stepper::reset(const State& state) {
 void Mujoco3Stepper::set_applied(const Vec3& force) {
   model_.applied = force;
   if (force == applied_) return;
-  if (read_ < batch_steps_) node_->rewind(loaded_.id, read_);  // back to the state read last
+  if (read_ < batch_steps_) {  // back to the state read last
+    messages_.resize(batch_messages_);
+    node_->rewind(loaded_.id, read_);
+    collect_messages();
+  }
   batch_steps_ = read_ = 0;
   planned_ = 0;
   next_batch_ = 16;
@@ -101,17 +108,21 @@ void Mujoco3Stepper::set_applied(const Vec3& force) {
   // xfrc_applied of body 1: force (x, y, z), torque (x, y, z); the plane is
   // x–z, θ turns about −y (mujoco/stepper.cpp).
   node_->applied(loaded_.id, 1, {force.x(), 0.0, force.y(), 0.0, -force.z(), 0.0});
+  collect_messages();
 }
 
 void Mujoco3Stepper::fetch() {
   int n = next_batch_;
+  batch_planned_ = planned_ > 0;
   if (planned_ > 0) {
     n = static_cast<int>(std::min<long long>(planned_, kMaxBatch));
     planned_ -= n;
   } else {
     next_batch_ = std::min(2 * next_batch_, kMaxBatch);
   }
+  batch_messages_ = messages_.size();
   batch_steps_ = node_->step(loaded_.id, n, loaded_.nq + loaded_.nv, batch_, batch_bad_);
+  collect_messages();
   read_ = 0;
   if (batch_steps_ <= 0) throw EngineError("mujoco3: MuJoCo 3 took no step");
 }
@@ -142,8 +153,22 @@ std::string Mujoco3Stepper::explain(const Divergence& d, const Scene& scene) con
   return mujoco::describe_mujoco_divergence(d, scene, settings_, contact_inv_weight());
 }
 
-std::vector<std::string> Mujoco3Stepper::warnings() const {
+void Mujoco3Stepper::collect_messages() const {
   for (std::string& m : node_->take_messages()) messages_.push_back(std::move(m));
+}
+
+void Mujoco3Stepper::drop_read_ahead() const {
+  if (read_ >= batch_steps_) return;
+  messages_.resize(batch_messages_);  // the batch's, printed ahead too
+  node_->rewind(loaded_.id, read_);   // counters restored, then read_ steps again
+  collect_messages();
+  if (batch_planned_) planned_ += batch_steps_ - read_;
+  batch_steps_ = read_;
+  batch_bad_ = false;  // a bad step, if any, was one not read
+}
+
+std::vector<std::string> Mujoco3Stepper::warnings() const {
+  drop_read_ahead();
   std::vector<std::string> out = messages_;
   for (const std::string& w : node_->counters(loaded_.id)) out.push_back("mjData.warning: " + w);
   return out;

@@ -190,5 +190,30 @@ TEST(As222, NodeStartsOncePerWorker) {
   EXPECT_EQ(mujoco3::Node::starts(), starts);
 }
 
+// A planned run fetches its steps ahead in batches; what it reports is of
+// the steps read. Pushed up at 2e9 m/s², qpos is bad after step 15,811:
+// a run stopped at step 100 has no bad-number warning (before: the batch's
+// 15,812 steps had raised mjWARN_BADQPOS), and goes on as one that never
+// asked (the same state, bit for bit, at step 200).
+TEST(As222, WarningsAreOfTheStepsTaken) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const Scene scene = pushed_point_mass();
+  const Vec3 push(0.0, 2e9, 0.0);
+  mujoco3::Mujoco3Stepper ahead(scene, mujoco::MjcfOptions{});
+  ahead.set_applied(push);
+  ahead.plan(20000);
+  for (int i = 0; i < 100; ++i) ASSERT_EQ(ahead.step(), StepStatus::Ok);
+  EXPECT_TRUE(ahead.warnings().empty()) << ahead.warnings().front();
+  mujoco3::Mujoco3Stepper plain(scene, mujoco::MjcfOptions{});
+  plain.set_applied(push);
+  for (int i = 0; i < 200; ++i) plain.step();
+  for (int i = 0; i < 100; ++i) ahead.step();
+  EXPECT_EQ(ahead.state().q, plain.state().q);
+  EXPECT_EQ(ahead.state().v, plain.state().v);
+  // The rest of the plan still runs to the bad step, and reports it there.
+  EXPECT_EQ(first_bad_step(ahead, 20000), 15812 - 200);
+  EXPECT_FALSE(ahead.warnings().empty());
+}
+
 }  // namespace
 }  // namespace contact2d
