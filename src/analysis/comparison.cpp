@@ -907,6 +907,15 @@ std::vector<std::string> version_notes(const Comparison& c) {
           value(two.spec, "geometry") != value(three.spec, "geometry")) {
         note += "Their models differ in mapping or geometry (" + two.spec.name() + ", " +
                 three.spec.name() + "): compare one mapping on both to see the versions alone.";
+      } else if (const auto off = std::find_if(
+                     two.run.warnings.begin(), two.run.warnings.end(),
+                     [](const std::string& w) {
+                       return w.rfind("MuJoCo 2.2.2 made a contact off the body", 0) == 0;
+                     });
+                 off != two.run.warnings.end()) {
+        note += "Not rounding: " + *off + ". Against the reference 2.2.2 is " +
+                format_number(two.vs_first.max_pos, 3) + " m away, 3.14 " +
+                format_number(three.vs_first.max_pos, 3) + " m.";
       } else if (damper) {
         note +=
             "MuJoCo 3's friction damper (--friction damper) is the cause: its friction rows "

@@ -1,9 +1,12 @@
 #include "mujoco/stepper.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <utility>
 
+#include "core/format.hpp"
 #include "mujoco/divergence.hpp"
 
 namespace contact2d::mujoco {
@@ -47,8 +50,67 @@ MujocoStepper::MujocoStepper(const Scene& scene, const std::string& xml, const s
     }
     mocap_.push_back(id);
   }
+  // MuJoCo 2.2.2's box–box collider can return a contact on neither box
+  // (measured on a box dropped onto a post with --geometry boxes): where a
+  // body's box meets a box obstacle, every contact is checked.
+  int body_boxes = 0;
+  for (int g = 0; g < m->ngeom; ++g)
+    body_boxes += m->geom_type[g] == mjGEOM_BOX && m->geom_bodyid[g] > 0 &&
+                  (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0 || m->npair > 0);
+  for (const Obstacle& o : placed_)
+    check_outside_ = check_outside_ || (body_boxes > 0 && o.shape == ObstacleShape::Box);
   mj_resetDataKeyframe(m, data_.get(), 0);
   read_state();
+}
+
+namespace {
+
+// How far `p` (world) is outside geom g (0 inside): a box's extents, a
+// sphere's radius, a plane's half-space; other types count as inside.
+double outside_geom(const mjModel* m, const mjData* d, int g, const mjtNum* p) {
+  const mjtNum* c = d->geom_xpos + 3 * g;
+  const mjtNum* r = d->geom_xmat + 9 * g;
+  const mjtNum* size = m->geom_size + 3 * g;
+  double local[3];
+  for (int i = 0; i < 3; ++i)  // Rᵀ·(p − c)
+    local[i] = r[i] * (p[0] - c[0]) + r[3 + i] * (p[1] - c[1]) + r[6 + i] * (p[2] - c[2]);
+  switch (m->geom_type[g]) {
+    case mjGEOM_BOX: {
+      double out = 0.0;
+      for (int i = 0; i < 3; ++i) out = std::max(out, std::abs(local[i]) - size[i]);
+      return out;
+    }
+    case mjGEOM_SPHERE:
+      return std::max(
+          0.0,
+          std::sqrt(local[0] * local[0] + local[1] * local[1] + local[2] * local[2]) - size[0]);
+    case mjGEOM_PLANE: return std::max(0.0, local[2]);
+    default: return 0.0;
+  }
+}
+
+}  // namespace
+
+// The first contact that lies off the body's geom it joins by more than
+// 1 mm (plus its own depth), said once: a contact acts on the body where
+// it is, and one off the body's surface pushes where the body is not.
+void MujocoStepper::check_outside_contacts() {
+  const mjModel* m = model_ptr_.get();
+  const mjData* d = data_.get();
+  for (int i = 0; i < d->ncon && outside_.empty(); ++i) {
+    const mjContact& con = d->contact[i];
+    const double tolerance = 1e-3 + std::abs(con.dist);
+    const int body_geom = m->geom_bodyid[con.geom1] > 0 ? con.geom1 : con.geom2;
+    if (m->geom_bodyid[body_geom] == 0) continue;  // two world geoms
+    const double off = outside_geom(m, d, body_geom, con.pos);
+    if (off <= tolerance) continue;
+    outside_ = "MuJoCo 2.2.2 made a contact off the body: at t = " + format_number(d->time, 4) +
+               " s, " + format_number(off, 3) + " m outside " +
+               name_of(m, mjOBJ_GEOM, body_geom, "geom") + ", between " +
+               name_of(m, mjOBJ_GEOM, con.geom1, "geom") + " and " +
+               name_of(m, mjOBJ_GEOM, con.geom2, "geom") +
+               " (its box-box collider), which pushes where the body is not";
+  }
 }
 
 bool MujocoStepper::move_obstacle(int index, const Vec2& offset) {
@@ -110,6 +172,7 @@ StepStatus MujocoStepper::step() {
     WarningCapture capture(messages_);
     mj_step(model_ptr_.get(), data_.get());
   }
+  if (check_outside_ && outside_.empty()) check_outside_contacts();
   read_state();
   return bad_numbers(data_.get()) ? StepStatus::NonFinite : StepStatus::Ok;
 }
@@ -136,6 +199,7 @@ std::string MujocoStepper::explain(const Divergence& d, const Scene& scene) cons
 
 std::vector<std::string> MujocoStepper::warnings() const {
   std::vector<std::string> out = messages_;
+  if (!outside_.empty()) out.push_back(outside_);
   // Counters of warnings whose text was already captured add the count.
   for (const std::string& w : warning_counters(data_.get())) out.push_back("mjData.warning: " + w);
   return out;

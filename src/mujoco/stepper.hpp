@@ -72,6 +72,12 @@ class MujocoStepper final : public Stepper {
   DataPtr data_;
   double x0_ = 0.0, y0_ = 0.0;
   bool hinge_ = false;
+  // Box geoms that collide with box obstacles (the boxes geometry): each
+  // step's contacts are checked to lie on the geoms they join
+  // (outside_contact), once, the first one off both named in warnings().
+  bool check_outside_ = false;
+  void check_outside_contacts();
+  std::string outside_;
   std::vector<Obstacle> placed_;  // the scene's obstacles where it put them
   std::vector<int> mocap_;        // per obstacle: its mocap index, −1 when static
   std::vector<Vec2> offsets_;     // per obstacle: where move_obstacle put it
