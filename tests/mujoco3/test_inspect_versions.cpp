@@ -31,10 +31,11 @@ const mujoco::BodyVersions& body(const mujoco::VersionComparison& c, const std::
   throw std::runtime_error("no body " + name);
 }
 
-#define NEEDS_SAMPLE(file)                                                           \
-  do {                                                                               \
-    CONTACT2D_NEEDS_MUJOCO3();                                                       \
-    if (!fs::exists(kSamples + (file))) GTEST_SKIP() << "libmujoco-samples missing"; \
+#define NEEDS_SAMPLE(file)                                                                \
+  do {                                                                                    \
+    CONTACT2D_NEEDS_MUJOCO3();                                                            \
+    if (!fs::exists(kSamples + (file)))                                                   \
+      FAIL() << "Debian's MuJoCo samples are missing (libmujoco-samples): scripts/setup"; \
   } while (false)
 
 // The mug: 3.14's mass is 2.2.2's plus the mesh's two volumes' difference
