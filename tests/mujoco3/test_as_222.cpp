@@ -81,13 +81,13 @@ TEST(As222, BadSpeedIsTheSameStep) {
 }
 
 // What agrees between the versions' lists of one model's contacts: the
-// count, each contact's geoms, condim, friction, solref, solimp and dist
-// (rounding: 1e-12 m), and, where the model's masses agree, A and the
-// normal force (relative 1e-6: the solvers stop at their tolerance).
-// `masses`: false for the mug, whose mass differs by design (docs/mujoco.md,
-// "One model on both versions": the mesh volume).
+// count, each contact's geoms, condim, friction, solref and solimp exactly,
+// dist within `dist_tol` m and, where the model's masses agree, A and the
+// normal force within relative 1e-6 and 1e-5. `masses`: false for the mug,
+// whose mass differs by design (docs/mujoco.md, "One model on both
+// versions": the mesh volume); its depths then differ too (4e-8 m).
 // `path3`: the file 3.14 reads, when not `path`.
-void expect_same_contacts(const std::string& path, double settle, bool masses,
+void expect_same_contacts(const std::string& path, double settle, double dist_tol, bool masses,
                           const std::string& path3 = {}) {
   mujoco::StateRequest request;
   request.path = path;
@@ -106,10 +106,10 @@ void expect_same_contacts(const std::string& path, double settle, bool masses,
     for (size_t k = 0; k < 5; ++k) EXPECT_EQ(x.friction[k], y.friction[k]) << at;
     for (size_t k = 0; k < 2; ++k) EXPECT_EQ(x.solref[k], y.solref[k]) << at;
     for (size_t k = 0; k < 5; ++k) EXPECT_EQ(x.solimp[k], y.solimp[k]) << at;
-    EXPECT_NEAR(x.dist, y.dist, 1e-12) << at;
+    EXPECT_NEAR(x.dist, y.dist, dist_tol) << at;
     if (!masses) continue;
     EXPECT_NEAR(x.A, y.A, 1e-6 * std::abs(x.A)) << at;
-    EXPECT_NEAR(x.force, y.force, 1e-6 * std::abs(x.force) + 1e-9) << at;
+    EXPECT_NEAR(x.force, y.force, 1e-5 * std::abs(x.force) + 1e-9) << at;
   }
 }
 
@@ -147,7 +147,7 @@ TEST(As222, ContactsInAGapAreListedByNeither) {
   EXPECT_EQ(mujoco::read_model_state(request).contacts.size(), 1U);
   request.path = v3.string();
   EXPECT_EQ(mujoco3::read_model_state(request).contacts.size(), 1U);
-  expect_same_contacts(v2.string(), 0.0, true, v3.string());
+  expect_same_contacts(v2.string(), 0.0, 1e-12, true, v3.string());
   fs::remove(v2);
   fs::remove(v3);
 }
@@ -158,8 +158,18 @@ TEST(As222, DebianSamplesListTheSameContacts) {
   const std::string mug = "/usr/share/mujoco/model/mug/mug.xml";
   if (!std::filesystem::exists(humanoid) || !std::filesystem::exists(mug))
     GTEST_SKIP() << "Debian's MuJoCo samples are not installed";
-  expect_same_contacts(humanoid, 0.0, true);
-  expect_same_contacts(mug, 0.0, false);
+  // At qpos0 neither version has a contact in the problem (2.2.2's reader
+  // listed 3 contacts left out of it for one of the two before).
+  expect_same_contacts(humanoid, 0.0, 1e-12, true);
+  expect_same_contacts(mug, 0.0, 1e-12, false);
+  // Settled 1 s: the humanoid's 6 foot contacts (dist within 6.4e-11 m, A
+  // 2.3e-8 and the force 1.7e-7 relative, measured), the mug's 3.
+  expect_same_contacts(humanoid, 1.0, 1e-9, true);
+  expect_same_contacts(mug, 1.0, 1e-7, false);
+  mujoco::StateRequest request;
+  request.path = humanoid;
+  request.settle = 1.0;
+  EXPECT_EQ(mujoco::read_model_state(request).contacts.size(), 6U);
 }
 
 // The Node processes of the threads that ran `tasks` tasks in parallel_for
