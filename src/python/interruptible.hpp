@@ -17,6 +17,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <exception>
@@ -83,6 +84,17 @@ class Worker {
   std::thread thread_;  // last: started once the members above exist
 };
 
+// The calls of interruptible() in progress, in every thread. A Ctrl-C's
+// cancel request ends them all (core/cancel.hpp's one flag), so it is
+// cleared when the last of them ends, not by the thread that took the
+// signal: cleared as soon as that thread's own work stopped, another
+// thread's run could miss it between two of its checks and go on (measured:
+// a worker still running 60 s after the main thread's KeyboardInterrupt).
+inline std::atomic<int>& calls_in_progress() {
+  static std::atomic<int> calls{0};
+  return calls;
+}
+
 // The calling thread's worker: one for every call of interruptible() on
 // this thread, whatever the work (a thread_local inside the template would
 // be one per instantiation, each with its own Node process).
@@ -101,6 +113,7 @@ auto interruptible(F&& work) -> decltype(work()) {
   std::optional<decltype(work())> result;
   std::exception_ptr error;
   bool interrupted = false;
+  calls_in_progress().fetch_add(1);
   {
     py::gil_scoped_release release;
     worker.start([&] {
@@ -119,10 +132,9 @@ auto interruptible(F&& work) -> decltype(work()) {
       }
     }
   }
-  if (interrupted) {
-    clear_cancel();
-    throw py::error_already_set();
-  }
+  // The last call to end takes the cancel request away (see above).
+  if (calls_in_progress().fetch_sub(1) == 1 && cancel_requested()) clear_cancel();
+  if (interrupted) throw py::error_already_set();
   if (error) std::rethrow_exception(error);
   return std::move(*result);
 }
