@@ -68,9 +68,10 @@ namespace {
 // How far `p` (world) is outside geom g (0 inside): a box's extents, a
 // sphere's radius, a plane's half-space; other types count as inside.
 double outside_geom(const mjModel* m, const mjData* d, int g, const mjtNum* p) {
-  const mjtNum* c = d->geom_xpos + 3 * g;
-  const mjtNum* r = d->geom_xmat + 9 * g;
-  const mjtNum* size = m->geom_size + 3 * g;
+  const auto at = static_cast<std::ptrdiff_t>(g);
+  const mjtNum* c = d->geom_xpos + 3 * at;
+  const mjtNum* r = d->geom_xmat + 9 * at;
+  const mjtNum* size = m->geom_size + 3 * at;
   double local[3];
   for (int i = 0; i < 3; ++i)  // Rᵀ·(p − c)
     local[i] = r[i] * (p[0] - c[0]) + r[3 + i] * (p[1] - c[1]) + r[6 + i] * (p[2] - c[2]);
