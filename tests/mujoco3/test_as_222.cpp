@@ -157,7 +157,7 @@ TEST(As222, DebianSamplesListTheSameContacts) {
   const std::string humanoid = "/usr/share/mujoco/model/humanoid/humanoid.xml";
   const std::string mug = "/usr/share/mujoco/model/mug/mug.xml";
   if (!std::filesystem::exists(humanoid) || !std::filesystem::exists(mug))
-    GTEST_SKIP() << "Debian's MuJoCo samples are not installed";
+    FAIL() << "Debian's MuJoCo samples are missing (libmujoco-samples): scripts/setup";
   // At qpos0 neither version has a contact in the problem (2.2.2's reader
   // listed 3 contacts left out of it for one of the two before).
   expect_same_contacts(humanoid, 0.0, 1e-12, true);
