@@ -22,6 +22,20 @@ long long steps_for(double seconds, double dt) {
 
 }  // namespace
 
+double push_force_for(const Pitch& pitch) {
+  const Scene& scene = pitch.scene;
+  const Rules& r = pitch.rules;
+  const double m = scene.mass, radius = scene.radius;
+  const double k = 1.0 + make_body(scene).inertia / (m * radius * radius);
+  const double d = scene.contact.mu_roll * scene.sim.gravity / (k * radius);
+  const double t2 = r.push_time * r.push_time, distance = r.push_distance;
+  // a·T²/2 + a²·T²/(2·d) = D: the positive root.
+  const double a =
+      d > 0.0 ? (-0.5 * t2 + std::sqrt(0.25 * t2 * t2 + 2.0 * t2 * distance / d)) / (t2 / d)
+              : 2.0 * distance / t2;
+  return std::min(r.push_force, k * m * (a + d));
+}
+
 std::string_view outcome_name(Outcome outcome) {
   switch (outcome) {
     case Outcome::None: return "playing";
@@ -77,6 +91,7 @@ Game::Game(Pitch pitch, const std::string& engine, std::uint64_t seed, Level lev
       seed_(seed),
       level_(level),
       rng_(seed) {
+  push_ = push_force_for(pitch_);
   const Rules& r = pitch_.rules;
   const double h = dt();
   kick_steps_ = std::max(1LL, steps_for(r.kick_duration, h));
@@ -112,7 +127,7 @@ double Game::distance_to_goal() const {
 }
 
 Vec3 Game::push_force() const {
-  const double f = pitch_.rules.push_force;
+  const double f = push_;
   const double fx = (held_[1] ? f : 0.0) - (held_[0] ? f : 0.0);
   const double fy = (held_[2] ? f : 0.0) - (held_[3] ? f : 0.0);
   return {fx, fy, 0.0};

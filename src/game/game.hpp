@@ -14,7 +14,9 @@
 //     every machine.
 //   * the player reaches the ball while its centre is below
 //     rules.reach_height (a bouncing pass must come down first). Within
-//     reach: the arrows push it with rules.push_force, the control key
+//     reach: the arrows push it with push_force_for(pitch) (the force that
+//     sends a ball at rest rules.push_distance when held rules.push_time),
+//     the control key
 //     brakes it with a force against its velocity, m·|v|/control_time at
 //     most control_force (forces, not teleports); the kick key applies a
 //     force of power·kick_impulse/kick_duration for kick_duration towards
@@ -74,6 +76,17 @@ enum class Outcome {
   Diverged,
 };
 
+// The push an arrow key applies: the constant force F that sends a ball at
+// rest, rolling on the grass, rules.push_distance in all when held for
+// rules.push_time and then let go, by the scene's rolling resistance
+// (physics.md): rolling without slipping, the ball accelerates at
+// a = F/(k·m) − d while pushed and slows at d = mu_roll·g/(k·R) after,
+// k = 1 + I/(m·R²) (1.5 for the disc), so D = a·T²/2 + (a·T)²/(2·d); F =
+// k·m·(a + d) with a the positive root. Without rolling resistance (d = 0)
+// the ball would roll on forever: a = 2·D/T², the distance while pushed. At
+// most rules.push_force. N.
+double push_force_for(const Pitch& pitch);
+
 std::string_view outcome_name(Outcome outcome);  // "goal", "kick_too_close", … (JSON)
 std::string outcome_text(Outcome outcome, double min_kick_distance);  // for the screen
 
@@ -129,6 +142,10 @@ class Game {
   double distance_to_goal() const;           // ball centre to the goal line, m
   Vec3 applied() const { return applied_; }  // the force of the last step
   Vec3 push_force() const;                   // from the arrows held now (in reach or not)
+  // The force one arrow pushes with: push_force_for(pitch()), or a replay's
+  // own (use_push: a replay plays with the push it was recorded with).
+  double push_strength() const { return push_; }
+  void use_push(double newtons) { push_ = newtons; }
   bool in_reach() const { return ball().q.y() < pitch_.rules.reach_height; }
   bool controlling() const { return held_control_; }
   bool kicking() const { return kick_steps_left_ > 0; }
@@ -195,6 +212,7 @@ class Game {
   long long round_steps_ = 0;                    // round_time in steps
   bool held_[4] = {false, false, false, false};  // left, right, up, down
   bool held_control_ = false;
+  double push_ = 0.0;  // N
   double kick_angle_ = 0.0;
   double kick_power_ = 1.0;
   KeeperRule keeper_rule_;

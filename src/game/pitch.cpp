@@ -84,6 +84,8 @@ Rules read_rules(const toml::table* table, const Scene& scene, const std::string
   g.number("kick_power", r.kick_power, 0.01, 1.0, "must be in [0.01, 1]");
   g.number("kick_power_step", r.kick_power_step, 1e-3, 1.0, "must be in [1e-3, 1]");
   g.number("push_force", r.push_force, 0.0, 1e4, "must be in [0, 1e4] N");
+  g.number("push_distance", r.push_distance, 0.0, 1e3, "must be in [0, 1e3] m");
+  g.number("push_time", r.push_time, 1e-3, 100.0, "must be in [1e-3, 100] s");
   g.number("pass_x", r.pass_x, -kBig, kBig, "must be finite, |pass_x| <= 1e6 m");
   g.number("pass_speed_min", r.pass_speed_min, 0.0, 100.0, "must be in [0, 100] m/s");
   g.number("pass_speed_max", r.pass_speed_max, 0.0, 100.0, "must be in [0, 100] m/s");

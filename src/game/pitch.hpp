@@ -42,7 +42,13 @@ struct Rules {
   double kick_power = 0.8;         // initial fraction of kick_impulse
   double kick_power_min = 0.3;     // the power keys step it within [min, 1]
   double kick_power_step = 0.1;
-  double push_force = 4.0;      // N, while an arrow key is held
+  // The push: holding an arrow key pushes the ball with a constant force,
+  // derived (push_force_for) so that a ball at rest held push_time and then
+  // left to roll travels push_distance in all; at most push_force. Replays
+  // recorded before the derived push (no `push` line) push with push_force.
+  double push_force = 4.0;      // N: the most an arrow pushes with
+  double push_distance = 1.25;  // m: how far a ball at rest goes, pushed push_time and let roll...
+  double push_time = 0.7;       // s: ...this long
   double pass_x = 0.5;          // where the pass starts (ball centre), m
   double pass_speed_min = 2.5;  // m/s, drawn uniformly from [min, max]
   double pass_speed_max = 3.5;

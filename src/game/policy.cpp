@@ -10,11 +10,11 @@
 namespace contact2d::game {
 namespace {
 
-constexpr double kBlindKickTime = 0.1;      // s after the pass
-constexpr double kDribbleTo = 2.5;          // m from the goal line: close enough to chip the keeper
-constexpr double kDribbleTolerance = 0.05;  // m
-constexpr double kDribbleSpeed = 1.5;       // m/s at most while dribbling
-constexpr double kStill = 0.02;             // m/s: ball and rim slower than this: settled
+constexpr double kBlindKickTime = 0.1;             // s after the pass
+constexpr double kDribbleTo = kScriptedDribbleTo;  // m from the goal line
+constexpr double kDribbleTolerance = 0.05;         // m
+constexpr double kDribbleSpeed = 1.5;              // m/s at most while dribbling
+constexpr double kStill = 0.02;                    // m/s: ball and rim slower than this: settled
 
 double speed(const State& s) { return std::hypot(s.v.x(), s.v.y()); }
 bool still(const Game& game) {

@@ -5,12 +5,11 @@
 //
 //   blind     presses the kick key once, 0.1 s after the pass starts, and
 //             nothing else (what a new player tries first).
-//   scripted  receives the pass, controls it, dribbles it to 2.5 m from the
-//             goal line, stops it there and chips it over the keeper: among
-//             the angle and power levels it picks the one whose no-drag
-//             path (kick_preview's) clears the keeper's top, as high as the
-//             keeper can have risen by then at its speed, and passes under
-//             the crossbar with the largest margin at both.
+//   scripted  receives the pass, controls it, dribbles it to
+//             kScriptedDribbleTo (2.5 m) from the goal line, stops it there and chips it over the
+//             keeper: among the angle and power levels it picks the one whose no-drag path
+//             (kick_preview's) clears the keeper's top, as high as the keeper can have risen by
+//             then at its speed, and passes under the crossbar with the largest margin at both.
 #pragma once
 
 #include <cstdint>
@@ -24,6 +23,11 @@
 #include "game/session.hpp"
 
 namespace contact2d::game {
+
+// Where the scripted player stops the ball to chip it, m from the goal line:
+// close enough to beat the keeper. The one source of the number (`play
+// --help` prints it; tests/game/test_play_cli.cpp checks docs/game.md's).
+inline constexpr double kScriptedDribbleTo = 2.5;
 
 enum class Policy { Blind, Scripted };
 std::string_view policy_name(Policy policy);

@@ -116,30 +116,42 @@ void person(double x, double facing, const Color& jersey, double kick = 0.0) {
   disc(x, head, 0.13, 0.13, kSkin, 16);
 }
 
+// The keeper: its box is the whole solid keeper (what the ball bounces
+// off), so the figure is drawn inside it: legs, shorts, jersey, head and
+// both arms up with gloves at the top corners, the box's outline faint
+// around it. When the game lifts the box (the keeper jumps) nothing joins
+// it to the grass: it is in the air, its shadow on the grass below.
+void draw_keeper(const Obstacle& k, const View& v) {
+  const double x0 = k.a.x(), x1 = k.b.x(), y0 = k.a.y(), y1 = k.b.y();
+  const double w = x1 - x0, h = y1 - y0, cx = 0.5 * (x0 + x1);
+  auto at = [&](double fx, double fy) { return Vec2(x0 + fx * w, y0 + fy * h); };
+  const double lift = std::max(0.0, y0);
+  const double shadow = 0.5 * w * std::max(0.3, 1.0 - 0.3 * lift);
+  disc(cx, 0.0, shadow, 0.25 * shadow, Color{0.0f, 0.0f, 0.0f, 0.3f}, 16);
+  rect(x0, y0, x1, y1, Color{0.95f, 0.55f, 0.1f, 0.18f});  // the solid box, faint
+  const double limb = 0.16 * w;
+  thick_line(at(0.35, 0.02), at(0.35, 0.36), limb, kSkin);  // legs
+  thick_line(at(0.65, 0.02), at(0.65, 0.36), limb, kSkin);
+  rect(x0 + 0.2 * w, y0 + 0.32 * h, x1 - 0.2 * w, y0 + 0.44 * h, Color{0.1f, 0.1f, 0.1f, 1.0f});
+  rect(x0 + 0.16 * w, y0 + 0.43 * h, x1 - 0.16 * w, y0 + 0.74 * h, kKeeper);  // jersey
+  thick_line(at(0.22, 0.7), at(0.06, 0.95), limb, kKeeper);                   // arms up
+  thick_line(at(0.78, 0.7), at(0.94, 0.95), limb, kKeeper);
+  // (Gloves off-white: pure white is the ball's alone, which the window
+  // test measures.)
+  const Color glove{0.97f, 0.97f, 0.88f, 1.0f};
+  disc(x0 + 0.08 * w, y0 + 0.95 * h, 0.09 * w, 0.09 * w, glove, 12);
+  disc(x1 - 0.08 * w, y0 + 0.95 * h, 0.09 * w, 0.09 * w, glove, 12);
+  disc(cx, y0 + 0.84 * h, 0.2 * w, 0.2 * w, kSkin, 16);  // head
+  rect_outline(x0, y0, x1, y1, 1.0 / v.scale, Color{0.1f, 0.1f, 0.1f, 0.5f});
+}
+
 // The keeper (where the physics has it) and the player, drawn before the
 // ball.
 void draw_keeper_and_player(const Game& game, const View& v) {
   const Pitch& pitch = game.pitch();
   const Rules& r = pitch.rules;
   const double dir = pitch.direction();
-  // The keeper: its box where the physics has it now (what the ball
-  // bounces off), in its jersey, with a head and gloves drawn inside it.
-  if (game.has_keeper()) {
-    const Obstacle& k = game.keeper();
-    const double kx = 0.5 * (k.a.x() + k.b.x()), kw = k.b.x() - k.a.x();
-    rect(k.a.x(), k.a.y(), k.b.x(), k.b.y(), kKeeper);
-    rect_outline(k.a.x(), k.a.y(), k.b.x(), k.b.y(), 1.5 / v.scale, kOutline);
-    disc(kx, k.b.y() - 0.3 * kw, 0.28 * kw, 0.28 * kw, kSkin, 16);
-    // (Gloves off-white: pure white is the ball's alone, which the window
-    // test measures.)
-    disc(k.a.x() + 0.15 * kw, 0.5 * (k.a.y() + k.b.y()), 0.18 * kw, 0.18 * kw,
-         Color{0.97f, 0.97f, 0.88f, 1.0f}, 12);
-    // Its legs below the box while it is up (it jumps): drawn, not solid.
-    if (k.a.y() > 0.02) {
-      thick_line(Vec2(kx - 0.05, k.a.y()), Vec2(kx - 0.05, std::max(0.0, k.a.y() - 0.5)), 0.08,
-                 Color{0.95f, 0.55f, 0.1f, 0.5f});
-    }
-  }
+  if (game.has_keeper()) draw_keeper(game.keeper(), v);
 
   // The player: behind the ball on the grass, at least 1.5 m in front of
   // the teammate (where the pass comes to him); after a kick, where it was
@@ -296,36 +308,11 @@ std::string upper(std::string_view text) {
   return out;
 }
 
-// The messages and screens in the middle of the screen: an ignored kick,
-// the start screen (before the first pass), a round's result, the end of a
-// session, the pause.
-void draw_banners(const Game& game, const Overlay& overlay, int width, int height) {
+// The screens of their own, over the middle: the start screen (before the
+// first pass) and the end of a session (the game waits for Backspace).
+void draw_screens(const Game& game, const Overlay& overlay, int width, int height) {
   const Rules& r = game.pitch().rules;
-  // A kick key that did nothing, for a second: why.
-  if (game.ignored_kick() != IgnoredKick::None &&
-      static_cast<double>(game.steps_since_ignored_kick()) * game.dt() < 1.0) {
-    std::string what;
-    switch (game.ignored_kick()) {
-      case IgnoredKick::RoundOver:
-        what = game.session_finished()
-                   ? std::string("KICK IGNORED: THE SESSION IS OVER (BACKSPACE: A NEW ONE)")
-                   : fmt("KICK IGNORED: THE ROUND IS OVER, NEXT PASS IN %.1f s",
-                         static_cast<double>(game.steps_to_next_pass()) * game.dt());
-        break;
-      case IgnoredKick::StillKicking: what = "KICK IGNORED: THE LAST KICK IS STILL ACTING"; break;
-      case IgnoredKick::OutOfReach:
-        what = fmt("KICK IGNORED: OUT OF REACH (THE BALL IS ABOVE %.1f m)", r.reach_height);
-        break;
-      case IgnoredKick::None: break;
-    }
-    const double w = text_width(what, 2.0);
-    rect(0.5 * (width - w) - 10, 0.3 * height - 40, 0.5 * (width + w) + 10, 0.3 * height - 12,
-         kPanel);
-    text(0.5 * (width - w), 0.3 * height - 34, what, 2.0, kNoGoal);
-  }
-
   if (overlay.get_ready > 0.0) {
-    // The start screen, while the first pass waits.
     centred_panel(
         {"BEAT THE KEEPER", "Your teammate passes. Control the ball (C),",
          "bring it closer (arrows), aim (W/S angle, A/D power)",
@@ -335,29 +322,12 @@ void draw_banners(const Game& game, const Overlay& overlay, int width, int heigh
          fmt("THE PASS COMES IN %.1f s   (F1: HELP)", overlay.get_ready)},
         4.0, kGoal, width, height);
   } else if (game.session_finished()) {
-    // The end of a session: its score and the best so far.
     centred_panel(
         {"SESSION OVER", fmt("%.0f GOALS FROM %.0f PASSES", game.session_goals(), r.session_rounds),
          fmt("BEST SESSION SO FAR: %.0f GOALS", game.best_session_goals()),
          "NEXT LEVEL " + upper(level_name(game.level())) + " (KEYS 1, 2, 3: EASY, NORMAL, HARD)",
          "BACKSPACE: A NEW SESSION    ESC: QUIT"},
         4.0, kGoal, width, height);
-  } else if (game.phase() == Phase::Over) {
-    // The round's result.
-    const Outcome outcome = game.current_round().outcome;
-    const std::string what = outcome_text(outcome, r.min_kick_distance);
-    centred_panel({what,
-                   fmt("PASS %.0f OF %.0f: %.0f GOALS", game.session_round(), r.session_rounds,
-                       game.session_goals()),
-                   fmt(game.session_round() >= r.session_rounds ? "THE SESSION ENDS IN %.1f s"
-                                                                : "NEXT PASS IN %.1f s",
-                       static_cast<double>(game.steps_to_next_pass()) * game.dt())},
-                  outcome == Outcome::Goal ? 6.0 : 2.5, outcome == Outcome::Goal ? kGoal : kNoGoal,
-                  width, height);
-  }
-  if (overlay.paused) {
-    const double w = text_width("PAUSED", 4.0);
-    text(0.5 * (width - w), 0.2 * height, "PAUSED", 4.0, kPanelText);
   }
 }
 
@@ -408,86 +378,215 @@ void draw_help(int width, int height) {
   }
 }
 
-void draw_hud(const Game& game, const Overlay& overlay, const View& v, int width, int height) {
-  const Pitch& pitch = game.pitch();
-  const Rules& r = pitch.rules;
+// Glyphs' height at `scale` (stb_easy_font: 7 units above the baseline, 2
+// below for descenders, and a unit to spare).
+double glyph_height(double scale) { return 10.0 * scale; }
+
+TextItem text_item(std::string what, double x, double y, double scale, const Color& colour) {
+  TextItem t;
+  t.box = {x, y, x + text_width(what, scale), y + glyph_height(scale)};
+  t.text = std::move(what);
+  t.x = x;
+  t.y = y;
+  t.scale = scale;
+  t.colour = colour;
+  return t;
+}
+
+// The HUD's lines along the top, on its panel.
+void hud_texts(const Game& game, const Overlay& overlay, int width, FrameLayout& out) {
+  const Rules& r = game.pitch().rules;
   const State& s = game.ball();
   const Vec3 f = game.applied();
-
-  rect(0, 0, width, 78, kPanel);
-  text(10, 8,
-       fmt("PASS %.0f/%.0f   GOALS %.0f", game.session_round(), r.session_rounds,
-           game.session_goals()) +
-           fmt("   BEST %.0f   ", game.best_session_goals()) + upper(level_name(game.level())),
-       2.0, kText);
+  out.texts.push_back(text_item(fmt("PASS %.0f/%.0f   GOALS %.0f", game.session_round(),
+                                    r.session_rounds, game.session_goals()) +
+                                    fmt("   BEST %.0f   ", game.best_session_goals()) +
+                                    upper(level_name(game.level())),
+                                10, 8, 2.0, kText));
   const std::string reach = !game.in_reach()     ? "   OUT OF REACH"
                             : game.controlling() ? "   CONTROL"
                                                  : "";
-  text(10, 30,
-       fmt("TIME %.1f s   SPEED %.2f m/s   TO GOAL %.2f m", game.round_time(),
-           std::hypot(s.v.x(), s.v.y()), game.distance_to_goal()) +
-           reach,
-       2.0, game.in_reach() ? kText : kNoGoal);
-  text(10, 52,
-       fmt("KICK ANGLE %.0f deg   POWER %.0f %%", game.kick_angle(), 100.0 * game.kick_power()) +
-           fmt("   FORCE (%.1f, %.1f) N", f.x(), f.y()),
-       2.0, kText);
+  out.texts.push_back(
+      text_item(fmt("TIME %.1f s   SPEED %.2f m/s   TO GOAL %.2f m", game.round_time(),
+                    std::hypot(s.v.x(), s.v.y()), game.distance_to_goal()) +
+                    reach,
+                10, 30, 2.0, game.in_reach() ? kText : kNoGoal));
+  out.texts.push_back(text_item(
+      fmt("KICK ANGLE %.0f deg   POWER %.0f %%", game.kick_angle(), 100.0 * game.kick_power()) +
+          "   FORCE " + force_text(f.x(), f.y()) + " N",
+      10, 52, 2.0, kText));
   // A recording shows neither the frame rate (that of the encoder, not the
   // game) nor a REC mark.
   std::string right = "ENGINE " + upper(game.engine_name()) + "   F1/H: HELP";
   if (overlay.fps > 0.0 && !overlay.recording) right = fmt("%.0f FPS", overlay.fps) + "   " + right;
-  text(width - 10 - text_width(right, 1.5), 10, right, 1.5, kText);
-  if (overlay.replaying) text(width - 10 - text_width("REPLAY", 2.0), 88, "REPLAY", 2.0, kGoal);
+  if (overlay.replaying) right = "REPLAY   " + right;
+  out.texts.push_back(text_item(right, width - 10 - text_width(right, 1.5), 10, 1.5,
+                                overlay.replaying ? kGoal : kText));
   // The engine cannot keep up at this frame rate: the game runs slower.
   if (!overlay.recording && overlay.speed < 0.97) {
     const std::string slow = fmt("SLOW MOTION x%.2f", overlay.speed);
-    text(width - 10 - text_width(slow, 1.5), 58, slow, 1.5, kNoGoal);
+    out.texts.push_back(text_item(slow, width - 10 - text_width(slow, 1.5), 58, 1.5, kNoGoal));
   }
+}
 
-  // The preview's label, above the highest of its dots (draw_aim_and_force
-  // draws them at the same condition).
-  if (game.phase() == Phase::Playing && game.in_reach() && !game.kicking()) {
-    Vec2 path[64];
-    const int n = kick_preview(game, 0.03, path, 64);
-    Vec2 top = path[0];
-    for (int i = 1; i < n; ++i) {
-      if (path[i].y() > top.y()) top = path[i];
+struct BandLine {
+  std::string text;
+  double scale;
+  Color colour;
+};
+
+// What the band says now, most important first: the round's result, a
+// kick key that did nothing (for a second), the last kick (for 2 s), the
+// preview's legend while aiming, the pause.
+std::vector<BandLine> band_lines(const Game& game, const Overlay& overlay) {
+  const Rules& r = game.pitch().rules;
+  std::vector<BandLine> lines;
+  if (game.phase() == Phase::Over && !game.session_finished()) {
+    const Outcome outcome = game.current_round().outcome;
+    lines.push_back({outcome_text(outcome, r.min_kick_distance), 4.0,
+                     outcome == Outcome::Goal ? kGoal : kNoGoal});
+    lines.push_back({fmt("PASS %.0f OF %.0f: %.0f GOALS   ", game.session_round(), r.session_rounds,
+                         game.session_goals()) +
+                         fmt(game.session_round() >= r.session_rounds ? "THE SESSION ENDS IN %.1f s"
+                                                                      : "NEXT PASS IN %.1f s",
+                             static_cast<double>(game.steps_to_next_pass()) * game.dt()),
+                     2.0, kPanelText});
+  }
+  if (game.ignored_kick() != IgnoredKick::None &&
+      static_cast<double>(game.steps_since_ignored_kick()) * game.dt() < 1.0) {
+    std::string what;
+    switch (game.ignored_kick()) {
+      case IgnoredKick::RoundOver:
+        what = game.session_finished()
+                   ? std::string("KICK IGNORED: THE SESSION IS OVER (BACKSPACE: A NEW ONE)")
+                   : fmt("KICK IGNORED: THE ROUND IS OVER, NEXT PASS IN %.1f s",
+                         static_cast<double>(game.steps_to_next_pass()) * game.dt());
+        break;
+      case IgnoredKick::StillKicking: what = "KICK IGNORED: THE LAST KICK IS STILL ACTING"; break;
+      case IgnoredKick::OutOfReach:
+        what = fmt("KICK IGNORED: OUT OF REACH (THE BALL IS ABOVE %.1f m)", r.reach_height);
+        break;
+      case IgnoredKick::None: break;
     }
-    const std::string label = "KICK PREVIEW: NO DRAG, SPIN OR BOUNCE";
-    const Vec2 at = v.pixel(top.x(), top.y(), height);
-    const double w = text_width(label, 1.5);
-    const double x = std::clamp(at.x() - 0.5 * w, 8.0, width - w - 8.0);
-    const double y = std::max(112.0, at.y() - 26.0);
-    rect(x - 4, y - 4, x + w + 4, y + 15, kPanel);
-    text(x, y, label, 1.5, kPreview);
+    lines.push_back({what, 2.0, kNoGoal});
   }
-
-  // Label of the 1 m line, at its foot.
-  const Vec2 zone = v.pixel(r.goal_line - pitch.direction() * r.min_kick_distance, 0.0, height);
-  const std::string zone_label = fmt("%g m", r.min_kick_distance);
-  text(zone.x() - 0.5 * text_width(zone_label, 1.5), zone.y() + 8, zone_label, 1.5, kZone);
-
-  // The last kick, while it is recent.
-  if (!game.kicks().empty()) {
+  if (!game.kicks().empty() && game.phase() == Phase::Playing) {
     const KickRecord& k = game.kicks().back();
     if (k.round == game.round() && game.time() - k.time < 2.0) {
-      const std::string what = k.counted ? fmt("KICK FROM %.2f m", k.distance)
-                                         : fmt("KICK FROM %.2f m: INSIDE %g m, DOES NOT COUNT",
-                                               k.distance, r.min_kick_distance);
-      text(10, 88, what, 2.0, k.counted ? kGoal : kNoGoal);
+      lines.push_back({k.counted ? fmt("KICK FROM %.2f m", k.distance)
+                                 : fmt("KICK FROM %.2f m: INSIDE %g m, DOES NOT COUNT", k.distance,
+                                       r.min_kick_distance),
+                       2.0, k.counted ? kGoal : kNoGoal});
     }
   }
+  if (game.phase() == Phase::Playing && game.in_reach() && !game.kicking())
+    lines.push_back({"YELLOW DOTS: THE KICK'S PATH WITHOUT DRAG, SPIN OR BOUNCE", 1.5, kPreview});
+  if (overlay.paused) lines.push_back({"PAUSED (SPACE: GO ON)", 2.0, kPanelText});
+  return lines;
+}
 
-  // The help overlay is modal: the banners would show through it (the HUD's
+// The band's lines, centred, stacked from its top; scaled down together
+// when they do not fit its height, each also to the screen's width.
+void band_texts(const std::vector<BandLine>& lines, const ScreenBox& band, FrameLayout& out) {
+  constexpr double kGap = 4.0;
+  double tall = 0.0;
+  for (const BandLine& l : lines) tall += glyph_height(l.scale);
+  const double room = (band.y1 - band.y0) - kGap * static_cast<double>(lines.size() + 1);
+  const double shrink = tall > room && tall > 0.0 ? std::max(0.0, room) / tall : 1.0;
+  double y = band.y0 + kGap;
+  for (const BandLine& l : lines) {
+    double scale = l.scale * shrink;
+    const double w = text_width(l.text, scale);
+    if (w > band.x1 - band.x0 - 16.0) scale *= (band.x1 - band.x0 - 16.0) / w;
+    const double x = 0.5 * (band.x0 + band.x1 - text_width(l.text, scale));
+    out.texts.push_back(text_item(l.text, x, y, scale, l.colour));
+    y += glyph_height(l.scale * shrink) + kGap;
+  }
+}
+
+ScreenBox pixel_box(const View& v, double x0, double y0, double x1, double y1, int height) {
+  const Vec2 a = v.pixel(x0, y1, height), b = v.pixel(x1, y0, height);
+  return {std::min(a.x(), b.x()), a.y(), std::max(a.x(), b.x()), b.y()};
+}
+
+// Where the keeper, the ball and the aim with the kick's preview are.
+void play_boxes(const Game& game, const View& v, int height, FrameLayout& out) {
+  const State& s = game.ball();
+  const double R = game.radius();
+  if (game.has_keeper()) {
+    const Obstacle& k = game.keeper();
+    out.keeper = pixel_box(v, k.a.x(), k.a.y(), k.b.x(), k.b.y(), height);
+  }
+  out.ball = pixel_box(v, s.q.x() - R, s.q.y() - R, s.q.x() + R, s.q.y() + R, height);
+  if (game.phase() == Phase::Playing && game.in_reach() && !game.kicking()) {
+    // The aim's dashes reach R + 1 m from the centre; the dots 0.035 m wide.
+    const double dir = game.pitch().direction(), a = game.kick_angle() * kPi / 180.0;
+    double x0 = s.q.x(), x1 = s.q.x(), y0 = s.q.y(), y1 = s.q.y();
+    const auto widen = [&](double x, double y, double r) {
+      x0 = std::min(x0, x - r), x1 = std::max(x1, x + r);
+      y0 = std::min(y0, y - r), y1 = std::max(y1, y + r);
+    };
+    widen(s.q.x() + (R + 1.0) * dir * std::cos(a), s.q.y() + (R + 1.0) * std::sin(a), 0.02);
+    Vec2 path[64];
+    const int n = kick_preview(game, 0.03, path, 64);
+    for (int i = 1; i < n; ++i) widen(path[i].x(), path[i].y(), 0.035);
+    out.path = pixel_box(v, x0, y0, x1, y1, height);
+  }
+}
+
+FrameLayout layout_in(const Game& game, const Overlay& overlay, const View& v, int width,
+                      int height) {
+  const Rules& r = game.pitch().rules;
+  FrameLayout out;
+  out.hud = {0.0, 0.0, static_cast<double>(width), 78.0};
+  const double grass = v.pixel(v.x0, 0.0, height).y();
+  out.pitch = {0.0, out.hud.y1, static_cast<double>(width), grass};
+  hud_texts(game, overlay, width, out);
+  // The 1 m line's label, at its foot under the grass line; the band below
+  // it down to the bottom (at least 24 px: then over the grass under the
+  // line, where nothing is played either).
+  const Vec2 zone =
+      v.pixel(r.goal_line - game.pitch().direction() * r.min_kick_distance, 0.0, height);
+  const std::string zone_label = fmt("%g m", r.min_kick_distance);
+  out.texts.push_back(text_item(zone_label, zone.x() - 0.5 * text_width(zone_label, 1.5),
+                                zone.y() + 8, 1.5, kZone));
+  const double band_top =
+      std::max(grass + 4.0, std::min(out.texts.back().box.y1 + 3.0, height - 24.0));
+  out.band = {0.0, band_top, static_cast<double>(width), static_cast<double>(height)};
+  band_texts(band_lines(game, overlay), out.band, out);
+  play_boxes(game, v, height, out);
+  return out;
+}
+
+void draw_hud(const Game& game, const Overlay& overlay, const FrameLayout& layout, int width,
+              int height) {
+  rect(layout.hud.x0, layout.hud.y0, layout.hud.x1, layout.hud.y1, kPanel);
+  rect(layout.band.x0, layout.band.y0, layout.band.x1, layout.band.y1, kPanel);
+  for (const TextItem& t : layout.texts) {
+    if (t.panel) rect(t.box.x0, t.box.y0, t.box.x1, t.box.y1, kPanel);
+    text(t.x, t.y, t.text, t.scale, t.colour);
+  }
+  // The help overlay is modal: the screens would show through it (the HUD's
   // text is drawn after its panel is cleared).
   if (overlay.help) {
     draw_help(width, height);
   } else {
-    draw_banners(game, overlay, width, height);
+    draw_screens(game, overlay, width, height);
   }
 }
 
 }  // namespace
+
+std::string force_text(double fx, double fy) {
+  // Rounded to 0.1 first: −0.04 prints as "-0.0" otherwise; + 0.0 turns −0 into 0.
+  const auto tenth = [](double v) { return std::round(v * 10.0) / 10.0 + 0.0; };
+  return fmt("(%.1f, %.1f)", tenth(fx), tenth(fy));
+}
+
+FrameLayout frame_layout(const Game& game, const Overlay& overlay, int width, int height) {
+  return layout_in(game, overlay, View(game.pitch(), game.ball().q.x(), width, height), width,
+                   height);
+}
 
 void draw_frame(const Game& game, const Overlay& overlay, int width, int height) {
   const View v(game.pitch(), game.ball().q.x(), width, height);
@@ -510,7 +609,7 @@ void draw_frame(const Game& game, const Overlay& overlay, int width, int height)
   glOrtho(0.0, width, height, 0.0, -1.0, 1.0);
   glMatrixMode(GL_MODELVIEW);
   glLoadIdentity();
-  draw_hud(game, overlay, v, width, height);
+  draw_hud(game, overlay, layout_in(game, overlay, v, width, height), width, height);
   glDisable(GL_BLEND);  // the HUD is opaque: blending would read every pixel back
   draw::flush_shapes();
   draw::flush_text();

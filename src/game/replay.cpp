@@ -122,6 +122,14 @@ Replay parse_replay(const std::string& text, const std::string& origin) {
           !third.empty()) {
         fail("pitch must be 16 hexadecimal digits (the pitch file's FNV-1a)");
       }
+    } else if (first == "push") {
+      char* end = nullptr;
+      const double push = std::strtod(second.c_str(), &end);
+      if (second.empty() || *end != '\0' || !std::isfinite(push) || push < 0.0 || push > 1e4 ||
+          !third.empty()) {
+        fail("push must be a number in [0, 1e4] (the arrows' force, N)");
+      }
+      replay.push = push;
     } else if (first == "level") {
       const auto level = parse_level(second);
       if (!level || !third.empty()) fail("level must be easy, normal or hard");
@@ -129,9 +137,10 @@ Replay parse_replay(const std::string& text, const std::string& origin) {
     } else {
       std::uint64_t step = 0;
       if (!parse_u64(first, step, 10) || step > (1ull << 62)) {
-        fail("'" + first +
-             "' is not a step index, seed, dt, pitch or level line (event lines: <step> <key> "
-             "down|up)");
+        fail(
+            "'" + first +
+            "' is not a step index, seed, dt, pitch, level or push line (event lines: <step> <key> "
+            "down|up)");
       }
       const auto key = parse_key(second);
       if (!key) fail("key '" + second + "' is not one of " + kAllowedKeys);
@@ -168,6 +177,7 @@ std::string format_replay(const Replay& replay) {
       << "dt " << dt << "\n"
       << "pitch " << fingerprint << "\n"
       << "level " << level_name(replay.level) << "\n";
+  if (replay.push) out << "push " << format_shortest(*replay.push, 6) << "\n";
   for (const InputEvent& e : replay.events) {
     out << e.step << " " << key_name(e.key) << " " << (e.down ? "down" : "up") << "\n";
   }

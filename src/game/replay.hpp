@@ -7,6 +7,9 @@
 //   dt 1e-05                     the physics step the steps count (must match the pitch)
 //   pitch 0123456789abcdef       FNV-1a of the pitch file (a mismatch is a warning)
 //   level normal                 easy | normal | hard: the keeper's speed (normal if absent)
+//   push 1.6894                  the arrows' force it was recorded with, N (absent: the
+//                                pitch's game.push_force, the push before it was derived
+//                                from game.push_distance: older replays play as recorded)
 //   <step> <key> down|up         e.g. "123000 kick down": applied before step 123000
 // Keys: left right up down kick angle_up angle_down reset control power_up
 // power_down level_easy level_normal level_hard.
@@ -56,6 +59,7 @@ struct Replay {
   double dt = 0.0;
   std::uint64_t pitch_fingerprint = 0;
   Level level = Level::Normal;
+  std::optional<double> push;      // N; nullopt: the pitch's push_force
   std::vector<InputEvent> events;  // non-decreasing steps
 };
 

@@ -10,6 +10,10 @@
 namespace contact2d::game {
 
 InputFeed::InputFeed(Game& game, const Replay* replay) : game_(game), replay_(replay) {
+  // A replay pushes as it was recorded (one without a push line: with the
+  // pitch's push_force, the push before it was derived).
+  if (replay_) game.use_push(replay_->push.value_or(game.pitch().rules.push_force));
+  log_.push = game.push_strength();
   log_.seed = game.seed();
   log_.dt = game.dt();
   log_.pitch_fingerprint = game.pitch().fingerprint;
@@ -93,7 +97,9 @@ std::string report_json(const Game& game) {
   const State& s = game.ball();
   const RoundRecord& last = game.current_round();
   std::string out = "{";
-  out += "\"goal\":" + std::string(game.goals() > 0 ? "true" : "false");
+  // "goal" is the last round's outcome, as "outcome" is ("goals" counts them
+  // all): the two cannot disagree.
+  out += "\"goal\":" + std::string(last.outcome == Outcome::Goal ? "true" : "false");
   out += ",\"goals\":" + std::to_string(game.goals());
   out += ",\"outcome\":" + json::string(std::string(outcome_name(last.outcome)));
   out += ",\"kicks\":[";
