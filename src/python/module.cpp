@@ -411,92 +411,192 @@ void bind_exceptions() {
   });
 }
 
+// What a wrong type for a field says, as the functions say it for a
+// keyword ("simulate(): dt must be a number (s), not str '1e-3'"): the
+// scene file's key, what it takes, and the value given. pybind11's own
+// text was "(): incompatible function arguments".
+[[noreturn]] void wrong_type(const std::string& key, const std::string& wanted,
+                             const py::handle& value) {
+  throw py::type_error(key + " must be " + wanted + ", not " +
+                       py::str(py::type::of(value).attr("__name__")).cast<std::string>() + " " +
+                       py::repr(value).cast<std::string>());
+}
+
+// A real number (int, float, a numpy scalar; not a bool, not a string) as a
+// double, else wrong_type naming `key` and its unit.
+double real_number(const py::handle& value, const std::string& key, const std::string& unit) {
+  if (!py::isinstance<py::bool_>(value) &&
+      py::isinstance(value, py::module_::import("numbers").attr("Real")))
+    return py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+  wrong_type(key, "a number (" + unit + ")", value);
+}
+
+// A str, else wrong_type naming `key` and the words it takes.
+std::string word(const py::handle& value, const std::string& key, const std::string& words) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  wrong_type(key, "a string, " + words, value);
+}
+
+// A number field of a scene part, its setter checked by real_number.
+template <typename C>
+void number_field(py::class_<C>& cls, const char* name, double C::*member, const std::string& key,
+                  const std::string& unit, const std::string& doc) {
+  cls.def_property(
+      name, [member](const C& c) { return c.*member; },
+      [member, key, unit](C& c, const py::object& value) {
+        c.*member = real_number(value, key, unit);
+      },
+      (doc.empty() ? unit : doc + ", " + unit).c_str());
+}
+
+// A scene part (Contact, State, Sim) assigned whole, checked for its type.
+template <typename T>
+py::cpp_function part_setter(T Scene::*member, const std::string& key, const std::string& type) {
+  return py::cpp_function([member, key, type](Scene& s, const py::object& value) {
+    if (!py::isinstance<T>(value)) wrong_type(key, "a contact2d." + type, value);
+    s.*member = value.cast<T>();
+  });
+}
+
 // The parts of a scene: BoxPart, Contact, State and Sim.
 void bind_scene_parts(py::module_& m) {
-  py::class_<BoxPart>(m, "BoxPart", "One rectangle of a tshape's body (body.parts)")
-      .def(py::init([](double width, double height, double x, double y, double mass) {
-             return BoxPart{width, height, x, y, mass};
+  py::class_<BoxPart> part(m, "BoxPart", "One rectangle of a tshape's body (body.parts)");
+  part.def(py::init([](const py::object& width, const py::object& height, const py::object& x,
+                       const py::object& y, const py::object& mass) {
+             const std::string key = "BoxPart(): ";
+             return BoxPart{real_number(width, key + "width", "m"),
+                            real_number(height, key + "height", "m"),
+                            real_number(x, key + "x", "m"), real_number(y, key + "y", "m"),
+                            real_number(mass, key + "mass", "kg")};
            }),
-           py::arg("width"), py::arg("height"), py::arg("x"), py::arg("y"), py::arg("mass"))
-      .def_readwrite("width", &BoxPart::width, "m")
-      .def_readwrite("height", &BoxPart::height, "m")
-      .def_readwrite("x", &BoxPart::x, "centre x in the body frame, m")
-      .def_readwrite("y", &BoxPart::y, "centre y in the body frame, m")
-      .def_readwrite("mass", &BoxPart::mass, "kg");
+           py::arg("width"), py::arg("height"), py::arg("x"), py::arg("y"), py::arg("mass"));
+  number_field(part, "width", &BoxPart::width, "body.parts[].width", "m", "");
+  number_field(part, "height", &BoxPart::height, "body.parts[].height", "m", "");
+  number_field(part, "x", &BoxPart::x, "body.parts[].x", "m", "centre x in the body frame");
+  number_field(part, "y", &BoxPart::y, "body.parts[].y", "m", "centre y in the body frame");
+  number_field(part, "mass", &BoxPart::mass, "body.parts[].mass", "kg", "");
 
-  py::class_<ContactParams>(m, "Contact", "[contact]: the contact law (docs/scenes.md)")
-      .def_readwrite("k", &ContactParams::k, "stiffness, N/m")
-      .def_readwrite("c", &ContactParams::c, "damping, N·s/m")
-      .def_readwrite("mu", &ContactParams::mu, "sliding friction coefficient (dimensionless)")
-      .def_readwrite("alpha", &ContactParams::alpha, "tanh regularisation of friction, s/m")
-      .def_readwrite("mu_roll", &ContactParams::mu_roll, "rolling resistance, m")
-      .def_readwrite("mu_torsion", &ContactParams::mu_torsion,
-                     "torsional friction, m (MuJoCo only; 2D has no torsion)")
-      .def_readwrite("cone_ratio", &ContactParams::cone_ratio,
-                     "the cone laws' ratio (MuJoCo's impratio, dimensionless)")
+  py::class_<ContactParams> contact(m, "Contact", "[contact]: the contact law (docs/scenes.md)");
+  number_field(contact, "k", &ContactParams::k, "contact.k", "N/m", "stiffness");
+  number_field(contact, "c", &ContactParams::c, "contact.c", "N·s/m", "damping");
+  number_field(contact, "mu", &ContactParams::mu, "contact.mu", "dimensionless",
+               "sliding friction coefficient");
+  number_field(contact, "alpha", &ContactParams::alpha, "contact.alpha", "s/m",
+               "tanh regularisation of friction");
+  number_field(contact, "mu_roll", &ContactParams::mu_roll, "contact.mu_roll", "m",
+               "rolling resistance");
+  number_field(contact, "mu_torsion", &ContactParams::mu_torsion, "contact.mu_torsion", "m",
+               "torsional friction (MuJoCo only; 2D has no torsion)");
+  number_field(contact, "cone_ratio", &ContactParams::cone_ratio, "contact.cone_ratio",
+               "dimensionless", "the cone laws' ratio (MuJoCo's impratio)");
+  contact
       .def_property(
           "damping", [](const ContactParams& p) { return damping_name(p.damping); },
-          [](ContactParams& p, const std::string& name) { p.damping = parse_damping(name); },
+          [](ContactParams& p, const py::object& name) {
+            p.damping =
+                parse_damping(word(name, "contact.damping", "\"compression\" or \"kelvin_voigt\""));
+          },
           "\"compression\" (damps only while a point moves in) or \"kelvin_voigt\"")
       .def_property(
           "friction_law",
           [](const ContactParams& p) { return std::string(friction_law_name(p.friction)); },
-          [](ContactParams& p, const std::string& name) { p.friction = parse_friction(name); },
+          [](ContactParams& p, const py::object& name) {
+            p.friction = parse_friction(
+                word(name, "contact.friction_law", "\"tanh\", \"viscous_cone\" or \"soft_cone\""));
+          },
           "\"tanh\", \"viscous_cone\" or \"soft_cone\" (docs/physics.md)");
 
   // [initial]: q = (x, y, θ), v = (vx, vy, ω), by the scene file's keys.
-  auto component = [](Vec3 State::*vector, int i) {
-    return std::make_pair([vector, i](const State& s) { return (s.*vector)[i]; },
-                          [vector, i](State& s, double value) { (s.*vector)[i] = value; });
-  };
   py::class_<State> state(m, "State", "[initial]: the initial state (docs/scenes.md)");
   const char* names[] = {"x", "y", "theta", "vx", "vy", "omega"};
   const char* units[] = {"m", "m", "rad", "m/s", "m/s", "rad/s"};
   for (int i = 0; i < 6; ++i) {
-    const auto [get, set] = component(i < 3 ? &State::q : &State::v, i % 3);
-    state.def_property(names[i], get, set, units[i]);
+    Vec3 State::*vector = i < 3 ? &State::q : &State::v;
+    const int j = i % 3;
+    const std::string key = std::string("initial.") + names[i];
+    const std::string unit = units[i];
+    state.def_property(
+        names[i], [vector, j](const State& s) { return (s.*vector)[j]; },
+        [vector, j, key, unit](State& s, const py::object& value) {
+          (s.*vector)[j] = real_number(value, key, unit);
+        },
+        units[i]);
   }
 
-  py::class_<SimParams>(m, "Sim", "[sim]: time stepping (docs/scenes.md)")
-      .def_readwrite("dt", &SimParams::dt, "time step, s")
-      .def_readwrite("duration", &SimParams::duration, "simulated time, s")
-      .def_readwrite("output_dt", &SimParams::output_dt, "sample spacing of the trajectory, s")
-      .def_readwrite("gravity", &SimParams::gravity, "m/s²")
-      .def_property(
-          "integrator",
-          [](const SimParams& s) { return std::string(integrator_name(s.integrator)); },
-          [](SimParams& s, const std::string& name) {
-            s.integrator = parse_integrator_or_throw(name);
-          },
-          "\"explicit_euler\", \"semi_implicit_euler\", \"implicit_euler\" or \"rk4\"");
+  py::class_<SimParams> sim(m, "Sim", "[sim]: time stepping (docs/scenes.md)");
+  number_field(sim, "dt", &SimParams::dt, "sim.dt", "s", "time step");
+  number_field(sim, "duration", &SimParams::duration, "sim.duration", "s", "simulated time");
+  number_field(sim, "output_dt", &SimParams::output_dt, "sim.output_dt", "s",
+               "sample spacing of the trajectory");
+  number_field(sim, "gravity", &SimParams::gravity, "sim.gravity", "m/s²", "");
+  sim.def_property(
+      "integrator", [](const SimParams& s) { return std::string(integrator_name(s.integrator)); },
+      [](SimParams& s, const py::object& name) {
+        s.integrator = parse_integrator_or_throw(
+            word(name, "sim.integrator",
+                 "\"explicit_euler\", \"semi_implicit_euler\", \"implicit_euler\" or \"rk4\""));
+      },
+      "\"explicit_euler\", \"semi_implicit_euler\", \"implicit_euler\" or \"rk4\"");
 }
 
+// Scene.parts = a list of BoxPart, checked item by item.
+void set_parts(Scene& s, const py::object& value) {
+  if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value))
+    wrong_type("body.parts", "a list of contact2d.BoxPart", value);
+  std::vector<BoxPart> parts;
+  size_t i = 0;
+  for (const py::handle item : value) {
+    if (!py::isinstance<BoxPart>(item))
+      wrong_type("body.parts[" + std::to_string(i) + "]", "a contact2d.BoxPart", item);
+    parts.push_back(item.cast<BoxPart>());
+    ++i;
+  }
+  s.parts = std::move(parts);
+}
+
+const char* const kShapes = "\"point_mass\", \"box\", \"tshape\", \"circle\" or \"ellipse\"";
+
 void bind_scene(py::module_& m) {
-  py::class_<Scene>(m, "Scene", py::dynamic_attr(), "A scene: body, contact, initial state, sim")
-      .def(py::init(
-               [](const std::string& shape) { return default_scene(parse_shape_or_throw(shape)); }),
+  py::class_<Scene> scene(m, "Scene", py::dynamic_attr(),
+                          "A scene: body, contact, initial state, sim");
+  scene
+      .def(py::init([](const py::object& shape) {
+             return default_scene(parse_shape_or_throw(word(shape, "Scene(): shape", kShapes)));
+           }),
            py::arg("shape") = "point_mass")
       .def_static("load", &load, py::arg("path"), py::arg("set") = std::vector<std::string>{},
                   "The scene of a TOML scene file (str or os.PathLike), with overrides "
                   "\"KEY=VALUE\" as --set (docs/scenes.md)")
       .def_property(
           "shape", [](const Scene& s) { return std::string(shape_name(s.shape)); },
-          [](Scene& s, const std::string& name) { s.shape = parse_shape_or_throw(name); },
-          "\"point_mass\", \"box\", \"tshape\", \"circle\" or \"ellipse\"")
-      .def_readwrite("mass", &Scene::mass, "body mass, kg (not a tshape: its parts carry theirs)")
-      .def_readwrite("half_height", &Scene::half_height,
-                     "point_mass: the contact point's distance below the centre, m")
-      .def_readwrite("width", &Scene::width, "box width, m")
-      .def_readwrite("height", &Scene::height, "box height, m")
-      .def_readwrite("radius", &Scene::radius, "circle radius, m")
-      .def_readwrite("a", &Scene::a, "ellipse: semi-axis along the body's x, m")
-      .def_readwrite("b", &Scene::b, "ellipse: semi-axis along the body's y, m")
-      .def_readwrite("inertia", &Scene::inertia,
-                     "ellipse: inertia about the centre, kg·m² (0: a plate's m·(a² + b²)/4)")
-      .def_readwrite("parts", &Scene::parts, "tshape: the body's rectangles (list of BoxPart)")
-      .def_readwrite("contact", &Scene::contact, "[contact] (Contact)")
-      .def_readwrite("initial", &Scene::initial, "[initial]: the initial state (State)")
-      .def_readwrite("sim", &Scene::sim, "[sim] (Sim)")
+          [](Scene& s, const py::object& name) {
+            s.shape = parse_shape_or_throw(word(name, "shape", kShapes));
+          },
+          kShapes);
+  number_field(scene, "mass", &Scene::mass, "body.mass", "kg",
+               "body mass (not a tshape: its parts carry theirs)");
+  number_field(scene, "half_height", &Scene::half_height, "body.half_height", "m",
+               "point_mass: the contact point's distance below the centre");
+  number_field(scene, "width", &Scene::width, "body.width", "m", "box width");
+  number_field(scene, "height", &Scene::height, "body.height", "m", "box height");
+  number_field(scene, "radius", &Scene::radius, "body.radius", "m", "circle radius");
+  number_field(scene, "a", &Scene::a, "body.a", "m", "ellipse: semi-axis along the body's x");
+  number_field(scene, "b", &Scene::b, "body.b", "m", "ellipse: semi-axis along the body's y");
+  number_field(scene, "inertia", &Scene::inertia, "body.inertia", "kg·m²",
+               "ellipse: inertia about the centre (0: a plate's m·(a² + b²)/4)");
+  scene
+      .def_property(
+          "parts", [](const Scene& s) { return s.parts; }, &set_parts,
+          "tshape: the body's rectangles (list of BoxPart)")
+      .def_property(
+          "contact", [](Scene& s) -> ContactParams& { return s.contact; },
+          part_setter(&Scene::contact, "contact", "Contact"), "[contact] (Contact)")
+      .def_property(
+          "initial", [](Scene& s) -> State& { return s.initial; },
+          part_setter(&Scene::initial, "initial", "State"), "[initial]: the initial state (State)")
+      .def_property(
+          "sim", [](Scene& s) -> SimParams& { return s.sim; },
+          part_setter(&Scene::sim, "sim", "Sim"), "[sim] (Sim)")
       .def_property_readonly(
           "obstacles", [](const Scene& s) { return s.obstacles.size(); },
           "the number of obstacles (set in the scene file: [[obstacle]])")
@@ -505,13 +605,8 @@ void bind_scene(py::module_& m) {
           "Raises ValueError naming the first key out of its range, as the program does")
       .def("copy", &copy_scene, "An independent copy (the scene file it came from kept)")
       .def("__copy__", &copy_scene)
-      .def("__deepcopy__", [](const py::object& self, const py::dict&) { return copy_scene(self); })
-      .def("__repr__", [](const py::object& self) {
-        const Scene& s = self.cast<const Scene&>();
-        const std::string source = source_of(self);
-        return "<contact2d.Scene " + std::string(shape_name(s.shape)) +
-               (source.empty() ? std::string() : " from " + source) + ">";
-      });
+      .def("__deepcopy__",
+           [](const py::object& self, const py::dict&) { return copy_scene(self); });
 }
 
 // The commands, run by the Python half.

@@ -1,7 +1,9 @@
 """The module's numbers are the program's, bit for bit.
 
 JSON results (compare, solref, inspect) are compared as parsed objects,
-the wall-clock fields excepted; the MJCF of generate as text. Trajectories:
+the wall-clock fields excepted, the program's texts in Python's words
+(python_json: "--dt 0.0002" is "dt=0.0002", each diagnosis's fix with its
+fix_kwargs; test_python_words.py checks those words); the MJCF of generate as text. Trajectories:
 the program writes them as CSV at %.10g (t) and %.12g (states), so every
 sample of the module's arrays, printed the same way, must give the CSV's
 text exactly; and the reference's final state, which contact2d_digest
@@ -19,6 +21,15 @@ import contact2d
 from conftest import SCENES, SOURCE_DIR, program_path, run_program
 
 TIMINGS = ("ref_seconds", "mujoco_seconds", "converged_seconds")
+
+
+def python_json(out, diagnosis=False):
+    """The program's --json output as the module gives it: its numbers,
+    its texts in Python's words (contact2d's one table of options)."""
+    parsed = json.loads(out)
+    if diagnosis:
+        parsed = contact2d._with_fixes(parsed)
+    return contact2d._translated(parsed)
 
 
 def masked(result):
@@ -40,7 +51,7 @@ def test_compare_json_and_trajectories(scene, tmp_path):
     csv = tmp_path / "compare.csv"
     out, _ = run_program("compare", scene, "--json", "--csv", str(csv))
     result = contact2d.compare(contact2d.Scene.load(scene))
-    expected = json.loads(out)
+    expected = python_json(out, diagnosis=True)
     for key in TIMINGS:
         assert key in result
     assert masked({k: v for k, v in result.items() if not k.endswith("_trajectory")
@@ -76,7 +87,7 @@ def test_compare_engines_list(tmp_path):
                          "--duration", "0.5", "--no-diagnosis", "--allow-nonphysical")
     result = contact2d.compare(contact2d.Scene.load(scene), engines=engines, duration=0.5,
                                diagnosis=False, allow_nonphysical=True)
-    expected = json.loads(out)
+    expected = python_json(out, diagnosis=True)
     timings = TIMINGS + ("mujoco_exact_seconds", "mujoco_calibrated_boxes_seconds")
     assert ({k: v for k, v in result.items() if not k.endswith("_trajectory")
              and k not in ("warnings", "text") and k not in timings}
@@ -97,7 +108,7 @@ def test_compare_options(tmp_path):
     result = contact2d.compare(s, mapping="compensated", integrator="rk4", dt=2e-4,
                                diagnosis=False)
     assert masked({k: v for k, v in result.items() if not k.endswith("_trajectory")
-                   and k not in ("warnings", "text")}) == masked(json.loads(out))
+                   and k not in ("warnings", "text")}) == masked(python_json(out, diagnosis=True))
 
 
 @pytest.mark.parametrize("engine", ["ref", "mujoco"])
@@ -175,7 +186,7 @@ SOLREF_CASES = [
 @pytest.mark.parametrize("args,kwargs", SOLREF_CASES)
 def test_solref_json(args, kwargs):
     out, _ = run_program("solref", *args, "--json")
-    assert contact2d.solref(**kwargs) == json.loads(out)
+    assert contact2d.solref(**kwargs) == python_json(out)
 
 
 @pytest.mark.parametrize("args,kwargs", [
@@ -190,7 +201,7 @@ def test_solref_json(args, kwargs):
 ])
 def test_inspect_json(args, kwargs):
     out, _ = run_program("inspect", *args, "--json")
-    assert contact2d.inspect(**kwargs) == json.loads(out)
+    assert contact2d.inspect(**kwargs) == python_json(out)
 
 
 def test_mujoco3_is_the_programs(tmp_path):

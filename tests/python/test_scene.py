@@ -19,7 +19,8 @@ def test_load_reads_the_file():
     assert (s.initial.x, s.initial.y, s.initial.theta, s.initial.vx) == (0.0, 0.6, 0.3, 1.0)
     assert (s.sim.dt, s.sim.duration, s.sim.integrator) == (1e-4, 2.0, "semi_implicit_euler")
     assert s.obstacles == 0
-    assert repr(s) == f"<contact2d.Scene box from {BOX}>"
+    assert repr(s).startswith("Scene(shape='box', mass=1.0, ")
+    assert repr(s).endswith(f"obstacles=0, source={BOX!r})")
 
 
 def test_fields_set_in_place():

@@ -14,14 +14,16 @@ run diverged or is not physics. Notes the program prints on stderr
 are issued as Python warnings (``Contact2dNote``).
 """
 
-import json
-import numbers
-import os
-import warnings
-from dataclasses import dataclass, field
-from typing import List, Optional, Sequence, Union
+import json as _json
+import numbers as _numbers
+import os as _os
+import re as _re
+import shlex as _shlex
+import typing as _t
+import warnings as _warnings
+from dataclasses import dataclass as _dataclass, field as _field
 
-import numpy as np
+import numpy as _np
 
 from ._contact2d import BoxPart, Contact, Scene, Sim, State, mujoco_available
 from ._contact2d import __version__
@@ -29,20 +31,222 @@ from . import _contact2d
 
 __all__ = [
     "BoxPart", "COLUMNS", "Cancelled", "Contact", "Contact2dNote", "Fit", "FitModel", "Scene",
-    "Sim",
-    "Simulation", "State", "__version__", "compare", "fit", "generate", "inspect",
+    "Sim", "Simulation", "State", "__version__", "compare", "fit", "generate", "inspect",
     "mujoco_available", "simulate", "solref",
 ]
 
-SceneLike = Union[Scene, str, os.PathLike]
+_SceneLike = _t.Union[Scene, str, _os.PathLike]
+
+# The command line's options as this module's keywords: the one table by
+# which every message, warning, note and hint the libraries write in the
+# program's words ("--mass 1: not with --model", "Try --dt 0.0031") reaches
+# Python in its own ("mass=1: not with model=", "Try dt=0.0031"), and by
+# which a diagnosis's fix becomes keywords (fix_kwargs). Each option: its
+# keyword and what follows it, "number" (dt=0.0031), "word" (a name or a
+# path: mapping="compensated"), "set" (--set KEY=VALUE: set=["KEY=VALUE"]),
+# or, for a switch, the keyword's value (--no-diagnosis: diagnosis=False).
+_FLAGS = {
+    "--engine": ("engine", "word"), "--engines": ("engines", "word"),
+    "--integrator": ("integrator", "word"), "--dt": ("dt", "number"),
+    "--duration": ("duration", "number"), "--mapping": ("mapping", "word"),
+    "--geometry": ("geometry", "word"), "--model-dt": ("model_dt", "number"),
+    "--friction": ("friction", "word"), "--set": ("set", "set"),
+    "--converged-tol": ("converged_tol", "number"),
+    "--allow-nonphysical": ("allow_nonphysical", True),
+    "--no-diagnosis": ("diagnosis", False), "--full-diagnosis": ("diagnosis", "full"),
+    "--k": ("k", "number"), "--c": ("c", "number"), "--restitution": ("restitution", "number"),
+    "--contact-time": ("contact_time", "number"), "--penetration": ("penetration", "number"),
+    "--mass": ("mass", "number"), "--joint": ("joint", "word"), "--inertia": ("inertia", "number"),
+    "--lever": ("lever", "number"), "--pivot": ("pivot", "number"), "--model": ("model", "word"),
+    "--body": ("body", "word"), "--mu": ("mu", "number"), "--mu-roll": ("mu_roll", "number"),
+    "--contacts": ("contacts", "number"), "--settle": ("settle", "number"),
+    "--key": ("key", "word"), "--apply": ("apply", "word"), "--slope": ("slope", "number"),
+    "--pairs": ("pairs", True), "--estimate-loads": ("estimate_loads", True),
+    "--no-rest-search": ("rest_search", False), "--seed": ("seed", "number"),
+    "--bootstrap": ("bootstrap", "number"), "--threads": ("threads", "number"),
+    "--all-impacts": ("all_impacts", True), "--no-k-profile": ("k_profile", False),
+}
+# An option and what may follow it: a token that does not end a sentence.
+_OPTION = _re.compile(r"(?<![\w-])(--[a-z][a-z0-9-]*)(?: ([^\s:;,()`'\"]*[^\s:;,()`'\".]))?")
+_NUMBER = _re.compile(r"[-+]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|nan|inf)")
+_PLACEHOLDER = _re.compile(r"[A-Z][A-Z_]*")  # --model FILE, --settle SECONDS
+# Words after a --word option that are the sentence's, not its value.
+_PROSE = {"a", "an", "the", "or", "and", "with", "to", "is", "for", "only", "in", "of", "on",
+          "without", "when", "as", "it", "its", "that", "lets", "lists", "needs", "must", "not"}
+
+
+def _literal(value):
+    """A keyword's value as Python source: 0.0031, "compensated", ["a=1"], False."""
+    if isinstance(value, str):
+        return _json.dumps(value, ensure_ascii=False)
+    if isinstance(value, list):
+        return "[" + ", ".join(_literal(v) for v in value) + "]"
+    return repr(value)
+
+
+def _option_value(kind, token):
+    """The value `token` gives an option of `kind`, or None if it is prose."""
+    if token is None:
+        return None
+    if _PLACEHOLDER.fullmatch(token):
+        return token  # shown as is: model=FILE
+    if kind == "number":
+        return token if _NUMBER.fullmatch(token) else None
+    if kind == "word":
+        return None if token in _PROSE else _literal(token)
+    return _literal([token])  # set
+
+
+def _python_words(text):
+    """`text` with each of the program's options (_FLAGS) as its keyword."""
+    if "--" not in text:
+        return text
+
+    def keyword(match):
+        flag, token = match.group(1), match.group(2)
+        if flag not in _FLAGS:
+            return match.group(0)
+        name, kind = _FLAGS[flag]
+        rest = "" if token is None else " " + token
+        if not isinstance(kind, str):  # a switch
+            return f"{name}={_literal(kind)}{rest}"
+        value = _option_value(kind, token)
+        return f"{name}={value}" if value is not None else f"{name}={rest}"
+
+    return _OPTION.sub(keyword, text)
+
+
+def _translated(value, keep=()):
+    """Every string of a result (dicts, lists) in Python's words, but the
+    keys in `keep` (compare's "text": what the program prints)."""
+    if isinstance(value, str):
+        return _python_words(value)
+    if isinstance(value, list):
+        return [_translated(v) for v in value]
+    if isinstance(value, dict):
+        return {k: (v if k in keep else _translated(v)) for k, v in value.items()}
+    return value
+
+
+def _fix_kwargs(fix):
+    """A diagnosis's fix, the program's options ("--set contact.mu=0",
+    "--dt 0.0002 --model-dt 0.002"), as keywords of compare() and
+    simulate(): {"set": ["contact.mu=0"]}, {"dt": 0.0002, "model_dt": 0.002}."""
+    kwargs = {}
+    tokens = _shlex.split(fix)
+    i = 0
+    while i < len(tokens):
+        name, kind = _FLAGS[tokens[i]]  # a fix names only options of the table
+        if not isinstance(kind, str):
+            kwargs[name] = kind
+            i += 1
+            continue
+        value = tokens[i + 1]
+        if kind == "set":
+            kwargs.setdefault("set", []).append(value)
+        else:
+            kwargs[name] = float(value) if kind == "number" else value
+        i += 2
+    return kwargs
+
+
+def _with_fixes(result):
+    """compare()'s dict with each diagnosis's fix in Python: "fix" as the
+    keywords' text (set=["contact.mu=0"]) and "fix_kwargs" as a dict that
+    compare(scene, **fix_kwargs) applies (None when the cause has no fix)."""
+    for key, findings in result.items():
+        if not key.endswith("diagnosis") or not isinstance(findings, list):
+            continue
+        for finding in findings:
+            fix = finding.get("fix", "")
+            kwargs = _fix_kwargs(fix) if fix else None
+            finding["fix_kwargs"] = kwargs
+            finding["fix"] = ", ".join(f"{k}={_literal(v)}" for k, v in kwargs.items()) \
+                if kwargs else ""
+    return result
+
+
+def _call(function, *args):
+    """An extension's function; its error in Python's words, same type."""
+    try:
+        return function(*args)
+    except (ValueError, OSError, RuntimeError) as error:
+        text = str(error)
+        words = _python_words(text)
+        if words == text:
+            raise
+        raise type(error)(words).with_traceback(error.__traceback__) from None
+
+
+# Scene's attributes, in the scene file's terms: where each key of a
+# "KEY=VALUE" assignment (set=, as --set) goes.
+_BODY_KEYS = ("mass", "half_height", "width", "height", "radius", "a", "b", "inertia")
+
+
+def _set_value(text):
+    """A --set value read as the scene reader reads it: a TOML number, a
+    boolean, a quoted string, else the bare word as a string."""
+    if len(text) >= 2 and text[0] == text[-1] and text[0] in "\"'":
+        return text[1:-1]
+    if text in ("true", "false"):
+        return text == "true"
+    try:
+        return int(text) if _re.fullmatch(r"[-+]?\d[\d_]*", text) else float(text)
+    except ValueError:
+        return text
+
+
+def _apply_sets(scene, sets, function):
+    """A copy of the scene with the assignments "KEY=VALUE" of set= made,
+    as --set makes them on the scene file; the scene itself is unchanged."""
+    if sets is None or len(sets) == 0:
+        return scene
+    if isinstance(sets, str):
+        raise TypeError(f"{function}(): set must be a list of \"KEY=VALUE\" strings, e.g. "
+                        f"[\"contact.mu=0\"], not a str")
+    original, scene = scene, scene.copy()
+    for assignment in sets:
+        given = _literal([assignment])
+        if not isinstance(assignment, str):
+            raise TypeError(f"{function}(): set={given}: each must be a \"KEY=VALUE\" string")
+        key, equals, text = assignment.partition("=")
+        section, dot, name = key.strip().partition(".")
+        if not equals or not text.strip():
+            raise ValueError(f"{function}(): set={given}: expected KEY=VALUE, e.g. contact.k=1e6")
+        if section == "scene" and not dot:
+            target, name = scene, "shape"
+        elif section == "body" and name in _BODY_KEYS:
+            target = scene
+        elif section in ("contact", "initial", "sim") and \
+                isinstance(getattr(type(getattr(scene, section)), name, None), property):
+            target = getattr(scene, section)
+        else:
+            raise ValueError(f"{function}(): set={given}: {key.strip()} is not a key set= can "
+                             "change (scene, body.*, contact.*, initial.*, sim.*: docs/scenes.md)")
+        try:
+            setattr(target, name, _set_value(text.strip()))
+        except TypeError as error:
+            raise ValueError(f"{function}(): set={given}: {error}") from None
+    try:
+        original.validate()
+    except ValueError:
+        return scene  # the scene's own error, which the run raises
+    try:
+        scene.validate()  # a value out of range is set='s, not the file's
+    except ValueError as error:
+        text = str(error)
+        prefix = (getattr(original, "source", "") or "scene") + ": "
+        raise ValueError(f"{function}(): set={_literal(list(sets))}: "
+                         f"{text[len(prefix):] if text.startswith(prefix) else text}") from None
+    return scene
 
 
 def _scene(scene, function):
     """A Scene, or the Scene a scene file path loads (as Scene.load)."""
     if isinstance(scene, Scene):
         return scene
-    if isinstance(scene, (str, os.PathLike)):
-        return Scene.load(os.fspath(scene))
+    if isinstance(scene, (str, _os.PathLike)):
+        return Scene.load(_os.fspath(scene))
     raise TypeError(f"{function}(): scene must be a contact2d.Scene or the path of a scene "
                     f"file, not {type(scene).__name__}")
 
@@ -51,7 +255,7 @@ def _number(value, name, function, unit):
     """None or a real number (not a bool, not a string), as a float."""
     if value is None:
         return None
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+    if isinstance(value, bool) or not isinstance(value, _numbers.Real):
         raise TypeError(f"{function}(): {name} must be a number ({unit}), not "
                         f"{type(value).__name__} {value!r}")
     return float(value)
@@ -72,31 +276,33 @@ class Cancelled(RuntimeError):
 
 def _notes(lines):
     for line in lines:
-        warnings.warn(line, Contact2dNote, stacklevel=3)
+        _warnings.warn(_python_words(line), Contact2dNote, stacklevel=3)
 
 
-@dataclass
+@_dataclass
 class Simulation:
     """One engine's run of a scene (``simulate``)."""
 
-    trajectory: np.ndarray  # one row per sample, columns COLUMNS
-    warnings: List[str]  # what the engine warned about; a kept non-physical run
-    notes: List[str]  # facts that are not failures, e.g. "refsafe"
+    trajectory: _np.ndarray  # one row per sample, columns COLUMNS
+    warnings: _t.List[str]  # what the engine warned about; a kept non-physical run
+    notes: _t.List[str]  # facts that are not failures, e.g. "refsafe"
     engine: str  # the engine's name ("ref", "mujoco:calibrated")
     description: str  # e.g. "mujoco calibrated Euler"
     seconds: float  # wall clock of the run loop
     summary: str  # the line `contact2d simulate` prints
-    columns: tuple = field(default=COLUMNS)
+    columns: tuple = _field(default=COLUMNS)
 
-    def column(self, name: str) -> np.ndarray:
+    def column(self, name: str) -> _np.ndarray:
         """One column of the trajectory by name ("t", "x", ..., "omega")."""
         return self.trajectory[:, self.columns.index(name)]
 
 
-def simulate(scene: SceneLike, engine: str = "ref", integrator: Optional[str] = None,
-             dt: Optional[float] = None, duration: Optional[float] = None, mapping: str = "",
-             geometry: str = "", model_dt: Optional[float] = None,
-             allow_nonphysical: bool = False, friction: str = "") -> Simulation:
+def simulate(scene: _SceneLike, engine: str = "ref", integrator: _t.Optional[str] = None,
+             dt: _t.Optional[float] = None, duration: _t.Optional[float] = None,
+             mapping: _t.Optional[str] = None, geometry: _t.Optional[str] = None,
+             model_dt: _t.Optional[float] = None, allow_nonphysical: bool = False,
+             friction: _t.Optional[str] = None,
+             set: _t.Optional[_t.Sequence[str]] = None) -> Simulation:
     """Runs one engine on the scene, as ``contact2d simulate``.
 
     scene: a Scene, or the path of a scene file (docs/scenes.md).
@@ -106,13 +312,16 @@ def simulate(scene: SceneLike, engine: str = "ref", integrator: Optional[str] = 
         "rk4"; None keeps the scene's. MuJoCo runs them as Euler, implicit, RK4.
     dt, duration: the time step and the simulated time, in seconds; None
         keeps the scene's.
-    mapping, geometry: MuJoCo's model (``--mapping``: seed, exact, calibrated,
-        compensated; ``--geometry``: corners, boxes); "" is the default.
+    mapping, geometry: MuJoCo's model (seed, exact, calibrated or
+        compensated; corners or boxes); None: MuJoCo's defaults, calibrated
+        and corners (the engine's own options, e.g. "mujoco:exact", else).
     model_dt: the Δt MuJoCo's Δt-dependent model values are computed for
         (``--model-dt``), in (0, 1] s; None: the time step.
     allow_nonphysical: keep a run that is not physics (its reason then is in
         ``warnings``) instead of raising RuntimeError.
-    friction: MuJoCo 3's "shared" or "damper" (``--friction``).
+    friction: MuJoCo 3's "shared" or "damper"; None: shared.
+    set: assignments "KEY=VALUE" made on a copy of the scene, as the
+        program's --set makes them on the file (["contact.mu=0"]); None: none.
 
     Returns a Simulation: the trajectory (one row per sample, columns
     COLUMNS: s, m, m, rad, m/s, m/s, rad/s), warnings, notes and the summary
@@ -120,19 +329,23 @@ def simulate(scene: SceneLike, engine: str = "ref", integrator: Optional[str] = 
     scene file, RuntimeError when the run diverged or is not physics, and
     KeyboardInterrupt on Ctrl-C.
     """
-    run = _contact2d._simulate(_scene(scene, "simulate"), engine, integrator,
-                               _number(dt, "dt", "simulate", "s"),
-                               _number(duration, "duration", "simulate", "s"), mapping, geometry,
-                               friction, _number(model_dt, "model_dt", "simulate", "s"),
-                               allow_nonphysical)
+    run = _call(_contact2d._simulate, _apply_sets(_scene(scene, "simulate"), set, "simulate"),
+                engine, integrator, _number(dt, "dt", "simulate", "s"),
+                _number(duration, "duration", "simulate", "s"), mapping or "", geometry or "",
+                friction or "", _number(model_dt, "model_dt", "simulate", "s"),
+                allow_nonphysical)
+    run["warnings"] = _translated(run["warnings"])
+    run["notes"] = _translated(run["notes"])
     return Simulation(**run)
 
 
-def compare(scene: SceneLike, mapping: str = "", geometry: str = "", model_dt: Optional[float] = None,
-            integrator: Optional[str] = None, dt: Optional[float] = None,
-            duration: Optional[float] = None, converged_tol: float = 1e-12,
-            diagnosis: Union[bool, str] = True, allow_nonphysical: bool = False,
-            engines: Sequence[str] = (), friction: str = "") -> dict:
+def compare(scene: _SceneLike, mapping: _t.Optional[str] = None,
+            geometry: _t.Optional[str] = None, model_dt: _t.Optional[float] = None,
+            integrator: _t.Optional[str] = None, dt: _t.Optional[float] = None,
+            duration: _t.Optional[float] = None, converged_tol: float = 1e-12,
+            diagnosis: _t.Union[bool, str] = True, allow_nonphysical: bool = False,
+            engines: _t.Sequence[str] = (), friction: _t.Optional[str] = None,
+            set: _t.Optional[_t.Sequence[str]] = None) -> dict:
     """The reference and MuJoCo against the converged solution and each
     other, as ``contact2d compare --json``: that JSON object as a dict, with
     the trajectories added as arrays ("ref_trajectory", "mujoco_trajectory",
@@ -146,37 +359,42 @@ def compare(scene: SceneLike, mapping: str = "", geometry: str = "", model_dt: O
     ``diagnosis``: True (the default) re-runs without each cause, the ones
     at a smaller step only when the others leave the difference
     unexplained; "full" makes those too (``--full-diagnosis``); False skips
-    the diagnosis (``--no-diagnosis``)."""
+    the diagnosis (``--no-diagnosis``). Each cause in "diagnosis" has its
+    "fix" as keywords ('set=["contact.mu=0"]', "dt=0.0002") and as a dict,
+    "fix_kwargs", that ``compare(scene, **fix_kwargs)`` applies. mapping,
+    geometry, friction, model_dt, integrator, dt, duration and set: as for
+    simulate (None: not given)."""
     if isinstance(diagnosis, str) and diagnosis != "full":
         raise ValueError(f"compare(): diagnosis={diagnosis!r}: must be True, False or \"full\"")
     if not isinstance(diagnosis, (bool, str)):
         raise TypeError(f"compare(): diagnosis must be True, False or \"full\", "
                         f"not {type(diagnosis).__name__}")
-    run = _contact2d._compare(_scene(scene, "compare"), integrator,
-                              _number(dt, "dt", "compare", "s"),
-                              _number(duration, "duration", "compare", "s"), mapping, geometry,
-                              friction, _number(model_dt, "model_dt", "compare", "s"),
-                              list(engines),
-                              _number(converged_tol, "converged_tol", "compare", "m"),
-                              diagnosis is not False, diagnosis == "full", allow_nonphysical)
-    result = json.loads(run["json"])
+    run = _call(_contact2d._compare, _apply_sets(_scene(scene, "compare"), set, "compare"),
+                integrator, _number(dt, "dt", "compare", "s"),
+                _number(duration, "duration", "compare", "s"), mapping or "", geometry or "",
+                friction or "", _number(model_dt, "model_dt", "compare", "s"), list(engines),
+                _number(converged_tol, "converged_tol", "compare", "m"),
+                diagnosis is not False, diagnosis == "full", allow_nonphysical)
+    result = _translated(_with_fixes(_json.loads(run["json"])))
     for key, value in run.items():
         if key != "json":
-            result[key] = value
+            result[key] = _translated(value) if key == "warnings" else value
     return result
 
 
-def generate(scene: SceneLike, mapping: str = "", geometry: str = "", model_dt: Optional[float] = None,
-             integrator: Optional[str] = None, dt: Optional[float] = None,
-             duration: Optional[float] = None, engine: str = "mujoco",
-             friction: str = "") -> str:
+def generate(scene: _SceneLike, mapping: _t.Optional[str] = None,
+             geometry: _t.Optional[str] = None, model_dt: _t.Optional[float] = None,
+             integrator: _t.Optional[str] = None, dt: _t.Optional[float] = None,
+             duration: _t.Optional[float] = None, engine: str = "mujoco",
+             friction: _t.Optional[str] = None, set: _t.Optional[_t.Sequence[str]] = None) -> str:
     """The MuJoCo MJCF of the scene, as ``contact2d generate``: for MuJoCo
     2.2.2 (engine "mujoco") or MuJoCo 3 ("mujoco3", with friction "damper"
-    if asked; not checked by MuJoCo 3 here, the engine loads it)."""
-    run = _contact2d._generate(_scene(scene, "generate"), integrator,
-                               _number(dt, "dt", "generate", "s"),
-                               _number(duration, "duration", "generate", "s"), mapping, geometry,
-                               friction, engine, _number(model_dt, "model_dt", "generate", "s"))
+    if asked; not checked by MuJoCo 3 here, the engine loads it). The other
+    keywords: as for simulate (None: not given)."""
+    run = _call(_contact2d._generate, _apply_sets(_scene(scene, "generate"), set, "generate"),
+                integrator, _number(dt, "dt", "generate", "s"),
+                _number(duration, "duration", "generate", "s"), mapping or "", geometry or "",
+                friction or "", engine, _number(model_dt, "model_dt", "generate", "s"))
     _notes(run["notes"])
     return run["xml"]
 
@@ -189,28 +407,30 @@ def _required(value, name, function, unit):
 
 
 def _path(value, name, function, optional=False):
-    """A path given as str or os.PathLike, as str; "" stays "" when optional."""
-    if isinstance(value, (str, os.PathLike)):
-        path = os.fspath(value)
+    """A path given as str or os.PathLike, as str; None is "" when optional."""
+    if optional and value is None:
+        return ""
+    if isinstance(value, (str, _os.PathLike)):
+        path = _os.fspath(value)
         if "\0" in path:  # the C library would stop the path there
             raise ValueError(f"{function}(): {name} has a NUL character, which no file "
                              "name can hold")
         return path
     raise TypeError(f"{function}(): {name} must be a path (str or os.PathLike"
-                    f"{', or empty' if optional else ''}), not {type(value).__name__}")
+                    f"{', or None' if optional else ''}), not {type(value).__name__}")
 
 
-def solref(k: Optional[float] = None, c: Optional[float] = None, *,
-           dt: Optional[float] = None,
-           mass: Optional[float] = None, mapping: str = "all", joint: Optional[str] = None,
+def solref(k: _t.Optional[float] = None, c: _t.Optional[float] = None, *,
+           dt: _t.Optional[float] = None,
+           mass: _t.Optional[float] = None, mapping: str = "all", joint: _t.Optional[str] = None,
            inertia: float = 0.0, lever: float = 0.0, pivot: float = 0.0,
-           mu: Optional[float] = None, mu_roll: float = 0.0,
-           model: Union[str, os.PathLike] = "", body: str = "",
-           contacts: Optional[int] = None, restitution: Optional[float] = None,
-           contact_time: Optional[float] = None,
-           penetration: Optional[float] = None, engine: str = "mujoco", settle: float = 3.0,
-           key: str = "", apply: Union[str, os.PathLike] = "",
-           slope: Optional[float] = None) -> dict:
+           mu: _t.Optional[float] = None, mu_roll: float = 0.0,
+           model: _t.Union[str, _os.PathLike, None] = None, body: _t.Optional[str] = None,
+           contacts: _t.Optional[int] = None, restitution: _t.Optional[float] = None,
+           contact_time: _t.Optional[float] = None,
+           penetration: _t.Optional[float] = None, engine: str = "mujoco", settle: float = 3.0,
+           key: _t.Optional[str] = None, apply: _t.Union[str, _os.PathLike, None] = None,
+           slope: _t.Optional[float] = None) -> dict:
     """solref, solimp, impratio and what MuJoCo does with them, per mapping,
     as ``contact2d solref --json`` (docs/cli.md): that JSON object as a dict.
 
@@ -223,34 +443,37 @@ def solref(k: Optional[float] = None, c: Optional[float] = None, *,
     ``contacts`` a count; ``settle`` s; ``slope`` degrees in [0, 90).
     ``joint``: "free", "planar", "slide" or "hinge"; ``mapping``: a mapping
     or "all". ``model`` (an MJCF path) reads the body ``body`` from a model;
-    ``apply`` (a path) writes that model with the recommendation. ``engine``
-    is ``"mujoco"`` for 2.2.2 or ``"mujoco3"`` for 3.14."""
+    ``apply`` (a path) writes that model with the recommendation; ``key``
+    starts ``model`` from a keyframe. None: not given (no model, its first
+    body, no file written, qpos0). ``engine`` is ``"mujoco"`` for 2.2.2 or
+    ``"mujoco3"`` for 3.14. Errors name these keywords (``mass=2: not with
+    model=``), not the program's options."""
     def number(value, name, unit):
         return _number(value, name, "solref", unit)
-    run = _contact2d._solref(number(k, "k", "N/m"), number(c, "c", "N·s/m"),
-                             number(dt, "dt", "s"), number(mass, "mass", "kg"), mapping, joint,
-                             number(inertia, "inertia", "kg·m²"), number(lever, "lever", "m"),
-                             number(pivot, "pivot", "m"), number(mu, "mu", "dimensionless"),
-                             number(mu_roll, "mu_roll", "m"),
-                             _path(model, "model", "solref", True), body, contacts,
-                             number(restitution, "restitution", "dimensionless"),
-                             number(contact_time, "contact_time", "s"),
-                             number(penetration, "penetration", "m"), engine,
-                             _required(number(settle, "settle", "s"), "settle", "solref", "s"),
-                             key,
-                             _path(apply, "apply", "solref", True),
-                             number(slope, "slope", "degrees"))
+    run = _call(_contact2d._solref, number(k, "k", "N/m"), number(c, "c", "N·s/m"),
+                number(dt, "dt", "s"), number(mass, "mass", "kg"), mapping, joint,
+                number(inertia, "inertia", "kg·m²"), number(lever, "lever", "m"),
+                number(pivot, "pivot", "m"), number(mu, "mu", "dimensionless"),
+                number(mu_roll, "mu_roll", "m"),
+                _path(model, "model", "solref", True), body or "", contacts,
+                number(restitution, "restitution", "dimensionless"),
+                number(contact_time, "contact_time", "s"),
+                number(penetration, "penetration", "m"), engine,
+                _required(number(settle, "settle", "s"), "settle", "solref", "s"),
+                key or "",
+                _path(apply, "apply", "solref", True),
+                number(slope, "slope", "degrees"))
     _notes(run["notes"])
-    return json.loads(run["json"])
+    return _translated(_json.loads(run["json"]))
 
 
-def inspect(path: Union[str, os.PathLike], key: str = "", pairs: bool = False,
-            slope: Optional[float] = None, settle: float = 0.0, estimate_loads: bool = False,
+def inspect(path: _t.Union[str, _os.PathLike], key: _t.Optional[str] = None, pairs: bool = False,
+            slope: _t.Optional[float] = None, settle: float = 0.0, estimate_loads: bool = False,
             engine: str = "mujoco", rest_search: bool = True) -> dict:
     """Any MJCF model's contacts in physical units, as
     ``contact2d inspect --json`` (docs/inspect.md): that JSON object as a
     dict. ``path``: the MJCF file (str or os.PathLike); ``key``: the
-    keyframe to start from (default qpos0); ``settle``: seconds MuJoCo steps
+    keyframe to start from (None: qpos0); ``settle``: seconds MuJoCo steps
     the model first, so it comes to rest on what it touches; ``slope``:
     degrees in [0, 90), each contact's creep speed under friction;
     ``pairs``: every geom pair's distance; ``estimate_loads``: loads from a
@@ -258,16 +481,16 @@ def inspect(path: Union[str, os.PathLike], key: str = "", pairs: bool = False,
     or ``"mujoco3"`` for 3.14; ``rest_search``: when the model is not at
     rest, settle it longer to say how long it takes (``--no-rest-search``
     is ``rest_search=False``)."""
-    run = _contact2d._inspect(_path(path, "path", "inspect"), key, pairs,
+    run = _call(_contact2d._inspect, _path(path, "path", "inspect"), key or "", pairs,
                               _number(slope, "slope", "inspect", "degrees"),
                               _required(_number(settle, "settle", "inspect", "s"), "settle",
                                         "inspect", "s"), estimate_loads, engine,
                               bool(rest_search))
     _notes(run["notes"])
-    return json.loads(run["json"])
+    return _translated(_json.loads(run["json"]))
 
 
-@dataclass
+@_dataclass
 class FitModel:
     """One model of a fit on one split, measured on the split's held-out
     impacts (docs/real-impacts.md). ``parameters`` and ``spread`` (the
@@ -282,18 +505,18 @@ class FitModel:
     iqr: float
     parameters: dict
     spread: dict
-    impacts: np.ndarray
-    errors: np.ndarray
-    predicted: np.ndarray
-    measured: np.ndarray
+    impacts: _np.ndarray
+    errors: _np.ndarray
+    predicted: _np.ndarray
+    measured: _np.ndarray
 
 
-@dataclass
+@_dataclass
 class Fit:
     """What ``contact2d fit --json`` prints, as ``json`` (a dict), and its
     models with their per-impact arrays, as ``models`` (FitModel)."""
     json: dict
-    models: List[FitModel]
+    models: _t.List[FitModel]
 
     def model(self, name: str = "penalty", engine: str = "ref", split: str = "seeded") -> FitModel:
         """The one model of that name, engine and split."""
@@ -303,8 +526,8 @@ class Fit:
         raise KeyError(f"fit: no model {name!r} on engine {engine!r}, split {split!r}")
 
 
-def fit(recording: Union[str, os.PathLike], seed: int = 2026, bootstrap: int = 8,
-        engines: Optional[Sequence[str]] = None, threads: int = 0, all_impacts: bool = False,
+def fit(recording: _t.Union[str, _os.PathLike], seed: int = 2026, bootstrap: int = 8,
+        engines: _t.Optional[_t.Sequence[str]] = None, threads: int = 0, all_impacts: bool = False,
         k_profile: bool = True) -> Fit:
     """k, c, mu and mu_roll fitted to a recording of real impacts, and every
     model measured on held-out impacts, as ``contact2d fit`` (docs/real-impacts.md;
@@ -315,12 +538,12 @@ def fit(recording: Union[str, os.PathLike], seed: int = 2026, bootstrap: int = 8
     built-in engine with soft constraints, MuJoCo 2.2.2 and 3.14; []: none);
     ``threads``: 0 for one per core; ``all_impacts``: keep the impacts the
     recording flags; ``k_profile``: the seeded split's profile of k."""
-    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or not 0 <= seed < 2**53:
+    if isinstance(seed, bool) or not isinstance(seed, _numbers.Integral) or not 0 <= seed < 2**53:
         raise ValueError(f"fit(): seed = {seed!r}: an integer in [0, 2**53)")
-    if isinstance(bootstrap, bool) or not isinstance(bootstrap, numbers.Integral) \
+    if isinstance(bootstrap, bool) or not isinstance(bootstrap, _numbers.Integral) \
             or not 0 <= bootstrap <= 1000:
         raise ValueError(f"fit(): bootstrap = {bootstrap!r}: an integer in [0, 1000]")
-    if isinstance(threads, bool) or not isinstance(threads, numbers.Integral) \
+    if isinstance(threads, bool) or not isinstance(threads, _numbers.Integral) \
             or not 0 <= threads <= 256:
         raise ValueError(f"fit(): threads = {threads!r}: an integer in [0, 256] (0: one per core)")
     if engines is not None:
@@ -328,9 +551,9 @@ def fit(recording: Union[str, os.PathLike], seed: int = 2026, bootstrap: int = 8
             raise TypeError("fit(): engines must be a list of engine names, e.g. ['mujoco'], "
                             "not a string")
         engines = [str(e) for e in engines]
-    run = _contact2d._fit(_path(recording, "recording", "fit"), int(seed), int(bootstrap),
-                          engines, int(threads), bool(all_impacts), bool(k_profile))
-    data = json.loads(run["json"])
+    run = _call(_contact2d._fit, _path(recording, "recording", "fit"), int(seed), int(bootstrap),
+                engines, int(threads), bool(all_impacts), bool(k_profile))
+    data = _translated(_json.loads(run["json"]))
     models = []
     for entry, arrays in zip(data["models"], run["arrays"]):
         models.append(FitModel(
@@ -340,3 +563,35 @@ def fit(recording: Union[str, os.PathLike], seed: int = 2026, bootstrap: int = 8
             impacts=arrays["impacts"], errors=arrays["errors"], predicted=arrays["predicted"],
             measured=arrays["measured"]))
     return Fit(json=data, models=models)
+
+
+# Scene.load's errors in Python's words, as every function's.
+_load = Scene.load
+
+
+def _scene_load(path, set=()):
+    if isinstance(set, str):
+        raise TypeError("Scene.load(): set must be a list of \"KEY=VALUE\" strings, e.g. "
+                        "[\"contact.k=1e5\"], not a str")
+    return _call(_load, path, list(set))
+
+
+_scene_load.__doc__ = _load.__doc__
+Scene.load = staticmethod(_scene_load)
+
+
+def _repr(self):
+    """Scene, Contact, State, Sim, BoxPart as a dataclass shows itself:
+    every field with its value (Contact(k=10000.0, c=20.0, ...))."""
+    cls = type(self)
+    names = [name for name, value in vars(cls).items()
+             if isinstance(value, property) and not name.startswith("_")]
+    fields = [f"{name}={getattr(self, name)!r}" for name in names]
+    if "source" in getattr(self, "__dict__", {}):
+        fields.append(f"source={self.source!r}")
+    return f"{cls.__name__}({', '.join(fields)})"
+
+
+for _class in (BoxPart, Contact, State, Sim, Scene):
+    _class.__repr__ = _repr
+del _class
