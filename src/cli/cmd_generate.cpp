@@ -47,6 +47,14 @@ int generate(const GenerateOptions& options) {
   }
   std::fputs(model.xml.c_str(), out->get());
   out->commit();
+  // One line on what was written (to standard output, where the model goes
+  // without -o).
+  std::cout << "contact2d generate: wrote " << options.output << ": the MJCF model of "
+            << options.scene.path << " for "
+            << (options.engine == "mujoco3" ? "MuJoCo 3.14" : "MuJoCo 2.2.2") << " (mapping "
+            << contact2d::mujoco::mapping_name(mjcf.mapping) << ", geometry "
+            << contact2d::mujoco::geometry_name(mjcf.geometry) << "; " << model.xml.size()
+            << " bytes)\n";
   return kExitOk;
 }
 

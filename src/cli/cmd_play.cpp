@@ -214,7 +214,9 @@ Command add_play(CLI::App& app) {
       ->type_name("LEVEL");
   cmd->add_option("--policy", o->policy,
                   "With --headless: a built-in player plays the round, blind (one kick at 0.1 s) "
-                  "or scripted (controls, dribbles to 2 m, chips the keeper)")
+                  "or scripted (controls, dribbles to " +
+                      format_number("%g", game::kScriptedDribbleTo) +
+                      " m from the goal line, chips the keeper)")
       ->type_name("NAME");
   cmd->add_option("--seeds", o->seeds,
                   "With --policy: play one round on each of N seeds from --seed (default 1) and "

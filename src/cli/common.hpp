@@ -147,8 +147,10 @@ Command add_report(CLI::App& app);     // validation/report/ (src/cli/cmd_report
 Command add_solref(CLI::App& app);     // MuJoCo numbers for your own model (cmd_solref.cpp; MuJoCo)
 Command add_atlas(CLI::App& app);  // fidelity atlas over a parameter space (cmd_atlas.cpp; MuJoCo)
 Command add_inspect(CLI::App& app);  // any MJCF model's contacts (cmd_inspect.cpp; MuJoCo)
-// generate, compare and report when built with MuJoCo, none otherwise
-// (src/cli/mujoco_commands.cpp or no_mujoco_commands.cpp, chosen by CMake).
-std::vector<Command> add_mujoco_commands(CLI::App& app);
+// A subcommand that needs MuJoCo, by name (compare, report, solref, inspect,
+// generate, atlas): added when built with MuJoCo, nullopt otherwise
+// (src/cli/mujoco_commands.cpp or no_mujoco_commands.cpp, chosen by CMake),
+// so main.cpp lists every subcommand in its place without an #ifdef.
+std::optional<Command> add_mujoco_command(CLI::App& app, std::string_view name);
 
 }  // namespace contact2d::cli

@@ -1,9 +1,9 @@
-// Built without MuJoCo: no generate, compare, report, solref, atlas or inspect subcommand (see
-// mujoco_commands.cpp).
+// Built without MuJoCo: no compare, report, solref, inspect, generate or atlas
+// subcommand (see mujoco_commands.cpp).
 #include "cli/common.hpp"
 
 namespace contact2d::cli {
 
-std::vector<Command> add_mujoco_commands(CLI::App&) { return {}; }
+std::optional<Command> add_mujoco_command(CLI::App&, std::string_view) { return std::nullopt; }
 
 }  // namespace contact2d::cli

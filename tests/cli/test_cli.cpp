@@ -95,6 +95,84 @@ TEST(Cli, HelpOnTheProgramAndEverySubcommand) {
   }
 }
 
+// The top-level help orders the subcommands by what users come for
+// (comparing the engines, then their own model, fitting, running a scene,
+// the studies, the game last), under headings, and docs/cli.md's sections
+// follow the same order.
+TEST(Cli, TheHelpListsTheSubcommandsByWhatUsersComeForUnderHeadings) {
+  const Output o = capture("--help");
+  ASSERT_EQ(o.status, 0) << o.err;
+  std::vector<std::string> order = {"compare",  "report", "solref",    "inspect", "fit", "simulate",
+                                    "generate", "sweep",  "stability", "atlas",   "play"};
+  std::vector<std::string> headings = {
+      "Compare the reference with MuJoCo:",         "Your own MuJoCo model:",
+      "Contact parameters from measurements:",      "Run and export a scene:",
+      "Step size, stability and fidelity studies:", "The game:"};
+#ifndef CONTACT2D_WITH_MUJOCO
+  const std::vector<std::string> mujoco_only = {"compare", "report",   "solref",
+                                                "inspect", "generate", "atlas"};
+  order.erase(std::remove_if(order.begin(), order.end(),
+                             [&](const std::string& c) {
+                               return std::find(mujoco_only.begin(), mujoco_only.end(), c) !=
+                                      mujoco_only.end();
+                             }),
+              order.end());
+  headings.erase(headings.begin(), headings.begin() + 2);
+#endif
+  // Each subcommand's line, "  NAME   description", in this order, after
+  // "Subcommands:" (tests/docs reads the list from there).
+  size_t at = o.out.find("\nSubcommands:\n");
+  ASSERT_NE(at, std::string::npos) << o.out;
+  std::vector<std::string> listed;
+  const std::regex line(R"(\n  ([a-z]+) )");
+  for (auto it = std::sregex_iterator(o.out.begin() + static_cast<long>(at), o.out.end(), line);
+       it != std::sregex_iterator(); ++it)
+    listed.push_back((*it)[1]);
+  EXPECT_EQ(listed, order) << o.out;
+  for (const std::string& heading : headings) {
+    const size_t h = o.out.find("\n" + heading + "\n", at);
+    EXPECT_NE(h, std::string::npos) << heading << "\n" << o.out;
+    at = h == std::string::npos ? at : h;  // in this order
+  }
+  // docs/cli.md: its "## contact2d NAME" sections in the same order.
+  const std::string page = read_file(fs::path(CONTACT2D_SOURCE_DIR) / "docs" / "cli.md");
+  std::vector<std::string> sections;
+  const std::regex section(R"(\n## contact2d ([a-z]+))");
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), section);
+       it != std::sregex_iterator(); ++it) {
+    const std::string name = (*it)[1];
+    if (std::find(order.begin(), order.end(), name) != order.end()) sections.push_back(name);
+  }
+  EXPECT_EQ(sections, order) << "docs/cli.md's sections";
+}
+
+#ifdef CONTACT2D_WITH_MUJOCO
+// generate -o wrote the file silently: it says what it wrote, in one line
+// on standard output; without -o standard output is the model alone.
+TEST(Cli, GenerateToAFileSaysWhatItWrote) {
+  const fs::path xml =
+      fs::temp_directory_path() / ("contact2d_generate_" + std::to_string(::getpid()) + ".xml");
+  const std::string scene = CONTACT2D_SCENES_DIR "/box.toml";
+  const Output o = capture("generate " + scene + " -o '" + xml.string() + "'");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_EQ(o.err, "");
+  ASSERT_TRUE(fs::exists(xml));
+  EXPECT_EQ(o.out, "contact2d generate: wrote " + xml.string() + ": the MJCF model of " + scene +
+                       " for MuJoCo 2.2.2 (mapping calibrated, geometry corners; " +
+                       std::to_string(fs::file_size(xml)) + " bytes)\n");
+  const std::string written = read_file(xml);
+  const Output v3 = capture("generate " + scene + " --engine mujoco3 --mapping compensated -o '" +
+                            xml.string() + "'");
+  if (v3.status == 0) {  // MuJoCo 3 (node) may be missing
+    EXPECT_NE(v3.out.find(" for MuJoCo 3.14 (mapping compensated,"), std::string::npos) << v3.out;
+  }
+  const Output piped = capture("generate " + scene);
+  ASSERT_EQ(piped.status, 0) << piped.err;
+  EXPECT_EQ(piped.out, written) << "the model alone, the same bytes as the file";
+  fs::remove(xml);
+}
+#endif
+
 TEST(Cli, VersionNamesTheProjectVersionAndTheGitRevision) {
   const Output o = capture("--version");
   EXPECT_EQ(o.status, 0);

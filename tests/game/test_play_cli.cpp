@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "core/format.hpp"
+#include "game/policy.hpp"
 #include "support/files.hpp"
 
 namespace fs = std::filesystem;
@@ -109,6 +111,19 @@ TEST(PlayCli, TheBuiltInPlayersPlayThroughTheRealProgram) {
   ASSERT_EQ(b.status, 0) << b.err;
   EXPECT_EQ(a.out, b.out);
   fs::remove(recorded);
+}
+
+// Where the scripted player stops the ball has one source
+// (game::kScriptedDribbleTo): `play --help` prints it (it said 2 m while the
+// player stopped at 2.5 m) and docs/game.md states the same number.
+TEST(PlayCli, TheScriptedPlayersDribbleDistanceIsOneNumber) {
+  const std::string metres =
+      contact2d::format_number("%g", contact2d::game::kScriptedDribbleTo) + " m";
+  const Result help = run("play --help");
+  ASSERT_EQ(help.status, 0) << help.err;
+  EXPECT_TRUE(has(help.out, "dribbles to " + metres + " from the goal line")) << help.out;
+  const std::string docs = read_file(CONTACT2D_SOURCE_DIR "/docs/game.md");
+  EXPECT_TRUE(has(docs, "dribbles it to " + metres + " from the line")) << "docs/game.md";
 }
 
 #ifdef CONTACT2D_WITH_MUJOCO
