@@ -249,7 +249,7 @@ Scene conformance_scene(const Scene& scene, FrictionLaw law, const std::string& 
   return out;
 }
 
-FrictionParts friction_parts(const Scene& scene, const std::string& mapping) {
+FrictionParts friction_parts(const Scene& scene, const std::string& mapping, bool mujoco3) {
   FrictionParts p;
   const std::optional<mujoco::Mapping> m = mujoco::parse_mapping(mapping);
   if (!m) throw std::invalid_argument("friction_parts: no mapping " + mapping);
@@ -266,6 +266,14 @@ FrictionParts friction_parts(const Scene& scene, const std::string& mapping) {
   p.shape = error_between(reference, shape).max_pos;
   p.push = error_between(shape, soft).max_pos;
   p.rest = error_between(soft, mj).max_pos;
+  if (mujoco3) {
+    const Trajectory v3 = simulate(
+        *engines::make_stepper(engines::parse_engine("mujoco3:" + mapping), scene), scene.sim);
+    if (v3.divergence) return p;
+    p.total_v3 = error_between(reference, v3).max_pos;
+    p.rest_v3 = error_between(soft, v3).max_pos;
+    p.apart_v3 = error_between(mj, v3).max_pos;
+  }
   return p;
 }
 
@@ -278,6 +286,9 @@ FrictionRow friction_row(const FrictionScene& s) {
     const engines::EngineSpec damper = engines::parse_engine("mujoco3:compensated:corners:damper");
     row.mujoco3_damper =
         outcome(reference, simulate(*engines::make_stepper(damper, s.scene), s.scene.sim));
+    const engines::EngineSpec shared = engines::parse_engine("mujoco3:compensated");
+    row.mujoco3_compensated =
+        outcome(reference, simulate(*engines::make_stepper(shared, s.scene), s.scene.sim));
   }
   Trajectory compensated;
   for (mujoco::Mapping m : {mujoco::Mapping::Calibrated, mujoco::Mapping::Compensated}) {

@@ -106,6 +106,8 @@ struct FrictionRow {
   // MuJoCo 3.14 with its friction damper (mujoco3:compensated:corners:damper,
   // docs/mujoco3.md): max_pos is NaN when MuJoCo 3 did not run here.
   FrictionOutcome mujoco3_damper{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
+  // MuJoCo 3.14 without it (mujoco3:compensated), the same NaN.
+  FrictionOutcome mujoco3_compensated{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
 };
 
 // The scene as the reference runs it to conform to MuJoCo's model under
@@ -117,14 +119,20 @@ Scene conformance_scene(const Scene& scene, FrictionLaw law,
 // One scene's difference with friction taken apart (m, largest position
 // distance): the reference (tanh) against MuJoCo under `mapping`, and the
 // three parts of the top of this file under the same mapping.
+// With `mujoco3`, MuJoCo 3.14 on the model written for it (the same
+// mapping) beside 2.2.2: the same reference runs, its total and rest, and
+// the largest distance between the two versions (NaN when not run).
 struct FrictionParts {
   double total = 0.0;  // reference ↔ MuJoCo
   double shape = 0.0;  // reference ↔ reference under viscous_cone
   double push = 0.0;   // viscous_cone ↔ soft_cone
   double rest = 0.0;   // soft_cone ↔ MuJoCo
   bool ok = false;     // false: an engine diverged (the numbers are NaN)
+  double total_v3 = std::numeric_limits<double>::quiet_NaN();  // reference ↔ 3.14
+  double rest_v3 = std::numeric_limits<double>::quiet_NaN();   // soft_cone ↔ 3.14
+  double apart_v3 = std::numeric_limits<double>::quiet_NaN();  // 2.2.2 ↔ 3.14
 };
-FrictionParts friction_parts(const Scene& scene, const std::string& mapping);
+FrictionParts friction_parts(const Scene& scene, const std::string& mapping, bool mujoco3 = false);
 
 // The split's shares: the frictional geom carries w of the spring and a
 // damper of ρ·c, with μ/w so that its friction limit is the scene's.

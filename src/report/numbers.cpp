@@ -183,6 +183,19 @@ FrictionSummary friction_summary(const std::vector<RandomCase>& cases, double go
   return s;
 }
 
+std::string versions_apart_text(double apart) {
+  if (std::isnan(apart)) return "–";
+  if (versions_differ(apart)) return "2.2.2 ↔ 3.14: " + format_significant(apart, 2) + " m";
+  return apart == 0.0 ? "same as 2.2.2 to the bit"
+                      : "same as 2.2.2 to " + format_significant(apart, 2) + " m";
+}
+
+std::string ratio_phrase(double ratio, const std::string& comparative, const std::string& what) {
+  const std::string printed = format_significant(ratio);
+  if (printed == "1") return "level with " + what + " (within 0.5 %)";
+  return printed + "× " + comparative + " " + what;
+}
+
 double random_zeta(const RandomCase& c) { return c.c / (2 * std::sqrt(c.k * c.mass)); }
 
 std::vector<ZetaBand> random_bands(const std::vector<RandomCase>& cases,

@@ -24,6 +24,21 @@ std::string count_words(int n);
 // A string with its first letter upper-case (ASCII).
 std::string capitalised(std::string text);
 
+// Two MuJoCo versions' runs of one case that part by at most this (m) are
+// one run up to rounding (versions.md measures ≤ 1e-10 m on every built-in
+// scene); farther apart, the front page shows MuJoCo 3.14 beside 2.2.2.
+inline constexpr double kVersionsRounding = 1e-9;
+// Whether `apart` (m, 2.2.2 ↔ 3.14) is more than rounding; NaN (not run): no.
+inline bool versions_differ(double apart) { return apart > kVersionsRounding; }
+// "same as 2.2.2 to 1.3e-13 m" (or "to the bit" at 0) within rounding,
+// else "2.2.2 ↔ 3.14: X m"; "–" for NaN.
+std::string versions_apart_text(double apart);
+
+// "1.2× smaller than" … : `ratio`× followed by `than`, or, when the ratio
+// prints as 1 (below 1.005), "level with" instead: how many times the
+// winner's error is below the next best's, said properly either way.
+std::string ratio_phrase(double ratio, const std::string& comparative, const std::string& what);
+
 // Geometric mean exp(Σ log xᵢ / n); NaN for an empty list or a value ≤ 0.
 double geometric_mean(const std::vector<double>& values);
 

@@ -23,6 +23,7 @@
 #include "io/atomic_file.hpp"
 #include "io/scene_file.hpp"
 #include "io/scene_writer.hpp"
+#include "report/numbers.hpp"
 #include "report/pages.hpp"
 #include "report/random_scenes.hpp"
 #include "report/runs.hpp"
@@ -144,7 +145,7 @@ void run_tasks(const Tasks& tasks, unsigned jobs, SectionClock& clock) {
 
 // The models, and every scene under every mapping as shipped and with the
 // Kelvin–Voigt law (sections 1 and 8).
-void mapping_tasks(const ReportRequest& o, ReadmeData& d, Tasks& tasks) {
+void mapping_tasks(const ReportRequest& o, bool v3, ReadmeData& d, Tasks& tasks) {
   tasks.push_back({"models", [&o] {
                      progress("models");
                      for (const std::string& s : kScenes) {
@@ -160,6 +161,7 @@ void mapping_tasks(const ReportRequest& o, ReadmeData& d, Tasks& tasks) {
       d.kelvin_voigt.push_back({s, m, {}});
     }
   }
+  if (v3) d.kelvin_voigt_v3 = d.kelvin_voigt;
   for (size_t i = 0; i < d.shipped.size(); ++i) {
     // The plots of section 8: the default mapping.
     const bool plotted = d.shipped[i].mapping == "calibrated";
@@ -168,11 +170,22 @@ void mapping_tasks(const ReportRequest& o, ReadmeData& d, Tasks& tasks) {
       MappingCase& c = (kv ? d.kelvin_voigt : d.shipped)[i];
       const std::string plot =
           plotted ? o.out + "/" + s + (kv ? ".kelvin_voigt.png" : ".shipped.png") : "";
-      tasks.push_back({"mappings", [&c, plot, kv] {
+      // With the Kelvin–Voigt law, MuJoCo 3.14 too (section 2, In short).
+      MappingCase* c3 = kv && v3 ? &d.kelvin_voigt_v3[i] : nullptr;
+      tasks.push_back({"mappings", [&c, c3, plot, kv] {
                          progress("README.md: " + c.scene + ", " + c.mapping + " mapping" +
                                   (kv ? ", Kelvin–Voigt" : ""));
-                         c.result = compare(c.scene, kv ? kKelvinVoigt : std::vector<Override>{},
-                                            c.mapping, "corners", plot);
+                         if (!c3) {
+                           c.result = compare(c.scene, kv ? kKelvinVoigt : std::vector<Override>{},
+                                              c.mapping, "corners", plot);
+                           return;
+                         }
+                         const VersionsComparison both =
+                             compare_versions(load(scene_path(c.scene), kKelvinVoigt),
+                                              scene_path(c.scene), c.mapping, "corners", plot);
+                         c.result = both.v2;
+                         c3->result = both.v3;
+                         c3->v2_vs_v3 = both.apart;
                        }});
     }
   }
@@ -198,35 +211,54 @@ void drop_law_independent_plots(const ReportRequest& o, ReadmeData& d) {
 
 // The three-way comparisons with their diagnoses, as shipped (their runs
 // kept in `runs` for the animations) and with the Kelvin–Voigt law.
-void three_way_tasks(ReadmeData& d, std::vector<ThreeWayRuns>& runs, Tasks& tasks) {
+void three_way_tasks(bool v3, ReadmeData& d, std::vector<ThreeWayRuns>& runs, Tasks& tasks) {
   d.named_share = named_share();
   d.three_way.resize(2 * kScenes.size());
   runs.resize(kScenes.size());
   for (size_t i = 0; i < 2 * kScenes.size(); ++i) {
-    tasks.push_back({"three-way", [&d, &runs, i] {
+    tasks.push_back({"three-way", [&d, &runs, i, v3] {
                        const std::string& s = kScenes[i / 2];
                        const bool kv = i % 2 == 1;
                        progress("three-way comparison: " + s + (kv ? ", Kelvin–Voigt" : ""));
                        d.three_way[i] = compare_three_way(
                            load(scene_path(s), kv ? kKelvinVoigt : std::vector<Override>{}),
                            scene_path(s), kv ? "Kelvin–Voigt" : "as shipped", d.converged_tol,
-                           kv ? nullptr : &runs[i / 2]);
+                           kv ? nullptr : &runs[i / 2], v3);
                      }});
   }
 }
 
 // Each scene's animation as shipped until one cannot be drawn, then the
 // reason there is none.
+// MuJoCo 3.14's beside it where it differs from 2.2.2's by more than
+// rounding (report/numbers.hpp: kVersionsRounding).
 void animations(const ReportRequest& o, const std::vector<ThreeWayRuns>& runs, ReadmeData& d) {
   for (size_t i = 0; i < kScenes.size() && d.animation_note.empty(); ++i) {
     progress("animation " + kScenes[i]);
-    d.animation_note =
-        animate_three_way(runs[i], o.out + "/" + kScenes[i] + ".gif", d.three_way[2 * i]);
+    ThreeWayCase& c = d.three_way[2 * i];
+    d.animation_note = animate_three_way(runs[i], o.out + "/" + kScenes[i] + ".gif", c);
+    if (d.animation_note.empty() && versions_differ(c.v2_vs_v3))
+      d.animation_note =
+          animate_three_way(runs[i], o.out + "/" + kScenes[i] + ".mujoco3.gif", c, true);
   }
 }
 
 // The agreement goal at c = 200 and 1000, without and with friction.
-void goal_tasks(ReadmeData& d, Tasks& tasks) {
+// A goal case on both versions (with `v3`) or on 2.2.2.
+void goal_run(GoalCase& g, const std::string& s, const std::vector<Override>& overrides, bool v3) {
+  if (!v3) {
+    g.result = compare(s, overrides);
+    return;
+  }
+  const VersionsComparison both =
+      compare_versions(load(scene_path(s), overrides), scene_path(s), "calibrated", "corners");
+  g.result = both.v2;
+  g.v3_max_pos = both.v3.max_pos;
+  g.v3_max_angle = both.v3.max_angle;
+  g.v2_vs_v3 = both.apart;
+}
+
+void goal_tasks(bool v3, ReadmeData& d, Tasks& tasks) {
   for (const std::string c : {"200", "1000"}) {
     for (const std::string& s : kScenes)
       d.goals.push_back({s + ", c = " + c + ", frictionless", 1e-5, 1e-4, {}});
@@ -240,21 +272,21 @@ void goal_tasks(ReadmeData& d, Tasks& tasks) {
   size_t next = 0;
   for (const std::string c : {"200", "1000"}) {
     for (const std::string& s : kScenes) {
-      tasks.push_back({"goals", [&g = d.goals[next++], s, c] {
+      tasks.push_back({"goals", [&g = d.goals[next++], s, c, v3] {
                          progress("goal: " + g.label);
-                         g.result = compare(s, with(goal(c), kFrictionless));
+                         goal_run(g, s, with(goal(c), kFrictionless), v3);
                        }});
     }
     for (const std::string& s : kScenes) {
-      tasks.push_back({"goals", [&g = d.goals[next++], s, c] {
+      tasks.push_back({"goals", [&g = d.goals[next++], s, c, v3] {
                          progress("goal: " + g.label);
-                         g.result = compare(s, goal(c));
-                         add_friction_parts(load(scene_path(s), goal(c)), "calibrated", g);
+                         goal_run(g, s, goal(c), v3);
+                         add_friction_parts(load(scene_path(s), goal(c)), "calibrated", g, v3);
                        }});
     }
-    tasks.push_back({"goals", [&g = d.goals[next++], c] {
+    tasks.push_back({"goals", [&g = d.goals[next++], c, v3] {
                        progress("goal: " + g.label);
-                       g.result = compare("circle", with(goal(c), {{"contact.mu_roll", "0"}}));
+                       goal_run(g, "circle", with(goal(c), {{"contact.mu_roll", "0"}}), v3);
                      }});
   }
 }
@@ -301,43 +333,61 @@ void write_random_scenes(const ReportRequest& o, const std::vector<RandomScene>&
   }
 }
 
+// friction.md's scenes as files (OUT/friction/NAME.toml), so that the
+// front page's damper figures re-run with `contact2d compare`.
+void write_friction_scenes(const ReportRequest& o) {
+  std::error_code ec;
+  fs::create_directories(o.out + "/friction", ec);
+  for (const analysis::FrictionScene& f : friction_scene_list()) {
+    write_page(o.out + "/friction/" + f.name + ".toml",
+               scene_to_toml(f.scene,
+                             "Scene " + f.name + " of friction.md (contact2d report): " + f.what));
+  }
+}
+
 // The seeded random scenes, each also as a file (OUT/random/NAME.toml) so
 // that a row can be re-run on its own, under the calibrated and the
 // compensated mapping.
-void random_tasks(const ReportRequest& o, ReadmeData& d, Tasks& tasks) {
+void random_tasks(const ReportRequest& o, bool v3, ReadmeData& d, Tasks& tasks) {
   d.random_config = {o.seed, kRandomSceneCount, 1e-5, 1e-4};
   auto randoms = std::make_shared<const std::vector<RandomScene>>(
       draw_random_scenes(o.seed, d.random_config.count));
   d.random_dir = o.out + "/random";
   d.random.resize(randoms->size());
   d.random_compensated.resize(randoms->size());
+  if (v3) {
+    d.random_v3.resize(randoms->size());
+    d.random_compensated_v3.resize(randoms->size());
+  }
   tasks.push_back({"random scenes", [&o, randoms] { write_random_scenes(o, *randoms); }});
   for (size_t i = 0; i < randoms->size(); ++i) {
     for (const bool compensated : {false, true}) {
       RandomCase& out = (compensated ? d.random_compensated : d.random)[i];
-      tasks.push_back({"random scenes", [&out, randoms, i, compensated] {
+      RandomCase* out_v3 = v3 ? &(compensated ? d.random_compensated_v3 : d.random_v3)[i] : nullptr;
+      tasks.push_back({"random scenes", [&out, out_v3, randoms, i, compensated] {
                          const RandomScene& r = (*randoms)[i];
                          progress("random scene " + r.name);
-                         out = compare_random_scene(r, compensated ? "compensated" : "calibrated");
+                         out = compare_random_scene(r, compensated ? "compensated" : "calibrated",
+                                                    out_v3);
                        }});
     }
   }
 }
 
-void readme_tasks(const ReportRequest& o, ReadmeData& d, std::vector<ThreeWayRuns>& runs,
+void readme_tasks(const ReportRequest& o, bool v3, ReadmeData& d, std::vector<ThreeWayRuns>& runs,
                   Tasks& tasks) {
   d.scenes = kScenes;
   d.mappings = kMappings;
-  mapping_tasks(o, d, tasks);
+  mapping_tasks(o, v3, d, tasks);
   tasks.push_back({"goal replay", [&o, &d] {
                      progress("the goal replay on both engines");
                      d.replay = replay_on_both("validation/replays/goal.replay",
                                                o.out + "/goal_replay.png");
                    }});
-  three_way_tasks(d, runs, tasks);
-  goal_tasks(d, tasks);
+  three_way_tasks(v3, d, runs, tasks);
+  goal_tasks(v3, d, tasks);
   geometry_and_integrator_tasks(d, tasks);
-  random_tasks(o, d, tasks);
+  random_tasks(o, v3, d, tasks);
 }
 
 // ------------------------------------------- sweep.md, stability.md, extreme.md
@@ -541,6 +591,33 @@ analysis::VersionTable joined(const std::vector<analysis::VersionTable>& parts) 
   return all;
 }
 
+// MuJoCo 3.14's friction damper on the front page: where it helps most
+// (friction.md's scenes: 3.14 compensated without and with it) and where
+// it hurts most (the built-in scenes with friction, versions.md's rows).
+void damper_cases(const ReportRequest& o, Results& r) {
+  double best = 0.0, worst = 0.0;
+  for (const analysis::FrictionRow& f : r.friction) {
+    const double without = f.mujoco3_compensated.max_pos, with = f.mujoco3_damper.max_pos;
+    if (!(with > 0.0) || !(without / with > best)) continue;
+    best = without / with;
+    r.readme.damper_helps = {{f.what,
+                              "contact2d compare " + o.out + "/friction/" + f.name +
+                                  ".toml --engine mujoco3 --mapping compensated",
+                              without, with}};
+  }
+  for (const analysis::VersionTable& t : r.versions) {
+    for (const analysis::VersionRow& v : t.rows) {
+      if (!(v.ref_v3 > 0.0) || !(v.ref_v3_damper / v.ref_v3 > worst)) continue;
+      worst = v.ref_v3_damper / v.ref_v3;
+      r.readme.damper_hurts = {{"the built-in " + v.scene + " with the Kelvin–Voigt law",
+                                "contact2d compare " + scene_path(v.scene) +
+                                    " --set contact.damping=kelvin_voigt --engine mujoco3 "
+                                    "--mapping compensated",
+                                v.ref_v3, v.ref_v3_damper}};
+    }
+  }
+}
+
 // Longest first, so that the pool's threads end together: the tasks of the
 // sections that take longest (measured by scripts/report-timings) go to the
 // front, each section's own tasks in their order; the first task stays
@@ -594,7 +671,11 @@ ReportTimings write_report(const ReportRequest& o) {
     run_atlas("validation/atlas/default.toml", o.out + "/atlas", r.atlas);
   });
   Tasks tasks;
-  readme_tasks(o, r.readme, r.three_way, tasks);
+  // MuJoCo 3.14 beside 2.2.2 on the front page, when it can run here.
+  r.readme.mujoco3_not_run = mujoco ? mujoco3_missing() : "built without MuJoCo";
+  const bool v3 = r.readme.mujoco3_not_run.empty();
+  readme_tasks(o, v3, r.readme, r.three_way, tasks);
+  if (v3) tasks.push_back({"friction", [&o] { write_friction_scenes(o); }});
   sweep_tasks(o, mujoco, r.sweep, tasks);
   stability_tasks(o, mujoco, r.stability, tasks);
   extreme_tasks(mujoco, r.extreme, tasks);
@@ -607,6 +688,7 @@ ReportTimings write_report(const ReportRequest& o) {
   longest_first(last);
   run_tasks(last, o.jobs, clock);
   drop_law_independent_plots(o, r.readme);
+  if (v3) damper_cases(o, r);
   clock.time("bench", [&] { bench_runs(o, r.sweep); });
 
   const ReportTimings so_far = clock.done();

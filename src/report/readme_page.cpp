@@ -2,9 +2,11 @@
 // scenes (report/pages.hpp). Prose numbers come from report/numbers.hpp.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/format.hpp"
+#include "io/json_reader.hpp"
 #include "io/table.hpp"
 #include "report/numbers.hpp"
 #include "report/pages.hpp"
@@ -16,16 +18,31 @@ std::string per_step(double seconds, const ComparisonRow& c) {
   return format_significant(micros_per_step(seconds, c.duration, c.dt));
 }
 
-std::string mapping_table(const std::vector<MappingCase>& cases) {
+// MuJoCo 3.14's cell beside a 2.2.2 figure: its own figure where the
+// versions differ by more than rounding, else how close to 2.2.2 it is.
+std::string v3_cell(double v3_value, double apart) {
+  if (versions_differ(apart))
+    return format_significant(v3_value) + " (" + versions_apart_text(apart) + ")";
+  return versions_apart_text(apart);
+}
+
+// The 2.2.2 table, and a MuJoCo 3.14 column when `v3` holds its runs of the
+// same cases (in the same order).
+std::string mapping_table(const std::vector<MappingCase>& cases,
+                          const std::vector<MappingCase>& v3 = {}) {
   Table t{{"scene / mapping", "max pos (m)", "RMS pos (m)", "max angle (rad)", "max vel (m/s)",
            "end pos (m)", "ref µs/step", "MuJoCo µs/step"},
           {}};
-  for (const MappingCase& c : cases) {
+  if (!v3.empty()) t.columns.push_back("MuJoCo 3.14: max pos (m)");
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const MappingCase& c = cases[i];
     const ComparisonRow& r = c.result;
-    add_row(t, {c.scene + " / " + c.mapping, format_significant(r.max_pos),
-                format_significant(r.rms_pos), format_significant(r.max_angle),
-                format_significant(r.max_vel), format_significant(r.end_pos),
-                per_step(r.ref_seconds, r), per_step(r.mujoco_seconds, r)});
+    std::vector<std::string> row{c.scene + " / " + c.mapping,   format_significant(r.max_pos),
+                                 format_significant(r.rms_pos), format_significant(r.max_angle),
+                                 format_significant(r.max_vel), format_significant(r.end_pos),
+                                 per_step(r.ref_seconds, r),    per_step(r.mujoco_seconds, r)};
+    if (!v3.empty()) row.push_back(v3_cell(v3[i].result.max_pos, v3[i].v2_vs_v3));
+    add_row(t, row);
   }
   return to_markdown(t);
 }
@@ -34,7 +51,7 @@ std::string winners(const std::vector<MappingCase>& cases, const ReadmeData& dat
   std::string out;
   for (const SceneWinner& w : scene_winners(cases, data.scenes, data.mappings)) {
     out += "- " + w.scene + ": **" + w.mapping + "** (" + format_significant(w.error) + " m), " +
-           format_significant(w.ratio_to_next) + "× smaller than the next best mapping\n";
+           ratio_phrase(w.ratio_to_next, "smaller than", "the next best mapping") + "\n";
   }
   const std::vector<MappingMean> means = mapping_means(cases, data.scenes, data.mappings);
   for (const MappingMean& m : means) {
@@ -43,7 +60,7 @@ std::string winners(const std::vector<MappingCase>& cases, const ReadmeData& dat
   }
   const OverallWinner overall = overall_winner(means);
   out += "- overall: **" + overall.mapping + "**, its geometric-mean error " +
-         format_significant(overall.ratio_to_next) + "× below the next best mapping\n";
+         ratio_phrase(overall.ratio_to_next, "below", "the next best mapping's") + "\n";
   return out;
 }
 
@@ -51,12 +68,21 @@ std::string goal_table(const std::vector<GoalCase>& goals) {
   Table t{
       {"case", "impratio", "max pos (m)", "goal (m)", "max angle (rad)", "goal (rad)", "reached"},
       {}};
+  const bool v3 = std::any_of(goals.begin(), goals.end(),
+                              [](const GoalCase& c) { return !std::isnan(c.v2_vs_v3); });
+  if (v3) t.columns.push_back("MuJoCo 3.14: max pos (m)");
   for (const GoalCase& c : goals) {
     const ComparisonRow& r = c.result;
     const bool ok = goal_reached(r.max_pos, r.max_angle, c.pos_goal, c.angle_goal);
-    add_row(t, {c.label, format_significant(r.impratio), format_significant(r.max_pos),
-                sci(c.pos_goal), format_significant(r.max_angle),
-                c.angle_goal ? sci(*c.angle_goal) : "-", ok ? "yes" : "**no**"});
+    std::vector<std::string> row{c.label,
+                                 format_significant(r.impratio),
+                                 format_significant(r.max_pos),
+                                 sci(c.pos_goal),
+                                 format_significant(r.max_angle),
+                                 c.angle_goal ? sci(*c.angle_goal) : "-",
+                                 ok ? "yes" : "**no**"};
+    if (v3) row.push_back(v3_cell(c.v3_max_pos, c.v2_vs_v3));
+    add_row(t, row);
   }
   return to_markdown(t);
 }
@@ -105,21 +131,36 @@ std::string three_way_table(const std::vector<ThreeWayCase>& cases, double named
   Table t{{"scene", "law", "ref ↔ converged (m)", "MuJoCo ↔ converged (m)", "ref ↔ MuJoCo (m)",
            "amplification", "named causes (share removed, option)"},
           {}};
+  const bool v3 = std::any_of(cases.begin(), cases.end(),
+                              [](const ThreeWayCase& c) { return !std::isnan(c.v2_vs_v3); });
+  if (v3) t.columns.push_back("MuJoCo 3.14: ref ↔ 3.14 (m)");
   for (const ThreeWayCase& c : cases) {
-    add_row(t,
-            {c.scene, c.law, c.converged ? format_significant(c.ref_vs_converged) : "-",
-             c.converged ? format_significant(c.mujoco_vs_converged) : "-",
-             format_significant(c.ref_vs_mujoco),
-             c.converged ? format_significant(c.amplification) : "-", causes_text(c, named_share)});
+    std::vector<std::string> row{c.scene,
+                                 c.law,
+                                 c.converged ? format_significant(c.ref_vs_converged) : "-",
+                                 c.converged ? format_significant(c.mujoco_vs_converged) : "-",
+                                 format_significant(c.ref_vs_mujoco),
+                                 c.converged ? format_significant(c.amplification) : "-",
+                                 causes_text(c, named_share)};
+    if (v3) row.push_back(v3_cell(c.ref_vs_v3, c.v2_vs_v3));
+    add_row(t, row);
   }
   return to_markdown(t);
 }
 
+// Each animation, and under it MuJoCo 3.14's: its own where it differs
+// from 2.2.2 by more than rounding, else how close to 2.2.2 it stays.
 std::string animations(const std::vector<ThreeWayCase>& cases, const std::string& note) {
   std::string out;
   for (const ThreeWayCase& c : cases) {
     if (c.animation.empty()) continue;
     out += "![" + c.scene + ", " + c.law + ": both engines](" + c.animation + ")\n";
+    if (!c.animation_v3.empty()) {
+      out += "![" + c.scene + ", " + c.law + ": the reference and MuJoCo 3.14](" + c.animation_v3 +
+             ")\n";
+    } else if (!std::isnan(c.v2_vs_v3)) {
+      out += "\n" + c.scene + " on MuJoCo 3.14: " + versions_apart_text(c.v2_vs_v3) + ".\n\n";
+    }
   }
   if (out.empty()) return "(No animations: " + note + ".)\n";
   return "\n" + out;
@@ -201,13 +242,60 @@ std::string plots(const std::vector<std::string>& scenes,
   return to_markdown(t);
 }
 
+// One JSON value's fields as "path → text" ("kicks[0].distance"), in order.
+void flatten_json(const json::Value& v, const std::string& path,
+                  std::vector<std::pair<std::string, std::string>>& out) {
+  switch (v.kind) {
+    case json::Value::Kind::Object:
+      for (const auto& [name, member] : v.members)
+        flatten_json(member, path.empty() ? name : path + "." + name, out);
+      return;
+    case json::Value::Kind::Array:
+      for (size_t i = 0; i < v.items.size(); ++i)
+        flatten_json(v.items[i], path + "[" + std::to_string(i) + "]", out);
+      return;
+    case json::Value::Kind::Number: out.emplace_back(path, format_significant(v.number, 9)); return;
+    case json::Value::Kind::Null: out.emplace_back(path, "null"); return;
+    default: out.emplace_back(path, v.text); return;
+  }
+}
+
+// What `play --headless --replay` prints on each engine, a field a row and
+// an engine a column (a field one engine lacks: "–"); an output that is not
+// JSON stays as it is, in one row.
+std::string replay_table(const ReplayComparison& r) {
+  Table t{{"field"}, {}};
+  std::vector<std::string> fields;
+  std::vector<std::vector<std::pair<std::string, std::string>>> values;
+  for (const ReplayEngine& e : r.engines) {
+    t.columns.push_back(e.engine);
+    values.emplace_back();
+    try {
+      flatten_json(json::parse(e.json, "play's output"), "", values.back());
+    } catch (const std::exception&) {
+      values.back() = {{"output", e.json}};
+    }
+    for (const auto& field : values.back())
+      if (std::find(fields.begin(), fields.end(), field.first) == fields.end())
+        fields.push_back(field.first);
+  }
+  for (const std::string& field : fields) {
+    std::vector<std::string> row{"`" + field + "`"};
+    for (const auto& of_engine : values) {
+      const auto it = std::find_if(of_engine.begin(), of_engine.end(),
+                                   [&](const auto& v) { return v.first == field; });
+      row.push_back(it == of_engine.end() ? "–" : it->second);
+    }
+    add_row(t, row);
+  }
+  return "What `play` prints (its JSON, a field a row):\n\n" + to_markdown(t);
+}
+
 std::string replay_section(const ReplayComparison& r) {
   std::string out =
       "## 9. The game's goal replay on both engines\n\n`contact2d play --headless --replay " +
       r.replay + " [--engine mujoco]`: the same key events on both engines.\n\n";
-  Table t{{"engine", "outcome", "what `play` prints"}, {}};
-  for (const ReplayEngine& e : r.engines) add_row(t, {e.engine, e.outcome, "`" + e.json + "`"});
-  out += to_markdown(t);
+  out += replay_table(r);
   auto when = [](const std::optional<double>& s) {
     return s ? "at t = " + format_significant(*s) + " s" : std::string("never");
   };
@@ -224,77 +312,187 @@ std::string replay_section(const ReplayComparison& r) {
   return out;
 }
 
-// The first screen's recommendation: one mapping to build on, and the one
-// that measures closer when it is another.
+// "`--mapping compensated`: 1.2× below the next best mapping": the mapping
+// whose geometric-mean error over the built-in scenes (Kelvin–Voigt) is the
+// smallest on one version, and by how much.
+std::string closest_mapping(const ReadmeData& d, const std::vector<MappingCase>& cases) {
+  const OverallWinner w = overall_winner(mapping_means(cases, d.scenes, d.mappings));
+  return "`--mapping " + w.mapping +
+         "`: " + ratio_phrase(w.ratio_to_next, "below", "the next best mapping");
+}
+
+// What to do with friction on each version: 2.2.2 has no setting that
+// removes the push; MuJoCo 3.14's damper where it helps and where it hurts.
+std::string damper_text(const std::vector<DamperCase>& cases, const std::string& verb) {
+  std::string out;
+  for (const DamperCase& c : cases) {
+    out += (out.empty() ? "" : "; ") + verb + " " + c.label + ": " + format_significant(c.without) +
+           " → " + format_significant(c.with) + " m";
+  }
+  return out;
+}
+
+// The first screen's advice, per version: one mapping to build on, the one
+// that measures closer when it is another, and what to do with friction.
 std::string recommendation(const ReadmeData& d) {
-  const OverallWinner w = overall_winner(mapping_means(d.kelvin_voigt, d.scenes, d.mappings));
+  const bool v3 = !d.kelvin_voigt_v3.empty();
   // The runs behind the geometric means: each scene under each mapping.
   std::string scene_list, mapping_list;
   for (const std::string& s : d.scenes) scene_list += (scene_list.empty() ? "" : ", ") + s;
   for (const std::string& m : d.mappings) mapping_list += (mapping_list.empty() ? "" : ", ") + m;
-  const std::string behind =
-      ": the geometric mean over SCENE = " + scene_list +
+  std::string out =
+      "## In short\n\n**Use the `calibrated` mapping** on either version of MuJoCo (the default "
+      "of `contact2d generate` and `compare`; `contact2d solref` gives its numbers for your own "
+      "model): it sets only `solref`, `solimp` and MuJoCo's options, from k, c and the body's "
+      "`body_invweight0`. " +
+      std::string(v3 ? "MuJoCo 3.14 is `--engine mujoco3` (the model written for MuJoCo 3: "
+                       "`contact2d generate --engine mujoco3`; docs/mujoco3.md)."
+                     : "MuJoCo 3.14 did not run here (" + d.mujoco3_not_run + ").") +
+      "\n\n";
+  Table t{{"advice", "MuJoCo 2.2.2"}, {}};
+  if (v3) t.columns.push_back("MuJoCo 3.14");
+  auto row = [&](std::vector<std::string> cells) {
+    if (!v3) cells.pop_back();
+    add_row(t, cells);
+  };
+  row({"a model to build on", "`calibrated`", "`calibrated`"});
+  row({"for comparing with the reference", closest_mapping(d, d.kelvin_voigt),
+       v3 ? closest_mapping(d, d.kelvin_voigt_v3) : ""});
+  const std::string helps = damper_text(d.damper_helps, "helps most on");
+  const std::string hurts = damper_text(d.damper_hurts, "hurts most on");
+  row({"with friction", "no setting removes the cone's push (friction.md)",
+       "`--friction damper` (compensated only) " + helps + (hurts.empty() ? "" : "; " + hurts)});
+  out += to_markdown(t);
+  out +=
+      "\nFor comparing: the geometric-mean error over the built-in scenes with MuJoCo's own "
+      "damping law (Kelvin–Voigt; section 2: the geometric mean over SCENE = " +
+      scene_list +
       " of the largest position difference of\n`contact2d compare validation/scenes/SCENE.toml "
       "--set contact.damping=kelvin_voigt --mapping MAPPING --allow-nonphysical`, MAPPING = " +
-      mapping_list;
-  // One recommendation: a model to build on is calibrated's (it sets only
-  // solref, solimp and options); compensated, when it measures closer, is
-  // named as the comparison's tool, not as a second recommendation.
-  std::string out =
-      "## In short\n\n**Use the `calibrated` mapping** (the default of `contact2d generate` and "
-      "`compare`; `contact2d solref` gives its numbers for your own model): it sets only "
-      "`solref`, `solimp` and MuJoCo's options, from k, c and the body's `body_invweight0`.";
-  if (w.mapping == "calibrated") {
+      mapping_list + (v3 ? "; on 3.14 add `--engine mujoco3`" : "") + ").";
+  const bool compensated =
+      overall_winner(mapping_means(d.kelvin_voigt, d.scenes, d.mappings)).mapping ==
+          "compensated" ||
+      (v3 && overall_winner(mapping_means(d.kelvin_voigt_v3, d.scenes, d.mappings)).mapping ==
+                 "compensated");
+  if (compensated)
     out +=
-        " With MuJoCo's own damping law (Kelvin–Voigt) its geometric-mean error over the "
-        "built-in scenes is\n" +
-        format_significant(w.ratio_to_next) + "× below the next best mapping (section 2" + behind +
-        ").";
-  } else {
-    out += " For comparing the two engines, `--mapping " + w.mapping +
-           "` comes closer: with MuJoCo's own damping law (Kelvin–Voigt) its geometric-mean error "
-           "over the built-in scenes is\n" +
-           format_significant(w.ratio_to_next) + "× below the next best mapping (section 2" +
-           behind + ")" +
-           (w.mapping == "compensated"
-                ? ", but it moves the contact geoms onto a massless body at a long lever "
-                  "(docs/mujoco.md): a structure for comparing, not for a model to build on."
-                : ".");
+        " `compensated` moves the contact geoms onto a massless body at a long lever "
+        "(docs/mujoco.md): a structure for comparing, not for a model to build on.";
+  if (v3 && !d.damper_helps.empty() && !d.damper_hurts.empty()) {
+    out += " The damper's figures: `" + d.damper_helps.front().command + "` and\n`" +
+           d.damper_hurts.front().command +
+           "`, each without and with `--friction damper` (friction.md and versions.md have it on "
+           "every scene).";
   }
   out += "\n\n";
   return out;
 }
 
+// MuJoCo 3.14's runs of the random scenes beside random_runs(d)'s (the
+// same order), or nullptr where it did not run.
+std::vector<const std::vector<RandomCase>*> random_runs_v3(const ReadmeData& d) {
+  std::vector<const std::vector<RandomCase>*> out{d.random_v3.empty() ? nullptr : &d.random_v3};
+  if (!d.random_compensated.empty())
+    out.push_back(d.random_compensated_v3.empty() ? nullptr : &d.random_compensated_v3);
+  return out;
+}
+
+// The largest 2.2.2 ↔ 3.14 distance over MuJoCo 3.14's runs of the random
+// scenes (NaN when it did not run).
+double random_versions_apart(const ReadmeData& d) {
+  double apart = std::numeric_limits<double>::quiet_NaN();
+  for (const std::vector<RandomCase>* runs : random_runs_v3(d)) {
+    if (!runs) continue;
+    for (const RandomCase& c : *runs)
+      apart = std::isnan(apart) ? c.v2_vs_v3 : std::max(apart, c.v2_vs_v3);
+  }
+  return apart;
+}
+
+// Section 6's MuJoCo 3.14 line: the random scenes where it parts from
+// 2.2.2 by more than rounding, under which mapping and by how much.
+std::string random_versions_text(const ReadmeData& d) {
+  const std::vector<std::pair<std::string, const std::vector<RandomCase>*>> runs = random_runs(d);
+  const std::vector<const std::vector<RandomCase>*> runs_v3 = random_runs_v3(d);
+  if (!runs_v3.front()) return "";
+  std::string differ;
+  for (size_t m = 0; m < runs.size(); ++m) {
+    if (!runs_v3[m]) continue;
+    for (const RandomCase& c : *runs_v3[m]) {
+      if (versions_differ(c.v2_vs_v3))
+        differ += (differ.empty() ? "" : ", ") + c.name + " " + runs[m].first + " (" +
+                  format_significant(c.v2_vs_v3, 2) + " m)";
+    }
+  }
+  return "\nMuJoCo 3.14 on the same scenes (`--engine mujoco3`; its columns in the first "
+         "screen's table): " +
+         (differ.empty()
+              ? versions_apart_text(random_versions_apart(d)) + " on every run"
+              : "more than " + sci(kVersionsRounding) +
+                    " m from 2.2.2 (the largest distance over both runs) in " + differ +
+                    "; every other scene within " + sci(kVersionsRounding) + " m of it") +
+         ".\n";
+}
+
 // How close MuJoCo then is on the random scenes, by damping band and
-// mapping, with the command behind each row.
+// mapping, on each version, with the command behind each row.
 std::string closeness_by_band(const ReadmeData& d) {
   const RandomConfig& rc = d.random_config;
-  const std::vector<ZetaBand> bands = random_bands(d.random, rc);
+  const std::vector<std::pair<std::string, const std::vector<RandomCase>*>> runs = random_runs(d);
+  const std::vector<const std::vector<RandomCase>*> runs_v3 = random_runs_v3(d);
+  const bool v3 = runs_v3.front() != nullptr;
   std::string out;
   out += "**How close MuJoCo then is** — " + count_words(rc.count) +
          " random scenes (section 6), Δt = 1e-4, semi-implicit Euler against MuJoCo's Euler;\n"
          "each scene of section 6, in the band of its ζ, re-runs with `contact2d compare " +
          d.random_dir +
          "/sNN.toml`\n(add `--set contact.mu=0` for the frictionless columns, `--mapping "
-         "compensated` for the compensated rows):\n\n";
-  Table t{{"damping ratio", "mapping", "scenes",
-           "without friction: within " + sci(rc.pos_goal) + " m and " + sci(rc.angle_goal) + " rad",
+         "compensated` for the compensated rows" +
+         (v3 ? ", `--engine mujoco3` for MuJoCo 3.14's columns" : "") + "):\n\n";
+  const std::string goal = "within " + sci(rc.pos_goal) + " m and " + sci(rc.angle_goal) + " rad";
+  Table t{{"damping ratio", "mapping", "scenes", "without friction: " + goal,
            "without friction: median / largest position difference (m)",
            "with friction: largest position difference (m)"},
           {}};
-  const std::vector<std::pair<std::string, const std::vector<RandomCase>*>> runs = random_runs(d);
-  std::vector<std::vector<ZetaBand>> by_mapping;
-  by_mapping.reserve(runs.size());
-  for (const auto& run : runs) by_mapping.push_back(random_bands(*run.second, rc));
-  for (size_t b = 0; b < bands.size(); ++b) {
+  if (v3) {
+    t.columns.push_back("3.14 without friction: " + goal);
+    t.columns.emplace_back("3.14 without friction: median / largest (m)");
+    t.columns.emplace_back("3.14 with friction: largest (m)");
+  }
+  std::vector<std::vector<ZetaBand>> by_mapping, by_mapping_v3;
+  for (size_t m = 0; m < runs.size(); ++m) {
+    by_mapping.push_back(random_bands(*runs[m].second, rc));
+    if (v3) by_mapping_v3.push_back(random_bands(*runs_v3[m], rc));
+  }
+  for (size_t b = 0; b < by_mapping[0].size(); ++b) {
     for (size_t m = 0; m < runs.size(); ++m) {
       const ZetaBand& z = by_mapping[m][b];
-      add_row(t, {band_name(z), runs[m].first, std::to_string(z.count), std::to_string(z.reached),
-                  format_significant(z.median_pos) + " / " + format_significant(z.max_pos),
-                  format_significant(z.max_pos_friction)});
+      std::vector<std::string> row{
+          band_name(z),
+          runs[m].first,
+          std::to_string(z.count),
+          std::to_string(z.reached),
+          format_significant(z.median_pos) + " / " + format_significant(z.max_pos),
+          format_significant(z.max_pos_friction)};
+      if (v3) {
+        const ZetaBand& z3 = by_mapping_v3[m][b];
+        row.push_back(std::to_string(z3.reached));
+        row.push_back(format_significant(z3.median_pos) + " / " + format_significant(z3.max_pos));
+        row.push_back(format_significant(z3.max_pos_friction));
+      }
+      add_row(t, row);
     }
   }
   out += to_markdown(t);
+  if (v3) {
+    const double apart = random_versions_apart(d);
+    out += "\nMuJoCo 3.14 against 2.2.2 on every one of these runs: " +
+           std::string(versions_differ(apart) ? "up to " + format_significant(apart, 2) +
+                                                    " m apart (more than rounding)"
+                                              : versions_apart_text(apart)) +
+           ".\n";
+  }
   if (runs.size() > 1)
     out +=
         "\n`compensated` (`--mapping compensated`) removes the calibrated force's O(d) term "
@@ -303,9 +501,12 @@ std::string closeness_by_band(const ReadmeData& d) {
   return out;
 }
 
-// With friction: the measured parts (analysis::friction_parts), per mapping.
+// With friction: the measured parts (analysis::friction_parts), per mapping
+// and version (the cone's shape and its push are two runs of the
+// reference, the same for both versions).
 std::string friction_parts_table(const ReadmeData& d) {
   const std::vector<std::pair<std::string, const std::vector<RandomCase>*>> runs = random_runs(d);
+  const std::vector<const std::vector<RandomCase>*> runs_v3 = random_runs_v3(d);
   std::string out;
   constexpr double kFrictionGoal = 1e-3;
   out +=
@@ -315,21 +516,56 @@ std::string friction_parts_table(const ReadmeData& d) {
       "diagnosis runs: add `--set contact.friction_law=soft_cone --set contact.cone_ratio=I`, I "
       "the impratio\ncompare prints); `friction.md` has the method, the cone's shape and its push "
       "too, and every 2.2.2 setting tried):\n\n";
-  Table parts{{"mapping", "with friction", "within " + sci(kFrictionGoal) + " m",
+  Table parts{{"mapping", "MuJoCo", "with friction", "within " + sci(kFrictionGoal) + " m",
                "the cone's shape", "its push", "the rest: the reference under MuJoCo's law",
                "the rest within " + sci(kFrictionGoal) + " m"},
               {}};
-  for (const auto& run : runs) {
-    const FrictionSummary f = friction_summary(*run.second, kFrictionGoal);
-    add_row(parts, {run.first, format_significant(f.median_total),
-                    std::to_string(f.within) + " of " + std::to_string(f.count),
-                    format_significant(f.median_shape), format_significant(f.median_push),
-                    format_significant(f.median_rest) + " (largest " +
-                        format_significant(f.max_rest) + ")",
-                    std::to_string(f.rest_within) + " of " + std::to_string(f.count)});
+  for (size_t m = 0; m < runs.size(); ++m) {
+    for (const std::vector<RandomCase>* cases : {runs[m].second, runs_v3[m]}) {
+      if (!cases) continue;
+      const FrictionSummary f = friction_summary(*cases, kFrictionGoal);
+      add_row(parts, {runs[m].first, cases == runs[m].second ? "2.2.2" : "3.14",
+                      format_significant(f.median_total),
+                      std::to_string(f.within) + " of " + std::to_string(f.count),
+                      format_significant(f.median_shape), format_significant(f.median_push),
+                      format_significant(f.median_rest) + " (largest " +
+                          format_significant(f.max_rest) + ")",
+                      std::to_string(f.rest_within) + " of " + std::to_string(f.count)});
+    }
   }
   out += to_markdown(parts);
   return out;
+}
+
+// The goal cases on MuJoCo 3.14 (the figures of the 2.2.2 sentence of
+// builtin_verdict), empty when it did not run.
+std::string builtin_verdict_v3(const ReadmeData& d) {
+  const RandomConfig& rc = d.random_config;
+  double frictionless = 0.0, friction = 0.0, rest = 0.0;
+  double apart = std::numeric_limits<double>::quiet_NaN();
+  int reached = 0, count = 0;
+  for (const GoalCase& c : d.goals) {
+    if (std::isnan(c.v2_vs_v3)) return "";
+    apart = std::isnan(apart) ? c.v2_vs_v3 : std::max(apart, c.v2_vs_v3);
+    if (c.label.find("frictionless") != std::string::npos) {
+      frictionless = std::max(frictionless, c.v3_max_pos);
+      ++count;
+      reached += goal_reached(c.v3_max_pos, c.v3_max_angle, c.pos_goal, c.angle_goal);
+    } else {
+      friction = std::max(friction, c.v3_max_pos);
+      if (std::isfinite(c.v3_rest)) rest = std::max(rest, c.v3_rest);
+    }
+  }
+  if (std::isnan(apart)) return "";
+  return " On MuJoCo 3.14 (the same commands with `--engine mujoco3`): without friction " +
+         std::to_string(reached) + " of " + std::to_string(count) + " within " + sci(rc.pos_goal) +
+         " m and " + sci(rc.angle_goal) + " rad (largest " + format_significant(frictionless) +
+         " m), with friction up to " + format_significant(friction) +
+         " m, under MuJoCo's own law at most " + format_significant(rest) +
+         " m; 3.14 against 2.2.2 on these runs: " +
+         (versions_differ(apart) ? "up to " + format_significant(apart, 2) + " m apart"
+                                 : versions_apart_text(apart)) +
+         ".";
 }
 
 // The built-in scenes with the Kelvin–Voigt law, and why the engines still
@@ -383,8 +619,8 @@ std::string builtin_verdict(const ReadmeData& d) {
          "); with the reference running MuJoCo's own friction law\n(the same command's diagnosis, "
          "its `friction_law` re-run: `--set "
          "contact.friction_law=soft_cone` at the model's impratio)\nthey are at most " +
-         format_significant(builtin_rest) +
-         " m apart.\n\n"
+         format_significant(builtin_rest) + " m apart." + builtin_verdict_v3(d) +
+         "\n\n"
          "**Why they still differ**: with friction, MuJoCo's friction law — measured on the "
          "built-in scenes, the cone's\nshape (viscous inside it, sliding and rolling under one "
          "budget) moves a body by up to " +
@@ -394,7 +630,9 @@ std::string builtin_verdict(const ReadmeData& d) {
          " m, while everything else (under calibrated its O(d) term, section 6; MuJoCo's step) "
          "is at most " +
          format_significant(builtin_rest) +
-         " m; no setting of\nMuJoCo 2.2.2 removes the push (`friction.md`). Without friction: "
+         " m; no setting of\nMuJoCo 2.2.2 removes the push (`friction.md`); MuJoCo 3.14 has "
+         "the same law, and its `--friction damper` takes the push out (the advice above). "
+         "Without friction: "
          "bounces of an underdamped body (a\nsmall difference of restitution carried from bounce "
          "to bounce) and, in the shipped scenes, the\ncompression-only damper MuJoCo cannot "
          "represent. `contact2d compare` measures each cause by removing\nit (section 1) and "
@@ -413,7 +651,9 @@ std::string summary(const ReadmeData& d) {
 std::string page_index() {
   Table t{{"page", "what is in it"}, {}};
   for (const auto& [page, what] : std::vector<std::pair<std::string, std::string>>{
-           {"README.md", "this page: which mapping, how close MuJoCo gets, every case in detail"},
+           {"README.md",
+            "this page: which mapping, how close MuJoCo 2.2.2 and 3.14 get, every case in "
+            "detail"},
            {"sweep.md",
             "error against run time of every integrator and Δt, convergence orders, "
             "the cost per step"},
@@ -442,13 +682,19 @@ std::string page_index() {
 
 // The title, the index of pages and the first screen.
 std::string readme_intro(const ReadmeData& d) {
-  std::string out = R"md(# contact2d against MuJoCo 2.2.2
-
+  const bool v3 = !d.kelvin_voigt_v3.empty();
+  std::string out = std::string(v3 ? "# contact2d against MuJoCo 2.2.2 and 3.14\n"
+                                   : "# contact2d against MuJoCo 2.2.2\n") +
+                    R"md(
 Generated by `contact2d report` (`scripts/demo` builds, then runs it): every
 number on this page comes from that run; the wall-clock columns vary from
-run to run and machine to machine.
-
-)md";
+run to run and machine to machine.)md";
+  out += v3 ? " MuJoCo 2.2.2 is the native library the distributions ship; MuJoCo\n3.14 "
+              "(`--engine mujoco3`, WebAssembly under Node) runs the model written for it\n"
+              "beside it in the same cases, its own figures shown where the two versions\n"
+              "part by more than rounding (" +
+                  sci(kVersionsRounding) + " m).\n\n"
+            : "\n\n";
   out += page_index();
   out += summary(d);
   return out;
@@ -527,7 +773,9 @@ Same scenes, `--set contact.damping=kelvin_voigt`: the law MuJoCo's soft
 contact has. What remains is the mapping, friction and contact geometry.
 
 )md";
-  out += mapping_table(d.kelvin_voigt);
+  out += mapping_table(d.kelvin_voigt, d.kelvin_voigt_v3);
+  if (!d.kelvin_voigt_v3.empty())
+    out += "\nThe last column is MuJoCo 3.14 on the same case (`--engine mujoco3`).\n";
   out += "\nSmallest maximum position error per scene:\n\n";
   out += winners(d.kelvin_voigt, d);
   out += R"md(
@@ -628,6 +876,7 @@ mapping, each run without friction (μ = 0) and with it.
            " of " + std::to_string(d.random_compensated.size()) + ": " +
            band_headline(compensated) + ".\n";
   }
+  out += random_versions_text(d);
   out += R"md(
 Why the bands differ: the calibrated force differs from Kelvin–Voigt by a
 relative O(d·A/Â) (section 7, impedance d = 1e-4), a slightly different

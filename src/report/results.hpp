@@ -44,6 +44,13 @@ struct ThreeWayCase {
   // the difference; compare --full-diagnosis makes them).
   std::vector<std::string> not_rerun;
   std::string animation;  // file name in the report directory; empty: not drawn
+  // MuJoCo 3.14 on the same scene (the model written for it, the same
+  // mapping): its distance to the reference and to 2.2.2 (m, NaN when
+  // MuJoCo 3 did not run), and its animation beside the reference when it
+  // differs from 2.2.2 by more than rounding (empty otherwise).
+  double ref_vs_v3 = std::numeric_limits<double>::quiet_NaN();
+  double v2_vs_v3 = std::numeric_limits<double>::quiet_NaN();
+  std::string animation_v3;
 };
 
 // The shipped goal replay on both engines (section 9).
@@ -69,6 +76,9 @@ struct ReplayComparison {
 struct MappingCase {
   std::string scene, mapping;
   ComparisonRow result;
+  // In MuJoCo 3.14's list (ReadmeData::kelvin_voigt_v3): the largest
+  // distance between 3.14's and 2.2.2's positions (m); NaN in 2.2.2's.
+  double v2_vs_v3 = std::numeric_limits<double>::quiet_NaN();
 };
 
 // A line of the goal table (section 3): the verdict is computed by the page.
@@ -82,6 +92,13 @@ struct GoalCase {
   double friction_shape = std::numeric_limits<double>::quiet_NaN();
   double friction_push = std::numeric_limits<double>::quiet_NaN();
   double friction_rest = std::numeric_limits<double>::quiet_NaN();
+  // MuJoCo 3.14 on the same case (NaN when it did not run): against the
+  // reference (max pos, max angle), the rest (with friction), and its
+  // distance to 2.2.2.
+  double v3_max_pos = std::numeric_limits<double>::quiet_NaN();
+  double v3_max_angle = std::numeric_limits<double>::quiet_NaN();
+  double v3_rest = std::numeric_limits<double>::quiet_NaN();
+  double v2_vs_v3 = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct GeometryCase {
@@ -108,6 +125,19 @@ struct RandomCase {
   // the same mapping): the cone's shape, its push, and the rest (the
   // reference under MuJoCo's own law against MuJoCo).
   double friction_shape = 0.0, friction_push = 0.0, friction_rest = 0.0;
+  // In a list of MuJoCo 3.14's runs (ReadmeData::random_v3): the largest
+  // distance between 3.14 and 2.2.2 over both runs (m); NaN in 2.2.2's.
+  double v2_vs_v3 = std::numeric_limits<double>::quiet_NaN();
+};
+
+// MuJoCo 3.14's friction damper (`--friction damper`, compensated) on one
+// scene: the reference ↔ 3.14 without it and with it (m), and the command
+// that prints both (add `--friction damper`).
+struct DamperCase {
+  std::string label;    // "point mass sliding to rest", …
+  std::string command;  // "contact2d compare … --engine mujoco3 --mapping compensated"
+  double without = std::numeric_limits<double>::quiet_NaN();
+  double with = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct RandomConfig {
@@ -138,6 +168,15 @@ struct ReadmeData {
   // The same scenes under the compensated mapping (empty: not run), which
   // removes the calibrated force's O(d) term: the step the report shows.
   std::vector<RandomCase> random_compensated;
+  // MuJoCo 3.14 (the model written for it; `--engine mujoco3`) on the same
+  // cases, each list empty when it did not run (mujoco3_not_run says why):
+  // section 2's Kelvin–Voigt runs, the random scenes under each mapping
+  // (their shape and push are the reference's, as 2.2.2's), and its
+  // friction damper where it helps most and where it hurts most.
+  std::string mujoco3_not_run;
+  std::vector<MappingCase> kelvin_voigt_v3;
+  std::vector<RandomCase> random_v3, random_compensated_v3;
+  std::vector<DamperCase> damper_helps, damper_hurts;
 };
 
 // ------------------------------------------------------------- sweep.md

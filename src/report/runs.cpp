@@ -2,6 +2,7 @@
 // file of the report that runs anything.
 #include "report/runs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -34,6 +35,7 @@
 #include "io/recording.hpp"
 #include "io/scene_file.hpp"
 #include "mujoco/mjcf.hpp"
+#include "mujoco3/node_mujoco.hpp"
 #include "report/bench_json.hpp"
 #ifdef CONTACT2D_WITH_WINDOW
 #include "game/comparison_video.hpp"
@@ -71,32 +73,24 @@ std::pair<engines::EngineRun, engines::EngineRun> run_both(const engines::Engine
   return runs;
 }
 
-}  // namespace
-
-bool mujoco_built() { return engines::mujoco_available(); }
-
-ComparisonRow compare_engines(const Scene& scene, const std::string& source,
-                              const std::string& mapping, const std::string& geometry,
-                              const std::string& plot_png) {
-  namespace mj = contact2d::mujoco;
-  const mj::MjcfOptions options = mj::mjcf_options(mapping, geometry, source);
-  ComparisonRow c;
-  c.mujoco_integrator = mj::mujoco_integrator(scene.sim.integrator);
+// MuJoCo (2.2.2: "mujoco", 3.14: "mujoco3") under a mapping and geometry.
+engines::EngineSpec mujoco_spec(const std::string& kind, const std::string& mapping,
+                                const std::string& geometry, const std::string& source) {
   engines::EngineSpec spec;
-  spec.kind = "mujoco";
+  spec.kind = kind;
   spec.set("mapping", mapping);
   spec.set("geometry", geometry);
   spec.source = source;
-  const auto [ref, mujoco] = run_both(spec, scene, source);
+  return spec;
+}
+
+// A comparison's row from the reference's and MuJoCo's runs.
+ComparisonRow comparison_row(const Scene& scene, const engines::EngineRun& ref,
+                             const engines::EngineRun& mujoco) {
+  namespace mj = contact2d::mujoco;
   const analysis::TrajectoryError e = analysis::error_between(ref.trajectory, mujoco.trajectory);
-  if (!plot_png.empty()) {
-    const std::string title = std::string(shape_name(scene.shape)) + ": ref vs MuJoCo, " +
-                              engines::integrator_label("mujoco", scene.sim.integrator) +
-                              ", Δt = " + format_number(scene.sim.dt) + " s, " +
-                              std::string(mj::mapping_name(options.mapping)) + " mapping, " +
-                              std::string(damping_law_title(scene.contact.damping)) + " damping";
-    plot_comparison(plot_png, title, ref.trajectory, mujoco.trajectory, "ref", "MuJoCo");
-  }
+  ComparisonRow c;
+  c.mujoco_integrator = mj::mujoco_integrator(scene.sim.integrator);
   c.shape = std::string(shape_name(scene.shape));
   c.dt = scene.sim.dt;
   c.duration = scene.sim.duration;
@@ -111,8 +105,65 @@ ComparisonRow compare_engines(const Scene& scene, const std::string& source,
   return c;
 }
 
+// MuJoCo 3.14's run of the scene; throws std::runtime_error when it diverges.
+engines::EngineRun run_mujoco3(const engines::EngineSpec& spec, const Scene& scene,
+                               const std::string& source) {
+  engines::EngineRun run = engines::run_engine(spec, scene);
+  if (run.trajectory.divergence)
+    throw std::runtime_error(source + ": MuJoCo 3.14: " + run.divergence_message);
+  return run;
+}
+
+}  // namespace
+
+bool mujoco_built() { return engines::mujoco_available(); }
+
+std::string mujoco3_missing() { return mujoco3::missing(); }
+
+namespace {
+
+// compare --plot: x, y, θ of both engines and their distance.
+void plot_ref_vs_mujoco(const std::string& plot_png, const Scene& scene, const std::string& mapping,
+                        const engines::EngineRun& ref, const engines::EngineRun& mujoco) {
+  if (plot_png.empty()) return;
+  namespace mj = contact2d::mujoco;
+  const mj::MjcfOptions options = mj::mjcf_options(mapping, "corners", "");
+  const std::string title = std::string(shape_name(scene.shape)) + ": ref vs MuJoCo, " +
+                            engines::integrator_label("mujoco", scene.sim.integrator) +
+                            ", Δt = " + format_number(scene.sim.dt) + " s, " +
+                            std::string(mj::mapping_name(options.mapping)) + " mapping, " +
+                            std::string(damping_law_title(scene.contact.damping)) + " damping";
+  plot_comparison(plot_png, title, ref.trajectory, mujoco.trajectory, "ref", "MuJoCo");
+}
+
+}  // namespace
+
+ComparisonRow compare_engines(const Scene& scene, const std::string& source,
+                              const std::string& mapping, const std::string& geometry,
+                              const std::string& plot_png) {
+  const auto [ref, mujoco] =
+      run_both(mujoco_spec("mujoco", mapping, geometry, source), scene, source);
+  plot_ref_vs_mujoco(plot_png, scene, mapping, ref, mujoco);
+  return comparison_row(scene, ref, mujoco);
+}
+
+VersionsComparison compare_versions(const Scene& scene, const std::string& source,
+                                    const std::string& mapping, const std::string& geometry,
+                                    const std::string& plot_png) {
+  const auto [ref, v2] = run_both(mujoco_spec("mujoco", mapping, geometry, source), scene, source);
+  plot_ref_vs_mujoco(plot_png, scene, mapping, ref, v2);
+  const engines::EngineRun v3 =
+      run_mujoco3(mujoco_spec("mujoco3", mapping, geometry, source), scene, source);
+  VersionsComparison out;
+  out.v2 = comparison_row(scene, ref, v2);
+  out.v3 = comparison_row(scene, ref, v3);
+  out.apart = analysis::error_between(v2.trajectory, v3.trajectory).max_pos;
+  return out;
+}
+
 ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
-                               const std::string& law, double tol, ThreeWayRuns* keep) {
+                               const std::string& law, double tol, ThreeWayRuns* keep,
+                               bool mujoco3) {
   engines::EngineSpec spec;
   spec.kind = "mujoco";
   spec.source = source;
@@ -133,7 +184,15 @@ ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
   for (const analysis::Finding& f : d.findings)
     if (f.named) c.causes.push_back({f.cause, f.share, f.fix});
   c.not_rerun = d.not_rerun;
+  Trajectory v3;
+  if (mujoco3) {
+    v3 = run_mujoco3(mujoco_spec("mujoco3", "calibrated", "corners", source), scene, source)
+             .trajectory;
+    c.ref_vs_v3 = analysis::error_between(ref.trajectory, v3).max_pos;
+    c.v2_vs_v3 = analysis::error_between(mujoco.trajectory, v3).max_pos;
+  }
   if (keep) {
+    keep->mujoco3 = std::move(v3);
     keep->scene = scene;
     keep->reference = std::move(ref.trajectory);
     keep->mujoco = std::move(mujoco.trajectory);
@@ -143,20 +202,22 @@ ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
   return c;
 }
 
-std::string animate_three_way(const ThreeWayRuns& runs, const std::string& video, ThreeWayCase& c) {
+std::string animate_three_way(const ThreeWayRuns& runs, const std::string& video, ThreeWayCase& c,
+                              bool mujoco3) {
 #ifdef CONTACT2D_WITH_WINDOW
   try {
+    const std::string engine = mujoco3 ? "MuJoCo 3.14" : "MuJoCo";
     game::ComparisonVideoInput in;
     in.scene = &runs.scene;
     in.reference = &runs.reference;
-    in.second = &runs.mujoco;
+    in.second = mujoco3 ? &runs.mujoco3 : &runs.mujoco;
     in.converged = runs.converged_available ? &runs.converged : nullptr;
-    in.title = c.scene + " (" + c.law + "): ref vs MuJoCo, " +
+    in.title = c.scene + " (" + c.law + "): ref vs " + engine + ", " +
                engines::integrator_label("mujoco", runs.scene.sim.integrator) + ", calibrated";
     in.reference_label = "ref";
-    in.second_label = "MuJoCo";
+    in.second_label = engine;
     game::write_comparison_video(video, in, 20, 640, 360);
-    c.animation = std::filesystem::path(video).filename().string();
+    (mujoco3 ? c.animation_v3 : c.animation) = std::filesystem::path(video).filename().string();
     return "";
   } catch (const InputError& e) {
     return e.what();
@@ -165,6 +226,7 @@ std::string animate_three_way(const ThreeWayRuns& runs, const std::string& video
   (void)runs;
   (void)video;
   (void)c;
+  (void)mujoco3;
   return "this contact2d was built without the game's window (GLFW, OpenGL)";
 #endif
 }
@@ -341,20 +403,42 @@ EngineOutcome simulate_outcome(const std::string& path, const std::string& engin
 
 double named_share() { return analysis::kNamedShare; }
 
-void add_friction_parts(const Scene& scene, const std::string& mapping, GoalCase& g) {
-  const analysis::FrictionParts parts = analysis::friction_parts(scene, mapping);
+void add_friction_parts(const Scene& scene, const std::string& mapping, GoalCase& g, bool mujoco3) {
+  const analysis::FrictionParts parts = analysis::friction_parts(scene, mapping, mujoco3);
   g.friction_shape = parts.shape;
   g.friction_push = parts.push;
   g.friction_rest = parts.rest;
+  g.v3_rest = parts.rest_v3;
 }
 
-RandomCase compare_random_scene(const RandomScene& r, const std::string& mapping) {
+RandomCase compare_random_scene(const RandomScene& r, const std::string& mapping, RandomCase* v3) {
   Scene frictionless = r.scene;
   frictionless.contact.mu = 0.0;
   const std::string source = "random scene " + r.name;
-  const ComparisonRow without = compare_engines(frictionless, source, mapping, "corners");
-  const ComparisonRow friction = compare_engines(r.scene, source, mapping, "corners");
-  const analysis::FrictionParts parts = analysis::friction_parts(r.scene, mapping);
+  // With friction, friction_parts's own runs: its total is compare's
+  // distance (the same reference and MuJoCo runs).
+  const analysis::FrictionParts parts = analysis::friction_parts(r.scene, mapping, v3 != nullptr);
+  if (!parts.ok) throw std::runtime_error(source + ": an engine diverged with friction");
+  ComparisonRow without;
+  if (v3) {
+    const VersionsComparison both = compare_versions(frictionless, source, mapping, "corners");
+    without = both.v2;
+    *v3 = {r.name,
+           without.shape,
+           r.mass,
+           r.scene.contact.k,
+           r.scene.contact.c,
+           r.scene.contact.mu,
+           both.v3.max_pos,
+           both.v3.max_angle,
+           parts.total_v3,
+           parts.shape,
+           parts.push,
+           parts.rest_v3,
+           std::max(both.apart, parts.apart_v3)};
+  } else {
+    without = compare_engines(frictionless, source, mapping, "corners");
+  }
   return {r.name,
           without.shape,
           r.mass,
@@ -363,7 +447,7 @@ RandomCase compare_random_scene(const RandomScene& r, const std::string& mapping
           r.scene.contact.mu,
           without.max_pos,
           without.max_angle,
-          friction.max_pos,
+          parts.total,
           parts.shape,
           parts.push,
           parts.rest};
@@ -381,6 +465,8 @@ analysis::ClosedFormTable closed_form_rows(unsigned threads) {
 std::vector<analysis::FrictionRow> friction_rows(unsigned threads) {
   return analysis::friction_table(threads);
 }
+
+std::vector<analysis::FrictionScene> friction_scene_list() { return analysis::friction_scenes(); }
 
 analysis::VersionTable version_rows(const std::vector<analysis::NamedScene>& scenes,
                                     unsigned threads) {

@@ -30,6 +30,9 @@ namespace contact2d::report {
 
 // Whether this contact2d was built with MuJoCo.
 bool mujoco_built();
+// Why MuJoCo 3.14 cannot run here (Node or its package missing); empty
+// when it can.
+std::string mujoco3_missing();
 
 // `contact2d compare`: the scene on the reference and on MuJoCo under a
 // mapping and geometry ("calibrated", "corners", …), errors at the shared
@@ -40,24 +43,41 @@ ComparisonRow compare_engines(const Scene& scene, const std::string& source,
                               const std::string& mapping, const std::string& geometry,
                               const std::string& plot_png = "");
 
+// compare_engines on MuJoCo 2.2.2 and on 3.14 (`--engine mujoco3`: the
+// model written for MuJoCo 3, the same mapping and geometry), the
+// reference run once: each version's row, and the largest distance between
+// the versions' positions (m).
+struct VersionsComparison {
+  ComparisonRow v2, v3;
+  double apart = 0.0;
+};
+VersionsComparison compare_versions(const Scene& scene, const std::string& source,
+                                    const std::string& mapping, const std::string& geometry,
+                                    const std::string& plot_png = "");
+
 // `contact2d compare SCENE` under the calibrated mapping: three-way
 // distances at `tol` and the diagnosis (analysis/comparison.hpp), on this
 // thread. With `keep`, what it ran is kept there for its animation.
 struct ThreeWayRuns {
   Scene scene;
-  Trajectory reference, mujoco;
+  Trajectory reference, mujoco, mujoco3;  // mujoco3: empty when it did not run
   DenseTrajectory converged;
   bool converged_available = false;
 };
+// With `mujoco3`, MuJoCo 3.14 too (its distances in the case's *_v3).
 ThreeWayCase compare_three_way(const Scene& scene, const std::string& source,
-                               const std::string& law, double tol, ThreeWayRuns* keep = nullptr);
+                               const std::string& law, double tol, ThreeWayRuns* keep = nullptr,
+                               bool mujoco3 = false);
 
 // `contact2d compare SCENE --video VIDEO`: the case's animation drawn into
 // `video` and named in `c.animation`; when it cannot be drawn (no window
 // built, no offscreen context), returns the reason and leaves `animation`
 // empty. Run it on the program's main thread (a GLFW window is drawn
 // there).
-std::string animate_three_way(const ThreeWayRuns& runs, const std::string& video, ThreeWayCase& c);
+// With `mujoco3`, the reference beside MuJoCo 3.14 instead, named in
+// `c.animation_v3`.
+std::string animate_three_way(const ThreeWayRuns& runs, const std::string& video, ThreeWayCase& c,
+                              bool mujoco3 = false);
 
 // `contact2d play --headless --replay REPLAY` on the reference and on
 // MuJoCo (the built-in pitch), where the two balls part, and both
@@ -99,13 +119,17 @@ EngineOutcome simulate_outcome(const std::string& path, const std::string& engin
 double named_share();
 
 // The friction goal's split of MuJoCo's difference under a mapping
-// (analysis/friction_table.hpp: friction_parts) into `g`.
-void add_friction_parts(const Scene& scene, const std::string& mapping, GoalCase& g);
+// (analysis/friction_table.hpp: friction_parts) into `g`; with `mujoco3`,
+// MuJoCo 3.14's rest too.
+void add_friction_parts(const Scene& scene, const std::string& mapping, GoalCase& g,
+                        bool mujoco3 = false);
 
 // A random scene on both engines without and with friction, under a
 // mapping ("calibrated", "compensated"), and its difference with friction
-// taken apart.
-RandomCase compare_random_scene(const RandomScene& r, const std::string& mapping);
+// taken apart; with `v3`, MuJoCo 3.14's case into it (the same reference
+// runs; shape and push are the reference's).
+RandomCase compare_random_scene(const RandomScene& r, const std::string& mapping,
+                                RandomCase* v3 = nullptr);
 
 // Whether the scene's force evaluations start with a sincos: a body that
 // turns, with contact points that turn with it.
@@ -117,6 +141,8 @@ bool points_turn(const Scene& scene);
 // analysis::parallel_for.
 analysis::ClosedFormTable closed_form_rows(unsigned threads);
 std::vector<analysis::FrictionRow> friction_rows(unsigned threads);
+// friction.md's scenes (analysis::friction_scenes), built without running.
+std::vector<analysis::FrictionScene> friction_scene_list();
 // MuJoCo 3.14 beside 2.2.2 on these scenes (analysis::version_table: one
 // Node process per thread that runs a row, kept for the thread's life; its
 // not_run says why when MuJoCo 3 cannot run here).

@@ -28,6 +28,52 @@ inline ComparisonRow comparison(double max_pos, double max_angle, double imprati
   return c;
 }
 
+// MuJoCo 3.14 beside 2.2.2 in the README's fixture: every case within
+// rounding of 2.2.2 (2e-13 m) except box / exact with the Kelvin–Voigt law
+// (0.03 m against 2.2.2's 0.02 m, 0.01 m apart), the box's friction goal
+// (0.005 m, 0.001 m apart) and the random scene s01 (0.02 m with friction,
+// 0.01 m apart); its damper helps on a sliding point mass (0.00165 → 7e-08
+// m) and hurts on the T (0.018 → 0.338 m).
+inline void add_mujoco3(ReadmeData& d) {
+  d.kelvin_voigt_v3 = d.kelvin_voigt;
+  for (MappingCase& c : d.kelvin_voigt_v3) {
+    c.v2_vs_v3 = 2e-13;
+    if (c.scene == "box" && c.mapping == "exact") {
+      c.result.max_pos = 0.03;
+      c.v2_vs_v3 = 0.01;
+    }
+  }
+  for (ThreeWayCase& c : d.three_way) {
+    c.ref_vs_v3 = c.ref_vs_mujoco;
+    c.v2_vs_v3 = 2e-13;
+  }
+  for (GoalCase& g : d.goals) {
+    g.v3_max_pos = g.result.max_pos;
+    g.v3_max_angle = g.result.max_angle;
+    g.v3_rest = g.friction_rest;
+    g.v2_vs_v3 = 0.0;
+    if (g.label == "box, c = 200, friction") {
+      g.v3_max_pos = 0.005;
+      g.v2_vs_v3 = 0.001;
+    }
+  }
+  d.random_v3 = d.random;
+  d.random_compensated_v3 = d.random_compensated;
+  for (std::vector<RandomCase>* runs : {&d.random_v3, &d.random_compensated_v3}) {
+    for (RandomCase& c : *runs) c.v2_vs_v3 = 2e-13;
+  }
+  d.random_v3[1].max_pos_friction = 0.02;
+  d.random_v3[1].v2_vs_v3 = 0.01;
+  d.damper_helps = {{"point mass sliding to rest",
+                     "contact2d compare validation/report/friction/point_slide.toml --engine "
+                     "mujoco3 --mapping compensated",
+                     0.00165, 7e-8}};
+  d.damper_hurts = {{"the built-in tshape with the Kelvin–Voigt law",
+                     "contact2d compare validation/scenes/tshape.toml --set "
+                     "contact.damping=kelvin_voigt --engine mujoco3 --mapping compensated",
+                     0.018, 0.338}};
+}
+
 inline ReadmeData readme() {
   ReadmeData d;
   d.scenes = {"point_mass", "box"};
@@ -107,6 +153,22 @@ inline ReadmeData readme() {
                           {"s01", "box", 2, 5000, 100, 0.1, 2e-12, 3e-11, 0.011},
                           {"s02", "tshape", 1.25, 300000, 1500, 1, 4e-13, 1e-12, 0.1},
                           {"s03", "circle", 0.1, 100000, 50, 0.3, 3e-12, 1e-14, 0.001}};
+  add_mujoco3(d);
+  return d;
+}
+
+// The README's fixture without MuJoCo 3.14 (as a build without Node).
+inline ReadmeData readme_without_mujoco3() {
+  ReadmeData d = readme();
+  d.mujoco3_not_run = "node not found";
+  d.kelvin_voigt_v3.clear();
+  d.random_v3.clear();
+  d.random_compensated_v3.clear();
+  d.damper_helps.clear();
+  d.damper_hurts.clear();
+  const double nan = std::nan("");
+  for (ThreeWayCase& c : d.three_way) c.ref_vs_v3 = c.v2_vs_v3 = nan;
+  for (GoalCase& g : d.goals) g.v3_max_pos = g.v3_max_angle = g.v3_rest = g.v2_vs_v3 = nan;
   return d;
 }
 

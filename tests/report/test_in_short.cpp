@@ -5,12 +5,16 @@
 // the placeholders it names (SCENE, MAPPING, C, sNN) are filled in, `--json`
 // is appended, and `--no-diagnosis` where the figure is not the diagnosis's.
 // The figures are aggregated by the page's own rules (report/numbers.hpp).
+// MuJoCo 3.14's figures (issue 52) are the same commands with the option
+// the page names (`--engine mujoco3`), and its damper's figures the two
+// commands the page prints, without and with `--friction damper`.
 // Not covered: the friction table's "the cone's shape" and "its push" and
 // the same two maxima under "Why they still differ": friction.md's method
 // (analysis::friction_parts) compares two runs of the reference under two
 // friction laws, which no compare command prints.
-// About 160 runs of compare, ~20 s on two cores (label replay: not in the
-// sanitizer stage).
+// About 160 runs of compare on 2.2.2 and as many on 3.14 (each starting
+// Node), a few minutes on two cores (label replay: not in the sanitizer
+// stage).
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -166,18 +170,24 @@ TEST(InShort, EveryPrintedCommandReproducesItsFigure) {
   ASSERT_FALSE(mapping_list.empty());
   const std::vector<std::string> scenes = split_list(lists[1]);
   const std::vector<std::string> mappings = split_list(mapping_list[1]);
+  const std::smatch v3_add = find(text, R"(; on 3.14 add `([^`]*)`\))");
+  ASSERT_FALSE(v3_add.empty()) << text;
+  const std::string v3 = " " + v3_add[1].str();
   const size_t mapping_first = runs.size();
-  for (const std::string& s : scenes) {
-    for (const std::string& m : mappings) {
-      runs.push_back(
-          make_run(replace_all(replace_all(mapping_command, "SCENE", s), "MAPPING", m), false));
+  for (const std::string& version : {std::string(), v3}) {
+    for (const std::string& s : scenes) {
+      for (const std::string& m : mappings) {
+        runs.push_back(make_run(
+            replace_all(replace_all(mapping_command, "SCENE", s), "MAPPING", m) + version, false));
+      }
     }
   }
 
   // The random scenes, each with and without friction, under each mapping.
   const std::string random_command = command_with(text, "sNN.toml");
   const std::smatch random_adds = find(
-      text, R"(add `([^`]*)` for the frictionless columns, `([^`]*)` for the compensated rows)");
+      text,
+      R"(add `([^`]*)` for the frictionless columns, `([^`]*)` for the compensated rows, `([^`]*)` for MuJoCo 3.14's columns)");
   ASSERT_FALSE(random_command.empty());
   ASSERT_FALSE(random_adds.empty());
   const std::string random_dir = random_command.substr(
@@ -189,12 +199,15 @@ TEST(InShort, EveryPrintedCommandReproducesItsFigure) {
   }
   std::sort(names.begin(), names.end());
   ASSERT_FALSE(names.empty());
+  ASSERT_EQ(" " + random_adds[3].str(), v3);
   const size_t random_first = runs.size();
-  for (const std::string& mapping_add : {std::string(), " " + random_adds[2].str()}) {
-    for (const std::string& n : names) {
-      const std::string c = replace_all(random_command, "sNN", n) + mapping_add;
-      runs.push_back(make_run(c + " " + random_adds[1].str(), false));
-      runs.push_back(make_run(c, true));
+  for (const std::string& version : {std::string(), v3}) {
+    for (const std::string& mapping_add : {std::string(), " " + random_adds[2].str()}) {
+      for (const std::string& n : names) {
+        const std::string c = replace_all(random_command, "sNN", n) + mapping_add + version;
+        runs.push_back(make_run(c + " " + random_adds[1].str(), false));
+        runs.push_back(make_run(c, true));
+      }
     }
   }
 
@@ -207,39 +220,58 @@ TEST(InShort, EveryPrintedCommandReproducesItsFigure) {
   ASSERT_FALSE(goal_command.empty());
   ASSERT_FALSE(c_list.empty());
   const size_t goal_first = runs.size();
-  for (const std::string& c : split_list(c_list[1])) {
-    for (const std::string& s : scenes) {
-      const std::string g = replace_all(replace_all(goal_command, "SCENE", s), "=C", "=" + c);
-      runs.push_back(make_run(g + " " + c_list[2].str(), false));
-      runs.push_back(make_run(g, true));
-    }
-    if (!no_roll.empty()) {
-      runs.push_back(
-          make_run(replace_all(replace_all(goal_command, "SCENE", "circle"), "=C", "=" + c) + " " +
-                       no_roll[1].str(),
-                   false));
+  size_t goal_v3_first = 0;
+  for (const std::string& version : {std::string(), v3}) {
+    if (!version.empty()) goal_v3_first = runs.size();
+    for (const std::string& c : split_list(c_list[1])) {
+      for (const std::string& s : scenes) {
+        const std::string g = replace_all(replace_all(goal_command, "SCENE", s), "=C", "=" + c);
+        runs.push_back(make_run(g + " " + c_list[2].str() + version, false));
+        runs.push_back(make_run(g + version, true));
+      }
+      if (!no_roll.empty()) {
+        runs.push_back(
+            make_run(replace_all(replace_all(goal_command, "SCENE", "circle"), "=C", "=" + c) +
+                         " " + no_roll[1].str() + version,
+                     false));
+      }
     }
   }
   const size_t goal_end = runs.size();
+
+  // MuJoCo 3.14's damper: each printed command without and with it.
+  const std::smatch damper_commands = find(
+      text,
+      R"(The damper's figures: `(contact2d [^`]*)` and\n`(contact2d [^`]*)`, each without and with `([^`]*)`)");
+  ASSERT_FALSE(damper_commands.empty()) << text;
+  const size_t damper_first = runs.size();
+  for (const size_t k : {1U, 2U}) {
+    runs.push_back(make_run(damper_commands[k].str(), false));
+    runs.push_back(make_run(damper_commands[k].str() + " " + damper_commands[3].str(), false));
+  }
 
   run_all(runs);
   for (const PrintedRun& r : runs)
     ASSERT_TRUE(std::isfinite(number(r, "max_pos_err"))) << r.command << "\n" << r.output;
 
   // The recommendation's ratio and mapping.
-  std::vector<MappingCase> cases;
-  for (size_t i = mapping_first; i < random_first; ++i) {
-    const size_t k = i - mapping_first;
-    MappingCase c{scenes[k / mappings.size()], mappings[k % mappings.size()], {}};
-    c.result.max_pos = number(runs[i], "max_pos_err");
-    cases.push_back(c);
+  const std::smatch comparing = find(
+      text,
+      R"(\| for comparing with the reference \| `--mapping ([a-z]+)`: ([0-9.]+)× below the next best mapping \| `--mapping ([a-z]+)`: ([0-9.]+)× below the next best mapping \|)");
+  ASSERT_FALSE(comparing.empty()) << text;
+  const size_t per_version = scenes.size() * mappings.size();
+  for (size_t version = 0; version < 2; ++version) {
+    std::vector<MappingCase> cases;
+    for (size_t k = 0; k < per_version; ++k) {
+      MappingCase c{scenes[k / mappings.size()], mappings[k % mappings.size()], {}};
+      c.result.max_pos = number(runs[mapping_first + version * per_version + k], "max_pos_err");
+      cases.push_back(c);
+    }
+    const OverallWinner w = overall_winner(mapping_means(cases, scenes, mappings));
+    SCOPED_TRACE(version == 0 ? "2.2.2" : "3.14");
+    EXPECT_EQ(w.mapping, comparing[1 + 2 * version].str()) << mapping_command;
+    EXPECT_EQ(sig(w.ratio_to_next), comparing[2 + 2 * version].str()) << mapping_command;
   }
-  const OverallWinner w = overall_winner(mapping_means(cases, scenes, mappings));
-  const std::smatch ratio = find(text, R"(is\n([0-9.]+)× below the next best mapping)");
-  ASSERT_FALSE(ratio.empty());
-  EXPECT_EQ(sig(w.ratio_to_next), ratio[1].str()) << mapping_command;
-  const std::smatch closer = find(text, R"(`--mapping ([a-z]+)` comes closer)");
-  EXPECT_EQ(w.mapping, closer.empty() ? std::string("calibrated") : closer[1].str());
 
   // The random scenes' table, band by band, and the friction table.
   // Where the engines agree, no diagnosis runs: the page's soft_cone
@@ -266,11 +298,13 @@ TEST(InShort, EveryPrintedCommandReproducesItsFigure) {
     rest_of[agreeing_of[a]] = number(agreeing[a], "max_pos_err");
 
   const RandomConfig config{0, static_cast<int>(names.size()), 1e-5, 1e-4};
-  std::vector<std::vector<RandomCase>> by_mapping(2);
-  for (size_t m = 0; m < 2; ++m) {
+  // by_run[2 * version + mapping]: the random scenes' cases of one column.
+  std::vector<std::vector<RandomCase>> by_run(4);
+  for (size_t k = 0; k < 4; ++k) {
     for (size_t i = 0; i < names.size(); ++i) {
-      const PrintedRun& without = runs[random_first + 2 * (m * names.size() + i)];
-      const PrintedRun& with = runs[random_first + 2 * (m * names.size() + i) + 1];
+      const size_t at = random_first + 2 * (k * names.size() + i);
+      const PrintedRun& without = runs[at];
+      const PrintedRun& with = runs[at + 1];
       const Scene scene = load_scene(kRoot + "/" + random_dir + "/" + names[i] + ".toml");
       RandomCase c;
       c.name = names[i];
@@ -281,80 +315,112 @@ TEST(InShort, EveryPrintedCommandReproducesItsFigure) {
       c.max_pos_frictionless = number(without, "max_pos_err");
       c.max_angle_frictionless = number(without, "max_angle_err");
       c.max_pos_friction = number(with, "max_pos_err");
-      c.friction_rest = rest_of[random_first + 2 * (m * names.size() + i) + 1];
+      c.friction_rest = rest_of[at + 1];
       EXPECT_TRUE(std::isfinite(c.friction_rest)) << with.command << " has no friction_law re-run";
-      by_mapping[m].push_back(c);
+      by_run[k].push_back(c);
     }
   }
   const std::regex band_row(
-      R"(\n\| (ζ[^|]*|[0-9.]+ ≤ ζ[^|]*) \| ([a-z]+) \| (\d+) \| (\d+) \| (\S+) / (\S+) \| (\S+) \|)");
+      R"(\n\| (ζ[^|]*|[0-9.]+ ≤ ζ[^|]*) \| ([a-z]+) \| (\d+) \| (\d+) \| (\S+) / (\S+) \| (\S+) \| (\d+) \| (\S+) / (\S+) \| (\S+) \|)");
   std::vector<std::smatch> rows;
   for (auto it = std::sregex_iterator(text.begin(), text.end(), band_row);
        it != std::sregex_iterator(); ++it)
     rows.push_back(*it);
   ASSERT_EQ(rows.size(), 6U) << text;
-  const std::vector<ZetaBand> bands[2] = {random_bands(by_mapping[0], config),
-                                          random_bands(by_mapping[1], config)};
+  std::vector<std::vector<ZetaBand>> bands;
+  for (const std::vector<RandomCase>& cases : by_run) bands.push_back(random_bands(cases, config));
   for (size_t r = 0; r < rows.size(); ++r) {
     const size_t m = r % 2;
-    const ZetaBand& z = bands[m][r / 2];
     const std::smatch& row = rows[r];
     SCOPED_TRACE(row[0].str());
     EXPECT_EQ(row[2].str(), m == 0 ? "calibrated" : "compensated");
-    EXPECT_EQ(row[3].str(), std::to_string(z.count));
-    EXPECT_EQ(row[4].str(), std::to_string(z.reached));
-    EXPECT_EQ(row[5].str(), sig(z.median_pos));
-    EXPECT_EQ(row[6].str(), sig(z.max_pos));
-    EXPECT_EQ(row[7].str(), sig(z.max_pos_friction));
+    for (size_t version = 0; version < 2; ++version) {
+      const ZetaBand& z = bands[2 * version + m][r / 2];
+      const size_t at = version == 0 ? 4 : 8;  // the version's first column
+      if (version == 0) {
+        EXPECT_EQ(row[3].str(), std::to_string(z.count));
+      }
+      EXPECT_EQ(row[at].str(), std::to_string(z.reached)) << version;
+      EXPECT_EQ(row[at + 1].str(), sig(z.median_pos)) << version;
+      EXPECT_EQ(row[at + 2].str(), sig(z.max_pos)) << version;
+      EXPECT_EQ(row[at + 3].str(), sig(z.max_pos_friction)) << version;
+    }
   }
   const std::regex parts_row(
-      R"(\n\| (calibrated|compensated) \| (\S+) \| (\d+) of (\d+) \| \S+ \| \S+ \| (\S+) \(largest (\S+)\) \| (\d+) of (\d+) \|)");
+      R"(\n\| (calibrated|compensated) \| (2\.2\.2|3\.14) \| (\S+) \| (\d+) of (\d+) \| \S+ \| \S+ \| (\S+) \(largest (\S+)\) \| (\d+) of (\d+) \|)");
   size_t parts_seen = 0;
   for (auto it = std::sregex_iterator(text.begin(), text.end(), parts_row);
        it != std::sregex_iterator(); ++it, ++parts_seen) {
     const std::smatch& row = *it;
     SCOPED_TRACE(row[0].str());
-    const FrictionSummary f = friction_summary(by_mapping[row[1] == "calibrated" ? 0 : 1], 1e-3);
-    EXPECT_EQ(row[2].str(), sig(f.median_total));
-    EXPECT_EQ(row[3].str(), std::to_string(f.within));
-    EXPECT_EQ(row[4].str(), std::to_string(f.count));
-    EXPECT_EQ(row[5].str(), sig(f.median_rest));
-    EXPECT_EQ(row[6].str(), sig(f.max_rest));
-    EXPECT_EQ(row[7].str(), std::to_string(f.rest_within));
+    const FrictionSummary f =
+        friction_summary(by_run[2 * (row[2] == "3.14") + (row[1] == "compensated")], 1e-3);
+    EXPECT_EQ(row[3].str(), sig(f.median_total));
+    EXPECT_EQ(row[4].str(), std::to_string(f.within));
+    EXPECT_EQ(row[5].str(), std::to_string(f.count));
+    EXPECT_EQ(row[6].str(), sig(f.median_rest));
+    EXPECT_EQ(row[7].str(), sig(f.max_rest));
+    EXPECT_EQ(row[8].str(), std::to_string(f.rest_within));
   }
-  EXPECT_EQ(parts_seen, 2U) << text;
+  EXPECT_EQ(parts_seen, 4U) << text;
 
   // The built-in scenes: the frictionless and the friction lines, and the
-  // reference under MuJoCo's law (the diagnosis's friction_law re-run).
-  double frictionless = 0.0, friction = 0.0, rest = 0.0;
-  int reached = 0, count = 0;
+  // reference under MuJoCo's law (the diagnosis's friction_law re-run), on
+  // each version.
+  struct Builtin {
+    double frictionless = 0.0, friction = 0.0, rest = 0.0;
+    int reached = 0, count = 0;
+  };
+  Builtin builtin[2];
   for (size_t i = goal_first; i < goal_end; ++i) {
     const PrintedRun& r = runs[i];
+    Builtin& b = builtin[i >= goal_v3_first];
     const bool without = r.command.find(c_list[2].str()) != std::string::npos;
     const double pos = number(r, "max_pos_err");
     if (without) {
-      frictionless = std::max(frictionless, pos);
-      ++count;
-      reached += goal_reached(pos, number(r, "max_angle_err"), config.pos_goal, config.angle_goal);
+      b.frictionless = std::max(b.frictionless, pos);
+      ++b.count;
+      b.reached +=
+          goal_reached(pos, number(r, "max_angle_err"), config.pos_goal, config.angle_goal);
     } else {
-      friction = std::max(friction, pos);
-      if (r.diagnosis) rest = std::max(rest, rest_of[i]);
+      b.friction = std::max(b.friction, pos);
+      if (r.diagnosis) b.rest = std::max(b.rest, rest_of[i]);
     }
   }
-  const std::smatch builtin = find(
+  const std::smatch builtin_v2 = find(
       text,
       R"(without friction (\d+) of (\d+) cases within \S+ m and \S+ rad \(largest (\S+) m\), with friction up to (\S+) m apart)");
-  ASSERT_FALSE(builtin.empty()) << text;
-  EXPECT_EQ(builtin[1].str(), std::to_string(reached));
-  EXPECT_EQ(builtin[2].str(), std::to_string(count));
-  EXPECT_EQ(builtin[3].str(), sig(frictionless)) << goal_command << " " << c_list[2].str();
-  EXPECT_EQ(builtin[4].str(), sig(friction)) << goal_command;
+  ASSERT_FALSE(builtin_v2.empty()) << text;
+  EXPECT_EQ(builtin_v2[1].str(), std::to_string(builtin[0].reached));
+  EXPECT_EQ(builtin_v2[2].str(), std::to_string(builtin[0].count));
+  EXPECT_EQ(builtin_v2[3].str(), sig(builtin[0].frictionless))
+      << goal_command << " " << c_list[2].str();
+  EXPECT_EQ(builtin_v2[4].str(), sig(builtin[0].friction)) << goal_command;
   const std::smatch soft = find(text, R"(they are at most (\S+) m apart)");
   ASSERT_FALSE(soft.empty());
-  EXPECT_EQ(soft[1].str(), sig(rest));
+  EXPECT_EQ(soft[1].str(), sig(builtin[0].rest));
   const std::smatch rest_why = find(text, R"(MuJoCo's step\) is at most (\S+) m;)");
   ASSERT_FALSE(rest_why.empty());
-  EXPECT_EQ(rest_why[1].str(), sig(rest));
+  EXPECT_EQ(rest_why[1].str(), sig(builtin[0].rest));
+  const std::smatch builtin_v3 = find(
+      text,
+      R"(On MuJoCo 3.14 \(the same commands with `([^`]*)`\): without friction (\d+) of (\d+) within \S+ m and \S+ rad \(largest (\S+) m\), with friction up to (\S+) m, under MuJoCo's own law at most (\S+) m)");
+  ASSERT_FALSE(builtin_v3.empty()) << text;
+  EXPECT_EQ(" " + builtin_v3[1].str(), v3);
+  EXPECT_EQ(builtin_v3[2].str(), std::to_string(builtin[1].reached));
+  EXPECT_EQ(builtin_v3[3].str(), std::to_string(builtin[1].count));
+  EXPECT_EQ(builtin_v3[4].str(), sig(builtin[1].frictionless));
+  EXPECT_EQ(builtin_v3[5].str(), sig(builtin[1].friction));
+  EXPECT_EQ(builtin_v3[6].str(), sig(builtin[1].rest));
+
+  // MuJoCo 3.14's damper, where it helps and where it hurts.
+  const std::smatch damper =
+      find(text, R"(helps most on [^:|]*: (\S+) → (\S+) m; hurts most on [^:|]*: (\S+) → (\S+) m)");
+  ASSERT_FALSE(damper.empty()) << text;
+  for (size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(damper[1 + k].str(), sig(number(runs[damper_first + k], "max_pos_err")))
+        << runs[damper_first + k].command;
+  }
 }
 
 }  // namespace

@@ -147,5 +147,29 @@ TEST(ReportNumbers, OrdersAndStability) {
   EXPECT_NEAR(w[2], 700 * 0.0011, 1e-12);
 }
 
+// MuJoCo 3.14 beside 2.2.2: within kVersionsRounding (1e-9 m) a case is
+// "the same" to its distance, beyond it the distance is named; NaN (not
+// run) is neither.
+TEST(ReportNumbers, VersionsApart) {
+  EXPECT_EQ(versions_apart_text(0.0), "same as 2.2.2 to the bit");
+  EXPECT_EQ(versions_apart_text(2.34e-13), "same as 2.2.2 to 2.3e-13 m");
+  EXPECT_EQ(versions_apart_text(1e-9), "same as 2.2.2 to 1e-09 m");
+  EXPECT_EQ(versions_apart_text(1.1e-9), "2.2.2 ↔ 3.14: 1.1e-09 m");
+  EXPECT_EQ(versions_apart_text(std::nan("")), "–");
+  EXPECT_FALSE(versions_differ(std::nan("")));
+  EXPECT_TRUE(versions_differ(0.02));
+}
+
+// A ratio that prints as 1 is "level with", never "1× smaller".
+TEST(ReportNumbers, RatioPhrase) {
+  EXPECT_EQ(ratio_phrase(2.07, "smaller than", "the next best"),
+            "2.07× smaller than the next best");
+  EXPECT_EQ(ratio_phrase(1.006, "smaller than", "the next best"),
+            "1.01× smaller than the next best");
+  EXPECT_EQ(ratio_phrase(1.004, "smaller than", "the next best"),
+            "level with the next best (within 0.5 %)");
+  EXPECT_EQ(ratio_phrase(1.0, "below", "the next best"), "level with the next best (within 0.5 %)");
+}
+
 }  // namespace
 }  // namespace contact2d::report

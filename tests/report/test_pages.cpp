@@ -95,8 +95,8 @@ TEST(ReportPages, ReadmeMatchesGolden) {
 // (fixtures.hpp): the random scenes' medians and the built-in box's parts.
 TEST(ReportPages, ReadmeTakesTheFrictionDifferenceApart) {
   const std::string page = readme_page(fixtures::readme());
-  EXPECT_NE(page.find("| calibrated | 0.006 | 1 of 4 | 2.1e-05 | 0.006 | 2e-09 (largest 2e-06) | "
-                      "4 of 4 |"),
+  EXPECT_NE(page.find("| calibrated | 2.2.2 | 0.006 | 1 of 4 | 2.1e-05 | 0.006 | 2e-09 (largest "
+                      "2e-06) | 4 of 4 |"),
             std::string::npos);
   EXPECT_NE(page.find("they are at most 9e-10 m apart"), std::string::npos);
   EXPECT_NE(page.find("moves a body by up to 3e-05 m and its push"), std::string::npos);
@@ -296,20 +296,93 @@ TEST(ReportPages, ReadmeVerdictsAndCounts) {
 // on, and never as "Use the `compensated` mapping".
 TEST(ReportPages, ReadmeRecommendsOneMappingToBuildOn) {
   const std::string use = "**Use the `calibrated` mapping**";
-  const std::string comparing =
-      "For comparing the two engines, `--mapping compensated` comes closer";
+  const std::string comparing = "| for comparing with the reference | `--mapping compensated`: ";
   const std::string plain = readme_page(fixtures::readme());
   EXPECT_NE(plain.find(use), std::string::npos);
   EXPECT_EQ(plain.find(comparing), std::string::npos);
   ReadmeData d = fixtures::readme();
   d.mappings.push_back("compensated");
-  for (const std::string& scene : d.scenes)  // ten times below every other mapping
+  for (const std::string& scene : d.scenes) {  // ten times below every other mapping
     d.kelvin_voigt.push_back({scene, "compensated", fixtures::comparison(1e-4, 1e-4)});
+    d.kelvin_voigt_v3.push_back({scene, "compensated", fixtures::comparison(1e-4, 1e-4), 1e-13});
+  }
   const std::string page = readme_page(d);
   EXPECT_NE(page.find(use), std::string::npos);
   EXPECT_EQ(page.find("**Use the `compensated` mapping**"), std::string::npos);
   EXPECT_NE(page.find(comparing), std::string::npos);
   EXPECT_NE(page.find("not for a model to build on"), std::string::npos);
+  EXPECT_EQ(plain.find("not for a model to build on"), std::string::npos);
+}
+
+// The front page answers for both versions (issue 52): its title, the advice
+// per version with MuJoCo 3.14's damper figures, 3.14's columns of the
+// damping-band and friction tables from its own runs (the fixture's s01
+// differs from 2.2.2), and, case by case, 3.14's figure where the versions
+// part by more than rounding and "same as 2.2.2 to X m" where they do not.
+TEST(ReportPages, ReadmeAnswersForBothVersions) {
+  const std::string page = readme_page(fixtures::readme());
+  EXPECT_EQ(page.rfind("# contact2d against MuJoCo 2.2.2 and 3.14\n", 0), 0U);
+  EXPECT_NE(page.find("| a model to build on | `calibrated` | `calibrated` |"), std::string::npos);
+  // Means as printed (Kelvin–Voigt, a tenth of the shipped errors): 2.2.2
+  // calibrated 0.00548, exact 0.00707 (1.29×); 3.14's exact √(0.025·0.03) =
+  // 0.0274 and seed 0.0316, so 0.0274 / 0.00548 = 5×.
+  EXPECT_NE(page.find("| for comparing with the reference | `--mapping calibrated`: 1.29× below "
+                      "the next best mapping | `--mapping calibrated`: 5× below the next best "
+                      "mapping |"),
+            std::string::npos);
+  EXPECT_NE(page.find("helps most on point mass sliding to rest: 0.00165 → 7e-08 m; hurts most "
+                      "on the built-in tshape with the Kelvin–Voigt law: 0.018 → 0.338 m"),
+            std::string::npos);
+  EXPECT_NE(page.find("in s01 calibrated (0.01 m); every other scene within 1e-9 m of it."),
+            std::string::npos);
+  // ζ < 0.3 (s00, s03): 3.14 with friction 0.002 (s03); 0.3 ≤ ζ < 1 (s01): 0.02.
+  EXPECT_NE(page.find("| ζ < 0.3 | calibrated | 2 | 1 | 0.000151 / 0.0003 | 0.002 | 1 | "
+                      "0.000151 / 0.0003 | 0.002 |"),
+            std::string::npos);
+  EXPECT_NE(page.find("| 0.3 ≤ ζ < 1 | calibrated | 1 | 0 | 5e-06 / 5e-06 | 0.01 | 0 | "
+                      "5e-06 / 5e-06 | 0.02 |"),
+            std::string::npos);
+  EXPECT_NE(page.find("MuJoCo 3.14 against 2.2.2 on every one of these runs: up to 0.01 m apart"),
+            std::string::npos);
+  // Friction medians on 3.14: (0.002 + 0.02)/2 = 0.011.
+  EXPECT_NE(page.find("| calibrated | 3.14 | 0.011 | 1 of 4 |"), std::string::npos);
+  EXPECT_NE(page.find("| box / exact | 0.002 |"), std::string::npos);
+  EXPECT_NE(page.find("| 0.03 (2.2.2 ↔ 3.14: 0.01 m) |\n"), std::string::npos);
+  EXPECT_NE(page.find("| box / calibrated | 0.003 |"), std::string::npos);
+  EXPECT_NE(page.find("| same as 2.2.2 to 2e-13 m |\n"), std::string::npos);
+  EXPECT_NE(page.find("point_mass on MuJoCo 3.14: same as 2.2.2 to 2e-13 m"), std::string::npos);
+  EXPECT_NE(page.find("| box, c = 200, friction | 12.5 | 0.004 | 3e-3 | 0.5 | - | **no** | 0.005 "
+                      "(2.2.2 ↔ 3.14: 0.001 m) |"),
+            std::string::npos);
+  EXPECT_NE(page.find("On MuJoCo 3.14 (the same commands with `--engine mujoco3`): without "
+                      "friction 1 of 2 within 1e-5 m and 1e-4 rad (largest 3e-06 m), with "
+                      "friction up to 0.005 m"),
+            std::string::npos);
+}
+
+// Without MuJoCo 3.14 the page says why and shows 2.2.2 alone.
+TEST(ReportPages, ReadmeWithoutMuJoCo3SaysWhy) {
+  const std::string page = readme_page(fixtures::readme_without_mujoco3());
+  EXPECT_EQ(page.rfind("# contact2d against MuJoCo 2.2.2\n", 0), 0U);
+  EXPECT_NE(page.find("MuJoCo 3.14 did not run here (node not found)."), std::string::npos);
+  EXPECT_EQ(page.find("| MuJoCo 3.14 |"), std::string::npos);
+  EXPECT_EQ(page.find("3.14 with friction"), std::string::npos);
+  EXPECT_EQ(page.find("same as 2.2.2"), std::string::npos);
+  EXPECT_EQ(page.find("| 3.14 |"), std::string::npos);
+}
+
+// A winner level with the next best to three digits is said so, not "1×".
+TEST(ReportPages, ReadmeSaysLevelWhenTheRatioPrintsAsOne) {
+  ReadmeData d = fixtures::readme();
+  for (MappingCase& c : d.shipped) {
+    if (c.scene != "box") continue;  // seed 0.2 m, then 0.2001 m: 1.0005×
+    if (c.mapping == "exact") c.result.max_pos = 0.2001;
+    if (c.mapping == "calibrated") c.result.max_pos = 0.2002;
+  }
+  const std::string page = readme_page(d);
+  EXPECT_NE(page.find("- box: **seed** (0.2 m), level with the next best mapping (within 0.5 %)"),
+            std::string::npos);
+  EXPECT_EQ(page.find("1× smaller"), std::string::npos);
 }
 
 // The front page is an index of every page the report writes (report/plan.cpp:
@@ -402,6 +475,25 @@ TEST(ReportPages, TheGoalReplaySectionShowsTheRecordedGoal) {
   const std::string page = readme_page(d);
   EXPECT_NE(page.find("![A goal against the keeper](goal.gif)"), std::string::npos);
   EXPECT_NE(page.find("[goal.mp4](goal.mp4)"), std::string::npos);
+}
+
+// Section 9 shows what `play` prints as a table, a field a row and an
+// engine a column (issue 51 §3: not raw JSON lines); a field one engine
+// lacks is "–", an output that is not JSON stays whole.
+TEST(ReportPages, TheGoalReplayOutputIsATable) {
+  ReadmeData d = fixtures::readme();
+  d.replay.engines = {
+      {"ref", "goal", R"({"goal":true,"kicks":[{"distance":2.92822625}],"ball":{"x":10.1}})"},
+      {"mujoco", "goal", R"({"goal":true,"kicks":[{"distance":2.13383313}]})"}};
+  std::string page = readme_page(d);
+  EXPECT_NE(page.find("| field | ref | mujoco |"), std::string::npos);
+  EXPECT_NE(page.find("| `goal` | true | true |"), std::string::npos);
+  EXPECT_NE(page.find("| `kicks[0].distance` | 2.92822625 | 2.13383313 |"), std::string::npos);
+  EXPECT_NE(page.find("| `ball.x` | 10.1 | – |"), std::string::npos);
+  EXPECT_EQ(page.find("{\"goal\""), std::string::npos);
+  d.replay.engines[1].json = "not json";
+  page = readme_page(d);
+  EXPECT_NE(page.find("| `output` | – | not json |"), std::string::npos);
 }
 
 }  // namespace
