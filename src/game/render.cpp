@@ -548,12 +548,17 @@ FrameLayout layout_in(const Game& game, const Overlay& overlay, const View& v, i
   const Vec2 zone =
       v.pixel(r.goal_line - game.pitch().direction() * r.min_kick_distance, 0.0, height);
   const std::string zone_label = fmt("%g m", r.min_kick_distance);
-  out.texts.push_back(text_item(zone_label, zone.x() - 0.5 * text_width(zone_label, 1.5),
-                                zone.y() + 8, 1.5, kZone));
-  const double band_top =
-      std::max(grass + 4.0, std::min(out.texts.back().box.y1 + 3.0, height - 24.0));
+  TextItem label =
+      text_item(zone_label, zone.x() - 0.5 * text_width(zone_label, 1.5), zone.y() + 8, 1.5, kZone);
+  const double band_top = std::max(grass + 4.0, std::min(label.box.y1 + 3.0, height - 24.0));
   out.band = {0.0, band_top, static_cast<double>(width), static_cast<double>(height)};
-  band_texts(band_lines(game, overlay), out.band, out);
+  // The help is modal and drawn over the middle down to the band: the label
+  // and the messages wait under it (text is drawn at the frame's end, it
+  // would show through).
+  if (!overlay.help) {
+    out.texts.push_back(std::move(label));
+    band_texts(band_lines(game, overlay), out.band, out);
+  }
   play_boxes(game, v, height, out);
   return out;
 }
@@ -561,7 +566,9 @@ FrameLayout layout_in(const Game& game, const Overlay& overlay, const View& v, i
 void draw_hud(const Game& game, const Overlay& overlay, const FrameLayout& layout, int width,
               int height) {
   rect(layout.hud.x0, layout.hud.y0, layout.hud.x1, layout.hud.y1, kPanel);
-  rect(layout.band.x0, layout.band.y0, layout.band.x1, layout.band.y1, kPanel);
+  // (Shapes and text are drawn at the frame's end, after the help's panel,
+  // which is a clear: the band would cover its last lines.)
+  if (!overlay.help) rect(layout.band.x0, layout.band.y0, layout.band.x1, layout.band.y1, kPanel);
   for (const TextItem& t : layout.texts) {
     if (t.panel) rect(t.box.x0, t.box.y0, t.box.x1, t.box.y1, kPanel);
     text(t.x, t.y, t.text, t.scale, t.colour);

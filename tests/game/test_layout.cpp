@@ -87,6 +87,17 @@ TEST(Layout, NoTextCoversTheKeeperOrTheBallInASave) {
   EXPECT_GT(seen.results, 0) << "the save's banner was on screen";
 }
 
+// The help is modal and its panel reaches the band: no text but the HUD's
+// shows through it (the 1 m line's label did).
+TEST(Layout, UnderTheHelpOnlyTheHudHasText) {
+  const Game game(default_pitch(), "ref", 1);
+  Overlay help;
+  help.help = true;
+  const FrameLayout l = frame_layout(game, help, 800, 600);
+  ASSERT_FALSE(l.texts.empty());
+  for (const TextItem& t : l.texts) EXPECT_LE(t.box.y1, l.hud.y1) << t.text;
+}
+
 // The issue: the HUD showed "FORCE (-0.0, 0.0) N".
 TEST(Layout, TheForceHasNoNegativeZero) {
   EXPECT_EQ(force_text(-0.0, 0.0), "(0.0, 0.0)");
