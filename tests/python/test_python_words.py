@@ -92,6 +92,13 @@ def test_words_a_sentence_keeps():
     assert words("--no-rest-search and --allow-nonphysical") == \
         "rest_search=False and allow_nonphysical=True"
     assert words("--unknown-option 3 stays") == "--unknown-option 3 stays"
+    # A quoted command line is the call that does it.
+    assert words("which only `contact2d generate --engine mujoco3 --mapping compensated "
+                 "--friction damper` builds") == \
+        ('which only `contact2d.generate(scene, engine="mujoco3", mapping="compensated", '
+         'friction="damper")` builds')
+    assert words("`contact2d compare --dt 2e-4 --set contact.mu=0`") == \
+        '`contact2d.compare(scene, dt=2e-4, set=["contact.mu=0"])`'
 
 
 def test_fix_kwargs_of_each_kind():

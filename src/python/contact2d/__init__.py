@@ -97,10 +97,41 @@ def _option_value(kind, token):
     return _literal([token])  # set
 
 
+# A command line quoted in a text: `contact2d generate --mapping compensated`.
+_COMMAND = _re.compile(r"`contact2d (simulate|compare|generate|solref|inspect|fit)((?: [^`]*)?)`")
+
+
+def _python_call(match):
+    """A quoted command line as the call of this module that does it:
+    `contact2d.generate(scene, mapping="compensated")`; as it was if one of
+    its words has no keyword."""
+    function, words = match.group(1), _shlex.split(match.group(2))
+    arguments = ["scene"] if function in ("simulate", "compare", "generate") else []
+    i = 0
+    while i < len(words):
+        if words[i] not in _FLAGS:
+            return match.group(0)
+        name, kind = _FLAGS[words[i]]
+        if not isinstance(kind, str):
+            arguments.append(f"{name}={_literal(kind)}")
+            i += 1
+            continue
+        if i + 1 == len(words):
+            return match.group(0)
+        value = words[i + 1]
+        if kind != "number":
+            value = _literal([value] if kind == "set" else value)
+        arguments.append(f"{name}={value}")
+        i += 2
+    return f"`contact2d.{function}({', '.join(arguments)})`"
+
+
 def _python_words(text):
-    """`text` with each of the program's options (_FLAGS) as its keyword."""
+    """`text` with each of the program's options (_FLAGS) as its keyword,
+    and a quoted command line as the call that does it."""
     if "--" not in text:
         return text
+    text = _COMMAND.sub(_python_call, text)
 
     def keyword(match):
         flag, token = match.group(1), match.group(2)
