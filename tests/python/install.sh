@@ -12,6 +12,8 @@ PYTHONPATH="$scratch/prefix/$site" "$python" -c '
 import sys, contact2d
 where = contact2d.__file__
 assert where.startswith(sys.argv[1]), where
+import pathlib  # the type stub and the PEP 561 marker beside the extension
+assert all((pathlib.Path(where).parent / f).is_file() for f in ("_contact2d.pyi", "py.typed"))
 s = contact2d.Scene("point_mass")
 s.sim.duration = 0.01
 print(where, contact2d.simulate(s).trajectory.shape)
