@@ -62,9 +62,9 @@ std::string name_of(const mjModel* m, int type, int id, const char* what);
 // A model's name as the tool prints and stores it: a control character
 // (ESC, a newline: a model is anybody's) as \xNN, and a backslash as \\, so
 // that a name can neither move the terminal's cursor nor break a line.
-// name_of gives names so, MuJoCo 3's reader makes them so
-// (make_names_printable), and an option naming a body is compared after
-// the same escaping.
+// name_of gives names so, the state reader makes both versions' so
+// (state_arrays.cpp), and an option naming a body is compared after the
+// same escaping.
 std::string printable_name(const std::string& name);
 
 // A contact's normal row of the Jacobian, n·(J_p(body2) − J_p(body1)) at pos.

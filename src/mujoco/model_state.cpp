@@ -11,6 +11,7 @@
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "io/read_file.hpp"
+#include "mujoco/state_arrays.hpp"
 
 namespace contact2d::mujoco {
 namespace {
@@ -34,25 +35,8 @@ std::string integrator_name(int integrator) {
   }
 }
 
-// How many of a contact's rows are in the solver's quadratic zone, from
-// their forces (efc_state is stale after MuJoCo 3's early exits: a row of
-// 46 N marked satisfied on the settled humanoid): a pyramidal or
-// frictionless row is there when it pushes (a satisfied row carries 0
-// exactly); an elliptic contact, all its rows, when its force is strictly
-// inside the cone, ‖(f_i/μ_i)‖ < f_n (on the cone's surface it slides).
-int quadratic_rows(const double* force, int rows, bool elliptic, const double* mu) {
-  if (!elliptic) {
-    int n = 0;
-    for (int k = 0; k < rows; ++k) n += force[k] > 0.0;
-    return n;
-  }
-  double t = 0.0;
-  for (int k = 1; k < rows; ++k) t += (force[k] / mu[k - 1]) * (force[k] / mu[k - 1]);
-  return force[0] > 0.0 && std::sqrt(t) < force[0] * (1.0 - 1e-9) ? rows : 0;
-}
-
-// <option>, the bodies and the geoms: what does not change with the state.
-void read_model_arrays(const mjModel* m, ModelState& s) {
+// <option>, decoded here: its enums and flag bits are 2.2.2's.
+void read_option(const mjModel* m, ModelState& s) {
   s.timestep = m->opt.timestep;
   s.integrator = integrator_name(m->opt.integrator);
   s.elliptic = m->opt.cone == mjCONE_ELLIPTIC;
@@ -61,92 +45,85 @@ void read_model_arrays(const mjModel* m, ModelState& s) {
   s.refsafe = !(m->opt.disableflags & mjDSBL_REFSAFE);
   if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT))
     s.disabled = m->opt.disableflags & mjDSBL_CONTACT ? "contacts" : "constraints";
-  for (int b = 0; b < m->nbody; ++b) {
-    s.body_names.push_back(name_of(m, mjOBJ_BODY, b, "body"));
-    s.body_weld.push_back(m->body_weldid[b]);
-    s.body_mass.push_back(m->body_mass[b]);
-    for (std::ptrdiff_t k = 0; k < 3; ++k)
-      s.body_inertia.push_back(m->body_inertia[3 * static_cast<std::ptrdiff_t>(b) + k]);
-    s.body_invweight0.push_back(m->body_invweight0[2 * static_cast<std::ptrdiff_t>(b)]);
-    s.body_invweight0.push_back(m->body_invweight0[2 * static_cast<std::ptrdiff_t>(b) + 1]);
-  }
-  s.body_joints.assign(static_cast<size_t>(m->nbody), "");
-  for (int j = 0; j < m->njnt; ++j) {
-    std::string& list = s.body_joints[static_cast<size_t>(m->jnt_bodyid[j])];
-    const int type = m->jnt_type[j];
-    list += std::string(list.empty() ? "" : ", ") + (type == mjJNT_FREE    ? "free"
-                                                     : type == mjJNT_SLIDE ? "slide"
-                                                     : type == mjJNT_HINGE ? "hinge"
-                                                                           : "ball");
-  }
-  for (int b = 0; b < m->nbody; ++b) s.body_parent.push_back(m->body_parentid[b]);
-  for (int g = 0; g < m->ngeom; ++g) {
-    s.geom_names.push_back(name_of(m, mjOBJ_GEOM, g, "geom"));
-    s.geom_body.push_back(m->geom_bodyid[g]);
-    s.geom_mu.push_back(m->geom_friction[3 * static_cast<std::ptrdiff_t>(g)]);
-    s.geom_condim.push_back(m->geom_condim[g]);
-    s.geom_collides.push_back((m->geom_contype[g] | m->geom_conaffinity[g]) != 0);
-  }
 }
 
-// Every contact in the constraint problem, with its rows' numbers: one
-// within its gap (exclude 1) or otherwise left out of it has no rows, and
-// is not listed (as the driver of mujoco3 reads 3.14).
-void read_contacts(const mjModel* m, mjData* d, ModelState& s) {
+template <typename T>
+std::vector<T> copy_of(const T* data, int count, int width = 1) {
+  return std::vector<T>(data, data + static_cast<std::ptrdiff_t>(count) * width);
+}
+
+// mj_jac's translational rows of a body at a point, sparse.
+std::array<SparseRow, 3> body_jacobian(const mjModel* m, const mjData* d, int body,
+                                       const double* pos) {
+  const auto nv = static_cast<std::ptrdiff_t>(m->nv);
+  std::vector<double> jp(static_cast<size_t>(3 * nv)), jr(static_cast<size_t>(3 * nv));
+  mj_jac(m, d, jp.data(), jr.data(), pos, body);
+  std::array<SparseRow, 3> out;
+  for (std::ptrdiff_t k = 0; k < 3; ++k)
+    out[static_cast<size_t>(k)] =
+        SparseRow::of(std::vector<double>(jp.begin() + k * nv, jp.begin() + (k + 1) * nv));
+  return out;
+}
+
+// The model's and data's arrays state_arrays.hpp reads, and each contact's
+// Jacobians and normal force.
+StateArrays arrays_of(const mjModel* m, mjData* d) {
+  StateArrays a;
+  a.margin_rule = MarginRule::Larger;
+  a.nv = m->nv;
+  a.elliptic = m->opt.cone == mjCONE_ELLIPTIC;
+  for (int b = 0; b < m->nbody; ++b) {
+    const char* name = mj_id2name(m, mjOBJ_BODY, b);
+    a.body_names.emplace_back(name ? name : "");
+  }
+  for (int g = 0; g < m->ngeom; ++g) {
+    const char* name = mj_id2name(m, mjOBJ_GEOM, g);
+    a.geom_names.emplace_back(name ? name : "");
+  }
+  a.body_weldid = copy_of(m->body_weldid, m->nbody);
+  a.body_parentid = copy_of(m->body_parentid, m->nbody);
+  a.body_mass = copy_of(m->body_mass, m->nbody);
+  a.body_inertia = copy_of(m->body_inertia, m->nbody, 3);
+  a.body_invweight0 = copy_of(m->body_invweight0, m->nbody, 2);
+  a.jnt_bodyid = copy_of(m->jnt_bodyid, m->njnt);
+  a.jnt_type = copy_of(m->jnt_type, m->njnt);
+  a.geom_bodyid = copy_of(m->geom_bodyid, m->ngeom);
+  a.geom_condim = copy_of(m->geom_condim, m->ngeom);
+  a.geom_contype = copy_of(m->geom_contype, m->ngeom);
+  a.geom_conaffinity = copy_of(m->geom_conaffinity, m->ngeom);
+  a.geom_friction = copy_of(m->geom_friction, m->ngeom, 3);
+  a.geom_margin = copy_of(m->geom_margin, m->ngeom);
+  a.geom_gap = copy_of(m->geom_gap, m->ngeom);
+  a.pair_geom1 = copy_of(m->pair_geom1, m->npair);
+  a.pair_geom2 = copy_of(m->pair_geom2, m->npair);
+  a.pair_margin = copy_of(m->pair_margin, m->npair);
+  a.pair_gap = copy_of(m->pair_gap, m->npair);
+  a.qvel = copy_of(d->qvel, m->nv);
+  a.qacc = copy_of(d->qacc, m->nv);
+  a.efc_force = copy_of(d->efc_force, d->nefc);
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& con = d->contact[i];
-    if (con.exclude != 0 || con.efc_address < 0) continue;
-    StateContact c;
+    ArrayContact c;
     c.geom1 = con.geom1;
     c.geom2 = con.geom2;
-    c.body1 = m->geom_bodyid[con.geom1];
-    c.body2 = m->geom_bodyid[con.geom2];
-    // 2.2.2's mj_collideGeoms: a pair's own margin and gap, else the larger geom's.
-    c.margin = std::max(m->geom_margin[con.geom1], m->geom_margin[con.geom2]);
-    c.gap = std::max(m->geom_gap[con.geom1], m->geom_gap[con.geom2]);
-    for (int p = 0; p < m->npair; ++p) {
-      if ((m->pair_geom1[p] == con.geom1 && m->pair_geom2[p] == con.geom2) ||
-          (m->pair_geom1[p] == con.geom2 && m->pair_geom2[p] == con.geom1)) {
-        c.explicit_pair = true;
-        c.margin = m->pair_margin[p];
-        c.gap = m->pair_gap[p];
-      }
-    }
-    c.dist = con.dist - con.includemargin;
-    for (size_t k = 0; k < 3; ++k) {
-      c.pos[k] = con.pos[k];
-      c.normal[k] = con.frame[k];
-    }
-    c.condim = con.dim;
-    for (size_t k = 0; k < 5; ++k) c.friction[k] = con.friction[k];
-    for (size_t k = 0; k < 2; ++k) c.solref[k] = con.solref[k];
-    for (size_t k = 0; k < 5; ++k) c.solimp[k] = con.solimp[k];
-    const std::vector<double> row = normal_jacobian(m, d, c.body1, c.body2, c.pos, c.normal);
-    std::vector<double> solved(row.size());
-    mj_solveM(m, d, solved.data(), row.data(), 1);
-    c.jacobian = SparseRow::of(row);
-    c.solved = SparseRow::of(solved);
-    c.A = c.jacobian.dot(c.solved);
-    if (con.dim >= 3) {
-      for (size_t axis = 1; axis < 3; ++axis) {
-        const std::array<double, 3> t{con.frame[3 * axis], con.frame[3 * axis + 1],
-                                      con.frame[3 * axis + 2]};
-        const std::vector<double> trow = normal_jacobian(m, d, c.body1, c.body2, c.pos, t);
-        std::vector<double> tsolved(trow.size());
-        mj_solveM(m, d, tsolved.data(), trow.data(), 1);
-        c.tangent[axis - 1] = SparseRow::of(trow);
-        c.tangent_solved[axis - 1] = SparseRow::of(tsolved);
-        c.A_t = std::max(c.A_t, c.tangent[axis - 1].dot(c.tangent_solved[axis - 1]));
-      }
-    }
+    c.dim = con.dim;
+    c.exclude = con.exclude;
+    c.efc_address = con.efc_address;
+    c.dist = con.dist;
+    c.includemargin = con.includemargin;
+    std::copy(con.pos, con.pos + 3, c.pos.begin());
+    std::copy(con.frame, con.frame + 9, c.frame.begin());
+    std::copy(con.friction, con.friction + 5, c.friction.begin());
+    std::copy(con.solref, con.solref + 2, c.solref.begin());
+    std::copy(con.solimp, con.solimp + 5, c.solimp.begin());
     double force[6] = {};
     mj_contactForce(m, d, i, force);
-    c.force = force[0];
-    c.rows = m->opt.cone == mjCONE_ELLIPTIC || con.dim == 1 ? con.dim : 2 * (con.dim - 1);
-    c.quadratic = quadratic_rows(d->efc_force + con.efc_address, c.rows,
-                                 m->opt.cone == mjCONE_ELLIPTIC && con.dim > 1, con.friction);
-    s.contacts.push_back(c);
+    c.normal_force = force[0];
+    c.jac1 = body_jacobian(m, d, m->geom_bodyid[con.geom1], con.pos);
+    c.jac2 = body_jacobian(m, d, m->geom_bodyid[con.geom2], con.pos);
+    a.contacts.push_back(std::move(c));
   }
+  return a;
 }
 
 }  // namespace
@@ -251,27 +228,35 @@ LoadedState load_model_state(const StateRequest& r) {
     throw EngineError(prefix(r) + "MuJoCo diverged while settling (" + said +
                       "): there is no settled state to read");
   }
-  for (int i = 0; i < m->nv; ++i) {
-    s.speed = std::max(s.speed, std::abs(d->qvel[i]));
-    s.accel = std::max(s.accel, std::abs(d->qacc[i]));
-  }
   s.settled = static_cast<double>(steps) * m->opt.timestep;
   for (const std::string& w : warning_counters(d)) messages.push_back(w);
 
-  read_model_arrays(m, s);
-  s.nv = m->nv;
-
-  s.qvel.assign(d->qvel, d->qvel + m->nv);
-  s.qacc.assign(d->qacc, d->qacc + m->nv);
-
-  read_contacts(m, d, s);
+  read_option(m, s);
+  const StateArrays arrays = arrays_of(m, d);
+  read_state_arrays(
+      arrays,
+      [&](const std::vector<SparseRow>& rows) {
+        std::vector<SparseRow> out;
+        std::vector<double> dense(static_cast<size_t>(m->nv)), solved(dense.size());
+        for (const SparseRow& row : rows) {
+          std::fill(dense.begin(), dense.end(), 0.0);
+          for (size_t k = 0; k < row.index.size(); ++k)
+            dense[static_cast<size_t>(row.index[k])] = row.value[k];
+          mj_solveM(m, d, solved.data(), dense.data(), 1);
+          out.push_back(SparseRow::of(solved));
+        }
+        return out;
+      },
+      s);
   // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0,
   // in the same mjData (a second one would double MuJoCo's memory: 0.88 GB
-  // for the particle sample); positions and contacts stay as read above.
+  // for the particle sample); positions and contacts stay as read. After
+  // the solves: this mj_forward factors M again, which moved A in its 16th
+  // digit.
   mju_zero(d->qvel, m->nv);
   mj_forward(m, d);
-  s.bias.assign(d->qfrc_bias, d->qfrc_bias + m->nv);
-  s.messages = messages;  // names: name_of gives them printable
+  s.bias = copy_of(d->qfrc_bias, m->nv);
+  s.messages = messages;
   return out;
 }
 
@@ -280,11 +265,6 @@ std::string settle_cap_note(double settle, double timestep) {
   return "--settle " + format_number(settle) + " s is more than the " +
          std::to_string(kMaxSettleSteps) + " steps a settle takes: settled " +
          format_number(static_cast<double>(kMaxSettleSteps) * timestep) + " s";
-}
-
-void make_names_printable(ModelState& state) {
-  for (std::vector<std::string>* names : {&state.body_names, &state.geom_names})
-    for (std::string& name : *names) name = printable_name(name);
 }
 
 ModelState read_model_state(const StateRequest& request) {

@@ -1,7 +1,8 @@
 // A user's MuJoCo model at one state, as plain numbers: what `inspect` and
 // `solref --model` read from MuJoCo, filled by either version — 2.2.2
 // natively here (read_model_state), 3.14 through Node
-// (mujoco3/model_state.hpp) — so the contact math that follows
+// (mujoco3/node_mujoco.hpp) — and read from MuJoCo's arrays by one reader
+// for both (state_arrays.hpp), so the contact math that follows
 // (inspect.hpp, solref_tool.hpp) is one implementation fed by both.
 //
 // The state: the model's keyframe (or qpos0), then, with a settle time,
@@ -16,7 +17,7 @@
 //             mj_solveM on the factor mj_forward left), 1/kg;
 //   force     MuJoCo's own normal force (mj_contactForce, the contact
 //             frame's first component), N;
-//   jacobian  the normal row n·(J₁ − J₂) (nv, sparse), for the least-squares
+//   jacobian  the normal row n·(J₂ − J₁) (nv, sparse), for the least-squares
 //             loads, and M⁻¹ times it (the coupling of two contacts);
 //   rows      how many of its constraint rows are in the solver's quadratic
 //             zone (from their forces: a pushing pyramidal row, an elliptic
@@ -186,9 +187,5 @@ void check_state_request(const StateRequest& request);
 // the settle asks for more than kMaxSettleSteps at this timestep, else "":
 // both versions add it to the state's messages.
 std::string settle_cap_note(double settle, double timestep);
-
-// MuJoCo 3's names made printable as 2.2.2's name_of makes them
-// (model.hpp's printable_name).
-void make_names_printable(ModelState& state);
 
 }  // namespace contact2d::mujoco

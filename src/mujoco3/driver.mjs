@@ -27,8 +27,12 @@
 //     reset (to the keyframe) and checked; steps = the settling steps asked;
 //   settle {handle, n, ms} → {done}: up to n mj_step, fewer when ms ms of
 //     wall time have passed (done ≥ 1 when n ≥ 1);
-//   read {handle} → the fields of mujoco/model_state.hpp's ModelState, and
-//     the model freed; close {handle}: freed without reading.
+//   read {handle} → <option> decoded and MuJoCo's own arrays at the state
+//     (the fields of mujoco/state_arrays.hpp's StateArrays: each contact as
+//     mjContact has it, with mj_jac of both bodies and mj_contactForce);
+//   solve {handle, rows: [{index, value}]} → {rows}: mj_solveM of each
+//     sparse row at that state;
+//   close {handle}: the model freed.
 //
 // An answer {"ok": false, "error": ..., "fatal": true} means MuJoCo's
 // WebAssembly aborted (its memory is then unusable): the driver exits after
@@ -41,7 +45,7 @@ import {createInterface} from 'node:readline';
 import {fileURLToPath} from 'node:url';
 
 // The version of this protocol; node_mujoco.hpp's kProtocol.
-const PROTOCOL = 2;
+const PROTOCOL = 3;
 
 const here = dirname(fileURLToPath(import.meta.url));
 const messages = [];
@@ -410,7 +414,22 @@ function prepareState(m, d, r) {
   return Math.min(1000000, Math.round(r.settle / m.opt.timestep));
 }
 
-// The settled state (`steps` taken by "settle") as plain numbers.
+// A sparse row: its non-zero columns and their values.
+const sparse = (dense) => {
+  const index = [], value = [];
+  for (let c = 0; c < dense.length; ++c) {
+    if (dense[c] !== 0) {
+      index.push(c);
+      value.push(dense[c]);
+    }
+  }
+  return {index, value};
+};
+
+// The settled state (`steps` taken by "settle") as MuJoCo's own arrays:
+// contact2d reads them (mujoco/state_arrays.cpp, the reader 2.2.2's arrays
+// go through too). What only MuJoCo can compute comes along: each
+// contact's mj_jac of both bodies and mj_contactForce; mj_solveM is "solve".
 function readState(m, d, r, steps) {
   const nv = m.nv, nbody = m.nbody, ngeom = m.ngeom;
   const where = `${r.option ? r.option + ' ' : ''}${r.path}: `;
@@ -420,16 +439,12 @@ function readState(m, d, r, steps) {
     throw new Error(`diverged: ${where}MuJoCo diverged while settling: there is no settled ` +
                     'state to read');
   }
-  let speed = 0, accel = 0;
-  for (let i = 0; i < nv; ++i) {
-    speed = Math.max(speed, Math.abs(d.qvel[i]));
-    accel = Math.max(accel, Math.abs(d.qacc[i]));
-  }
   const warnings = [];
   for (let i = 0; i < mj.mjtWarning.mjNWARNING.value; ++i) {
     const n = d.warning.get(i).number;
     if (n > 0) warnings.push(`${mj.mju_warningText(i, d.warning.get(i).lastinfo)} (${n} times)`);
   }
+  // <option> decoded here: its enums and flag bits are this version's.
   const disable = m.opt.disableflags, bits = mj.mjtDisableBit;
   const out = {
     version: mj.mj_versionString(),
@@ -442,134 +457,55 @@ function readState(m, d, r, steps) {
     disabled: disable & bits.mjDSBL_CONTACT.value      ? 'contacts'
         : disable & bits.mjDSBL_CONSTRAINT.value ? 'constraints'
                                                  : '',
-    body_names: [],
-    geom_names: [],
-    body_weld: Array.from(m.body_weldid),
-    body_mass: Array.from(m.body_mass),
-    body_inertia: Array.from(m.body_inertia),
-    body_invweight0: Array.from(m.body_invweight0),
-    geom_body: Array.from(m.geom_bodyid),
-    body_parent: Array.from(m.body_parentid),
-    body_joints: Array.from({length: nbody}, () => []),
-    geom_mu: Array.from({length: ngeom}, (_, g) => m.geom_friction[3 * g]),
-    geom_condim: Array.from(m.geom_condim),
-    geom_collides: Array.from({length: ngeom}, (_, g) => (m.geom_contype[g] | m.geom_conaffinity[g]) !== 0),
-    nv,
     settled: steps * m.opt.timestep,
-    speed,
-    accel,
     step_warnings: warnings,
+    nv,
+    body_names: Array.from({length: nbody}, (_, b) => nameAt(m, m.name_bodyadr[b])),
+    geom_names: Array.from({length: ngeom}, (_, g) => nameAt(m, m.name_geomadr[g])),
     contacts: []
   };
-  const jointTypes = ['free', 'ball', 'slide', 'hinge'];
-  for (let j = 0; j < m.njnt; ++j) out.body_joints[m.jnt_bodyid[j]].push(jointTypes[m.jnt_type[j]]);
-  out.body_joints = out.body_joints.map((list) => list.join(', '));
-  for (let b = 0; b < nbody; ++b)
-    out.body_names.push(nameAt(m, m.name_bodyadr[b]) || (b === 0 ? 'world' : `body #${b}`));
-  for (let g = 0; g < ngeom; ++g) out.geom_names.push(nameAt(m, m.name_geomadr[g]) || `geom #${g}`);
-
+  for (const key of ['body_weldid', 'body_parentid', 'body_mass', 'body_inertia',
+                     'body_invweight0', 'jnt_bodyid', 'jnt_type', 'geom_bodyid', 'geom_condim',
+                     'geom_contype', 'geom_conaffinity', 'geom_friction', 'geom_margin',
+                     'geom_gap', 'pair_geom1', 'pair_geom2', 'pair_margin', 'pair_gap']) {
+    out[key] = Array.from(m[key]);
+  }
   out.qvel = Array.from(d.qvel);
   out.qacc = Array.from(d.qacc);
-
-  const jp1 = new mj.DoubleBuffer(3 * nv), jp2 = new mj.DoubleBuffer(3 * nv);
-  const jr = new mj.DoubleBuffer(3 * nv), x = new mj.DoubleBuffer(nv);
+  out.efc_force = Array.from(d.efc_force.slice(0, d.nefc));
+  const jp = new mj.DoubleBuffer(3 * nv), jr = new mj.DoubleBuffer(3 * nv);
   const force = new mj.DoubleBuffer(6);
+  // mj_jac's three translational rows of a body at a point, sparse.
+  const jacobian = (pos, body) => {
+    mj.mj_jac(m, d, jp, jr, pos, body);
+    const j = jp.GetView();
+    return [0, 1, 2].map((k) => sparse(j.subarray(k * nv, (k + 1) * nv)));
+  };
   try {
     for (let i = 0; i < d.ncon; ++i) {
       const con = d.contact.get(i);
-      if (con.exclude !== 0 || con.efc_address < 0) continue;  // not in the constraint problem
-      const g1 = con.geom1, g2 = con.geom2;
-      const b1 = m.geom_bodyid[g1], b2 = m.geom_bodyid[g2];
-      const pos = Array.from(con.pos), normal = Array.from(con.frame).slice(0, 3);
-      mj.mj_jac(m, d, jp1, jr, pos, b1);
-      mj.mj_jac(m, d, jp2, jr, pos, b2);
-      const j1 = Float64Array.from(jp1.GetView()), j2 = Float64Array.from(jp2.GetView());
-      const row = new Array(nv).fill(0);
-      for (let k = 0; k < 3; ++k)
-        for (let c = 0; c < nv; ++c) row[c] += normal[k] * (j2[k * nv + c] - j1[k * nv + c]);
-      // A along a direction of the contact frame: n·J·M⁻¹·Jᵀ·n.
-      const along = (axis) => {
-        const out = new Array(nv).fill(0);
-        for (let k = 0; k < 3; ++k)
-          for (let c = 0; c < nv; ++c) out[c] += axis[k] * (j2[k * nv + c] - j1[k * nv + c]);
-        return out;
-      };
-      mj.mj_solveM(m, d, x, row);
-      const solved = Float64Array.from(x.GetView());
-      let A = 0;
-      for (let c = 0; c < nv; ++c) A += row[c] * solved[c];
-      let A_t = 0;
-      const tangents = [];
-      if (con.dim >= 3) {
-        const frame = Array.from(con.frame);
-        for (const axis of [frame.slice(3, 6), frame.slice(6, 9)]) {
-          const t = along(axis);
-          mj.mj_solveM(m, d, x, t);
-          const tx = Float64Array.from(x.GetView());
-          let a = 0;
-          for (let c = 0; c < nv; ++c) a += t[c] * tx[c];
-          A_t = Math.max(A_t, a);
-          tangents.push({row: t, solved: Array.from(tx)});
-        }
-      }
-      const sparse = (dense) => ({
-        index: dense.flatMap((v, c) => v !== 0 ? [c] : []),
-        value: dense.filter((v) => v !== 0)
-      });
+      const pos = Array.from(con.pos);
       mj.mj_contactForce(m, d, i, force);
-      const elliptic = m.opt.cone === mj.mjtCone.mjCONE_ELLIPTIC.value;
-      const rows = elliptic || con.dim === 1 ? con.dim : 2 * (con.dim - 1);
-      // From the forces, as mujoco/model_state.cpp's quadratic_rows (efc_state
-      // is stale after the solver's early exits).
-      const f = d.efc_force.slice(con.efc_address, con.efc_address + rows);
-      let quadratic = 0;
-      if (elliptic && con.dim > 1) {
-        let t = 0;
-        for (let k = 1; k < rows; ++k) t += (f[k] / con.friction[k - 1]) ** 2;
-        quadratic = f[0] > 0 && Math.sqrt(t) < f[0] * (1 - 1e-9) ? rows : 0;
-      } else {
-        for (let k = 0; k < rows; ++k) quadratic += f[k] > 0;
-      }
-      // MuJoCo 3's collision driver: a pair's own margin and gap, else the two geoms' summed.
-      let explicitPair = false;
-      let margin = m.geom_margin[g1] + m.geom_margin[g2], gap = m.geom_gap[g1] + m.geom_gap[g2];
-      for (let p = 0; p < m.npair; ++p) {
-        const p1 = m.pair_geom1[p], p2 = m.pair_geom2[p];
-        if ((p1 === g1 && p2 === g2) || (p1 === g2 && p2 === g1)) {
-          explicitPair = true;
-          margin = m.pair_margin[p];
-          gap = m.pair_gap[p];
-        }
-      }
       out.contacts.push({
-        geom1: g1,
-        geom2: g2,
-        body1: b1,
-        body2: b2,
-        explicit_pair: explicitPair,
-        dist: con.dist - con.includemargin,
+        geom1: con.geom1,
+        geom2: con.geom2,
+        dim: con.dim,
+        exclude: con.exclude,
+        efc_address: con.efc_address,
+        dist: con.dist,
+        includemargin: con.includemargin,
         pos,
-        normal,
-        condim: con.dim,
+        frame: Array.from(con.frame),
         friction: Array.from(con.friction),
         solref: Array.from(con.solref),
         solimp: Array.from(con.solimp),
-        margin,
-        gap,
-        A,
-        A_t,
-        tangents: tangents.map((t) => ({row: sparse(t.row), solved: sparse(t.solved)})),
-        force: force.GetView()[0],
-        rows,
-        quadratic,
-        jacobian_index: row.flatMap((v, c) => v !== 0 ? [c] : []),
-        jacobian_value: row.filter((v) => v !== 0),
-        solved_index: Array.from(solved).flatMap((v, c) => v !== 0 ? [c] : []),
-        solved_value: Array.from(solved).filter((v) => v !== 0)
+        normal_force: force.GetView()[0],
+        jac1: jacobian(pos, m.geom_bodyid[con.geom1]),
+        jac2: jacobian(pos, m.geom_bodyid[con.geom2])
       });
     }
   } finally {
-    for (const b of [jp1, jp2, jr, x, force]) b.delete();
+    for (const b of [jp, jr, force]) b.delete();
   }
   // The gravity load at this configuration, at rest: qfrc_bias at qvel = 0,
   // in the same mjData (as mujoco/model_state.cpp does).
@@ -577,6 +513,29 @@ function readState(m, d, r, steps) {
   mj.mj_forward(m, d);
   out.bias = Array.from(d.qfrc_bias);
   return out;
+}
+
+// M⁻¹ times each sparse row (mj_solveM at the state "read" left).
+function solveRows(m, d, rows) {
+  const nv = m.nv;
+  const x = new mj.DoubleBuffer(nv);
+  try {
+    return rows.map((row) => {
+      if (!Array.isArray(row.index) || !Array.isArray(row.value) ||
+          row.index.length !== row.value.length) {
+        throw new Error('solve: a row is not {index, value} of one length');
+      }
+      const dense = new Float64Array(nv);
+      row.index.forEach((c, k) => {
+        if (!Number.isInteger(c) || c < 0 || c >= nv) throw new Error(`solve: column ${c}`);
+        dense[c] = row.value[k];
+      });
+      mj.mj_solveM(m, d, x, dense);
+      return sparse(x.GetView());
+    });
+  } finally {
+    x.delete();
+  }
 }
 
 const ops = {
@@ -692,11 +651,12 @@ const ops = {
   },
   read: (r) => {
     const e = entry(r.handle);
-    try {
-      return {...readState(e.m, e.d, e.request, e.taken), load_warning: e.loadWarning};
-    } finally {
-      close(r.handle);
-    }
+    return {...readState(e.m, e.d, e.request, e.taken), load_warning: e.loadWarning};
+  },
+  solve: (r) => {
+    const e = entry(r.handle);
+    if (!Array.isArray(r.rows)) throw new Error('solve without rows');
+    return {rows: solveRows(e.m, e.d, r.rows)};
   },
   close: (r) => {
     close(r.handle);

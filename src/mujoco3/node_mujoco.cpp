@@ -25,6 +25,7 @@
 #include "io/json.hpp"
 #include "io/json_reader.hpp"
 #include "io/read_file.hpp"
+#include "mujoco/state_arrays.hpp"
 
 #ifndef CONTACT2D_MUJOCO3_DIR
 #error "CONTACT2D_MUJOCO3_DIR: the folder of driver.mjs (CMakeLists.txt sets it)"
@@ -152,16 +153,6 @@ std::vector<std::string> need_texts(const json::Value& v, const std::string& key
     if (item.kind != json::Value::Kind::String)
       throw BadAnswer("\"" + key + "\" holds " + kind_name(item.kind) + ", not a string");
     out.push_back(item.text);
-  }
-  return out;
-}
-
-std::vector<bool> need_flags(const json::Value& v, const std::string& key) {
-  std::vector<bool> out;
-  for (const json::Value& item : need(v, key, json::Value::Kind::Array).items) {
-    if (item.kind != json::Value::Kind::Bool)
-      throw BadAnswer("\"" + key + "\" holds " + kind_name(item.kind) + ", not a boolean");
-    out.push_back(item.text == "true");
   }
   return out;
 }
@@ -526,79 +517,101 @@ void Node::rewind(int id, int n) {
 
 namespace {
 
-// One contact of the driver's "read" answer (mujoco/model_state.hpp); every
-// key is required (a missing one throws BadAnswer, never reads as 0).
-mujoco::StateContact contact_of(const json::Value& c) {
-  mujoco::StateContact out;
+// A sparse row {index, value}: as many columns as values.
+mujoco::SparseRow sparse_of(const json::Value& v) {
+  mujoco::SparseRow row;
+  row.index = need_integers(v, "index");
+  row.value = need_numbers(v, "value");
+  if (row.index.size() != row.value.size())
+    throw BadAnswer("a sparse row has " + std::to_string(row.index.size()) + " columns and " +
+                    std::to_string(row.value.size()) + " values");
+  return row;
+}
+
+template <size_t N>
+void fill(const json::Value& v, const char* key, std::array<double, N>& out) {
+  const std::vector<double> numbers = need_numbers(v, key, N);
+  std::copy(numbers.begin(), numbers.end(), out.begin());
+}
+
+// One mjContact of the driver's "read" answer, with its bodies' mj_jac and
+// its mj_contactForce (mujoco/state_arrays.hpp); every key is required (a
+// missing one throws BadAnswer, never reads as 0).
+mujoco::ArrayContact contact_of(const json::Value& c) {
+  mujoco::ArrayContact out;
   out.geom1 = static_cast<int>(need_integer(c, "geom1"));
   out.geom2 = static_cast<int>(need_integer(c, "geom2"));
-  out.body1 = static_cast<int>(need_integer(c, "body1"));
-  out.body2 = static_cast<int>(need_integer(c, "body2"));
-  out.explicit_pair = need_flag(c, "explicit_pair");
+  out.dim = static_cast<int>(need_integer(c, "dim", 1, 6));
+  out.exclude = static_cast<int>(need_integer(c, "exclude", std::numeric_limits<int>::min()));
+  out.efc_address =
+      static_cast<int>(need_integer(c, "efc_address", std::numeric_limits<int>::min()));
   out.dist = need_number(c, "dist");
-  auto fill = [&](const char* key, auto& array) {
-    const std::vector<double> v = need_numbers(c, key);
-    if (v.size() < array.size())
-      throw BadAnswer(std::string("a contact's \"") + key + "\" has " + std::to_string(v.size()) +
-                      " numbers, not " + std::to_string(array.size()));
-    for (size_t i = 0; i < array.size(); ++i) array[i] = v[i];
-  };
-  fill("pos", out.pos);
-  fill("normal", out.normal);
-  fill("friction", out.friction);
-  fill("solref", out.solref);
-  fill("solimp", out.solimp);
-  out.condim = static_cast<int>(need_integer(c, "condim"));
-  out.margin = need_number(c, "margin");
-  out.gap = need_number(c, "gap");
-  out.A = need_number(c, "A");
-  out.A_t = need_number(c, "A_t");
-  out.force = need_number(c, "force");
-  out.rows = static_cast<int>(need_integer(c, "rows"));
-  out.quadratic = static_cast<int>(need_integer(c, "quadratic"));
-  // The normal row and M⁻¹ times it arrive sparse: non-zero columns and values.
-  auto sparse = [&](const json::Value& v, const char* index_key, const char* value_key) {
-    mujoco::SparseRow row;
-    row.index = need_integers(v, index_key);
-    row.value = need_numbers(v, value_key);
-    return row;
-  };
-  out.jacobian = sparse(c, "jacobian_index", "jacobian_value");
-  out.solved = sparse(c, "solved_index", "solved_value");
-  const json::Value& tangents = need(c, "tangents", json::Value::Kind::Array);
-  for (size_t k = 0; k < 2 && k < tangents.items.size(); ++k) {
-    const json::Value& t = tangents.items[k];
-    out.tangent[k] = sparse(need(t, "row", json::Value::Kind::Object), "index", "value");
-    out.tangent_solved[k] = sparse(need(t, "solved", json::Value::Kind::Object), "index", "value");
+  out.includemargin = need_number(c, "includemargin");
+  fill(c, "pos", out.pos);
+  fill(c, "frame", out.frame);
+  fill(c, "friction", out.friction);
+  fill(c, "solref", out.solref);
+  fill(c, "solimp", out.solimp);
+  out.normal_force = need_number(c, "normal_force");
+  for (const auto& [key, jac] : {std::pair{"jac1", &out.jac1}, std::pair{"jac2", &out.jac2}}) {
+    const json::Value& rows = need(c, key, json::Value::Kind::Array);
+    if (rows.items.size() != 3)
+      throw BadAnswer(std::string("\"") + key + "\" has " + std::to_string(rows.items.size()) +
+                      " rows, not 3");
+    for (size_t k = 0; k < 3; ++k) (*jac)[k] = sparse_of(rows.items[k]);
   }
   return out;
 }
 
-// Every index the contact math reads is in range and every sparse row is
-// ascending columns of the model: the driver is this program's own, but a
-// model is anybody's.
-bool fits_together(const mujoco::ModelState& s) {
-  const size_t nbody = s.body_names.size(), ngeom = s.geom_names.size();
-  const auto nv = static_cast<size_t>(s.nv);
-  bool sound = s.body_weld.size() == nbody && s.body_mass.size() == nbody &&
-               s.body_inertia.size() == 3 * nbody && s.body_invweight0.size() == 2 * nbody &&
-               s.geom_body.size() == ngeom && s.body_parent.size() == nbody &&
-               s.body_joints.size() == nbody && s.geom_mu.size() == ngeom &&
-               s.geom_condim.size() == ngeom && s.geom_collides.size() == ngeom &&
-               s.bias.size() == nv && s.qvel.size() == nv && s.qacc.size() == nv;
-  for (const int b : s.geom_body) sound = sound && b >= 0 && static_cast<size_t>(b) < nbody;
-  auto in = [](int i, size_t n) { return i >= 0 && static_cast<size_t>(i) < n; };
-  for (const mujoco::StateContact& c : s.contacts) {
-    sound = sound && in(c.geom1, ngeom) && in(c.geom2, ngeom) && in(c.body1, nbody) &&
-            in(c.body2, nbody);
-    for (const mujoco::SparseRow* row : {&c.jacobian, &c.solved, &c.tangent[0], &c.tangent[1],
-                                         &c.tangent_solved[0], &c.tangent_solved[1]}) {
-      sound = sound && row->index.size() == row->value.size();
-      for (size_t i = 0; i < row->index.size(); ++i)
-        sound = sound && in(row->index[i], nv) && (i == 0 || row->index[i] > row->index[i - 1]);
-    }
+// MuJoCo's arrays of the driver's "read" answer (mujoco/state_arrays.hpp).
+mujoco::StateArrays arrays_of(const json::Value& v) {
+  mujoco::StateArrays a;
+  a.margin_rule = mujoco::MarginRule::Summed;  // MuJoCo 3's collision driver
+  a.nv = static_cast<int>(need_integer(v, "nv"));
+  a.elliptic = need_flag(v, "elliptic");
+  a.body_names = need_texts(v, "body_names");
+  a.geom_names = need_texts(v, "geom_names");
+  a.body_weldid = need_integers(v, "body_weldid");
+  a.body_parentid = need_integers(v, "body_parentid");
+  a.body_mass = need_numbers(v, "body_mass");
+  a.body_inertia = need_numbers(v, "body_inertia");
+  a.body_invweight0 = need_numbers(v, "body_invweight0");
+  a.jnt_bodyid = need_integers(v, "jnt_bodyid");
+  a.jnt_type = need_integers(v, "jnt_type");
+  a.geom_bodyid = need_integers(v, "geom_bodyid");
+  a.geom_condim = need_integers(v, "geom_condim");
+  a.geom_contype = need_integers(v, "geom_contype");
+  a.geom_conaffinity = need_integers(v, "geom_conaffinity");
+  a.geom_friction = need_numbers(v, "geom_friction");
+  a.geom_margin = need_numbers(v, "geom_margin");
+  a.geom_gap = need_numbers(v, "geom_gap");
+  a.pair_geom1 = need_integers(v, "pair_geom1");
+  a.pair_geom2 = need_integers(v, "pair_geom2");
+  a.pair_margin = need_numbers(v, "pair_margin");
+  a.pair_gap = need_numbers(v, "pair_gap");
+  a.qvel = need_numbers(v, "qvel");
+  a.qacc = need_numbers(v, "qacc");
+  a.efc_force = need_numbers(v, "efc_force");
+  for (const json::Value& c : need(v, "contacts", json::Value::Kind::Array).items)
+    a.contacts.push_back(contact_of(c));
+  if (const std::string misfit = mujoco::arrays_misfit(a); !misfit.empty())
+    throw BadAnswer("a state whose arrays do not fit together: " + misfit);
+  return a;
+}
+
+// The rows of a "solve" request: [{"index": [...], "value": [...]}, ...].
+std::string rows_json(const std::vector<mujoco::SparseRow>& rows) {
+  std::string out = "[";
+  for (size_t r = 0; r < rows.size(); ++r) {
+    out += r ? ",{\"index\":[" : "{\"index\":[";
+    for (size_t k = 0; k < rows[r].index.size(); ++k)
+      out += (k ? "," : "") + std::to_string(rows[r].index[k]);
+    out += "],\"value\":[";
+    for (size_t k = 0; k < rows[r].value.size(); ++k)
+      out += (k ? "," : "") + json::number(rows[r].value[k]);
+    out += "]}";
   }
-  return sound;
+  return out + "]";
 }
 
 }  // namespace
@@ -650,9 +663,25 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
     }
     throw;
   }
+  try {
+    mujoco::ModelState s = read_state(id);
+    request("close", R"({"op":"close","handle":)" + id + "}", deadline(), {}, true);
+    return s;
+  } catch (const std::exception&) {
+    if (!failed_) {
+      try {
+        request("close", R"({"op":"close","handle":)" + id + "}", deadline(), {}, true);
+      } catch (const std::exception&) {  // then it is gone: the next user starts another
+      }
+    }
+    throw;
+  }
+}
+
+mujoco::ModelState Node::read_state(const std::string& id) {
   const Answer a = request("read", R"({"op":"read","handle":)" + id + "}", deadline(), {}, true);
-  mujoco::ModelState s = checked("read", [&] {
-    mujoco::ModelState s;
+  mujoco::ModelState s;
+  const mujoco::StateArrays arrays = checked("read", [&] {
     s.version = need_text(a.value, "version");
     s.load_warning = need_text(a.value, "load_warning");
     s.messages = need_texts(a.value, "step_warnings");
@@ -664,34 +693,35 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
     for (size_t i = 0; i < 3; ++i) s.gravity[i] = g[i];
     s.refsafe = need_flag(a.value, "refsafe");
     s.disabled = need_text(a.value, "disabled");
-    s.body_names = need_texts(a.value, "body_names");
-    s.geom_names = need_texts(a.value, "geom_names");
-    s.body_weld = need_integers(a.value, "body_weld");
-    s.body_mass = need_numbers(a.value, "body_mass");
-    s.body_inertia = need_numbers(a.value, "body_inertia");
-    s.body_invweight0 = need_numbers(a.value, "body_invweight0");
-    s.geom_body = need_integers(a.value, "geom_body");
-    s.body_parent = need_integers(a.value, "body_parent");
-    s.body_joints = need_texts(a.value, "body_joints");
-    s.geom_mu = need_numbers(a.value, "geom_mu");
-    s.geom_condim = need_integers(a.value, "geom_condim");
-    s.geom_collides = need_flags(a.value, "geom_collides");
-    s.nv = static_cast<int>(need_integer(a.value, "nv"));
     s.settled = need_number(a.value, "settled");
-    s.speed = need_number(a.value, "speed");
-    s.accel = need_number(a.value, "accel");
-    s.bias = need_numbers(a.value, "bias");
-    s.qvel = need_numbers(a.value, "qvel");
-    s.qacc = need_numbers(a.value, "qacc");
-    for (const json::Value& c : need(a.value, "contacts", json::Value::Kind::Array).items)
-      s.contacts.push_back(contact_of(c));
-    return s;
+    mujoco::StateArrays arrays = arrays_of(a.value);
+    s.bias = need_numbers(a.value, "bias", static_cast<size_t>(arrays.nv));
+    return arrays;
   });
-  if (!fits_together(s)) {
-    failed_ = true;
-    throw EngineError("mujoco3: the Node process running MuJoCo " + std::string(kVersion) +
-                      " answered a state whose arrays do not fit together (" + fix_command() + ")");
-  }
+  // M⁻¹ times the rows the reader builds: MuJoCo 3's mj_solveM, one request
+  // for all of them (the humanoid's 10 contacts: 30 rows).
+  mujoco::read_state_arrays(
+      arrays,
+      [&](const std::vector<mujoco::SparseRow>& rows) {
+        const Answer solved = request(
+            "solve", R"({"op":"solve","handle":)" + id + R"(,"rows":)" + rows_json(rows) + "}",
+            deadline(static_cast<double>(rows.size()), kStepSeconds), {}, true);
+        return checked("solve", [&] {
+          std::vector<mujoco::SparseRow> out;
+          for (const json::Value& row : need(solved.value, "rows", json::Value::Kind::Array).items)
+            out.push_back(sparse_of(row));
+          if (out.size() != rows.size())
+            throw BadAnswer(std::to_string(out.size()) + " rows for " +
+                            std::to_string(rows.size()));
+          for (const mujoco::SparseRow& row : out)
+            for (size_t i = 0; i < row.index.size(); ++i)
+              if (row.index[i] < 0 || row.index[i] >= arrays.nv ||
+                  (i > 0 && row.index[i] <= row.index[i - 1]))
+                throw BadAnswer("a solved row's columns are out of range or order");
+          return out;
+        });
+      },
+      s);
   return s;
 }
 
@@ -700,7 +730,6 @@ mujoco::ModelState read_model_state(const mujoco::StateRequest& request) {
   check_input_file(request.path, "the model");
   mujoco::check_state_request(request);
   mujoco::ModelState state = Node::of_this_thread()->state(request);
-  mujoco::make_names_printable(state);
   if (const std::string note = mujoco::settle_cap_note(request.settle, state.timestep);
       !note.empty())
     state.messages.push_back(note);

@@ -42,7 +42,7 @@ namespace contact2d::mujoco3 {
 inline constexpr std::string_view kVersion = "3.14.0";
 // The version of the protocol spoken with driver.mjs (its PROTOCOL): hello
 // carries it both ways and either side refuses another.
-inline constexpr int kProtocol = 2;
+inline constexpr int kProtocol = 3;
 
 // Why another Node process should not start when `running` run already
 // and `available_bytes` of memory are available (negative: unknown), as
@@ -122,6 +122,8 @@ class Node {
   template <typename F>
   auto checked(const std::string& op, F&& read) -> decltype(read());
   [[noreturn]] void lost(const std::string& why);  // failed: an EngineError
+  // state()'s read of an opened model (the handle `id`), its rows solved.
+  mujoco::ModelState read_state(const std::string& id);
 
   std::unique_ptr<ChildProcess> process_;
   std::vector<std::string> messages_;

@@ -523,10 +523,11 @@ TEST_F(NodeProcess, AChattyNodeDoesNotDeadlock) {
 // checkout's, through CONTACT2D_MUJOCO3_DIR) is refused in one line.
 TEST_F(NodeProcess, HelloCarriesTheProtocolVersion) {
   CONTACT2D_NEEDS_MUJOCO3();
-  Result r = run("simulate box.toml --engine mujoco3",
-                 driver({{"const PROTOCOL = 2;", "const PROTOCOL = 1;"}}));
+  const std::string ours = "const PROTOCOL = " + std::to_string(mujoco3::kProtocol) + ";";
+  Result r = run("simulate box.toml --engine mujoco3", driver({{ours, "const PROTOCOL = 1;"}}));
   EXPECT_EQ(r.status, 2) << r.err;
-  expect_single_line(r.err, "driver.mjs speaks protocol 1, contact2d 2");
+  expect_single_line(
+      r.err, "driver.mjs speaks protocol 1, contact2d " + std::to_string(mujoco3::kProtocol));
   // A driver that says nothing of a protocol (one from before it).
   r = run("simulate box.toml --engine mujoco3",
           driver({{"if (r.protocol !== PROTOCOL) {", "if (false) {"},
@@ -558,8 +559,13 @@ TEST_F(NodeProcess, AnswersAreReadStrictly) {
        "answered step with \"bytes\" is a string, not a number"},
       {"counters", "delete a.warnings;", "simulate box.toml --engine mujoco3",
        "answered counters with no \"warnings\""},
-      {"read", "delete a.speed;", "inspect ball.xml --engine mujoco3",
-       "answered read with no \"speed\""},
+      {"read", "delete a.efc_force;", "inspect ball.xml --engine mujoco3",
+       "answered read with no \"efc_force\""},
+      {"read", "a.contacts[0].jac2[0] = {index: [99], value: [1]};",
+       "inspect ball.xml --engine mujoco3",
+       "answered read with a state whose arrays do not fit together: a Jacobian row's columns"},
+      {"solve", "a.rows.pop();", "inspect ball.xml --engine mujoco3 --settle 0.5",
+       "answered solve with 2 rows for 3"},
   };
   for (const Case& c : cases) {
     const Result r = run(c.command, patched(c.op, c.change));
@@ -600,8 +606,8 @@ TEST_F(NodeProcess, ErrorsSayWhatHappened) {
 TEST_F(NodeProcess, AStartFailureSaysWhy) {
   CONTACT2D_NEEDS_MUJOCO3();
   const Result r = run("simulate box.toml --engine mujoco3",
-                       driver({{"const PROTOCOL = 2;",
-                                "const PROTOCOL = 2; throw new RangeError('no room to start');"}}));
+                       driver({{"const PROTOCOL = ",
+                                "throw new RangeError('no room to start'); const PROTOCOL = "}}));
   EXPECT_EQ(r.status, 3) << r.err;
   expect_single_line(r.err, "RangeError: no room to start");
   EXPECT_EQ(r.err.find("Node.js v"), std::string::npos) << r.err;
