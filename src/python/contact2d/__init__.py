@@ -607,7 +607,11 @@ def _scene_load(path, set=()):
     return _call(_load, path, list(set))
 
 
-_scene_load.__doc__ = _load.__doc__
+_scene_load.__doc__ = """Scene.load(path, set=()): the scene of a TOML scene file (str or
+os.PathLike), with the assignments "KEY=VALUE" of ``set`` made as the
+program's --set makes them (["contact.k=1e5"]; docs/scenes.md). Raises
+FileNotFoundError for a missing file, ValueError for a bad value."""
+_scene_load.__name__, _scene_load.__qualname__ = "load", "Scene.load"
 Scene.load = staticmethod(_scene_load)
 
 
