@@ -2,9 +2,11 @@
 # The backend's three PEP 517 builds (src/python/packaging/build_backend.py)
 # from the configured build tree BUILD_DIR (CONTACT2D_BUILD_DIR: no
 # compiling beyond bringing the module's target up to date), with no package
-# index (--no-index: the machine reaches none) and build isolation on:
+# index (--no-index: the machine reaches none) and build isolation on
+# (pip's default) unless said:
 #  1. `pip install .` into a scratch virtual environment that sees Debian's
-#     numpy (--system-site-packages); then, from outside the tree, the module
+#     numpy (--system-site-packages), and with --no-build-isolation into
+#     another; then, from outside the tree, the module
 #     is the installed one, its __version__ is the project's, it runs a
 #     scene, and the installed files are the wheel's (RECORD) and nothing else;
 #  2. `pip install -e .` into another: contact2d is imported from
@@ -23,11 +25,14 @@ scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
 export PIP_DISABLE_PIP_VERSION_CHECK=1 PYTHONDONTWRITEBYTECODE=1
 
-# 1. pip install .
-"$python" -m venv --system-site-packages "$scratch/venv"
-CONTACT2D_BUILD_DIR="$build_dir" "$scratch/venv/bin/pip" install --quiet --no-index "$source_dir"
+# 1. pip install ., with build isolation (pip's default) and without
 cd "$scratch"
-"$scratch/venv/bin/python" - "$scratch/venv" "$version" <<'PY'
+for isolation in "" --no-build-isolation; do
+venv="$scratch/venv$isolation"
+"$python" -m venv --system-site-packages "$venv"
+CONTACT2D_BUILD_DIR="$build_dir" "$venv/bin/pip" install --quiet --no-index $isolation \
+  "$source_dir"
+"$venv/bin/python" - "$venv" "$version" "${isolation:-(build isolation on)}" <<'PY'
 import importlib.metadata, pathlib, sys
 import contact2d
 venv, version = pathlib.Path(sys.argv[1]), sys.argv[2]
@@ -42,8 +47,10 @@ assert [f for f in files if not f.startswith("contact2d-") and "__pycache__" not
                                              extension])], files
 s = contact2d.Scene("point_mass")
 s.sim.duration = 0.01
-print("pip install .:", where, contact2d.__version__, contact2d.simulate(s).trajectory.shape)
+print("pip install", sys.argv[3], ".:", where, contact2d.__version__,
+      contact2d.simulate(s).trajectory.shape)
 PY
+done
 
 # 2. pip install -e .
 "$python" -m venv --system-site-packages "$scratch/editable"
