@@ -92,6 +92,10 @@ def test_words_a_sentence_keeps():
     assert words("--no-rest-search and --allow-nonphysical") == \
         "rest_search=False and allow_nonphysical=True"
     assert words("--unknown-option 3 stays") == "--unknown-option 3 stays"
+    assert words("were not made; --full-diagnosis makes them.") == \
+        'were not made; diagnosis="full" makes them.'
+    assert words("(not a pair --apply wrote: ...)") == "(not a pair apply= wrote: ...)"
+    assert words("--model's <include>") == "model's <include>"
     # A quoted command line is the call that does it.
     assert words("which only `contact2d generate --engine mujoco3 --mapping compensated "
                  "--friction damper` builds") == \

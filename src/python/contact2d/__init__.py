@@ -66,13 +66,16 @@ _FLAGS = {
     "--bootstrap": ("bootstrap", "number"), "--threads": ("threads", "number"),
     "--all-impacts": ("all_impacts", True), "--no-k-profile": ("k_profile", False),
 }
+_KINDS = ("number", "word", "set")  # any other kind is a switch's value
 # An option and what may follow it: a token that does not end a sentence.
 _OPTION = _re.compile(r"(?<![\w-])(--[a-z][a-z0-9-]*)(?: ([^\s:;,()`'\"]*[^\s:;,()`'\".]))?")
 _NUMBER = _re.compile(r"[-+]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|nan|inf)")
 _PLACEHOLDER = _re.compile(r"[A-Z][A-Z_]*")  # --model FILE, --settle SECONDS
 # Words after a --word option that are the sentence's, not its value.
 _PROSE = {"a", "an", "the", "or", "and", "with", "to", "is", "for", "only", "in", "of", "on",
-          "without", "when", "as", "it", "its", "that", "lets", "lists", "needs", "must", "not"}
+          "without", "when", "as", "it", "its", "that", "lets", "lists", "needs", "must", "not",
+          "wrote", "writes", "reads", "builds", "takes", "gives", "makes", "keeps", "brings",
+          "inspects", "shrinks", "changes"}
 
 
 def _literal(value):
@@ -112,7 +115,7 @@ def _python_call(match):
         if words[i] not in _FLAGS:
             return match.group(0)
         name, kind = _FLAGS[words[i]]
-        if not isinstance(kind, str):
+        if kind not in _KINDS:
             arguments.append(f"{name}={_literal(kind)}")
             i += 1
             continue
@@ -138,8 +141,10 @@ def _python_words(text):
         if flag not in _FLAGS:
             return match.group(0)
         name, kind = _FLAGS[flag]
+        if token is None and text[match.end():match.end() + 2] == "'s":
+            return name  # "--model's <include>": the model's
         rest = "" if token is None else " " + token
-        if not isinstance(kind, str):  # a switch
+        if kind not in _KINDS:  # a switch
             return f"{name}={_literal(kind)}{rest}"
         value = _option_value(kind, token)
         return f"{name}={value}" if value is not None else f"{name}={rest}"
@@ -168,7 +173,7 @@ def _fix_kwargs(fix):
     i = 0
     while i < len(tokens):
         name, kind = _FLAGS[tokens[i]]  # a fix names only options of the table
-        if not isinstance(kind, str):
+        if kind not in _KINDS:
             kwargs[name] = kind
             i += 1
             continue
