@@ -195,20 +195,20 @@ struct AtlasSummary {
 
 AtlasSummary summarize_atlas(const AtlasData& data);
 
-// The colour scale of a body's heat maps, log10 of the distance (m), whole
-// decades around every ok point's distances of that body (all mappings,
-// laws, with and without friction), so a colour means one error on each.
-struct AtlasColourRange {
-  double lo = -16.0, hi = -15.0;
-};
-AtlasColourRange atlas_colour_range(const AtlasData& data, const std::string& body);
+// The colour scale of one heat map: each cell shaded by how many decades
+// its distance lies from its row's goal (kAtlasGoalFrictionless without
+// friction, kAtlasGoalFriction with), log10(distance / goal), on ±span:
+// the whole decades that cover every cell's value (at least 1), so that
+// white is the goal, blue meets it and orange misses it, each map's cells
+// told apart on its own scale. Values that are not finite are left out.
+double atlas_colour_span(const std::vector<double>& decades_from_goal);
 
 // Heat maps of the maximum position distance over k × ζ, one PNG per body ×
 // mapping × damping law, named PREFIX<body>.<mapping>.<damping>.png in
 // out_dir (gnuplot); sets each group's heatmap: MuJoCo ↔ converged and
 // ref ↔ MuJoCo side by side, the frictionless points (μ = μ_roll = 0) in one
 // row and those with friction in another (a row only where the group has
-// such points), on the body's atlas_colour_range. Cells take the largest distance of their points;
+// such points), on the map's atlas_colour_span. Cells take the largest distance of their points;
 // an axis with more than 12 distinct values is cut into 8 log-spaced bins.
 void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std::string& out_dir,
                          const std::string& prefix = "heatmap.");

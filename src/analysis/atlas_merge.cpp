@@ -343,17 +343,11 @@ std::string tics(const char* axis, const Cells& c) {
 
 }  // namespace
 
-AtlasColourRange atlas_colour_range(const AtlasData& data, const std::string& body) {
-  Extent range;
-  for (const AtlasRow& r : data.rows) {
-    if (r.body != body || r.status != "ok") continue;
-    for (double v : {r.mujoco_conv_pos, r.ref_mujoco_pos})
-      if (v > 0.0) range.add(std::log10(v));
-  }
-  AtlasColourRange c;
-  c.lo = std::isfinite(range.lo) ? std::floor(range.lo) : -16.0;
-  c.hi = std::isfinite(range.hi) ? std::max(std::ceil(range.hi), c.lo + 1.0) : c.lo + 1.0;
-  return c;
+double atlas_colour_span(const std::vector<double>& decades_from_goal) {
+  double span = 1.0;
+  for (double d : decades_from_goal)
+    if (std::isfinite(d)) span = std::max(span, std::ceil(std::abs(d)));
+  return span;
 }
 
 void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std::string& out_dir,
@@ -392,10 +386,14 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
         if (!std::isnan(values[panel]))
           worst[f][panel][i] = std::max(worst[f][panel][i], values[panel]);
     }
-    // One colour scale for every map of the body (all its mappings, laws,
-    // with and without friction): a colour means the same error on each.
-    const AtlasColourRange range = atlas_colour_range(data, g.body);
-    const double lo = range.lo, hi = range.hi;
+    // Each cell's decades from its row's goal, on this map's own ±span.
+    const double goals[2] = {kAtlasGoalFrictionless, kAtlasGoalFriction};
+    std::vector<double> decades;
+    for (int f : {kFrictionless, kFriction})
+      for (const auto& w : worst[f])
+        for (double v : w)
+          if (v > 0.0) decades.push_back(std::log10(v / goals[f]));
+    const double span = atlas_colour_span(decades);
     const std::string file = prefix + g.body + "." + g.mapping + "." + g.damping + ".png";
     const std::string png_path = (fs::path(out_dir) / file).string();
     AtomicFile png(png_path);
@@ -414,9 +412,9 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
             std::string label =
                 w < 0.0 ? (failed[f][i] ? "diverged" : "") : format_number("%.0e", w);
             if (w >= 0.0 && failed[f][i]) label += "*";
-            // Columns: k cell, ζ cell, log10 of the distance (an exact 0 at
+            // Columns: k cell, ζ cell, decades from the goal (an exact 0 at
             // the bottom of the colour range), the label.
-            const double shade = w > 0.0 ? std::log10(w) : lo;
+            const double shade = w > 0.0 ? std::log10(w / goals[f]) : -span;
             if (w >= 0.0)
               std::fprintf(file_ptr->get(), "%zu %zu %.6g \"%s\"\n", ki, zi, shade, label.c_str());
             else if (!label.empty())
@@ -435,18 +433,14 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
     std::ostringstream s;
     s << gnuplot_png(png.temp_path(), 1400, height) << "set multiplot title '"
       << gnuplot_text("max position error over k × ζ: " + g.body + ", " + g.mapping + " mapping, " +
-                      g.damping +
-                      " (largest over the other axes in each cell; colour scale "
-                      "shared by every map of " +
-                      g.body + ")")
+                      g.damping + " (largest over the other axes in each cell)")
       << "' font ',13'\n"
       << "set xlabel 'k (N/m)'\nset ylabel 'ζ = c/(2√(k·m))'\n"
       << "set xrange [-0.5:" << static_cast<double>(kc.size()) - 0.5
       << "]\nset yrange [-0.5:" << static_cast<double>(zc.size()) - 0.5 << "]\n"
       << tics("x", kc) << (kc.size() > 5 ? "set xtics rotate by -30\n" : "") << tics("y", zc)
-      << "set cbrange [" << lo << ":" << hi << "]\n"
-      << "set cblabel 'log_{10} of the max position error (m)'\n"
-      << "set palette defined (0 '#0072B2', 0.5 '#F0E442', 1 '#D55E00')\n"
+      << "set cbrange [" << -span << ":" << span << "]\n"
+      << "set palette defined (0 '#0072B2', 0.5 '#FFFFFF', 1 '#D55E00')\n"
       << "unset key\nset tics nomirror\n";
     const char* titles[2] = {"MuJoCo ↔ converged solution", "ref ↔ MuJoCo (same Δt)"};
     for (int row = 0; row < panel_rows; ++row) {
@@ -460,6 +454,8 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
                           (f == kFrictionless ? ", without friction (μ = μ_roll = 0)"
                                               : ", with friction (largest over μ > 0)"))
           << "'\n"
+          << "set cblabel 'decades from the goal " << format_number("%.0e", goals[f])
+          << " m: log_{10}(error / goal); blue meets it'\n"
           << "plot " << d
           << " using 1:2:(0.5):(0.5):3 with boxxyerror fill solid 1.0 noborder lc palette, " << d
           << " using 1:2:4 with labels font ',10'\n";

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string>
@@ -475,34 +476,16 @@ TEST_F(AtlasRun, ASecondRunIntoALockedDirectoryExits2AndTheFirstSurvives) {
   EXPECT_FALSE(fs::exists(lock));
 }
 
-// One colour scale per body: the heat maps of one body (every mapping, law,
-// with and without friction) share the whole decades around all its ok
-// points' distances, so a colour means one error on each; another body has
-// its own; failed points do not stretch it.
-TEST(AtlasHeatmaps, OneColourScalePerBody) {
-  AtlasData data;
-  auto row = [](const std::string& body, const std::string& mapping, double mu, double mujoco,
-                double engines, const std::string& status = "ok") {
-    AtlasRow r;
-    r.body = body;
-    r.mapping = mapping;
-    r.damping = "kelvin_voigt";
-    r.status = status;
-    r.mu = mu;
-    r.mujoco_conv_pos = mujoco;
-    r.ref_mujoco_pos = engines;
-    return r;
-  };
-  data.rows = {
-      row("box", "calibrated", 0.0, 3e-4, 2e-7), row("box", "compensated", 0.0, 5e-5, 3e-13),
-      row("box", "calibrated", 0.5, 2e-2, 3e-2), row("point_mass", "seed", 0.0, 4e-3, 1e-3),
-      row("box", "seed", 0.0, 1e3, 1e3, "diverged")};
-  const AtlasColourRange box = atlas_colour_range(data, "box");
-  EXPECT_EQ(box.lo, -13.0);  // log10(3e-13) = -12.5
-  EXPECT_EQ(box.hi, -1.0);   // log10(3e-2) = -1.5
-  const AtlasColourRange point_mass = atlas_colour_range(data, "point_mass");
-  EXPECT_EQ(point_mass.lo, -3.0);
-  EXPECT_EQ(point_mass.hi, -2.0);
+// A heat map's colours: decades from the goal on ± whole decades covering
+// every cell (at least one), so that a map whose cells lie within a decade
+// of each other still spans its whole palette; values that are not finite
+// (an exact 0's log) do not stretch it.
+TEST(AtlasHeatmaps, ColourSpanCoversEveryCellInWholeDecades) {
+  EXPECT_EQ(atlas_colour_span({}), 1.0);
+  EXPECT_EQ(atlas_colour_span({0.3, -0.2}), 1.0);
+  EXPECT_EQ(atlas_colour_span({-7.5, 1.5}), 8.0);  // 3e-13 and 3e-2 from 1e-5 and 1e-3
+  EXPECT_EQ(atlas_colour_span({1.2, -std::numeric_limits<double>::infinity()}), 2.0);
+  EXPECT_EQ(atlas_colour_span({std::nan(""), 2.0}), 2.0);
 }
 
 }  // namespace
