@@ -600,20 +600,17 @@ void damper_cases(const ReportRequest& o, Results& r) {
     const double without = f.mujoco3_compensated.max_pos, with = f.mujoco3_damper.max_pos;
     if (!(with > 0.0) || !(without / with > best)) continue;
     best = without / with;
-    r.readme.damper_helps = {{f.what,
-                              "contact2d compare " + o.out + "/friction/" + f.name +
-                                  ".toml --engine mujoco3 --mapping compensated",
-                              without, with}};
+    r.readme.damper_helps = {
+        {f.what, "contact2d compare " + o.out + "/friction/" + f.name + ".toml", without, with}};
   }
   for (const analysis::VersionTable& t : r.versions) {
     for (const analysis::VersionRow& v : t.rows) {
       if (!(v.ref_v3 > 0.0) || !(v.ref_v3_damper / v.ref_v3 > worst)) continue;
       worst = v.ref_v3_damper / v.ref_v3;
-      r.readme.damper_hurts = {{"the built-in " + v.scene + " with the Kelvin–Voigt law",
-                                "contact2d compare " + scene_path(v.scene) +
-                                    " --set contact.damping=kelvin_voigt --engine mujoco3 "
-                                    "--mapping compensated",
-                                v.ref_v3, v.ref_v3_damper}};
+      r.readme.damper_hurts = {
+          {"the built-in " + v.scene + " with the Kelvin–Voigt law",
+           "contact2d compare " + scene_path(v.scene) + " --set contact.damping=kelvin_voigt",
+           v.ref_v3, v.ref_v3_damper}};
     }
   }
 }

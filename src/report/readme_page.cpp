@@ -369,7 +369,8 @@ std::string recommendation(const ReadmeData& d) {
       scene_list +
       " of the largest position difference of\n`contact2d compare validation/scenes/SCENE.toml "
       "--set contact.damping=kelvin_voigt --mapping MAPPING --allow-nonphysical`, MAPPING = " +
-      mapping_list + (v3 ? "; on 3.14 add `--engine mujoco3`" : "") + ").";
+      mapping_list +
+      (v3 ? "; on 3.14 `--engine mujoco3:MAPPING` in place of `--mapping MAPPING`" : "") + ").";
   const bool compensated =
       overall_winner(mapping_means(d.kelvin_voigt, d.scenes, d.mappings)).mapping ==
           "compensated" ||
@@ -381,9 +382,9 @@ std::string recommendation(const ReadmeData& d) {
         "(docs/mujoco.md): a structure for comparing, not for a model to build on.";
   if (v3 && !d.damper_helps.empty() && !d.damper_hurts.empty()) {
     out += " The damper's figures: `" + d.damper_helps.front().command + "` and\n`" +
-           d.damper_hurts.front().command +
-           "`, each without and with `--friction damper` (friction.md and versions.md have it on "
-           "every scene).";
+           d.damper_hurts.front().command + "`, each with `--engine " + kDamperEngines[0] +
+           "` (without) and `--engine " + kDamperEngines[1] +
+           "` (with; friction.md and versions.md have it on every scene).";
   }
   out += "\n\n";
   return out;
@@ -449,7 +450,10 @@ std::string closeness_by_band(const ReadmeData& d) {
          d.random_dir +
          "/sNN.toml`\n(add `--set contact.mu=0` for the frictionless columns, `--mapping "
          "compensated` for the compensated rows" +
-         (v3 ? ", `--engine mujoco3` for MuJoCo 3.14's columns" : "") + "):\n\n";
+         (v3 ? ", `--engine mujoco3` for MuJoCo 3.14's columns, `--engine "
+               "mujoco3:compensated` in place of `--mapping compensated`"
+             : "") +
+         "):\n\n";
   const std::string goal = "within " + sci(rc.pos_goal) + " m and " + sci(rc.angle_goal) + " rad";
   Table t{{"damping ratio", "mapping", "scenes", "without friction: " + goal,
            "without friction: median / largest position difference (m)",

@@ -132,10 +132,12 @@ struct RandomCase {
 
 // MuJoCo 3.14's friction damper (`--friction damper`, compensated) on one
 // scene: the reference ↔ 3.14 without it and with it (m), and the command
-// that prints both (add `--friction damper`).
+// that prints both with kDamperEngines' two engines.
+inline constexpr const char* kDamperEngines[2] = {"mujoco3:compensated",
+                                                  "mujoco3:compensated:corners:damper"};
 struct DamperCase {
   std::string label;    // "point mass sliding to rest", …
-  std::string command;  // "contact2d compare … --engine mujoco3 --mapping compensated"
+  std::string command;  // "contact2d compare SCENE [--set …]", without the engine
   double without = std::numeric_limits<double>::quiet_NaN();
   double with = std::numeric_limits<double>::quiet_NaN();
 };

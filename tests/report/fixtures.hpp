@@ -65,12 +65,11 @@ inline void add_mujoco3(ReadmeData& d) {
   d.random_v3[1].max_pos_friction = 0.02;
   d.random_v3[1].v2_vs_v3 = 0.01;
   d.damper_helps = {{"point mass sliding to rest",
-                     "contact2d compare validation/report/friction/point_slide.toml --engine "
-                     "mujoco3 --mapping compensated",
-                     0.00165, 7e-8}};
+                     "contact2d compare validation/report/friction/point_slide.toml", 0.00165,
+                     7e-8}};
   d.damper_hurts = {{"the built-in tshape with the Kelvin–Voigt law",
                      "contact2d compare validation/scenes/tshape.toml --set "
-                     "contact.damping=kelvin_voigt --engine mujoco3 --mapping compensated",
+                     "contact.damping=kelvin_voigt",
                      0.018, 0.338}};
 }
 

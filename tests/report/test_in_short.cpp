@@ -165,20 +165,23 @@ TEST(InShort, EveryPrintedCommandReproducesItsFigure) {
   const std::string mapping_command = command_with(text, "--mapping MAPPING");
   ASSERT_FALSE(mapping_command.empty()) << text;
   const std::smatch lists = find(text, R"(SCENE = ([a-z_, ]+) of the)");
-  const std::smatch mapping_list = find(text, R"(MAPPING = ([a-z, ]+)\))");
+  const std::smatch mapping_list = find(text, R"(MAPPING = ([a-z, ]+)[;)])");
   ASSERT_FALSE(lists.empty());
   ASSERT_FALSE(mapping_list.empty());
   const std::vector<std::string> scenes = split_list(lists[1]);
   const std::vector<std::string> mappings = split_list(mapping_list[1]);
-  const std::smatch v3_add = find(text, R"(; on 3.14 add `([^`]*)`\))");
-  ASSERT_FALSE(v3_add.empty()) << text;
-  const std::string v3 = " " + v3_add[1].str();
+  // On 3.14 the page names the engine in place of the mapping option.
+  const std::smatch v3_mapping = find(text, R"(; on 3.14 `([^`]*)` in place of `([^`]*)`\))");
+  ASSERT_FALSE(v3_mapping.empty()) << text;
   const size_t mapping_first = runs.size();
-  for (const std::string& version : {std::string(), v3}) {
+  for (const bool v3 : {false, true}) {
+    const std::string command =
+        v3 ? replace_all(mapping_command, v3_mapping[2].str(), v3_mapping[1].str())
+           : mapping_command;
     for (const std::string& s : scenes) {
       for (const std::string& m : mappings) {
-        runs.push_back(make_run(
-            replace_all(replace_all(mapping_command, "SCENE", s), "MAPPING", m) + version, false));
+        runs.push_back(
+            make_run(replace_all(replace_all(command, "SCENE", s), "MAPPING", m), false));
       }
     }
   }
@@ -187,7 +190,7 @@ TEST(InShort, EveryPrintedCommandReproducesItsFigure) {
   const std::string random_command = command_with(text, "sNN.toml");
   const std::smatch random_adds = find(
       text,
-      R"(add `([^`]*)` for the frictionless columns, `([^`]*)` for the compensated rows, `([^`]*)` for MuJoCo 3.14's columns)");
+      R"(add `([^`]*)` for the frictionless columns, `([^`]*)` for the compensated rows, `([^`]*)` for MuJoCo 3.14's columns, `([^`]*)` in place of `([^`]*)`\))");
   ASSERT_FALSE(random_command.empty());
   ASSERT_FALSE(random_adds.empty());
   const std::string random_dir = random_command.substr(
@@ -199,12 +202,14 @@ TEST(InShort, EveryPrintedCommandReproducesItsFigure) {
   }
   std::sort(names.begin(), names.end());
   ASSERT_FALSE(names.empty());
-  ASSERT_EQ(" " + random_adds[3].str(), v3);
+  ASSERT_EQ(random_adds[5].str(), random_adds[2].str());
+  const std::string v3 = " " + random_adds[3].str();
   const size_t random_first = runs.size();
-  for (const std::string& version : {std::string(), v3}) {
-    for (const std::string& mapping_add : {std::string(), " " + random_adds[2].str()}) {
+  for (const bool on_v3 : {false, true}) {
+    for (const std::string& mapping_add :
+         {on_v3 ? v3 : std::string(), " " + random_adds[on_v3 ? 4 : 2].str()}) {
       for (const std::string& n : names) {
-        const std::string c = replace_all(random_command, "sNN", n) + mapping_add + version;
+        const std::string c = replace_all(random_command, "sNN", n) + mapping_add;
         runs.push_back(make_run(c + " " + random_adds[1].str(), false));
         runs.push_back(make_run(c, true));
       }
@@ -242,12 +247,12 @@ TEST(InShort, EveryPrintedCommandReproducesItsFigure) {
   // MuJoCo 3.14's damper: each printed command without and with it.
   const std::smatch damper_commands = find(
       text,
-      R"(The damper's figures: `(contact2d [^`]*)` and\n`(contact2d [^`]*)`, each without and with `([^`]*)`)");
+      R"(The damper's figures: `(contact2d [^`]*)` and\n`(contact2d [^`]*)`, each with `([^`]*)` \(without\) and `([^`]*)` \(with)");
   ASSERT_FALSE(damper_commands.empty()) << text;
   const size_t damper_first = runs.size();
   for (const size_t k : {1U, 2U}) {
-    runs.push_back(make_run(damper_commands[k].str(), false));
     runs.push_back(make_run(damper_commands[k].str() + " " + damper_commands[3].str(), false));
+    runs.push_back(make_run(damper_commands[k].str() + " " + damper_commands[4].str(), false));
   }
 
   run_all(runs);
