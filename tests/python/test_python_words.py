@@ -96,6 +96,8 @@ def test_words_a_sentence_keeps():
         'were not made; diagnosis="full" makes them.'
     assert words("(not a pair --apply wrote: ...)") == "(not a pair apply= wrote: ...)"
     assert words("--model's <include>") == "model's <include>"
+    # An unbalanced quote is no command line: the options alone, no exception.
+    assert words("`contact2d simulate --set 'a`") == "`contact2d simulate set= 'a`"
     # A quoted command line is the call that does it.
     assert words("which only `contact2d generate --engine mujoco3 --mapping compensated "
                  "--friction damper` builds") == \
@@ -111,6 +113,7 @@ def test_fix_kwargs_of_each_kind():
         {"set": ["contact.mu=0", "contact.mu_roll=0"]}
     assert fix("--dt 0.0002 --model-dt 0.002") == {"dt": 0.0002, "model_dt": 0.002}
     assert fix("--mapping compensated") == {"mapping": "compensated"}
+    assert fix("--no-such-option 3") is None  # stays text: compare() does not fail on it
     for kwargs in (fix("--dt 0.0002 --model-dt 0.002"), fix("--set contact.mu=0")):
         inspect.signature(contact2d.compare).bind("scene", **kwargs)  # compare takes them
 

@@ -108,7 +108,10 @@ def _python_call(match):
     """A quoted command line as the call of this module that does it:
     `contact2d.generate(scene, mapping="compensated")`; as it was if one of
     its words has no keyword."""
-    function, words = match.group(1), _shlex.split(match.group(2))
+    try:
+        function, words = match.group(1), _shlex.split(match.group(2))
+    except ValueError:  # an unbalanced quote: not a command line after all
+        return match.group(0)
     arguments = ["scene"] if function in ("simulate", "compare", "generate") else []
     i = 0
     while i < len(words):
@@ -169,20 +172,23 @@ def _fix_kwargs(fix):
     "--dt 0.0002 --model-dt 0.002"), as keywords of compare() and
     simulate(): {"set": ["contact.mu=0"]}, {"dt": 0.0002, "model_dt": 0.002}."""
     kwargs = {}
-    tokens = _shlex.split(fix)
-    i = 0
-    while i < len(tokens):
-        name, kind = _FLAGS[tokens[i]]  # a fix names only options of the table
-        if kind not in _KINDS:
-            kwargs[name] = kind
-            i += 1
-            continue
-        value = tokens[i + 1]
-        if kind == "set":
-            kwargs.setdefault("set", []).append(value)
-        else:
-            kwargs[name] = float(value) if kind == "number" else value
-        i += 2
+    try:
+        tokens = _shlex.split(fix)
+        i = 0
+        while i < len(tokens):
+            name, kind = _FLAGS[tokens[i]]
+            if kind not in _KINDS:
+                kwargs[name] = kind
+                i += 1
+                continue
+            value = tokens[i + 1]
+            if kind == "set":
+                kwargs.setdefault("set", []).append(value)
+            else:
+                kwargs[name] = float(value) if kind == "number" else value
+            i += 2
+    except (KeyError, IndexError, ValueError):
+        return None  # an option the table lacks: the fix stays text (tested not to happen)
     return kwargs
 
 
@@ -197,8 +203,8 @@ def _with_fixes(result):
             fix = finding.get("fix", "")
             kwargs = _fix_kwargs(fix) if fix else None
             finding["fix_kwargs"] = kwargs
-            finding["fix"] = ", ".join(f"{k}={_literal(v)}" for k, v in kwargs.items()) \
-                if kwargs else ""
+            if kwargs:
+                finding["fix"] = ", ".join(f"{k}={_literal(v)}" for k, v in kwargs.items())
     return result
 
 
