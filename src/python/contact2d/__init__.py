@@ -215,9 +215,13 @@ def _call(function, *args):
     except (ValueError, OSError, RuntimeError) as error:
         text = str(error)
         words = _python_words(text)
-        if words == text:
+        try:
+            translated = type(error)(words) if words != text else None
+        except TypeError:  # an exception type that takes more than its text
+            translated = None
+        if translated is None:
             raise
-        raise type(error)(words).with_traceback(error.__traceback__) from None
+        raise translated.with_traceback(error.__traceback__) from None
 
 
 # Scene's attributes, in the scene file's terms: where each key of a
