@@ -195,11 +195,11 @@ struct AtlasSummary {
 
 AtlasSummary summarize_atlas(const AtlasData& data);
 
-// The colour scale of one heat map: each cell shaded by how many decades
+// The colour scale of one heat-map panel: each cell shaded by how many decades
 // its distance lies from its row's goal (kAtlasGoalFrictionless without
 // friction, kAtlasGoalFriction with), log10(distance / goal), on ±span:
 // the whole decades that cover every cell's value (at least 1), so that
-// white is the goal, blue meets it and orange misses it, each map's cells
+// white is the goal, blue meets it and orange misses it, each panel's cells
 // told apart on its own scale. Values that are not finite are left out.
 double atlas_colour_span(const std::vector<double>& decades_from_goal);
 
@@ -208,8 +208,8 @@ double atlas_colour_span(const std::vector<double>& decades_from_goal);
 // out_dir (gnuplot); sets each group's heatmap: MuJoCo ↔ converged and
 // ref ↔ MuJoCo side by side, the frictionless points (μ = μ_roll = 0) in one
 // row and those with friction in another (a row only where the group has
-// such points), on the map's atlas_colour_span. Cells take the largest distance of their points;
-// an axis with more than 12 distinct values is cut into 8 log-spaced bins.
+// such points), each panel on its own atlas_colour_span. Cells take the largest distance of their
+// points; an axis with more than 12 distinct values is cut into 8 log-spaced bins.
 void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std::string& out_dir,
                          const std::string& prefix = "heatmap.");
 

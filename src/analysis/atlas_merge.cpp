@@ -386,14 +386,17 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
         if (!std::isnan(values[panel]))
           worst[f][panel][i] = std::max(worst[f][panel][i], values[panel]);
     }
-    // Each cell's decades from its row's goal, on this map's own ±span.
+    // Each cell's decades from its row's goal, on each panel's own ±span.
     const double goals[2] = {kAtlasGoalFrictionless, kAtlasGoalFriction};
-    std::vector<double> decades;
-    for (int f : {kFrictionless, kFriction})
-      for (const auto& w : worst[f])
-        for (double v : w)
+    double spans[2][2];
+    for (int f : {kFrictionless, kFriction}) {
+      for (int panel = 0; panel < 2; ++panel) {
+        std::vector<double> decades;
+        for (double v : worst[f][panel])
           if (v > 0.0) decades.push_back(std::log10(v / goals[f]));
-    const double span = atlas_colour_span(decades);
+        spans[f][panel] = atlas_colour_span(decades);
+      }
+    }
     const std::string file = prefix + g.body + "." + g.mapping + "." + g.damping + ".png";
     const std::string png_path = (fs::path(out_dir) / file).string();
     AtomicFile png(png_path);
@@ -414,7 +417,7 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
             if (w >= 0.0 && failed[f][i]) label += "*";
             // Columns: k cell, ζ cell, decades from the goal (an exact 0 at
             // the bottom of the colour range), the label.
-            const double shade = w > 0.0 ? std::log10(w / goals[f]) : -span;
+            const double shade = w > 0.0 ? std::log10(w / goals[f]) : -spans[f][panel];
             if (w >= 0.0)
               std::fprintf(file_ptr->get(), "%zu %zu %.6g \"%s\"\n", ki, zi, shade, label.c_str());
             else if (!label.empty())
@@ -439,7 +442,6 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
       << "set xrange [-0.5:" << static_cast<double>(kc.size()) - 0.5
       << "]\nset yrange [-0.5:" << static_cast<double>(zc.size()) - 0.5 << "]\n"
       << tics("x", kc) << (kc.size() > 5 ? "set xtics rotate by -30\n" : "") << tics("y", zc)
-      << "set cbrange [" << -span << ":" << span << "]\n"
       << "set palette defined (0 '#0072B2', 0.5 '#FFFFFF', 1 '#D55E00')\n"
       << "unset key\nset tics nomirror\n";
     const char* titles[2] = {"MuJoCo ↔ converged solution", "ref ↔ MuJoCo (same Δt)"};
@@ -454,6 +456,7 @@ void draw_atlas_heatmaps(const AtlasData& data, AtlasSummary& summary, const std
                           (f == kFrictionless ? ", without friction (μ = μ_roll = 0)"
                                               : ", with friction (largest over μ > 0)"))
           << "'\n"
+          << "set cbrange [" << -spans[f][panel] << ":" << spans[f][panel] << "]\n"
           << "set cblabel 'decades from the goal " << format_number("%.0e", goals[f])
           << " m: log_{10}(error / goal); blue meets it'\n"
           << "plot " << d

@@ -88,7 +88,7 @@ std::string atlas_summary_markdown(const analysis::AtlasSummary& s, const std::s
           "maximum position error of its points (over the other axes); \"diverged\" marks a cell "
           "whose points all failed, \"*\" one where some did. The colour is how many decades a "
           "cell lies from its row's goal (1e-5 m without friction, 1e-3 m with): white at the "
-          "goal, blue below it (met), orange above (missed), on each map's own scale.\n\n";
+          "goal, blue below it (met), orange above (missed), each panel on its own scale.\n\n";
     for (const analysis::AtlasGroup& g : s.groups)
       if (!g.heatmap.empty())
         md << "![" << g.body << ", " << g.mapping << ", " << g.damping << "](" << image_dir

@@ -361,7 +361,8 @@ std::string recommendation(const ReadmeData& d) {
   const std::string helps = damper_text(d.damper_helps, "helps most on");
   const std::string hurts = damper_text(d.damper_hurts, "hurts most on");
   row({"with friction", "no setting removes the cone's push (friction.md)",
-       "`--friction damper` (compensated only) " + helps + (hurts.empty() ? "" : "; " + hurts)});
+       "the friction rows' own damper (`--engine " + std::string(kDamperEngines[1]) +
+           "`, `--friction damper`) " + helps + (hurts.empty() ? "" : "; " + hurts)});
   out += to_markdown(t);
   out +=
       "\nFor comparing: the geometric-mean error over the built-in scenes with MuJoCo's own "
