@@ -13,7 +13,7 @@
 // (analysis::friction_parts) compares two runs of the reference under two
 // friction laws, which no compare command prints.
 // About 160 runs of compare on 2.2.2 and as many on 3.14 (each starting
-// Node), a few minutes on two cores (label replay: not in the sanitizer
+// Node): 157 s on two busy cores (label replay: not in the sanitizer
 // stage).
 #include <gtest/gtest.h>
 
