@@ -38,6 +38,7 @@
 
 #include "core/dynamics.hpp"
 #include "io/scene_file.hpp"
+#include "support/needs.hpp"
 
 namespace fs = std::filesystem;
 
@@ -264,9 +265,8 @@ TEST_P(ExtremeScene, MeetsItsStatedExpectations) {
 // Whatever MuJoCo makes of these scenes, it answers cleanly.
 TEST_P(ExtremeScene, MujocoAnswersCleanly) {
   const ProgramRun run = run_program(GetParam(), "mujoco");
-  if (run.status == 2 && run.err.find("not available") != std::string::npos) {
-    GTEST_SKIP() << "contact2d was built without MuJoCo";
-  }
+  CONTACT2D_NEEDS(!(run.status == 2 && run.err.find("not available") != std::string::npos),
+                  "contact2d was built without MuJoCo");
   EXPECT_TRUE(run.status == 0 || run.status == 2 || run.status == 3) << run.status << run.err;
   if (run.status != 0) {
     EXPECT_FALSE(run.err.empty());

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "support/files.hpp"
+#include "support/needs.hpp"
 
 namespace fs = std::filesystem;
 
@@ -234,7 +235,7 @@ TEST(Cli, SetErrorsNameTheOptionNotTheSceneFile) {
 TEST(Cli, UnknownSubcommandAndAnMjcfSceneAreNamed) {
   const Output unknown = capture("frob");
   EXPECT_EQ(unknown.status, 2);
-  EXPECT_EQ(unknown.err.rfind("contact2d: frob: unknown subcommand (one of simulate", 0), 0u)
+  EXPECT_EQ(unknown.err.rfind("contact2d: frob: unknown subcommand (one of compare", 0), 0u)
       << unknown.err;
   EXPECT_EQ(std::count(unknown.err.begin(), unknown.err.end(), '\n'), 1) << unknown.err;
   EXPECT_TRUE(unknown.out.empty()) << unknown.out;
@@ -290,7 +291,7 @@ TEST(Cli, SweepProgressOnAPipeEstimatesTheTimeLeft) {
 // (the point mass: no θ; a single Δt; one k), must leave gnuplot silent:
 // run_gnuplot passes on anything gnuplot prints on stderr.
 TEST(Cli, EveryPlotDrawsWithoutAGnuplotWarning) {
-  if (std::system("gnuplot --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "no gnuplot";
+  CONTACT2D_NEEDS(std::system("gnuplot --version >/dev/null 2>&1") == 0, "no gnuplot");
   struct Case {
     std::string name, args;
   };
@@ -346,7 +347,10 @@ TEST(Cli, AllBuiltInScenesRunWithEveryIntegrator) {
 TEST(Cli, AnUnknownSubcommandIsNamed) {
   const Output o = capture("frob");
   EXPECT_EQ(o.status, 2);
-  EXPECT_EQ(o.err.rfind("contact2d: frob: unknown subcommand (one of simulate, ", 0), 0u) << o.err;
+  // In the order of --help: what users come for first.
+  EXPECT_EQ(o.err.rfind("contact2d: frob: unknown subcommand (one of compare, report, solref, ", 0),
+            0u)
+      << o.err;
   EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
 }
 

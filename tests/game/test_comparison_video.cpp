@@ -28,6 +28,7 @@
 #include "game/video.hpp"
 #include "reference/dense_reference.hpp"
 #include "support/files.hpp"
+#include "support/needs.hpp"
 #include "support/stand_in.hpp"
 
 namespace fs = std::filesystem;
@@ -160,7 +161,7 @@ std::vector<unsigned char> check_mp4(game::OffscreenBackend backend, const std::
 }
 
 TEST(ComparisonVideo, Mp4HasDurationTimesFpsFramesAndBothColoursThroughEgl) {
-  if (!game::offscreen_egl_built()) GTEST_SKIP() << "built without libEGL";
+  CONTACT2D_NEEDS(game::offscreen_egl_built(), "built without libEGL");
   check_mp4(game::OffscreenBackend::Egl, "egl");
 }
 

@@ -17,6 +17,7 @@
 #include "game/game.hpp"
 #include "game/pitches.hpp"
 #include "game/session.hpp"
+#include "support/needs.hpp"
 
 namespace contact2d::game {
 namespace {
@@ -42,7 +43,7 @@ TEST(BothEngines, TheShippedGoalReplay) {
     std::printf("%s: %s\n", engine.c_str(), runs.back().json.c_str());
   }
   EXPECT_EQ(runs[0].outcome, Outcome::Goal) << runs[0].json;
-  if (runs.size() < 2) GTEST_SKIP() << "MuJoCo not built in";
+  CONTACT2D_NEEDS(runs.size() >= 2, "MuJoCo not built in");
   // MuJoCo's pass rolls with its own rolling resistance and its kick sees
   // its own contact with the grass, so the paths part; they part by more
   // than a ball radius only after the kick.

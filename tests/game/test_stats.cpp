@@ -22,6 +22,7 @@
 
 #include "engines/engines.hpp"
 #include "game/policy.hpp"
+#include "support/needs.hpp"
 
 namespace contact2d::game {
 namespace {
@@ -43,12 +44,12 @@ TEST(GameStats, TheScriptedPlayerScoresOnTheReference) {
 }
 
 TEST(GameStats, ABlindKickRarelyScoresOnMujoco) {
-  if (!engines::mujoco_available()) GTEST_SKIP() << "MuJoCo not built in";
+  CONTACT2D_NEEDS(engines::mujoco_available(), "MuJoCo not built in");
   EXPECT_LE(goal_rate("mujoco", Policy::Blind, 40), 0.05);
 }
 
 TEST(GameStats, TheScriptedPlayerScoresOnMujoco) {
-  if (!engines::mujoco_available()) GTEST_SKIP() << "MuJoCo not built in";
+  CONTACT2D_NEEDS(engines::mujoco_available(), "MuJoCo not built in");
   EXPECT_GE(goal_rate("mujoco", Policy::Scripted, 8), 0.5);
 }
 

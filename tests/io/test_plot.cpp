@@ -11,6 +11,7 @@
 
 #include "core/input_error.hpp"
 #include "io/plot.hpp"
+#include "support/needs.hpp"
 
 namespace fs = std::filesystem;
 
@@ -25,7 +26,7 @@ fs::path temp_png(const char* name) {
 }
 
 TEST(RunGnuplot, PassesOnWhatGnuplotPrintsOnStderr) {
-  if (!have_gnuplot()) GTEST_SKIP() << "no gnuplot";
+  CONTACT2D_NEEDS(have_gnuplot(), "no gnuplot");
   const fs::path png = temp_png("warn");
   // A constant curve with the y range left to autoscale: gnuplot warns
   // "empty y range [1:1], adjusting to [0.99:1.01]".
@@ -40,7 +41,7 @@ TEST(RunGnuplot, PassesOnWhatGnuplotPrintsOnStderr) {
 }
 
 TEST(RunGnuplot, SilentOnACleanScriptAndNamesThePlotOnFailure) {
-  if (!have_gnuplot()) GTEST_SKIP() << "no gnuplot";
+  CONTACT2D_NEEDS(have_gnuplot(), "no gnuplot");
   const fs::path png = temp_png("clean");
   testing::internal::CaptureStderr();
   run_gnuplot(gnuplot_png(png.string(), 200, 100) + gnuplot_range("y", 1.0, 1.0, false) +

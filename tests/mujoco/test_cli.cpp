@@ -12,6 +12,7 @@
 #include "analysis/comparison.hpp"
 #include "mj_test_util.hpp"
 #include "mujoco/mjcf.hpp"
+#include "support/needs.hpp"
 
 namespace contact2d {
 namespace {
@@ -246,8 +247,8 @@ TEST_F(Cli, CompareTakesAListOfEngines) {
 }
 
 TEST_F(Cli, ComparePlotWritesAPng) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "gnuplot (gnuplot-nox) not installed";
+  CONTACT2D_NEEDS(std::system("command -v gnuplot >/dev/null 2>&1") == 0,
+                  "gnuplot (gnuplot-nox) not installed");
   write("box.toml", kBox);
   const Result r = run("compare box.toml --plot box.png");
   ASSERT_EQ(r.status, 0) << r.err;

@@ -19,6 +19,18 @@ SCENES = ["validation/scenes/box.toml", "validation/scenes/circle.toml",
           "validation/scenes/point_mass.toml", "validation/scenes/tshape.toml"]
 
 
+def needs(present, what_is_missing):
+    """Skips a test that needs what the machine lacks (MuJoCo built in, the
+    program, the bench), unless CONTACT2D_REQUIRE_DEPENDENCIES is set (by
+    scripts/test, where scripts/setup installs everything), where it fails:
+    there a skip would hide a broken install."""
+    if present:
+        return
+    if os.environ.get("CONTACT2D_REQUIRE_DEPENDENCIES"):
+        pytest.fail(f"{what_is_missing} (CONTACT2D_REQUIRE_DEPENDENCIES: scripts/setup installs it)")
+    pytest.skip(what_is_missing)
+
+
 @pytest.fixture(autouse=True)
 def in_source_dir(monkeypatch):
     monkeypatch.chdir(SOURCE_DIR)
@@ -26,8 +38,7 @@ def in_source_dir(monkeypatch):
 
 def program_path():
     path = os.environ.get("CONTACT2D_PROGRAM", str(SOURCE_DIR / "build" / "contact2d"))
-    if not Path(path).exists():
-        pytest.skip(f"no contact2d program at {path} (set CONTACT2D_PROGRAM)")
+    needs(Path(path).exists(), f"no contact2d program at {path} (set CONTACT2D_PROGRAM)")
     return path
 
 

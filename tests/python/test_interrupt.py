@@ -21,6 +21,7 @@ import time
 import pytest
 
 import contact2d
+from conftest import needs
 
 SCRIPT = r"""
 import os, signal, sys, threading, time
@@ -54,8 +55,7 @@ def engines():
 
 @pytest.mark.parametrize("call", [("simulate", e) for e in engines()] + [("compare", "")])
 def test_ctrl_c_stops_the_call_with_keyboard_interrupt(call):
-    if call[0] == "compare" and not contact2d.mujoco_available:
-        pytest.skip("compare needs MuJoCo")
+    needs(call[0] != "compare" or contact2d.mujoco_available, "compare needs MuJoCo")
     # A run of 1e4 s at dt = 1e-5 is 1e9 steps: minutes on any engine.
     start = time.monotonic()
     done = subprocess.run([sys.executable, "-c", SCRIPT, *call], capture_output=True, text=True,

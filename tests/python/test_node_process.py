@@ -14,8 +14,13 @@ import time
 import pytest
 
 import contact2d
+from conftest import needs
 
-pytestmark = pytest.mark.skipif(not contact2d.mujoco_available, reason="needs MuJoCo")
+
+
+@pytest.fixture(autouse=True)
+def needs_mujoco():
+    needs(contact2d.mujoco_available, "needs MuJoCo")
 
 
 def slow_model(folder):

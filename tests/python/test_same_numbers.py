@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import contact2d
-from conftest import SCENES, SOURCE_DIR, program_path, run_program
+from conftest import SCENES, SOURCE_DIR, needs, program_path, run_program
 
 TIMINGS = ("ref_seconds", "mujoco_seconds", "converged_seconds")
 
@@ -128,8 +128,7 @@ def test_simulate_csv(scene, engine, tmp_path):
 def digest_path():
     path = os.environ.get("CONTACT2D_DIGEST",
                           str(Path(program_path()).parent / "bench" / "contact2d_digest"))
-    if not Path(path).exists():
-        pytest.skip(f"no contact2d_digest at {path} (a build without bench/)")
+    needs(Path(path).exists(), f"no contact2d_digest at {path} (a build without bench/)")
     return path
 
 
