@@ -46,6 +46,18 @@ std::vector<engines::EngineSpec> comparison_engines(
     const std::vector<std::string>& names, const engines::OptionValues& given, double model_dt,
     const std::string& source, const std::function<std::string(std::string_view)>& spelled) {
   std::vector<engines::EngineSpec> specs{engines::parse_engine("ref")};
+  const bool options_given = std::any_of(given.begin(), given.end(),
+                                         [](const auto& option) { return !option.second.empty(); });
+  if (names.size() == 1 && options_given) {  // one engine: --mapping, --geometry, … as simulate's
+    const engines::EngineSpec named = engines::parse_engine(names.front(), spelled("engines"));
+    if (named.kind == "ref")
+      throw InputError(spelled("engines") + " " + names.front() +
+                       ": the reference is always compared, as the first run");
+    const bool has_dt = !engines::find_engine(named.kind)->model_dt_help.empty();
+    specs.push_back(engines::engine_with_options(names.front(), given, has_dt ? model_dt : 0.0,
+                                                 source, spelled));
+    return specs;
+  }
   if (!names.empty()) {
     for (const auto& [name, value] : given)
       if (!value.empty())

@@ -216,7 +216,8 @@ Command add_compare(CLI::App& app) {
       ->type_name("ENGINE")
       ->delimiter(',');
   cmd->add_option("--engine", options->engine,
-                  "One engine to compare with the reference, as --engines with one name")
+                  "One engine to compare with the reference, as --engines with one name; it "
+                  "takes --mapping, --geometry and --friction as simulate's --engine does")
       ->type_name("ENGINE");
   options->outputs.file(*cmd, "--csv", options->csv,
                         "Write the trajectories side by side to this file", "FILE.csv");

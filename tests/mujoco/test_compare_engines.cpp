@@ -138,9 +138,14 @@ TEST(CompareEngines, BadChoicesAreOneLineErrors) {
     }
     return std::string();
   };
-  EXPECT_EQ(error({"mujoco"}, {{"mapping", "exact"}}),
+  // Several engines: each carries its options in its name. One engine
+  // takes them as options, as simulate's --engine does.
+  EXPECT_EQ(error({"mujoco", "mujoco3"}, {{"mapping", "exact"}}),
             "--mapping exact: with --engines an engine's options are part of its name "
             "(KIND:VALUE:VALUE)");
+  EXPECT_EQ(error({"mujoco"}, {{"mapping", "exact"}}), "");
+  EXPECT_EQ(error({"mujoco:seed"}, {{"mapping", "exact"}}),
+            "--mapping exact: the engine's name mujoco:seed gives mapping seed already");
   EXPECT_EQ(error({"bullet"}, {}), "--engines bullet: unknown engine (use ref, mujoco or mujoco3)");
   EXPECT_EQ(error({"ref"}, {}),
             "--engines ref: the reference is always compared, as the first run");

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "mujoco3_test_util.hpp"
@@ -122,6 +123,30 @@ TEST_F(Mujoco3Cli, SimulateAndCompareRunIt) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("friction damper (--friction damper) is the cause"), std::string::npos)
       << r.out;
+}
+
+// compare --engine NAME takes --mapping, --geometry and --friction as
+// simulate's --engine does (before: refused, "options are part of its
+// name", while the help said it took them): the same run as the options
+// written into the name; an option the name already gives is refused.
+TEST_F(Mujoco3Cli, CompareEngineTakesTheEngineOptions) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const Result options = run(
+      "compare box.toml --engine mujoco3 --mapping compensated --friction damper --no-diagnosis "
+      "--json");
+  ASSERT_EQ(options.status, 0) << options.err;
+  const Result named =
+      run("compare box.toml --engine mujoco3:compensated:corners:damper --no-diagnosis --json");
+  ASSERT_EQ(named.status, 0) << named.err;
+  auto without_times = [](std::string json) {  // wall-clock seconds differ run to run
+    return std::regex_replace(json, std::regex(R"("[a-z0-9_]*seconds": [0-9.e+-]+)"), "");
+  };
+  EXPECT_EQ(without_times(options.out), without_times(named.out));
+  const Result twice = run("compare box.toml --engine mujoco3:exact --mapping seed --no-diagnosis");
+  EXPECT_EQ(twice.status, 2) << twice.err;
+  EXPECT_NE(twice.err.find("--mapping seed: the engine's name mujoco3:exact gives mapping exact"),
+            std::string::npos)
+      << twice.err;
 }
 
 // The atlas on MuJoCo 3 (engine = "mujoco3" in the spec): the same rows as
