@@ -226,6 +226,37 @@ TEST(As222, WarningsAreOfTheStepsTaken) {
   EXPECT_FALSE(ahead.warnings().empty());
 }
 
+// Batched steps are the steps one at a time, bit for bit, across the
+// rewinds a changed applied force makes (docs/mujoco3.md): one stepper
+// planned 3000 steps ahead, the force changed at steps 700 and 1900 (each
+// time a rewind to the step read), against one fetching a single step per
+// request; a box dropped on its corners, contacts on and off.
+TEST(As222, BatchedStepsAreTheSingleStepsBitForBit) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const Scene scene = parse_scene(
+      "scene = \"box\"\n[body]\nmass = 0.7\nwidth = 0.3\nheight = 0.12\n"
+      "[contact]\nk = 3e4\nc = 40\nalpha = 150\nmu = 0.5\ndamping = \"kelvin_voigt\"\n"
+      "[initial]\ny = 0.25\ntheta = -0.5\nvx = 0.8\nomega = -3\n[sim]\ndt = 2e-4\n"
+      "duration = 1\n",
+      "test scene");
+  mujoco3::Mujoco3Stepper batched(scene, mujoco::MjcfOptions{});
+  mujoco3::Mujoco3Stepper single(scene, mujoco::MjcfOptions{});
+  batched.plan(3000);
+  for (int i = 1; i <= 3000; ++i) {
+    if (i == 700 || i == 1900) {
+      const Vec3 push(i == 700 ? 3.0 : -1.0, 2.0, 0.1);
+      batched.set_applied(push);
+      single.set_applied(push);
+      batched.plan(3000 - i + 1);
+    }
+    single.plan(1);
+    ASSERT_EQ(batched.step(), StepStatus::Ok) << i;
+    ASSERT_EQ(single.step(), StepStatus::Ok) << i;
+    ASSERT_EQ(batched.state().q, single.state().q) << "step " << i;
+    ASSERT_EQ(batched.state().v, single.state().v) << "step " << i;
+  }
+}
+
 // A stepper's warnings are its own, though every stepper on a thread shares
 // its Node: one run pushed to a bad acceleration at step 1 beside a quiet
 // one, stepped in turn. (MuJoCo 3's WebAssembly build counts the warning
