@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -47,14 +48,24 @@ void plot_impact_predictions(const std::string& png_path, const ImpactFit& fit,
   AtomicFile data_file(png_path + ".dat");  // never committed: removed on return
   std::FILE* f = data_file.get();
   const std::string& data = data_file.temp_path();
-  // One block per model: measured vx, vy, ω, then predicted vx, vy, ω.
+  // One block per model: measured vx, vy, ω, then predicted vx, vy, ω; and
+  // each quantity's extent over every model, so that a column's panels
+  // share their axes.
   int blocks = 0;
+  std::array<double, 3> lo{}, hi{};
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
   for (const ModelFit* m : models) {
     if (!m) continue;
     for (size_t i = 0; i < s.test.size(); ++i) {
       const Vec3& v = fit.impacts[s.test[i]].after.v;
       const Vec3& p = m->predicted[i];
       std::fprintf(f, "%.6g %.6g %.6g %.6g %.6g %.6g\n", v.x(), v.y(), v.z(), p.x(), p.y(), p.z());
+      for (Eigen::Index c = 0; c < 3; ++c) {
+        const auto k = static_cast<size_t>(c);
+        lo[k] = std::min({lo[k], v[c], p[c]});
+        hi[k] = std::max({hi[k], v[c], p[c]});
+      }
     }
     std::fprintf(f, "\n\n");
     ++blocks;
@@ -62,23 +73,33 @@ void plot_impact_predictions(const std::string& png_path, const ImpactFit& fit,
   flush_plot_data(f, data);
   const char* colours[] = {"'#1f77b4'", "'#ff7f0e'", "'#2ca02c'"};
   const char* labels[] = {"v_x after (m/s)", "v_y after (m/s)", "ω after (rad/s)"};
+  // One row per model, one column per quantity: drawn in one panel, the
+  // model drawn last hid the others' points where they overlap.
   std::ostringstream g;
-  g << gnuplot_png(png.temp_path(), 1500, 560) << "set multiplot layout 1,3 title '"
+  g << gnuplot_png(png.temp_path(), 1500, 60 + 430 * std::max(blocks, 1)) << "set multiplot layout "
+    << std::max(blocks, 1) << ",3 title '"
     << gnuplot_text(std::to_string(s.test.size()) + " held-out impacts (" + split +
-                    " split): predicted against measured; on the diagonal a model is exact")
+                    " split): predicted against measured, one model a row; on the diagonal a "
+                    "model is exact")
     << "' font ',13'\nset grid\nset key top left font ',10'\nset size ratio -1\n";
-  for (int c = 0; c < 3; ++c) {
-    g << "set xlabel 'measured " << labels[c] << "'\nset ylabel 'predicted " << labels[c]
-      << "'\nplot ";
-    int b = 0;
-    for (size_t j = 0; j < models.size(); ++j) {
-      if (!models[j]) continue;
-      g << (b ? ", " : "") << gnuplot_quoted(data) << " index " << b << " using " << (c + 1) << ":"
+  int b = 0;
+  for (size_t j = 0; j < models.size(); ++j) {
+    if (!models[j]) continue;
+    for (int c = 0; c < 3; ++c) {
+      const auto k = static_cast<size_t>(c);
+      const double pad = 0.05 * (hi[k] - lo[k]);
+      g << "set xlabel 'measured " << labels[c] << "'\nset ylabel 'predicted " << labels[c] << "'\n"
+        << (std::isfinite(pad)
+                ? "set xrange [" + format_number(lo[k] - pad, 4) + ":" +
+                      format_number(hi[k] + pad, 4) + "]\nset yrange [" +
+                      format_number(lo[k] - pad, 4) + ":" + format_number(hi[k] + pad, 4) + "]\n"
+                : std::string())
+        << "plot " << gnuplot_quoted(data) << " index " << b << " using " << (c + 1) << ":"
         << (c + 4) << " with points pt 7 ps 0.35 lc rgb " << colours[j] << " title '"
-        << gnuplot_text(impact_model_title(*models[j])) << "'";
-      ++b;
+        << gnuplot_text(impact_model_title(*models[j]))
+        << "', x with lines lc 'black' dt 2 notitle\n";
     }
-    g << ", x with lines lc 'black' dt 2 notitle\n";
+    ++b;
   }
   g << "unset multiplot\n";
   if (blocks == 0) throw std::runtime_error(png_path + ": no model to plot");
