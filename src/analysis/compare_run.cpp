@@ -133,7 +133,7 @@ void run_engines(Comparison& c, bool early_diagnosis) {
       const EarlyRun& e = early[job + 1 - c.runs.size()];
       try {
         made[job + 1 - c.runs.size()] = registry_runner()(e.engine, e.scene);
-      } catch (const std::exception&) {
+      } catch (const std::exception&) {  // NOLINT(bugprone-empty-catch)
         // The diagnosis runs it again and reports what it throws.
       }
     } else {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -200,8 +201,18 @@ std::string friction_knob_xml(const Scene& scene, FrictionKnob knob) {
           names.emplace_back(geom->Attribute("name"));
         }
       }
+      // The generated default's three coefficients (sliding, torsional,
+      // rolling): all three are always written (mujoco/mjcf.cpp).
       double mu[3] = {0.0, 0.0, 0.0};
-      std::sscanf(defaults->Attribute("friction"), "%lf %lf %lf", &mu[0], &mu[1], &mu[2]);
+      const char* text = defaults->Attribute("friction");
+      for (double& value : mu) {
+        char* end = nullptr;
+        value = text ? std::strtod(text, &end) : 0.0;
+        if (!text || end == text)
+          throw std::runtime_error(
+              "friction split: the model's default friction is not three numbers");
+        text = end;
+      }
       char friction[160];
       std::snprintf(friction, sizeof friction, "%.17g %.17g %.17g %.17g %.17g", mu[0], mu[0],
                     std::max(mu[1], 1e-5), std::max(mu[2], 1e-5), std::max(mu[2], 1e-5));

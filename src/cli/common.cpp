@@ -91,6 +91,7 @@ void SceneOptions::add_to(CLI::App& cmd) {
 
 Scene SceneOptions::load() const {
   std::vector<Override> overrides;
+  overrides.reserve(sets.size() + 3);  // and --integrator, --dt, --duration
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
   if (!integrator.empty())
     overrides.push_back({"sim.integrator", "\"" + integrator + "\"", "--integrator"});
@@ -190,7 +191,13 @@ std::function<void(size_t, size_t, const std::string&)> progress_reporter(const 
                                                                           bool quiet) {
   if (quiet) return {};
   double every = 5.0;
-  if (const char* text = std::getenv("CONTACT2D_PROGRESS_SECONDS")) every = std::atof(text);
+  // The tests' knob (a line at every run with 0); anything but a number ≥ 0
+  // keeps the default.
+  if (const char* text = std::getenv("CONTACT2D_PROGRESS_SECONDS")) {
+    char* end = nullptr;
+    const double seconds = std::strtod(text, &end);
+    if (end != text && *end == '\0' && seconds >= 0.0) every = seconds;
+  }
   struct State {
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
     double last_line = 0.0;  // seconds since start of the last line (pipes)

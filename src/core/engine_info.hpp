@@ -87,11 +87,13 @@ struct EngineInfo {
   // one (the stability limit that applies); nullptr: the same one.
   Integrator (*contact_integrator)(Integrator integrator) = nullptr;
   // The options its name may carry, in the order "kind:FIRST:SECOND" takes
-  // them; the lists name "kind:VALUE" for every value of the first.
-  std::vector<EngineOption> options{};
+  // them; the lists name "kind:VALUE" for every value of the first. ({} here
+  // and below: the tables that leave them out stay clear of GCC's
+  // -Wmissing-field-initializers.)
+  std::vector<EngineOption> options{};  // NOLINT(readability-redundant-member-init)
   // Non-empty when its model has values computed for a Δt (EngineSpec::
   // model_dt): the help of --model-dt, which holds them at another Δt.
-  std::string_view model_dt_help{};
+  std::string_view model_dt_help{};  // NOLINT(readability-redundant-member-init)
   // Its contacts are soft constraints of MuJoCo's kind (solref/solimp
   // impedance, an elliptic cone with impratio), so that the causes of
   // compare's diagnosis (analysis/comparison.hpp: mapping, refsafe, the

@@ -206,9 +206,7 @@ Model make_model(const Scene& s) {
   return model;
 }
 
-long long step_count(const SimParams& sim) {
-  return static_cast<long long>(std::llround(sim.duration / sim.dt));
-}
+long long step_count(const SimParams& sim) { return std::llround(sim.duration / sim.dt); }
 
 long long sample_stride(const SimParams& sim) {
   // A stride of the run's steps or more samples only t = 0 and the end, so

@@ -16,9 +16,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // SplitMix64 (Steele, Lea, Flood 2014): a fixed, portable sequence, unlike
 // the standard library's distributions.
-long long steps_for(double seconds, double dt) {
-  return std::max(0LL, static_cast<long long>(std::llround(seconds / dt)));
-}
+long long steps_for(double seconds, double dt) { return std::max(0LL, std::llround(seconds / dt)); }
 
 }  // namespace
 

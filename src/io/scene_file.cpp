@@ -163,7 +163,7 @@ void read_obstacle_contact(TableReader& reader, const toml::table& table, Contac
     std::string damping;
     reader.string("damping", damping);
     if (const auto law = parse_damping_law(damping)) {
-      out.damping = *law;
+      out.damping = law;
     } else {
       reader.fail(
           "damping",

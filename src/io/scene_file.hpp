@@ -17,7 +17,9 @@ namespace contact2d {
 struct Override {
   std::string key;
   std::string value;
-  std::string option = {};
+  // {}: aggregates that leave it out stay clear of GCC's
+  // -Wmissing-field-initializers.
+  std::string option = {};  // NOLINT(readability-redundant-member-init)
 };
 Override parse_override(const std::string& assignment);  // throws InputError
 

@@ -61,6 +61,7 @@ std::string to_markdown(const Table& table) {
 
 std::string to_text(const Table& table) {
   std::vector<size_t> widths;
+  widths.reserve(table.columns.size());
   for (const std::string& name : table.columns) widths.push_back(display_width(name));
   for (const auto& row : table.rows) {
     for (size_t i = 0; i < row.size(); ++i) widths[i] = std::max(widths[i], display_width(row[i]));

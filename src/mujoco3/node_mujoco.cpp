@@ -658,7 +658,8 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
     if (!failed_) {
       try {
         request("close", R"({"op":"close","handle":)" + id + "}", deadline(), {}, true);
-      } catch (const std::exception&) {  // then it is gone: the next user starts another
+      } catch (const std::exception&) {  // NOLINT(bugprone-empty-catch)
+        // Then it is gone: the next user starts another.
       }
     }
     throw;
@@ -671,7 +672,8 @@ mujoco::ModelState Node::state(const mujoco::StateRequest& r) {
     if (!failed_) {
       try {
         request("close", R"({"op":"close","handle":)" + id + "}", deadline(), {}, true);
-      } catch (const std::exception&) {  // then it is gone: the next user starts another
+      } catch (const std::exception&) {  // NOLINT(bugprone-empty-catch)
+        // Then it is gone: the next user starts another.
       }
     }
     throw;

@@ -57,7 +57,8 @@ Mujoco3Stepper::Mujoco3Stepper(const Scene& scene, const std::string& xml,
 Mujoco3Stepper::~Mujoco3Stepper() {
   try {
     node_->free(loaded_.id);
-  } catch (const std::exception&) {  // the process is gone, and the model with it
+  } catch (const std::exception&) {  // NOLINT(bugprone-empty-catch)
+    // The process is gone, and the model with it.
   }
 }
 

@@ -37,7 +37,7 @@ std::string sci(double x) {
          (mantissa.back() == '0' || mantissa.back() == '.')) {
     mantissa.pop_back();
   }
-  const int exponent = std::atoi(text.c_str() + e + 1);
+  const long exponent = std::strtol(text.c_str() + e + 1, nullptr, 10);
   return mantissa + "e" + std::to_string(exponent);
 }
 
