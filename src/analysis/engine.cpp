@@ -1,5 +1,7 @@
 #include "analysis/engine.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -17,7 +19,16 @@ EngineRunner registry_runner() {
 
 double nominal_order(Integrator integrator) { return integrator == Integrator::RK4 ? 4.0 : 1.0; }
 
+// The cores this thread may run on (its CPU affinity, which taskset, a Slurm
+// job's CPU set or a container's narrows), else the machine's: one thread per
+// core the scheduler will actually give us, not per core the machine has.
 unsigned default_threads() {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof(allowed), &allowed) == 0) {
+    const int n = CPU_COUNT(&allowed);
+    if (n > 0) return static_cast<unsigned>(n);
+  }
   const unsigned n = std::thread::hardware_concurrency();
   return n == 0 ? 1 : n;
 }

@@ -26,11 +26,13 @@ EngineRunner registry_runner();
 // Euler and implicit included), 4 for RK4.
 double nominal_order(Integrator integrator);
 
-// Runs task(i) for every i in [0, n) on `threads` threads (0: one per core);
+// Runs task(i) for every i in [0, n) on `threads` threads (0:
+// default_threads());
 // indices are handed out in order, and task(0) runs on the calling thread
 // (the report's animations, which a GLFW window must draw there). The first
 // exception thrown by a task is rethrown after all threads have finished.
 void parallel_for(size_t n, unsigned threads, const std::function<void(size_t)>& task);
+// One per core this process may run on (its CPU affinity), at least 1.
 unsigned default_threads();
 
 }  // namespace contact2d::analysis

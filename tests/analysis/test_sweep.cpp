@@ -2,6 +2,8 @@
 // reports runs that diverge or fail.
 #include <gtest/gtest.h>
 
+#include <sched.h>
+
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -52,6 +54,27 @@ TEST(ParallelFor, RunsEveryIndexOnceAndRethrows) {
                             }),
                std::runtime_error);
   EXPECT_EQ(ran.load(), 50);  // the other tasks still ran
+}
+
+// The default thread count follows the CPU set the scheduler gives the
+// caller (taskset, a Slurm job's cgroup), not the machine's core count: with
+// this thread narrowed to one CPU it is 1, and back to what it was after.
+TEST(ParallelFor, DefaultThreadsFollowTheCpuSetWeMayRunOn) {
+  cpu_set_t before;
+  CPU_ZERO(&before);
+  ASSERT_EQ(sched_getaffinity(0, sizeof(before), &before), 0);
+  const unsigned all = default_threads();
+  EXPECT_EQ(all, static_cast<unsigned>(CPU_COUNT(&before)));
+  int first = 0;
+  while (!CPU_ISSET(first, &before)) ++first;
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(first, &one);
+  ASSERT_EQ(sched_setaffinity(0, sizeof(one), &one), 0);
+  const unsigned narrowed = default_threads();
+  ASSERT_EQ(sched_setaffinity(0, sizeof(before), &before), 0);
+  EXPECT_EQ(narrowed, 1U);
+  EXPECT_EQ(default_threads(), all);
 }
 
 // Every row's error is the distance of that run's own samples to the
