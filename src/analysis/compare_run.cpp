@@ -117,7 +117,7 @@ size_t diagnosed_run(const Comparison& c) {
 
 }  // namespace
 
-void run_engines(Comparison& c, bool early_diagnosis) {
+void run_engines(Comparison& c, bool early_diagnosis, unsigned threads) {
   const size_t diagnosed = early_diagnosis ? diagnosed_run(c) : 0;
   const std::vector<EarlyRun> early =
       diagnosed > 0 ? early_reruns(c.scene, c.runs[diagnosed].spec) : std::vector<EarlyRun>{};
@@ -125,7 +125,7 @@ void run_engines(Comparison& c, bool early_diagnosis) {
   // the diagnosis, then the first (the reference: the cheapest).
   const size_t n = c.runs.size() + early.size();
   std::vector<std::optional<EngineRun>> made(early.size());
-  parallel_for(n, early.empty() ? 1 : 0, [&](size_t job) {
+  parallel_for(n, early.empty() ? 1 : threads, [&](size_t job) {
     if (job + 1 < c.runs.size()) {
       ComparedRun& r = c.runs[job + 1];
       r.run = engines::run_engine(r.spec, c.scene);

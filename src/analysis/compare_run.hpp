@@ -86,8 +86,9 @@ Comparison prepare_comparison(const Scene& scene, const std::vector<engines::Eng
 // Runs every engine. With `early_diagnosis` (compare without
 // --no-diagnosis), the diagnosis's first-tier MuJoCo runs that depend on
 // the scene and the engine alone (early_reruns) are made beside them,
-// on the machine's cores, into Comparison::early, for measure() to use.
-void run_engines(Comparison& c, bool early_diagnosis = false);
+// on `threads` threads (0: analysis::default_threads()), into
+// Comparison::early, for measure() to use.
+void run_engines(Comparison& c, bool early_diagnosis = false, unsigned threads = 0);
 
 // A reason the runs cannot be compared.
 struct RunProblem {

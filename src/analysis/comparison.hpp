@@ -171,7 +171,7 @@ struct DiagnosisOptions {
   // Also run the fine-step re-runs when the first tier explains the
   // difference (compare --full-diagnosis).
   bool full = false;
-  unsigned threads = 0;  // as parallel_for: 0 = the machine's cores
+  unsigned threads = 0;  // as parallel_for: 0 = default_threads()
   // MuJoCo runs already made (early_reruns), by cause: used instead of
   // running them again. A cause missing here (its run threw) is run.
   const std::vector<std::pair<std::string, EngineRun>>* early = nullptr;

@@ -1,6 +1,6 @@
 // contact2d compare SCENE [--engines LIST | --mapping NAME --geometry NAME] [--csv FILE]
 // [--json] [--plot FILE.png] [--video FILE.mp4|.gif] [--converged-tol TOL]
-// [--no-diagnosis | --full-diagnosis]
+// [--no-diagnosis | --full-diagnosis] [--threads N]
 // [overrides]
 //
 // Runs the reference solver and every other engine (by default each one
@@ -49,6 +49,7 @@ struct CompareOptions {
   double converged_tol = 1e-12;
   bool no_diagnosis = false;
   bool full_diagnosis = false;
+  unsigned threads = 0;   // --threads; 0: one per core this process may use
   OutputOptions outputs;  // --csv, --plot, --video
   bool allow_nonphysical = false;
 };
@@ -110,7 +111,7 @@ int compare(const CompareOptions& options) {
   }
   std::unique_ptr<AtomicFile> csv;
   if (!options.csv.empty()) csv = std::make_unique<AtomicFile>(options.csv);
-  analysis::run_engines(c, !options.no_diagnosis);
+  analysis::run_engines(c, !options.no_diagnosis, options.threads);
   for (const ComparedRun& r : c.runs)
     for (const std::string& w : r.run.warnings)
       std::cerr << "contact2d: " << r.label << " warning: " << w << "\n";
@@ -129,6 +130,7 @@ int compare(const CompareOptions& options) {
   if (stop) return kExitDiverged;
   analysis::DiagnosisOptions how;
   how.full = options.full_diagnosis;
+  how.threads = options.threads;
   analysis::measure(c, options.converged_tol, !options.no_diagnosis, how);
   // Every output is made first and committed at the end, together: a plot
   // or video that fails, or an interrupt, leaves none of them.
@@ -244,6 +246,12 @@ Command add_compare(CLI::App& app) {
                 "dt_dependent_model, refsafe: ten times the steps or more) when the others "
                 "already explain the difference")
       ->excludes("--no-diagnosis");
+  cmd->add_option("--threads", options->threads,
+                  "Threads for the diagnosis's re-runs and the runs made beside the engines "
+                  "(default: one per core this process may run on; each MuJoCo 3 thread starts "
+                  "a Node process of its own)")
+      ->type_name("N")
+      ->check(CLI::Range(1U, 256U));
   return {cmd, [options] { return compare(*options); }};
 }
 

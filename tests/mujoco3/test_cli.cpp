@@ -149,6 +149,42 @@ TEST_F(Mujoco3Cli, CompareEngineTakesTheEngineOptions) {
       << twice.err;
 }
 
+// compare --threads: each thread that runs MuJoCo 3 starts a Node process of
+// its own, so a diagnosed compare with --threads 1 starts one, with
+// --threads 2 two (the base run and the diagnosis's early re-runs side by
+// side), and both print the same numbers. The driver, copied, appends its
+// pid to a file of the test's when it starts.
+TEST_F(Mujoco3Cli, CompareThreadsSetsTheNodesStartedNotTheResult) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const fs::path started = dir_ / "started";
+  const fs::path fake =
+      install("\nimport {appendFileSync as logStart} from 'node:fs';\nlogStart('" +
+              started.string() + "', process.pid + '\\n');\n");
+  auto without_times = [](std::string json) {  // wall-clock seconds differ run to run
+    return std::regex_replace(json, std::regex(R"("[a-z0-9_]*seconds": [0-9.e+-]+)"), "");
+  };
+  std::string first_json;
+  for (const int threads : {1, 2}) {
+    fs::remove(started);
+    const Result r =
+        run("compare box.toml --engine mujoco3 --json --threads " + std::to_string(threads),
+            "CONTACT2D_MUJOCO3_DIR='" + fake.string() + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string pids = slurp(started);
+    EXPECT_EQ(std::count(pids.begin(), pids.end(), '\n'), threads) << pids;
+    EXPECT_NE(r.out.find("\"diagnosis\""), std::string::npos) << r.out;
+    if (threads == 1)
+      first_json = without_times(r.out);
+    else
+      EXPECT_EQ(without_times(r.out), first_json);
+  }
+  for (const char* bad : {"0", "257", "two"}) {
+    const Result r = run(std::string("compare box.toml --no-diagnosis --threads ") + bad);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+  }
+}
+
 // The atlas on MuJoCo 3 (engine = "mujoco3" in the spec): the same rows as
 // on 2.2.2 but for rounding, column by column; another engine is one line.
 TEST_F(Mujoco3Cli, TheAtlasRunsOnMujoco3) {
