@@ -3,7 +3,7 @@
 // the figure it stands next to, at the 3 significant digits the page prints
 // (issue 48 §6). The commands and the figures are both read from the page:
 // the placeholders it names (SCENE, MAPPING, C, sNN) are filled in, `--json`
-// is appended, and `--no-diagnosis` where the figure is not the diagnosis's.
+// and `--threads 1` are appended, and `--no-diagnosis` where the figure is not the diagnosis's.
 // The figures are aggregated by the page's own rules (report/numbers.hpp).
 // MuJoCo 3.14's figures (issue 52) are the same commands with the option
 // the page names (`--engine mujoco3`), and its damper's figures the two
@@ -103,7 +103,11 @@ void run_all(std::vector<PrintedRun>& runs) {
     for (size_t i; (i = next++) < runs.size();) {
       PrintedRun& r = runs[i];
       const std::string args = r.command.substr(std::string("contact2d").size());
-      const std::string line = "cd " + kRoot + " && " + kExe + args + " --json" +
+      // --threads 1: two commands already run side by side here, and on
+      // MuJoCo 3 each thread of a command starts a Node process of its own
+      // (the figures do not depend on it: the diagnosis's re-runs are
+      // independent and collected in order).
+      const std::string line = "cd " + kRoot + " && " + kExe + args + " --json --threads 1" +
                                (r.diagnosis ? "" : " --no-diagnosis") + " 2>/dev/null";
       std::FILE* pipe = ::popen(line.c_str(), "r");
       if (!pipe) continue;
