@@ -93,7 +93,9 @@ for needed in ("pyproject.toml", "CMakeLists.txt", "src/python/packaging/build_b
                "src/python/contact2d/py.typed", "src/python/module.cpp"):
     assert needed in names, needed
 # Every file of the source tree the module's build read: the depfiles of
-# the module and of each library its link line names.
+# the module and of each library its link line names. Files the build wrote
+# itself (a unity batch, build/CMakeFiles/*/Unity/*.cxx, when the build
+# folder is inside the tree) are not sources.
 link = (build / "src/python/CMakeFiles/contact2d_python.dir/link.txt").read_text()
 targets = ["src/python/CMakeFiles/contact2d_python.dir"] + \
     [f"CMakeFiles/{name}.dir" for name in re.findall(r"lib(contact2d_\w+)\.a", link)]
@@ -104,7 +106,8 @@ for target in targets:
     for depfile in depfiles:
         for token in depfile.read_text().replace("\\\n", " ").split():
             path = pathlib.Path(token)
-            if not token.endswith(":") and path.is_absolute() and source in path.parents:
+            if (not token.endswith(":") and path.is_absolute() and source in path.parents
+                    and build not in path.parents):
                 read.add(str(path.relative_to(source)))
 missing = sorted(read - names)
 assert len(read) > 50 and not missing, (len(read), missing)
