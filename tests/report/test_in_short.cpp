@@ -13,8 +13,9 @@
 // (analysis::friction_parts) compares two runs of the reference under two
 // friction laws, which no compare command prints.
 // About 160 runs of compare on 2.2.2 and as many on 3.14 (each starting
-// Node): 157 s on two busy cores (label replay: not in the sanitizer
-// stage).
+// one Node: --threads 1): 126 core-seconds, 65 s alone on two cores (176
+// core-seconds with a second Node per diagnosed 3.14 run); label replay:
+// not in the sanitizer stage.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
