@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,7 @@
 
 #include "core/input_error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/read_file.hpp"
 #include "io/scene_file.hpp"
 
 namespace contact2d {
@@ -148,6 +150,67 @@ TEST(InputFiles, AHugeSceneFileIsRefusedInOneLine) {
     EXPECT_EQ(what.find('\n'), std::string::npos);
   }
   std::filesystem::remove(path);
+}
+
+// A FIFO (the test's own) no process opened for writing: open() without
+// O_NONBLOCK blocked without end (`fit` on such a recording's CSV, a
+// scene given as one). Now refused at once, in one line.
+TEST_F(OutputTargets, AFifoNobodyWritesIsRefusedAtOnce) {
+  const std::string fifo = (dir_ / "scene.toml").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    read_input_file(fifo, "scene file");
+    ADD_FAILURE() << "read";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              fifo + ": cannot read scene file (a pipe nobody was writing to)");
+  }
+  // At once: no wait at all is involved (generous for a loaded machine).
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
+}
+
+// A pipe whose writer holds it open and writes nothing (here this test:
+// a FIFO opened read-write counts as a writer, and opening it so does not
+// block) is given up at the read's deadline, 0.3 s here (10 s in the
+// program, io/read_file.hpp), with one line; a pipe whose writer writes
+// later and closes is read whole, as a shell's <(command) is.
+TEST_F(OutputTargets, APipeIsReadUntilItsWriterClosesButNotWaitedOnWithoutEnd) {
+  const std::string fifo = (dir_ / "scene.toml").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  {
+    const int writer = ::open(fifo.c_str(), O_RDWR | O_CLOEXEC);
+    ASSERT_GE(writer, 0) << std::strerror(errno);
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      read_input_file(fifo, "scene file", kMaxInputBytes, "too large", 0.3);
+      ADD_FAILURE() << "read";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                fifo +
+                    ": cannot read scene file (nothing came within 0.3 s: a pipe or device "
+                    "nobody writes to the end)");
+    }
+    const double waited =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_GE(waited, 0.3);
+    EXPECT_LT(waited, 1.3);  // the deadline, and 1 s for a loaded machine
+    ::close(writer);
+  }
+  {
+    const int writer = ::open(fifo.c_str(), O_RDWR | O_CLOEXEC);
+    ASSERT_GE(writer, 0) << std::strerror(errno);
+    std::thread later([writer] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the reader waits
+      const std::string text = "scene = \"box\"\n";
+      EXPECT_EQ(::write(writer, text.data(), text.size()), static_cast<ssize_t>(text.size()));
+      ::close(writer);
+    });
+    std::string read;
+    EXPECT_NO_THROW(read = read_input_file(fifo, "scene file", kMaxInputBytes, "too large", 5.0));
+    later.join();
+    EXPECT_EQ(read, "scene = \"box\"\n");
+  }
 }
 
 }  // namespace
