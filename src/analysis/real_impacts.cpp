@@ -495,9 +495,18 @@ ImpactFit fit_impacts(const Recording& rec, const ImpactFitOptions& options) {
     }
     out.impacts.push_back(impact);
   }
+  // In drop order, whatever the rows' order: the chronological split is by
+  // drop number (as the trajectories' is by trajectory number), and the
+  // seeded one is then the file's rows' order's too.
+  std::stable_sort(out.impacts.begin(), out.impacts.end(),
+                   [](const RecordedImpact& a, const RecordedImpact& b) { return a.id < b.id; });
   if (out.impacts.size() < 4)
     throw InputError(rec.csv + ": " + std::to_string(out.impacts.size()) +
-                     " impacts to fit: at least 4 are needed (2 to train, 2 to test)");
+                     " impacts to fit: at least 4 are needed (2 to train, 2 to test)" +
+                     (out.flagged_left_out > 0
+                          ? "; " + std::to_string(out.flagged_left_out) +
+                                " flagged ones were left out (--all-impacts keeps them)"
+                          : std::string()));
   ImpactFitter f{rec, options, out, make_model(rec.body), 0.0, 0.0, {}, {}, {}};
   f.m = f.geometry.body.mass;
   f.inertia = f.geometry.body.inertia;

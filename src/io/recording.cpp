@@ -40,7 +40,9 @@ Csv read_csv(const std::string& path, const std::string& what) {
   const std::string text = read_input_file(
       path, what, kMaxRecordingBytes, "larger than 64 MiB: split the recording into several files");
   Csv csv;
-  std::istringstream in(text);
+  // A byte order mark (spreadsheets write one) is not part of the first
+  // column's name.
+  std::istringstream in(text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? text.substr(3) : text);
   std::string line;
   int number = 0;
   while (std::getline(in, line)) {
@@ -49,6 +51,13 @@ Csv read_csv(const std::string& path, const std::string& what) {
     if (line.empty() || line[0] == '#') continue;
     if (csv.header.empty()) {
       csv.header = split(line);
+      // A column named twice would be read from its first copy only.
+      for (size_t i = 0; i < csv.header.size(); ++i)
+        for (size_t j = i + 1; j < csv.header.size(); ++j)
+          if (csv.header[i] == csv.header[j] && !csv.header[i].empty())
+            throw InputError(path + ":" + std::to_string(number) + ": column '" + csv.header[i] +
+                             "' is named twice (columns " + std::to_string(i + 1) + " and " +
+                             std::to_string(j + 1) + "): each column once");
       continue;
     }
     std::vector<std::string> fields = split(line);
@@ -73,8 +82,12 @@ std::vector<size_t> columns(const Csv& csv, const std::vector<std::string>& name
   for (const std::string& n : names) {
     size_t i = 0;
     while (i < csv.header.size() && csv.header[i] != n) ++i;
-    if (i == csv.header.size())
-      throw InputError(path + ": missing column '" + n + "' (the columns are " + all + ")");
+    if (i == csv.header.size()) {
+      std::string found;
+      for (const std::string& h : csv.header) found += (found.empty() ? "'" : "', '") + h;
+      throw InputError(path + ": missing column '" + n + "' (the columns are " + all +
+                       "; the header has " + found + "')");
+    }
     out.push_back(i);
   }
   return out;
@@ -87,8 +100,9 @@ double number(const Csv& csv, size_t row, size_t column, const std::string& path
   if (text.empty()) throw InputError(where + " is empty: it must be a finite number");
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size())
-    throw InputError(where + " = '" + text + "' is not a number");
+  // Decimal text only: strtod also reads hexadecimal (0x1p-2).
+  if (end != text.c_str() + text.size() || text.find_first_of("xX") != std::string::npos)
+    throw InputError(where + " = '" + text + "' is not a decimal number");
   if (!std::isfinite(v)) throw InputError(where + " = " + text + ": it must be a finite number");
   return v;
 }
@@ -98,7 +112,7 @@ int integer(const Csv& csv, size_t row, size_t column, const std::string& path) 
   if (v != std::floor(v) || std::abs(v) > 1e9)
     throw InputError(path + ":" + std::to_string(csv.lines[row]) + ": field '" +
                      csv.header[column] + "' = " + csv.rows[row][column] +
-                     ": it must be an integer id");
+                     ": it must be an integer id in [-1e9, 1e9]");
   return static_cast<int>(v);
 }
 
@@ -243,13 +257,25 @@ Recording read_recording(const std::string& path) {
   size_t flags = csv.header.size();
   for (size_t i = 0; i < csv.header.size(); ++i)
     if (csv.header[i] == "flags") flags = i;
+  std::map<int, int> line_of;  // each impact's id, to refuse one named twice
   for (size_t r = 0; r < csv.rows.size(); ++r) {
     RecordedImpact impact;
     impact.id = integer(csv, r, col[0], rec.csv);
     impact.line = csv.lines[r];
+    const auto [earlier, fresh] = line_of.emplace(impact.id, impact.line);
+    if (!fresh)
+      throw InputError(rec.csv + ":" + std::to_string(impact.line) + ": impact " +
+                       std::to_string(impact.id) + " again (first on line " +
+                       std::to_string(earlier->second) + "): each impact's id is unique");
     impact.before = state_at(csv, r, col, 1, rec.csv);
     impact.after = state_at(csv, r, col, 7, rec.csv);
-    if (flags < csv.header.size()) impact.flags = csv.rows[r][flags];
+    if (flags < csv.header.size()) {
+      impact.flags = csv.rows[r][flags];
+      if (impact.flags.find_first_not_of("01") != std::string::npos)
+        throw InputError(rec.csv + ":" + std::to_string(impact.line) + ": field 'flags' = '" +
+                         impact.flags +
+                         "': it must be a string of 0s and 1s (all 0: a clean impact)");
+    }
     rec.impacts.push_back(impact);
   }
   return rec;
