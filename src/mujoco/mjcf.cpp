@@ -130,8 +130,14 @@ Layout box_layout(const Scene& scene, Geometry geometry) {
   return layout;
 }
 
+// The contact point (0, −h) is a sphere of radius ε = kCornerRadius whose
+// lowest point it is, as a box's corners are: a sphere of radius h about the
+// COM has the same lowest point on flat ground, but against a slope or an
+// obstacle's edge it touches elsewhere than (0, −h) (on a 30° slope it
+// started 6.7 mm inside, h = 5 cm; under a box's corner it struck where the
+// 2D point passes). A visual sphere of radius h draws the body.
 Layout point_mass_layout(const Scene& scene) {
-  const double rho = std::max(scene.half_height, kCornerRadius);
+  const double rho = kCornerRadius;
   // No hinge: the inertia is never used; it is a solid sphere's, of a radius
   // of at least 1 cm, and at least mjMINVAL (MuJoCo's check on moving bodies,
   // which a light mass, < 2.5e-11 kg, would fail).
@@ -143,6 +149,9 @@ Layout point_mass_layout(const Scene& scene) {
   layout.hinge = false;
   layout.geoms.push_back(
       {"contact_point", "sphere", format_exact(rho), 0.0, rho - scene.half_height, false});
+  if (scene.half_height > rho)
+    layout.geoms.push_back(
+        {"visual_point", "sphere", format_exact(scene.half_height), 0.0, 0.0, true});
   layout.max_contacts = 1;
   layout.contacts_why = "one sphere";
   return layout;

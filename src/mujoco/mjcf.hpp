@@ -22,8 +22,10 @@
 // njmax = rows of a condim-6 contact (6 elliptic, 10 pyramidal) × nconmax.
 //
 // Contact geoms, named for what they are:
-//   point mass  "contact_point": a sphere of radius ρ = max(h, ε) centred at
-//               (0, ρ − h): its lowest point is the 2D contact point (0, −h)
+//   point mass  "contact_point": a sphere of radius ε = kCornerRadius centred
+//               at (0, ε − h): its lowest point is the 2D contact point
+//               (0, −h), on flat ground, a slope or an obstacle's edge alike;
+//               "visual_point", a sphere of radius h at the COM, draws it
 //   circle      "disc": a sphere of radius R at the COM: the single contact
 //               point below the centre of Algorithm 4
 //   box, T      corners: "corner<i>", a sphere of radius ε = kCornerRadius at
