@@ -35,7 +35,9 @@ Scene penalty_scene(const Scene& body, const PenaltyParams& p, double m_eff, dou
   s.contact.k = std::pow(10.0, p.log_k);
   s.contact.c = 2.0 * p.zeta * std::sqrt(s.contact.k * body.mass);
   s.contact.mu = p.mu;
-  s.contact.mu_roll = p.mu_roll;
+  // Rolling resistance is a circle's or an ellipse's (core/scene.hpp's
+  // validate refuses it elsewhere): a box's fit has no such parameter.
+  s.contact.mu_roll = shape_features(body.shape).resists_rolling ? p.mu_roll : 0.0;
   s.contact.damping = DampingLaw::KelvinVoigt;
   s.sim.integrator = Integrator::SemiImplicitEuler;
   s.sim.dt = omega_dt / std::sqrt(s.contact.k / m_eff);

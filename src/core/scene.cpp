@@ -173,12 +173,24 @@ std::optional<ValidationError> validate(const Scene& s) {
       }
     }
   }
+  // Rolling resistance is a circle's or an ellipse's: the dynamics of the
+  // others never read μ_roll, and the MJCF would give their contacts a
+  // rolling friction the reference does not have (a box's corner spheres
+  // then resist the box's turning), so a value there is refused, not dropped.
+  const bool rolls = shape_features(s.shape).resists_rolling;
+  const auto rolling = [&](const ContactParams& p, const std::string& prefix) {
+    return require(rolls || p.mu_roll == 0.0, p.mu_roll, prefix + "mu_roll",
+                   "must be 0 for a " + std::string(shape_name(s.shape)) +
+                       " (rolling resistance acts on a circle or an ellipse)");
+  };
   if (auto error = validate_contact(s.contact, "contact.")) return error;
+  if (auto error = rolling(s.contact, "contact.")) return error;
   for (size_t i = 0; i < s.obstacles.size(); ++i) {
     const std::string name = "obstacle[" + std::to_string(i) + "]";
     if (auto error = validate_obstacle(s.obstacles[i], name)) return error;
-    if (auto error = validate_contact(s.obstacles[i].contact.apply(s.contact), name + "."))
-      return error;
+    const ContactParams law = s.obstacles[i].contact.apply(s.contact);
+    if (auto error = validate_contact(law, name + ".")) return error;
+    if (auto error = rolling(law, name + ".")) return error;
   }
   return std::nullopt;
 }

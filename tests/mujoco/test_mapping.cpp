@@ -19,11 +19,12 @@ namespace {
 using mujoco::Mapping;
 constexpr double kRoundTrip = 1e-15;
 
-// m = 2.7 kg (a box of 2.7 kg), k = 3.3e5 N/m, c = 40 N·s/m.
+// m = 2.7 kg (a box of 2.7 kg), k = 3.3e5 N/m, c = 40 N·s/m. No rolling
+// resistance: a box has none (core/scene.hpp's validate).
 Scene unusual_box() {
   return test::scene_from(
       "scene = \"box\"\n[body]\nmass = 2.7\nwidth = 0.3\nheight = 0.5\n"
-      "[contact]\nk = 3.3e5\nc = 40\nmu = 0.7\nmu_roll = 0.002\nmu_torsion = 0.003\n"
+      "[contact]\nk = 3.3e5\nc = 40\nmu = 0.7\nmu_torsion = 0.003\n"
       "[initial]\ny = 0.4\n[sim]\ndt = 2e-4\n");
 }
 
@@ -171,12 +172,15 @@ TEST(Mjcf, JointsPerScene) {
 
 // Every geom that can touch (contype or conaffinity non-zero) has condim 6
 // and friction (μ, μ_torsion, μ_roll) in the compiled model, and so does
-// the plane, so that MuJoCo's max/min mixing changes nothing.
+// the plane, so that MuJoCo's max/min mixing changes nothing. μ_roll is the
+// circle's only (the others refuse one).
 TEST(Mjcf, EveryContactGeomHasCondimSixAndTheSceneFriction) {
   const Scene s = unusual_box();
   for (Shape shape : {Shape::PointMass, Shape::Box, Shape::TShape, Shape::Circle}) {
     Scene scene = default_scene(shape);
     scene.contact = s.contact;
+    const double mu_roll = shape == Shape::Circle ? 0.002 : 0.0;
+    scene.contact.mu_roll = mu_roll;
     const mujoco::ModelPtr model =
         mujoco::load_model(mujoco::generate_mjcf(scene, {}).xml, "model");
     int contact_geoms = 0;
@@ -186,7 +190,7 @@ TEST(Mjcf, EveryContactGeomHasCondimSixAndTheSceneFriction) {
       EXPECT_EQ(model->geom_condim[g], 6) << shape_name(shape) << " geom " << g;
       EXPECT_EQ(model->geom_friction[3 * g], 0.7);
       EXPECT_EQ(model->geom_friction[3 * g + 1], 0.003);
-      EXPECT_EQ(model->geom_friction[3 * g + 2], 0.002);
+      EXPECT_EQ(model->geom_friction[3 * g + 2], mu_roll);
     }
     // plane + one geom per 2D contact point
     EXPECT_EQ(contact_geoms, 1 + static_cast<int>(make_body(scene).points.size()))
