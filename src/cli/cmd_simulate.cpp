@@ -35,9 +35,8 @@ int simulate(const SimulateOptions& options) {
   std::unique_ptr<AtomicFile> out;
   if (!options.csv.empty()) out = std::make_unique<AtomicFile>(options.csv);
   const engines::EngineRun run = run_chosen_engine(options, scene);
-  for (const std::string& warning : run.warnings) {
-    std::cerr << "contact2d: " << options.engine << " warning: " << warning << "\n";
-  }
+  // A run that fails says so in one line (its message names the cause); the
+  // engine's warnings come with a run that stands.
   if (run.trajectory.divergence) {
     std::cerr << "contact2d: " << options.scene.path << ": " << run.divergence_message << "\n";
     return kExitDiverged;
@@ -45,6 +44,9 @@ int simulate(const SimulateOptions& options) {
   if (reject_nonphysical(nonphysical(run.trajectory, scene), options.allow_nonphysical,
                          options.scene.path, ""))
     return kExitDiverged;
+  for (const std::string& warning : run.warnings) {
+    std::cerr << "contact2d: " << options.engine << " warning: " << warning << "\n";
+  }
   if (out) {
     std::fprintf(out->get(), "%s\n", kTrajectoryHeader);
     for (const Sample& s : run.trajectory.samples) write_trajectory_row(out->get(), s);

@@ -88,6 +88,28 @@ StepStability reference_stability(const Model& model, Integrator integrator, dou
   return s;
 }
 
+FrictionStep friction_step(const Model& model, Integrator integrator, double dt) {
+  FrictionStep f;
+  const ContactParams& law = model.contact;
+  const RigidBody& body = model.body;
+  if (law.friction != FrictionLaw::Tanh || !(model.gravity > 0.0)) return f;
+  const ShapeFeatures features = shape_features(body.shape);
+  const double lever = features.turns && body.inertia > 0.0 ? body_extent(body) : 0.0;
+  const double m = body.mass, weight = m * model.gravity;
+  double rate =
+      law.mu * weight * law.alpha * (1.0 / m + (lever > 0.0 ? lever * lever / body.inertia : 0.0));
+  if (features.resists_rolling && law.mu_roll > 0.0 && body.inertia > 0.0)
+    rate += law.mu_roll * weight * law.alpha * body.roll_radius / body.inertia;
+  f.rate_dt = rate * dt;
+  switch (integrator) {
+    case Integrator::ExplicitEuler:
+    case Integrator::SemiImplicitEuler: f.limit = 2.0; break;
+    case Integrator::RK4: f.limit = 2.785293563405282; break;  // z³ − 4z² + 12z − 24 = 0
+    case Integrator::ImplicitEuler: break;                     // none
+  }
+  return f;
+}
+
 double energy_rise_tolerance(const StepStability& stability, double available_energy) {
   const double rounding = 1e-9 * available_energy;
   const double wdt = stability.omega_dt;

@@ -20,6 +20,7 @@
 // stable run never trips them and an unstable one does within a few steps.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -82,6 +83,30 @@ struct StepStability {
 // oscillator: its rebound gain is an allowance of its own (the growth term
 // below), and its limit is the one at ζ.
 StepStability reference_stability(const Model& model, Integrator integrator, double dt);
+
+// The tanh friction law (contact.hpp) linearised at rest: at a slip speed
+// well below 1/α, with the body's weight m·g on its contacts, it is a
+// damper on the slip speed of rate
+//   λ = μ·g·α·m·(1/m + ℓ²/I)
+// (ℓ: the largest lever of a contact point, body_extent; 0 for a point
+// mass: a disc's slip v + ω·R gives 3·μ·g·α), and with rolling resistance
+// the rolling torque −μ_roll·Fn·tanh(α·R·ω) adds a damper on ω of rate
+//   λ_roll = μ_roll·m·g·α·R/I.
+// A scheme integrates v' = −λ·v stably only for λ·Δt below its limit on the
+// negative real axis: 2 for explicit and semi-implicit Euler (their
+// velocity update is explicit), 2.785 for RK4 (|1 − z + z²/2 − z³/6 +
+// z⁴/24| = 1), none for implicit Euler. Beyond it the slip overshoots zero
+// on every step: tanh's saturation bounds it, so the run stays finite and
+// loses energy, but at rest the body holds a two-step cycle in place of
+// static friction, and a disc creeps (its slip and rolling cycles do not
+// cancel: 1 mm/s at α = 1e5 s/m, Δt = 1e-4 s). Rate 0 for the cone laws and
+// without gravity.
+struct FrictionStep {
+  double rate_dt = 0.0;  // (λ + λ_roll)·Δt
+  double limit = std::numeric_limits<double>::infinity();
+  bool beyond() const { return rate_dt > limit; }
+};
+FrictionStep friction_step(const Model& model, Integrator integrator, double dt);
 
 // The energy balance of a run without applied forces. A passive system's
 // mechanical energy never rises: E(t₂) ≤ E(t₁) for t₂ > t₁. An integrator

@@ -86,6 +86,8 @@ class ReferenceStepper final : public Stepper {
   const Model& model() const override { return model_; }
   StepStability stability() const override { return reference_stability(model_, integrator_, dt_); }
   std::string describe() const override;
+  // A warning when the tanh friction is stiffer than the step (friction_step).
+  RunFacts facts(const Scene& scene) const override;
 
  private:
   Model model_;

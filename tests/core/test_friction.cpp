@@ -61,6 +61,7 @@
 #include <cstdio>
 
 #include "benchmarks/rolling.hpp"
+#include "core/stepper.hpp"
 #include "benchmarks/sliding.hpp"
 #include "support/support.hpp"
 
@@ -179,6 +180,75 @@ TEST(RollingFriction, DiscAtRestNeitherChattersNorCreeps) {
   }
   EXPECT_EQ(sign_changes, 0);
   EXPECT_NEAR(trajectory.samples.back().state.q.x(), x_at_5, 1e-6);
+}
+
+// The friction's own step limit (core/divergence.hpp, friction_step). At
+// rest the tanh law is a damper on the disc's slip v + ω·R of rate
+// μ·g·α·(1 + m·R²/I) = 3·μ·g·α, plus the rolling torque's on ω,
+// μ_roll·m·g·α·R/I = 2·μ_roll·g·α/R: 1.67e4 1/s at μ = 0.5, μ_roll = 0.01 m,
+// R = 0.1 m, α = 1e4 s/m (both written out here, not asked of the code).
+// A scheme whose velocity update is explicit overshoots it past its limit
+// on the negative real axis: 2 for semi-implicit Euler, 2.785 for RK4 (the
+// real root of z³ − 4z² + 12z − 24, |1 − z + z²/2 − z³/6 + z⁴/24| = 1).
+// Checked on the disc of DiscAtRestNeitherChattersNorCreeps, stepped
+// sample by sample: with α set so that rate·Δt is 0.9 of the limit ω
+// decays to zero (|ω| < 1e-12 rad/s after 3 s: the rate is 2.3e3 1/s or
+// more, so anything left after 3 s is round-off); with 1.1 of it the disc
+// never comes to rest (|ω| > 1e-6 rad/s) and stays finite: in semi-implicit
+// Euler ω flips sign on every step (a two-step cycle: measured ±2 mrad/s at
+// 1.08 of the limit), in RK4 it creeps (measured ω = −0.7 mrad/s, steady).
+// The warning comes with the second only; implicit Euler has no such limit.
+TEST(FrictionStep, TheDiscChattersAtRestExactlyPastTheLimitAndIsWarned) {
+  Scene scene = default_scene(Shape::Circle);
+  scene.contact.mu = 0.5;
+  scene.contact.mu_roll = 0.01;
+  scene.contact.c = 200.0;
+  scene.sim.duration = 4.0;
+  scene.initial.q = Vec3(0.0, scene.radius - scene.mass * scene.sim.gravity / scene.contact.k, 0.0);
+  scene.initial.v = Vec3(0.3, 0.0, -0.3 / scene.radius);
+  const double g = scene.sim.gravity, r = scene.radius;
+  const double rate_per_alpha = 3.0 * 0.5 * g + 2.0 * 0.01 * g / r;  // 1/s per s/m
+  for (const auto& [integrator, limit] :
+       {std::pair{Integrator::SemiImplicitEuler, 2.0}, std::pair{Integrator::RK4, 2.7852935634}}) {
+    for (double fraction : {0.9, 1.1}) {
+      Scene s = scene;
+      s.sim.integrator = integrator;
+      s.contact.alpha = fraction * limit / (rate_per_alpha * s.sim.dt);
+      s.sim.output_dt = s.sim.dt;
+      const std::string what =
+          std::string(integrator_name(integrator)) + " at " + std::to_string(fraction);
+      const Model model = make_model(s);
+      const FrictionStep f = friction_step(model, integrator, s.sim.dt);
+      EXPECT_NEAR(f.rate_dt, fraction * limit, 1e-9 * limit) << what;
+      EXPECT_NEAR(f.limit, limit, 1e-9) << what;
+      ReferenceStepper stepper(s);
+      EXPECT_EQ(stepper.facts(s).warnings.size(), fraction > 1.0 ? 1u : 0u) << what;
+      const Trajectory t = simulate(s);
+      ASSERT_FALSE(t.divergence) << what;
+      int flips = 0, after = 0;
+      double largest = 0.0, previous = 0.0;
+      for (const Sample& sample : t.samples) {
+        if (sample.t < 3.0) continue;
+        const double w = sample.state.v.z();
+        ASSERT_TRUE(std::isfinite(w)) << what;
+        largest = std::max(largest, std::abs(w));
+        if (after++ > 0 && w * previous < 0.0) ++flips;
+        previous = w;
+      }
+      if (fraction < 1.0) {
+        EXPECT_LT(largest, 1e-12) << what;
+      } else {
+        EXPECT_GT(largest, 1e-6) << what;
+        if (integrator == Integrator::SemiImplicitEuler) {
+          EXPECT_EQ(flips, after - 1) << what << ": ω flips sign on every step";
+        }
+      }
+    }
+  }
+  Scene implicit = scene;
+  implicit.sim.integrator = Integrator::ImplicitEuler;
+  implicit.contact.alpha = 1e6;
+  EXPECT_FALSE(friction_step(make_model(implicit), Integrator::ImplicitEuler, 1e-4).beyond());
 }
 
 // smooth_sign is contact2d's bounded tanh (core/vector_math.hpp; its
