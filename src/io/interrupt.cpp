@@ -6,7 +6,9 @@
 #include <pthread.h>
 #include <atomic>
 
+#include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <mutex>
@@ -72,6 +74,30 @@ extern "C" void on_interrupt(int signal) {
   ::_exit(128 + signal);
 }
 
+// At the program's normal end: the children still registered are the
+// MuJoCo 3 Nodes kept for reuse (mujoco3/node_mujoco.cpp). The kernel would
+// kill them as the program ends (PR_SET_PDEATHSIG), but nobody here would
+// reap them then: they stayed zombies for init to collect (0.5–2 s; for
+// ever under a PID 1 that reaps nothing). Killed and reaped here instead,
+// each within a deadline (SIGKILL cannot be caught; a process in an
+// uninterruptible wait is left to the kernel after 2 s).
+extern "C" void end_children_at_exit() {
+  for (const std::atomic<int>& slot : g_children) {
+    if (const int child = slot.load(); child > 0) ::kill(child, SIGKILL);
+  }
+  const timespec pause_ms{0, 1000000};
+  for (std::atomic<int>& slot : g_children) {
+    const int child = slot.load();
+    if (child <= 0) continue;
+    for (int waited = 0; waited < 2000; ++waited) {
+      const pid_t r = ::waitpid(child, nullptr, WNOHANG);
+      if (r == child || (r < 0 && errno != EINTR)) break;  // reaped, or not ours any more
+      ::nanosleep(&pause_ms, nullptr);
+    }
+    slot.store(0);
+  }
+}
+
 }  // namespace
 
 void install_interrupt_cleanup() {
@@ -122,6 +148,8 @@ void unregister_temporary(int slot) {
 }
 
 int register_child(int pid) {
+  static const bool at_exit = std::atexit(end_children_at_exit) == 0;
+  (void)at_exit;
   for (int i = 0; i < kChildren; ++i) {
     int free = 0;
     if (g_children[i].compare_exchange_strong(free, pid)) return i;
