@@ -308,10 +308,19 @@ std::string run_summary(const Scene& scene, const std::string& engine, const Eng
   for (const Sample& s : samples) deepest = std::max(deepest, max_penetration(model, s.state.q));
   const State& first = samples.front().state;
   const State& last = samples.back().state;
+  // A duration that is no whole number of steps runs the nearest whole
+  // number (core/scene.hpp, step_count): say the time that was run.
+  const long long steps = step_count(scene.sim);
+  const double ran = static_cast<double>(steps) * scene.sim.dt;
+  const std::string span = std::abs(ran - scene.sim.duration) > 1e-9 * scene.sim.duration
+                               ? format_number(ran) + " s (" + std::to_string(steps) +
+                                     " steps: the whole number nearest to the duration, " +
+                                     format_number(scene.sim.duration) + " s)"
+                               : format_number(scene.sim.duration) + " s";
   return std::string(shape_name(scene.shape)) + " [" + engine + ", " +
          engines::integrator_label(engine, scene.sim.integrator) +
-         ", dt = " + format_number(scene.sim.dt) + " s, " + format_number(scene.sim.duration) +
-         " s in " + format_duration(run.seconds) + "]: final x = " + format_number(last.q.x()) +
+         ", dt = " + format_number(scene.sim.dt) + " s, " + span + " in " +
+         format_duration(run.seconds) + "]: final x = " + format_number(last.q.x()) +
          " m, y = " + format_number(last.q.y()) + " m, theta = " + format_number(last.q.z()) +
          " rad, |v| = " + format_number(last.v.head<2>().norm()) +
          " m/s; max sampled penetration " + format_number(deepest) + " m; energy " +

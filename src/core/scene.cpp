@@ -138,6 +138,14 @@ std::optional<ValidationError> validate(const Scene& s) {
       require(positive(s.sim.output_dt), s.sim.output_dt, "sim.output_dt", "must be > 0 s"),
       require(s.sim.duration / s.sim.dt <= 1e9, s.sim.dt, "sim.dt",
               "must be >= sim.duration / 1e9 (at most 1e9 steps)"),
+      // Every sample is kept in memory (a trajectory, 56 bytes each): a
+      // sampling of 1e9 took the machine's memory before the first line was
+      // written. 1e7 samples are 0.56 GB.
+      require(!(positive(s.sim.dt) && positive(s.sim.output_dt) && positive(s.sim.duration) &&
+                s.sim.duration / s.sim.dt <= 1e9) ||
+                  step_count(s.sim) / sample_stride(s.sim) + 1 <= kMaxSamples,
+              s.sim.output_dt, "sim.output_dt",
+              "must be >= sim.duration / 1e7 (at most 1e7 samples are kept, 0.56 GB)"),
       require(non_negative(s.sim.gravity) && s.sim.gravity <= 1e4, s.sim.gravity, "sim.gravity",
               "must be in [0, 1e4] m/s²"),
   };

@@ -61,6 +61,9 @@ std::optional<ValidationError> validate(const Scene& scene);
 RigidBody make_body(const Scene& scene);
 Model make_model(const Scene& scene);
 
+// The most samples a run keeps (validate refuses a sampling with more).
+constexpr long long kMaxSamples = 10'000'000;
+
 // Number of steps and sample stride implied by sim.dt, sim.duration, sim.output_dt.
 long long step_count(const SimParams& sim);
 long long sample_stride(const SimParams& sim);

@@ -266,6 +266,21 @@ TEST(Cli, SimulateNamesMujocoIntegratorsByTheSceneNameAndMujocosOwn) {
   EXPECT_TRUE(std::regex_search(r.out, std::regex(" s in [0-9.]+ (µs|ms|s)\\]"))) << r.out;
 }
 
+// A duration that is no whole number of steps runs the nearest whole number
+// (step_count): at dt = 0.3 s, 1 s is 3 steps, 0.9 s (without gravity the
+// box flies on, touching nothing). The summary said "1 s"
+// while the run and its CSV ended at 0.9 s (1.2 s at dt = 0.6); now it
+// names the time run. A duration of whole steps keeps its short form.
+TEST(Cli, ADurationOfNoWholeNumberOfStepsSaysTheTimeRun) {
+  Output o = capture("simulate " CONTACT2D_SCENES_DIR
+                     "/box.toml --duration 1 --dt 0.3 --set sim.gravity=0");
+  EXPECT_NE(o.out.find(", 0.9 s (3 steps: the whole number nearest to the duration, 1 s) in "),
+            std::string::npos)
+      << o.out << o.err;
+  o = capture("simulate " CONTACT2D_SCENES_DIR "/box.toml --duration 0.05");
+  EXPECT_NE(o.out.find("dt = 0.0001 s, 0.05 s in "), std::string::npos) << o.out;
+}
+
 // Progress when stderr is a pipe: lines with the time left (every
 // CONTACT2D_PROGRESS_SECONDS, here at every run) and a last "done in" line;
 // nothing with --quiet.
