@@ -9,7 +9,9 @@
 // above the ground falls freely to first touch inside the replay. The
 // engine then runs from there until the body leaves the ground (its lowest
 // point back above y = 0 after having been below), and the velocity at that
-// step is the prediction v̂ = (v̂x, v̂y, ω̂).
+// step is the prediction v̂ = (v̂x, v̂y, ω̂); a body still on the ground
+// after 8 undamped half-periods π·√(m/k) is a failed prediction (error 10,
+// ModelFit::unseparated_replays).
 //
 // The error of one impact, the one metric of this page:
 //   e = ‖W·(v̂ − v)‖ / ‖W·v‖,   W = diag(1, 1, √(I/m)),
@@ -26,7 +28,11 @@
 //                 effective mass of the body): minimises the training
 //                 impacts' median error (the statistic reported) over
 //                 (log10 k, ζ, μ, μ_roll) in [3, 9] × [0, 1.5] × [0, 2] ×
-//                 [0, 0.03 m] with NLopt's BOBYQA from three starts
+//                 [0, 0.03 m] with NLopt's BOBYQA from three starts and
+//                 from the fit without rolling resistance, then from the
+//                 best point of a 7 × 7 grid of (log10 k, ζ) and of k's
+//                 profile when either is better: never worse than a point
+//                 the fit evaluated
 //   penalty (no rolling resistance)   the same with μ_roll = 0
 //   constant      v̂ = the training impacts' mean post-impact velocity
 //   newton_coulomb   one impulse P at the lowest point: Newton's
@@ -61,7 +67,9 @@ struct ImpactFitOptions {
   // parameters (registry names); empty: none.
   std::vector<std::string> engines;
   bool all_impacts = false;  // also the impacts the recording flags
-  bool k_profile = true;     // the seeded split's profile of k (7 refits of ζ, μ, μ_roll)
+  // k's profile on both splits (7 refits of ζ, μ, μ_roll at log10 k = 3 … 9),
+  // the fit then started again from its best point when that is better.
+  bool k_profile = true;
   // ω·Δt of the replays (ω = √(k/m_eff)): semi-implicit Euler's restitution
   // is off by at most 0.16·ω·Δt relative (tests/core/test_ellipse.cpp), 0.3 %.
   double omega_dt = 0.02;
@@ -83,6 +91,12 @@ struct ModelFit {
   // Held-out replays that did not finish (a step not finite): each counts
   // as an error of 10 in `errors` and is said, never left out silently.
   int failed_replays = 0;
+  // Held-out replays still touching the ground when their window ended
+  // (replay_window, below): each counts as an error of 10 too, and is said.
+  int unseparated_replays = 0;
+  // s: the longest contact a replay of this model followed, 8 undamped
+  // half-periods π·√(m/k) at its k (0 for the baselines, which replay nothing).
+  double replay_window = 0.0;
   std::vector<double> errors;   // per held-out impact, in `test` order
   std::vector<Vec3> predicted;  // v̂ per held-out impact
   double iqr() const { return q3 - q1; }

@@ -25,6 +25,7 @@ std::string impact_fit_json(const ImpactFit& fit) {
         << ", \"median\": " << json::number(m.median) << ", \"iqr\": " << json::number(m.iqr())
         << ", \"q1\": " << json::number(m.q1) << ", \"q3\": " << json::number(m.q3)
         << ", \"failed_replays\": " << m.failed_replays
+        << ", \"unseparated_replays\": " << m.unseparated_replays
         << ", \"parameters\": " << json::object(m.parameters);
       if (!m.spread.empty()) {
         o << ", \"spread_16_84\": {";
@@ -33,6 +34,7 @@ std::string impact_fit_json(const ImpactFit& fit) {
             << json::number(m.spread[i].first) << ", " << json::number(m.spread[i].second) << "]";
         o << "}";
       }
+      if (m.replay_window > 0.0) o << ", \"replay_window_s\": " << json::number(m.replay_window);
       if (m.evaluations > 0)
         o << ", \"train_median\": " << json::number(m.train_median)
           << ", \"evaluations\": " << m.evaluations;
@@ -88,6 +90,11 @@ std::string impact_fit_text(const ImpactFit& fit) {
         << (m.failed_replays > 0 ? "  (" + std::to_string(m.failed_replays) +
                                        " replays did not finish: each counted as error 10)"
                                  : std::string())
+        << (m.unseparated_replays > 0 ? "  (" + std::to_string(m.unseparated_replays) +
+                                            " replays still on the ground after " +
+                                            format_number("%.3g", m.replay_window) +
+                                            " s, 8 undamped half-periods: each counted as error 10)"
+                                      : std::string())
         << "\n";
     }
     if (!s.engine_distances.empty()) {

@@ -4,9 +4,12 @@
 // forward model is exact, so the held-out error at the generating
 // parameters is 0 and the fit must find a point as good; ζ and μ_roll,
 // which the real data determine to a few per cent, must come back close.
-// Also: the metric and the quartiles on hand-made numbers.
+// Also: a contact longer than the replays once followed, from a closed
+// form; the fit never worse than points it evaluated itself; the metric and
+// the quartiles on hand-made numbers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "analysis/real_impacts.hpp"
@@ -121,6 +124,125 @@ TEST(ImpactFit, RecoversTheParametersOfImpactsMadeByItsOwnLaw) {
       if (m.engine == "baseline") {
         EXPECT_GT(m.median, 10 * penalty.median) << m.name;
       }
+    }
+  }
+}
+
+// A 10 kg disc dropped vertically on a Kelvin–Voigt spring–damper, k = 1e4
+// N/m, ζ = 0.2, no friction, under gravity: d'' = g − (k·d + c·d')/m while
+// the force k·d + c·d' is positive, d(0) = 0, d'(0) = v (d the depth). With
+// ω = √(k/m), ω_d = ω·√(1 − ζ²) and d0 = m·g/k,
+//   d(t) = d0 + e^(−ζωt)·(−d0·cos ω_d·t + (v − ζω·d0)/ω_d·sin ω_d·t);
+// the force first returns to zero at t_s (found here by stepping 1e-6 s and
+// bisecting), and the disc then rises freely from depth d(t_s) at −d'(t_s):
+// it leaves the ground at √(d'(t_s)² − 2g·d(t_s)). Without gravity the
+// contact lasts τ(ζ)/ω = 0.084 s (benchmarks/impact.hpp), with it longer:
+// over 0.08 s, the fixed window the replays once followed (they then
+// returned the velocity in mid-contact, and the fit came back with ζ = 0.27
+// and 0.29, k = 6e4 and 1.1e5 N/m on these impacts).
+double disc_rebound_speed(double k, double zeta, double m, double g, double v) {
+  const double w = std::sqrt(k / m), wd = w * std::sqrt(1.0 - zeta * zeta), d0 = m * g / k;
+  const double b = (v - zeta * w * d0) / wd;
+  auto depth = [&](double t) {
+    return d0 + std::exp(-zeta * w * t) * (-d0 * std::cos(wd * t) + b * std::sin(wd * t));
+  };
+  auto rate = [&](double t) {
+    const double e = std::exp(-zeta * w * t), c = std::cos(wd * t), s = std::sin(wd * t);
+    return e * (-zeta * w * (-d0 * c + b * s) + wd * (d0 * s + b * c));
+  };
+  auto force = [&](double t) { return k * depth(t) + 2.0 * zeta * std::sqrt(k * m) * rate(t); };
+  double lo = 1e-6, hi = lo;
+  while (force(hi) > 0.0) {
+    lo = hi;
+    hi += 1e-6;
+  }
+  for (int i = 0; i < 60; ++i) ((force(0.5 * (lo + hi)) > 0.0) ? lo : hi) = 0.5 * (lo + hi);
+  EXPECT_GT(lo, 0.08) << "the contact must outlast the old window";
+  const double up = -rate(lo), d = depth(lo);
+  return std::sqrt(up * up - 2.0 * g * d);
+}
+
+TEST(ImpactFit, FollowsAContactLongerThanTheOldWindowToItsEnd) {
+  const double k = 1e4, zeta = 0.2, m = 10.0, g = 9.81, radius = 0.05;
+  Recording rec;
+  rec.path = rec.csv = "synthetic";
+  rec.kind = "impacts";
+  rec.frame_rate = 250.0;
+  rec.body = default_scene(Shape::Circle);
+  rec.body.radius = radius;
+  rec.body.mass = m;
+  rec.body.sim.gravity = g;
+  for (int i = 0; i < 12; ++i) {
+    const double v = 1.0 + 0.2 * i;  // 1 to 3.2 m/s: gravity's share g/(ω·v) varies
+    RecordedImpact impact;
+    impact.id = i;
+    impact.line = i + 2;
+    impact.before.q = Vec3(0.0, radius, 0.0);
+    impact.before.v = Vec3(0.0, -v, 0.0);
+    impact.after.q = impact.before.q;
+    impact.after.v = Vec3(0.0, disc_rebound_speed(k, zeta, m, g, v), 0.0);
+    rec.impacts.push_back(impact);
+  }
+  analysis::ImpactFitOptions options;
+  options.bootstrap = 0;
+  options.k_profile = false;
+  options.threads = 1;
+  const analysis::ImpactFit fit = analysis::fit_impacts(rec, options);
+  for (const analysis::SplitFit& split : fit.splits) {
+    SCOPED_TRACE(split.split);
+    const analysis::ModelFit& penalty = split.models.front();
+    ASSERT_EQ(penalty.name, "penalty");
+    auto parameter = [&penalty](const std::string& name) {
+      for (const auto& [key, value] : penalty.parameters)
+        if (key == name) return value;
+      return std::nan("");
+    };
+    // Semi-implicit Euler at ω·Δt = 0.02 is off the restitution by at most
+    // 0.16·ω·Δt = 0.3 % relative (tests/core/test_ellipse.cpp), and the
+    // replay stops at the first step above the ground (g·Δt = 6e-5 m/s):
+    // the true law replays these impacts to about 0.003. Measured: held-out
+    // medians 0.0031 (seeded) and 0.0029 (chronological); ζ 0.2028 and
+    // 0.2007, k 1.029e4 and 1.004e4 N/m. Bounds: a median of 0.01, ζ within
+    // 5 %, k within 20 % (gravity's share of the rebound, 10–30 % here, is
+    // what sets k).
+    EXPECT_LT(penalty.median, 0.01);
+    EXPECT_NEAR(parameter("zeta"), zeta, 0.05 * zeta);
+    EXPECT_NEAR(parameter("k"), k, 0.2 * k);
+    EXPECT_EQ(penalty.unseparated_replays, 0);
+    EXPECT_EQ(penalty.failed_replays, 0);
+  }
+}
+
+// The fit is never worse, on its own objective (the training median), than
+// a point it evaluated itself: its special case without rolling resistance
+// (μ_roll = 0 is inside its box) and every point of k's profile. On these
+// impacts (the real ellipse's body, k = 1e5 N/m, ζ = 0.3, μ = 0.05, μ_roll =
+// 0.002) BOBYQA from the three fixed starts stopped in the plateau of high
+// k: a training median of 0.0035 against 0.00027 at k's profile point 1e5
+// N/m (seeded split); now 0.00014 on both splits.
+TEST(ImpactFit, IsNoWorseThanItsSpecialCaseOrItsOwnProfileOfK) {
+  ContactParams law;
+  law.damping = DampingLaw::KelvinVoigt;
+  law.k = 1e5;
+  law.c = 2.0 * 0.3 * std::sqrt(law.k * 0.0364);
+  law.mu = 0.05;
+  law.mu_roll = 0.002;
+  const Recording rec = synthetic(law, 24);
+  analysis::ImpactFitOptions options;
+  options.bootstrap = 0;
+  options.threads = 1;
+  const analysis::ImpactFit fit = analysis::fit_impacts(rec, options);
+  for (const analysis::SplitFit& split : fit.splits) {
+    SCOPED_TRACE(split.split);
+    const analysis::ModelFit& penalty = split.models.at(0);
+    const analysis::ModelFit& no_rolling = split.models.at(1);
+    ASSERT_EQ(penalty.name, "penalty");
+    ASSERT_EQ(no_rolling.name, "penalty_no_rolling");
+    // The same objective at the same points: no tolerance.
+    EXPECT_LE(penalty.train_median, no_rolling.train_median);
+    ASSERT_FALSE(split.k_profile.empty());
+    for (const auto& [k, median] : split.k_profile) {
+      EXPECT_LE(penalty.train_median, median) << "k = " << k;
     }
   }
 }
