@@ -114,15 +114,17 @@ void friction_and_creep(const Context& ctx, InspectRow& r) {
     // small d this is generate's cap 1/(Δt·A_t·c) (mapping.cpp).
     const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
     const double R = (1.0 - r.d_rest) / r.d_rest * r.inv_weight * shape;
-    const double excess = s.timestep * r.B - 1.0;
+    const double excess = s.timestep * r.B_friction - 1.0;
     if (r.A_t > 0.0 && excess > 0.0) r.impratio_cap = R / (r.A_t * excess);
     // The push law is exact as d·A/((1 − d)·Â) → 0 (solref's calibrated
     // contact: 4e-4 on a box, MuJoCo 1.8e-4 off it); at MuJoCo's default
     // d ≈ 0.9 the rows couple through A and it does not hold (11 % off).
+    // The friction rows' damper sets it: c·B_friction/B (solreffriction).
     if (r.d_rest * r.A < 1e-2 * (1.0 - r.d_rest) * r.normal_weight) {
-      r.push = mu * r.c;
-      if (!ctx.pyramidal && std::isfinite(r.load) && r.c > 0.0)
-        r.lift_off = r.load * (1.0 + mu * mu / std::max(mjMINVAL, s.impratio)) / (mu * r.c);
+      const double c_t = r.B > 0.0 ? r.c * r.B_friction / r.B : r.c;
+      r.push = mu * c_t;
+      if (!ctx.pyramidal && std::isfinite(r.load) && c_t > 0.0)
+        r.lift_off = r.load * (1.0 + mu * mu / std::max(mjMINVAL, s.impratio)) / (mu * c_t);
     }
   }
   r.creep = kNaN;
@@ -155,9 +157,33 @@ void friction_and_creep(const Context& ctx, InspectRow& r) {
       const double dd = mujoco_impedance(r.solimp, -p);
       const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
       r.creep = r.load * std::sin(th) * (1.0 - dd) * r.inv_weight * shape /
-                (std::max(mjMINVAL, s.impratio) * r.B * dd);
+                (std::max(mjMINVAL, s.impratio) * r.B_friction * dd);
     }
   }
+}
+
+// The friction rows' B: solreffriction's where MuJoCo uses it (getsolparam,
+// mj_makeImpedance: an elliptic contact's friction rows, when it is not
+// 0 0; its two numbers of one sign, else MuJoCo warns and drops it; refsafe
+// on a standard-form timeconst), else solref's. After r.B and r.dmax.
+void friction_reference(const ModelState& s, InspectRow& r, std::vector<std::string>& warnings,
+                        const std::string& label) {
+  r.B_friction = r.B;
+  r.friction_ref = false;
+  std::array<double, 2> ref = r.solreffriction;
+  if (ref[0] == 0.0 && ref[1] == 0.0) return;
+  if ((ref[0] > 0.0) != (ref[1] > 0.0)) {
+    warnings.push_back(label + ": solreffriction " + format_number(ref[0]) + " " +
+                       format_number(ref[1]) +
+                       " mixes the standard and direct forms: MuJoCo drops it and the friction "
+                       "rows keep solref's damper");
+    return;
+  }
+  if (!s.elliptic || r.condim < 3) return;  // only an elliptic cone's friction rows read it
+  if (ref[0] > 0.0 && s.refsafe) ref[0] = std::max(ref[0], 2.0 * s.timestep);
+  r.friction_ref = true;
+  r.B_friction = ref[1] > 0.0 ? 2.0 / std::max(mjMINVAL, r.dmax * ref[0])
+                              : -ref[1] / std::max(mjMINVAL, r.dmax);
 }
 
 // Everything that follows from solref, solimp, condim, friction, A, Â and the load.
@@ -185,6 +211,7 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
                      : -ref[0] / std::max(mjMINVAL, r.dmax * r.dmax);
   r.B = ref[1] > 0.0 ? 2.0 / std::max(mjMINVAL, r.dmax * ref[0])
                      : -ref[1] / std::max(mjMINVAL, r.dmax);
+  friction_reference(s, r, warnings, label);
   r.inv_weight = s.body_invweight0[2 * static_cast<size_t>(r.body1)] +
                  s.body_invweight0[2 * static_cast<size_t>(r.body2)];
   const double mu = r.friction[0];
@@ -358,6 +385,7 @@ void collect_contacts(const ModelState& s, InspectReport& rep) {
     r.condim = con.condim;
     r.friction = con.friction;
     r.solref = con.solref;
+    r.solreffriction = con.solreffriction;
     r.solimp = con.solimp;
     r.A = con.A;
     r.A_t = con.A_t;
@@ -975,6 +1003,13 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
   o << "  K = " << format_number(r.K) << " 1/s², B = " << format_number(r.B)
     << " 1/s; impedance d = " << format_number(r.d_rest) << " at rest, " << format_number(r.dmax)
     << " max\n";
+  if (r.solreffriction[0] != 0.0 || r.solreffriction[1] != 0.0)
+    o << "  solreffriction " << list_text(r.solreffriction.data(), 2) << ": "
+      << (r.friction_ref ? "the friction rows' B = " + format_number(r.B_friction) + " 1/s"
+          : rep.cone == "elliptic" && r.condim >= 3
+              ? std::string("not used (its two numbers differ in sign)")
+              : std::string("not used (MuJoCo reads it in the elliptic cone's friction rows only)"))
+      << "\n";
   o << "  A = " << format_number(r.A) << " 1/kg (effective mass " << format_number(1.0 / r.A)
     << " kg"
     << (r.closest      ? "; at the closest points, " + format_number(r.dist) + " m apart"
@@ -1057,8 +1092,11 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
     << ", \"refsafe_changes\": " << (r.refsafe_changes ? "true" : "false")
     << ", \"timeconst_used\": "
     << (r.timeconst_used > 0.0 ? json::number(r.timeconst_used) : "null")
-    << ",\n     \"K\": " << json::number(r.K) << ", \"B\": " << json::number(r.B)
-    << ", \"dmax\": " << json::number(r.dmax) << ", \"d_rest\": " << json::number(r.d_rest)
+    << ",\n     \"K\": " << json::number(r.K) << ", \"B\": " << json::number(r.B);
+  if (r.solreffriction[0] != 0.0 || r.solreffriction[1] != 0.0)
+    o << ", \"solreffriction\": " << json_array(r.solreffriction.data(), 2)
+      << ", \"B_friction\": " << (r.friction_ref ? json::number(r.B_friction) : "null");
+  o << ", \"dmax\": " << json::number(r.dmax) << ", \"d_rest\": " << json::number(r.d_rest)
     << ", \"A\": " << json::number(r.A) << ", \"A_measured\": " << (r.A_measured ? "true" : "false")
     << ", \"invweight\": " << json::number(r.inv_weight)
     << ", \"normal_weight\": " << json::number(r.normal_weight)

@@ -42,7 +42,8 @@
 //   clamped at zero (the contact lets go when k·x + c·ẋ = 0, before x = 0;
 //   benchmarks/impact.hpp);
 //   the creep speed on a slope of θ: inside the friction cone MuJoCo's
-//   tangential rows have no spring, aref = −B·v, and R_t = R/impratio, so at
+//   tangential rows have no spring, aref = −B·v (B of solreffriction where an
+//   elliptic contact's <pair> sets it, MuJoCo ≥ 2.3.6), and R_t = R/impratio, so at
 //   steady creep (qacc = 0) a contact carries impratio·B·d·v/((1 − d)·Â)
 //   (elliptic; the pyramidal cone's edge rows give the same divided by 1 + μ²);
 //   with the tangential load f·sinθ: v = f·sinθ·(1 − d)·Â·(1 + μ²)/(impratio·B·d)
@@ -93,6 +94,13 @@ struct InspectRow {
   double timeconst_used = 0.0;  // standard form: after refsafe; 0 for the direct form
   bool refsafe_changes = false;
   double K = 0.0, B = 0.0;
+  // MuJoCo ≥ 2.3.6's <pair solreffriction> (0 0: none): an elliptic
+  // contact's friction rows take their B from it (mj_makeImpedance: K = 0,
+  // B = 2/(d_max·tc) or −solreffriction[1]/d_max, refsafe on its
+  // timeconst); B_friction is the friction rows' B either way.
+  std::array<double, 2> solreffriction{};
+  bool friction_ref = false;  // the friction rows use solreffriction
+  double B_friction = 0.0;
   double dmax = 0.0;           // solimp[1] after MuJoCo's clamps
   double d_now = 0.0;          // impedance at dist
   double d_rest = 0.0;         // impedance at the static penetration

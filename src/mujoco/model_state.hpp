@@ -103,6 +103,7 @@ struct StateContact {
   int condim = 1;
   std::array<double, 5> friction{};
   std::array<double, 2> solref{};
+  std::array<double, 2> solreffriction{};  // 0 0: none (always so in 2.2.2)
   std::array<double, 5> solimp{};
   // The margin and gap MuJoCo gave the geom pair (an explicit pair: its own;
   // else 2.2.2 takes the larger geom's, 3.x adds the two geoms'), m. 2.2.2

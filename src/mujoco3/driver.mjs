@@ -45,7 +45,7 @@ import {createInterface} from 'node:readline';
 import {fileURLToPath} from 'node:url';
 
 // The version of this protocol; node_mujoco.hpp's kProtocol.
-const PROTOCOL = 3;
+const PROTOCOL = 4;
 
 const here = dirname(fileURLToPath(import.meta.url));
 const messages = [];
@@ -498,6 +498,7 @@ function readState(m, d, r, steps) {
         frame: Array.from(con.frame),
         friction: Array.from(con.friction),
         solref: Array.from(con.solref),
+        solreffriction: Array.from(con.solreffriction),
         solimp: Array.from(con.solimp),
         normal_force: force.GetView()[0],
         jac1: jacobian(pos, m.geom_bodyid[con.geom1]),

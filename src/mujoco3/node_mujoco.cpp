@@ -551,6 +551,7 @@ mujoco::ArrayContact contact_of(const json::Value& c) {
   fill(c, "frame", out.frame);
   fill(c, "friction", out.friction);
   fill(c, "solref", out.solref);
+  fill(c, "solreffriction", out.solreffriction);
   fill(c, "solimp", out.solimp);
   out.normal_force = need_number(c, "normal_force");
   for (const auto& [key, jac] : {std::pair{"jac1", &out.jac1}, std::pair{"jac2", &out.jac2}}) {
