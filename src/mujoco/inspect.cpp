@@ -99,6 +99,21 @@ constexpr double kBounceSpeed = 1.0;
 
 BounceRow bounce_row(const InspectRow& r) { return {r.K, r.B, r.solimp, r.normal_weight}; }
 
+// Why no creep is printed under MuJoCo's noslip pass.
+std::string noslip_note(int iterations) {
+  return "not estimated: noslip_iterations = " + std::to_string(iterations) +
+         " (MuJoCo's noslip pass re-solves the friction forces after the main solver, without "
+         "their regulariser R_t = R/impratio that sets the viscous creep; it is not modelled)";
+}
+
+// What the main solver's friction advice leaves out under the noslip pass.
+std::string noslip_caveat(int iterations) {
+  return iterations > 0 ? " (the main solver's; noslip_iterations = " + std::to_string(iterations) +
+                              ": MuJoCo's noslip pass re-solves the friction forces after it, "
+                              "which is not modelled)"
+                        : std::string();
+}
+
 // The friction rows' numbers and the creep at --slope (evaluate's last part).
 void friction_and_creep(const Context& ctx, InspectRow& r) {
   const ModelState& s = *ctx.s;
@@ -141,6 +156,8 @@ void friction_and_creep(const Context& ctx, InspectRow& r) {
       r.creep_note = "tanθ ≥ μ/(condim − 1) = " + format_number(mu / (r.condim - 1)) +
                      ": an edge of the pyramidal cone unloads; faster than the viscous creep "
                      "(slides at tanθ ≥ μ)";
+    } else if (s.noslip_iterations > 0) {
+      r.creep_note = noslip_note(s.noslip_iterations);
     } else if (std::isfinite(r.impratio_cap) && s.impratio > r.impratio_cap) {
       r.creep_note = "impratio " + format_number(s.impratio) + " is above " +
                      format_number(r.impratio_cap) +
@@ -544,7 +561,8 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
         rep.warnings.push_back(label + ": impratio " + format_number(rep.impratio) + " exceeds " +
                                format_number(r.impratio_cap) +
                                ", above which the friction rows' damper reverses a slip within "
-                               "one step (Δt·B·A_t/(A_t + R/impratio) > 1): MuJoCo chatters");
+                               "one step (Δt·B·A_t/(A_t + R/impratio) > 1): MuJoCo chatters" +
+                               noslip_caveat(s.noslip_iterations));
       if (r.refsafe_changes)
         rep.warnings.push_back(
             label + ": refsafe raises the solref timeconst " + format_number(r.solref[0]) +
@@ -574,8 +592,9 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
                            " < 1: MuJoCo gives the friction rows R_t = R/impratio, so friction "
                            "is " +
                            format_number(1.0 / rep.impratio) +
-                           "× softer than the normal (a body creeps that much faster); "
-                           "impratio > 1 makes friction stiffer, not softer");
+                           "× softer than the normal (a body creeps that much faster" +
+                           noslip_caveat(s.noslip_iterations) +
+                           "); impratio > 1 makes friction stiffer, not softer");
   std::map<int, std::pair<double, double>> masses;  // body → (min, max) of 1/A
   for (const InspectRow& r : rep.contacts) {
     for (int b : {r.body1, r.body2}) {
@@ -753,6 +772,7 @@ InspectReport begin_report(const ModelState& s, const InspectOptions& options) {
   rep.dt = s.timestep;
   rep.cone = s.elliptic ? "elliptic" : "pyramidal";
   rep.impratio = s.impratio;
+  rep.noslip_iterations = s.noslip_iterations;
   rep.gravity = s.gravity;
   rep.refsafe_enabled = s.refsafe;
   rep.settled = s.settled;
@@ -1136,6 +1156,10 @@ std::string format_inspect_text(const InspectReport& rep) {
             ? ", friction " + format_number(1.0 / rep.impratio) + "× softer than the normal"
             : std::string())
     << "), gravity " << list_text(rep.gravity.data(), 3) << " m/s²\n";
+  if (rep.noslip_iterations > 0)
+    o << "noslip_iterations " << rep.noslip_iterations
+      << ": MuJoCo's noslip pass re-solves the friction forces after the main solver; the "
+         "creep is not estimated and the friction rows' advice below is the main solver's\n";
   if (rep.contacts.empty()) {
     o << "no contacts at " << state_name(rep) << ": " << no_contacts_hint(rep) << "\n";
   } else {

@@ -51,6 +51,10 @@
 //   solver stays in its quadratic zone (where this holds) while tanθ < μ
 //   for the elliptic cone, and while no edge row unloads for the pyramidal
 //   one, each carrying f/(2(condim − 1)) ± f·sinθ/(2μ): tanθ < μ/(condim − 1).
+//   With noslip_iterations > 0 MuJoCo re-solves the friction forces after its
+//   main solver without their regulariser (mj_solNoSlip): the creep is not
+//   estimated then, and the advice that follows from the main solver's
+//   friction rows (the impratio cap, impratio < 1) says it does not include it.
 #pragma once
 
 #include <array>
@@ -179,6 +183,7 @@ struct InspectReport {
   double dt = 0.0;
   std::string cone;  // pyramidal, elliptic
   double impratio = 1.0;
+  int noslip_iterations = 0;  // > 0: MuJoCo's noslip pass, which the creep does not model
   std::array<double, 3> gravity{};
   bool refsafe_enabled = true;
   std::optional<double> slope;

@@ -131,6 +131,9 @@ struct ModelState {
   std::string integrator;  // Euler, RK4, implicit, implicitfast
   bool elliptic = false;
   double impratio = 1.0;
+  // MuJoCo's noslip post-pass over the friction rows (0: none); inspect does
+  // not model it.
+  int noslip_iterations = 0;
   std::array<double, 3> gravity{};
   bool refsafe = true;
   std::string disabled;  // "contacts" or "constraints" when <flag> turns them off, else empty

@@ -82,6 +82,11 @@ void creep_on_slope(const SolrefInput& in, double inv_weight, MappingOutcome& o,
     o.creep_note = "tanθ ≥ μ = " + format_number(mu) + ": slides (Coulomb)";
   } else if (!elliptic && std::tan(th) >= mu / (condim - 1)) {
     o.creep_note = "tanθ ≥ μ/(condim − 1): an edge of the pyramidal cone unloads";
+  } else if (in.user_friction.noslip_iterations > 0) {
+    o.creep_note = "not estimated: the model's noslip_iterations = " +
+                   std::to_string(in.user_friction.noslip_iterations) +
+                   " (MuJoCo's noslip pass re-solves the friction forces after the main solver, "
+                   "which is not modelled)";
   } else if (th == 0.0) {
     o.creep = 0.0;
   } else {
@@ -628,6 +633,7 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
   }
   out.friction.elliptic = state.elliptic;
   out.friction.impratio = state.impratio;
+  out.friction.noslip_iterations = state.noslip_iterations;
   out.friction.source += std::string(out.friction.elliptic ? ", elliptic" : ", pyramidal") +
                          " cone, impratio " + format_number(out.friction.impratio);
   // The body's contacts in the settled state, as MuJoCo has them: the

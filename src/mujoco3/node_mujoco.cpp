@@ -692,6 +692,7 @@ mujoco::ModelState Node::read_state(const std::string& id) {
     s.integrator = need_text(a.value, "integrator");
     s.elliptic = need_flag(a.value, "elliptic");
     s.impratio = need_number(a.value, "impratio");
+    s.noslip_iterations = static_cast<int>(need_integer(a.value, "noslip_iterations"));
     const std::vector<double> g = need_numbers(a.value, "gravity", 3);
     for (size_t i = 0; i < 3; ++i) s.gravity[i] = g[i];
     s.refsafe = need_flag(a.value, "refsafe");
