@@ -281,7 +281,8 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
                      "× its load, so MuJoCo's depth now is not yet this one (a longer --settle)";
   }
   double k_max = 0.0, c_max = 0.0;
-  regime(r.dmax, k_max, c_max, r.omega_max, r.zeta_max);
+  r.d_stiff = std::max(std::clamp(r.solimp[0], mjMINIMP, mjMAXIMP), r.dmax);
+  regime(r.d_stiff, k_max, c_max, r.omega_max, r.zeta_max);
   r.omega_dt = r.omega_max * s.timestep;
   r.limit = stability_limit(ctx.integrator, r.zeta_max);
   r.restitution = benchmarks::kelvin_voigt_restitution(r.zeta);
@@ -303,6 +304,14 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
 // Euler does (core stability_limit); RK4 has its own limit.
 Integrator integrator_of(const ModelState& s) {
   return s.integrator == "RK4" ? Integrator::RK4 : Integrator::SemiImplicitEuler;
+}
+
+// Where the contact is stiffest, in words.
+std::string stiffest(const InspectRow& r) {
+  return r.d_stiff > r.dmax ? "d0 = " + format_number(r.d_stiff) +
+                                  ", the stiffest (solimp's d0 is above d_max: the impedance "
+                                  "falls with depth)"
+                            : std::string("d_max");
 }
 
 std::string label_of(const InspectRow& r) {
@@ -552,8 +561,8 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
     for (const InspectRow& r : list) {
       const std::string label = label_of(r);
       if (r.A > 0.0 && !(r.omega_dt < r.limit))
-        rep.warnings.push_back(label + ": ω·Δt = " + format_number(r.omega_dt) +
-                               " at d_max exceeds " + rep.integrator + "'s limit " +
+        rep.warnings.push_back(label + ": ω·Δt = " + format_number(r.omega_dt) + " at " +
+                               stiffest(r) + " exceeds " + rep.integrator + "'s limit " +
                                format_number(r.limit) + " (ζ = " + format_number(r.zeta_max) +
                                "): unstable; a timestep below " +
                                format_number(r.limit / r.omega_max) + " s is stable");
@@ -1047,9 +1056,10 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
       << " N·s/m; ω = " << format_number(r.omega) << " rad/s, ζ = " << format_number(r.zeta)
       << "; restitution " << format_number(r.restitution) << " (continuous time), "
       << format_number(r.restitution_dt) << " as MuJoCo steps it alone at Δt\n";
-    o << "  ω·Δt = " << format_number(r.omega_dt) << " at d_max (ω = " << format_number(r.omega_max)
-      << ", ζ = " << format_number(r.zeta_max) << "): " << rep.integrator << "'s limit "
-      << format_number(r.limit) << " (" << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
+    o << "  ω·Δt = " << format_number(r.omega_dt) << " at " << stiffest(r)
+      << " (ω = " << format_number(r.omega_max) << ", ζ = " << format_number(r.zeta_max)
+      << "): " << rep.integrator << "'s limit " << format_number(r.limit) << " ("
+      << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
   }
   // Not at rest, the first lines said so once: a contact's own note only
   // says which way it moves.

@@ -105,7 +105,11 @@ struct InspectRow {
   std::array<double, 2> solreffriction{};
   bool friction_ref = false;  // the friction rows use solreffriction
   double B_friction = 0.0;
-  double dmax = 0.0;           // solimp[1] after MuJoCo's clamps
+  double dmax = 0.0;  // solimp[1] after MuJoCo's clamps
+  // The stiffest impedance: k = d²K/(d·A + (1 − d)·Â) rises with d, and d
+  // runs from solimp[0] at first touch to solimp[1] at full width, so
+  // max(d0, d_max) (d0 > d_max: the impedance falls with depth).
+  double d_stiff = 0.0;
   double d_now = 0.0;          // impedance at dist
   double d_rest = 0.0;         // impedance at the static penetration
   double A = 0.0;              // true inverse mass at the contact, 1/kg
@@ -125,8 +129,8 @@ struct InspectRow {
   std::string depth_note;          // why there is no rest depth, or why MuJoCo is not at it now
   double k = 0.0, c = 0.0;         // N/m, N·s/m at d_rest
   double omega = 0.0, zeta = 0.0;  // at d_rest
-  double omega_max = 0.0, zeta_max = 0.0;  // at d_max
-  double omega_dt = 0.0, limit = 0.0;      // ω·Δt at d_max and the integrator's limit
+  double omega_max = 0.0, zeta_max = 0.0;  // at d_stiff
+  double omega_dt = 0.0, limit = 0.0;      // ω·Δt at d_stiff and the integrator's limit
   double restitution = 0.0;     // continuous time (Kelvin–Voigt, force clamped at zero)
   double restitution_dt = 0.0;  // as MuJoCo steps it at the model's Δt (bounce.hpp), at 1 m/s
   // Friction (condim ≥ 3): A_t, the larger tangent direction's inverse mass;

@@ -167,7 +167,10 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
     const double mu = std::max(o.condim == 0 ? in.user_friction.mu : in.mu, 1e-5);  // mjMINMU
     o.normal_weight *= mu * mu * (1.0 + mu * mu) / ((condim - 1) * s.impratio);
   }
-  const double A = report.inv_mass, Ahat = o.normal_weight, d = dmax;
+  // The stiffest impedance (ω rises with d): d_max, or solimp's d0 when it is
+  // above d_max (the impedance then falls with depth).
+  const double A = report.inv_mass, Ahat = o.normal_weight,
+               d = std::max(std::clamp(s.solimp[0], kMinImp, kMaxImp), dmax);
   const double denominator = d * A + (1.0 - d) * Ahat;
   o.omega = std::sqrt(A * d * d * o.K / denominator);
   o.zeta = A * d * o.B / denominator / (2.0 * o.omega);
