@@ -99,6 +99,21 @@ constexpr double kBounceSpeed = 1.0;
 
 BounceRow bounce_row(const InspectRow& r) { return {r.K, r.B, r.solimp, r.normal_weight}; }
 
+// Why no creep is printed under MuJoCo's noslip pass.
+std::string noslip_note(int iterations) {
+  return "not estimated: noslip_iterations = " + std::to_string(iterations) +
+         " (MuJoCo's noslip pass re-solves the friction forces after the main solver, without "
+         "their regulariser R_t = R/impratio that sets the viscous creep; it is not modelled)";
+}
+
+// What the main solver's friction advice leaves out under the noslip pass.
+std::string noslip_caveat(int iterations) {
+  return iterations > 0 ? " (the main solver's; noslip_iterations = " + std::to_string(iterations) +
+                              ": MuJoCo's noslip pass re-solves the friction forces after it, "
+                              "which is not modelled)"
+                        : std::string();
+}
+
 // The friction rows' numbers and the creep at --slope (evaluate's last part).
 void friction_and_creep(const Context& ctx, InspectRow& r) {
   const ModelState& s = *ctx.s;
@@ -114,15 +129,17 @@ void friction_and_creep(const Context& ctx, InspectRow& r) {
     // small d this is generate's cap 1/(Δt·A_t·c) (mapping.cpp).
     const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
     const double R = (1.0 - r.d_rest) / r.d_rest * r.inv_weight * shape;
-    const double excess = s.timestep * r.B - 1.0;
+    const double excess = s.timestep * r.B_friction - 1.0;
     if (r.A_t > 0.0 && excess > 0.0) r.impratio_cap = R / (r.A_t * excess);
     // The push law is exact as d·A/((1 − d)·Â) → 0 (solref's calibrated
     // contact: 4e-4 on a box, MuJoCo 1.8e-4 off it); at MuJoCo's default
     // d ≈ 0.9 the rows couple through A and it does not hold (11 % off).
+    // The friction rows' damper sets it: c·B_friction/B (solreffriction).
     if (r.d_rest * r.A < 1e-2 * (1.0 - r.d_rest) * r.normal_weight) {
-      r.push = mu * r.c;
-      if (!ctx.pyramidal && std::isfinite(r.load) && r.c > 0.0)
-        r.lift_off = r.load * (1.0 + mu * mu / std::max(mjMINVAL, s.impratio)) / (mu * r.c);
+      const double c_t = r.B > 0.0 ? r.c * r.B_friction / r.B : r.c;
+      r.push = mu * c_t;
+      if (!ctx.pyramidal && std::isfinite(r.load) && c_t > 0.0)
+        r.lift_off = r.load * (1.0 + mu * mu / std::max(mjMINVAL, s.impratio)) / (mu * c_t);
     }
   }
   r.creep = kNaN;
@@ -139,6 +156,8 @@ void friction_and_creep(const Context& ctx, InspectRow& r) {
       r.creep_note = "tanθ ≥ μ/(condim − 1) = " + format_number(mu / (r.condim - 1)) +
                      ": an edge of the pyramidal cone unloads; faster than the viscous creep "
                      "(slides at tanθ ≥ μ)";
+    } else if (s.noslip_iterations > 0) {
+      r.creep_note = noslip_note(s.noslip_iterations);
     } else if (std::isfinite(r.impratio_cap) && s.impratio > r.impratio_cap) {
       r.creep_note = "impratio " + format_number(s.impratio) + " is above " +
                      format_number(r.impratio_cap) +
@@ -155,9 +174,33 @@ void friction_and_creep(const Context& ctx, InspectRow& r) {
       const double dd = mujoco_impedance(r.solimp, -p);
       const double shape = ctx.pyramidal ? 1.0 + mu * mu : 1.0;
       r.creep = r.load * std::sin(th) * (1.0 - dd) * r.inv_weight * shape /
-                (std::max(mjMINVAL, s.impratio) * r.B * dd);
+                (std::max(mjMINVAL, s.impratio) * r.B_friction * dd);
     }
   }
+}
+
+// The friction rows' B: solreffriction's where MuJoCo uses it (getsolparam,
+// mj_makeImpedance: an elliptic contact's friction rows, when it is not
+// 0 0; its two numbers of one sign, else MuJoCo warns and drops it; refsafe
+// on a standard-form timeconst), else solref's. After r.B and r.dmax.
+void friction_reference(const ModelState& s, InspectRow& r, std::vector<std::string>& warnings,
+                        const std::string& label) {
+  r.B_friction = r.B;
+  r.friction_ref = false;
+  std::array<double, 2> ref = r.solreffriction;
+  if (ref[0] == 0.0 && ref[1] == 0.0) return;
+  if ((ref[0] > 0.0) != (ref[1] > 0.0)) {
+    warnings.push_back(label + ": solreffriction " + format_number(ref[0]) + " " +
+                       format_number(ref[1]) +
+                       " mixes the standard and direct forms: MuJoCo drops it and the friction "
+                       "rows keep solref's damper");
+    return;
+  }
+  if (!s.elliptic || r.condim < 3) return;  // only an elliptic cone's friction rows read it
+  if (ref[0] > 0.0 && s.refsafe) ref[0] = std::max(ref[0], 2.0 * s.timestep);
+  r.friction_ref = true;
+  r.B_friction = ref[1] > 0.0 ? 2.0 / std::max(mjMINVAL, r.dmax * ref[0])
+                              : -ref[1] / std::max(mjMINVAL, r.dmax);
 }
 
 // Everything that follows from solref, solimp, condim, friction, A, Â and the load.
@@ -185,6 +228,7 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
                      : -ref[0] / std::max(mjMINVAL, r.dmax * r.dmax);
   r.B = ref[1] > 0.0 ? 2.0 / std::max(mjMINVAL, r.dmax * ref[0])
                      : -ref[1] / std::max(mjMINVAL, r.dmax);
+  friction_reference(s, r, warnings, label);
   r.inv_weight = s.body_invweight0[2 * static_cast<size_t>(r.body1)] +
                  s.body_invweight0[2 * static_cast<size_t>(r.body2)];
   const double mu = r.friction[0];
@@ -237,7 +281,8 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
                      "× its load, so MuJoCo's depth now is not yet this one (a longer --settle)";
   }
   double k_max = 0.0, c_max = 0.0;
-  regime(r.dmax, k_max, c_max, r.omega_max, r.zeta_max);
+  r.d_stiff = std::max(std::clamp(r.solimp[0], mjMINIMP, mjMAXIMP), r.dmax);
+  regime(r.d_stiff, k_max, c_max, r.omega_max, r.zeta_max);
   r.omega_dt = r.omega_max * s.timestep;
   r.limit = stability_limit(ctx.integrator, r.zeta_max);
   r.restitution = benchmarks::kelvin_voigt_restitution(r.zeta);
@@ -259,6 +304,14 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
 // Euler does (core stability_limit); RK4 has its own limit.
 Integrator integrator_of(const ModelState& s) {
   return s.integrator == "RK4" ? Integrator::RK4 : Integrator::SemiImplicitEuler;
+}
+
+// Where the contact is stiffest, in words.
+std::string stiffest(const InspectRow& r) {
+  return r.d_stiff > r.dmax ? "d0 = " + format_number(r.d_stiff) +
+                                  ", the stiffest (solimp's d0 is above d_max: the impedance "
+                                  "falls with depth)"
+                            : std::string("d_max");
 }
 
 std::string label_of(const InspectRow& r) {
@@ -358,6 +411,7 @@ void collect_contacts(const ModelState& s, InspectReport& rep) {
     r.condim = con.condim;
     r.friction = con.friction;
     r.solref = con.solref;
+    r.solreffriction = con.solreffriction;
     r.solimp = con.solimp;
     r.A = con.A;
     r.A_t = con.A_t;
@@ -507,8 +561,8 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
     for (const InspectRow& r : list) {
       const std::string label = label_of(r);
       if (r.A > 0.0 && !(r.omega_dt < r.limit))
-        rep.warnings.push_back(label + ": ω·Δt = " + format_number(r.omega_dt) +
-                               " at d_max exceeds " + rep.integrator + "'s limit " +
+        rep.warnings.push_back(label + ": ω·Δt = " + format_number(r.omega_dt) + " at " +
+                               stiffest(r) + " exceeds " + rep.integrator + "'s limit " +
                                format_number(r.limit) + " (ζ = " + format_number(r.zeta_max) +
                                "): unstable; a timestep below " +
                                format_number(r.limit / r.omega_max) + " s is stable");
@@ -516,7 +570,8 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
         rep.warnings.push_back(label + ": impratio " + format_number(rep.impratio) + " exceeds " +
                                format_number(r.impratio_cap) +
                                ", above which the friction rows' damper reverses a slip within "
-                               "one step (Δt·B·A_t/(A_t + R/impratio) > 1): MuJoCo chatters");
+                               "one step (Δt·B·A_t/(A_t + R/impratio) > 1): MuJoCo chatters" +
+                               noslip_caveat(s.noslip_iterations));
       if (r.refsafe_changes)
         rep.warnings.push_back(
             label + ": refsafe raises the solref timeconst " + format_number(r.solref[0]) +
@@ -546,8 +601,9 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
                            " < 1: MuJoCo gives the friction rows R_t = R/impratio, so friction "
                            "is " +
                            format_number(1.0 / rep.impratio) +
-                           "× softer than the normal (a body creeps that much faster); "
-                           "impratio > 1 makes friction stiffer, not softer");
+                           "× softer than the normal (a body creeps that much faster" +
+                           noslip_caveat(s.noslip_iterations) +
+                           "); impratio > 1 makes friction stiffer, not softer");
   std::map<int, std::pair<double, double>> masses;  // body → (min, max) of 1/A
   for (const InspectRow& r : rep.contacts) {
     for (int b : {r.body1, r.body2}) {
@@ -725,6 +781,7 @@ InspectReport begin_report(const ModelState& s, const InspectOptions& options) {
   rep.dt = s.timestep;
   rep.cone = s.elliptic ? "elliptic" : "pyramidal";
   rep.impratio = s.impratio;
+  rep.noslip_iterations = s.noslip_iterations;
   rep.gravity = s.gravity;
   rep.refsafe_enabled = s.refsafe;
   rep.settled = s.settled;
@@ -975,6 +1032,13 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
   o << "  K = " << format_number(r.K) << " 1/s², B = " << format_number(r.B)
     << " 1/s; impedance d = " << format_number(r.d_rest) << " at rest, " << format_number(r.dmax)
     << " max\n";
+  if (r.solreffriction[0] != 0.0 || r.solreffriction[1] != 0.0)
+    o << "  solreffriction " << list_text(r.solreffriction.data(), 2) << ": "
+      << (r.friction_ref ? "the friction rows' B = " + format_number(r.B_friction) + " 1/s"
+          : rep.cone == "elliptic" && r.condim >= 3
+              ? std::string("not used (its two numbers differ in sign)")
+              : std::string("not used (MuJoCo reads it in the elliptic cone's friction rows only)"))
+      << "\n";
   o << "  A = " << format_number(r.A) << " 1/kg (effective mass " << format_number(1.0 / r.A)
     << " kg"
     << (r.closest      ? "; at the closest points, " + format_number(r.dist) + " m apart"
@@ -992,9 +1056,10 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
       << " N·s/m; ω = " << format_number(r.omega) << " rad/s, ζ = " << format_number(r.zeta)
       << "; restitution " << format_number(r.restitution) << " (continuous time), "
       << format_number(r.restitution_dt) << " as MuJoCo steps it alone at Δt\n";
-    o << "  ω·Δt = " << format_number(r.omega_dt) << " at d_max (ω = " << format_number(r.omega_max)
-      << ", ζ = " << format_number(r.zeta_max) << "): " << rep.integrator << "'s limit "
-      << format_number(r.limit) << " (" << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
+    o << "  ω·Δt = " << format_number(r.omega_dt) << " at " << stiffest(r)
+      << " (ω = " << format_number(r.omega_max) << ", ζ = " << format_number(r.zeta_max)
+      << "): " << rep.integrator << "'s limit " << format_number(r.limit) << " ("
+      << (r.omega_dt < r.limit ? "ok" : "EXCEEDED") << ")\n";
   }
   // Not at rest, the first lines said so once: a contact's own note only
   // says which way it moves.
@@ -1057,8 +1122,11 @@ void json_row(std::ostringstream& o, const InspectRow& r) {
     << ", \"refsafe_changes\": " << (r.refsafe_changes ? "true" : "false")
     << ", \"timeconst_used\": "
     << (r.timeconst_used > 0.0 ? json::number(r.timeconst_used) : "null")
-    << ",\n     \"K\": " << json::number(r.K) << ", \"B\": " << json::number(r.B)
-    << ", \"dmax\": " << json::number(r.dmax) << ", \"d_rest\": " << json::number(r.d_rest)
+    << ",\n     \"K\": " << json::number(r.K) << ", \"B\": " << json::number(r.B);
+  if (r.solreffriction[0] != 0.0 || r.solreffriction[1] != 0.0)
+    o << ", \"solreffriction\": " << json_array(r.solreffriction.data(), 2)
+      << ", \"B_friction\": " << (r.friction_ref ? json::number(r.B_friction) : "null");
+  o << ", \"dmax\": " << json::number(r.dmax) << ", \"d_rest\": " << json::number(r.d_rest)
     << ", \"A\": " << json::number(r.A) << ", \"A_measured\": " << (r.A_measured ? "true" : "false")
     << ", \"invweight\": " << json::number(r.inv_weight)
     << ", \"normal_weight\": " << json::number(r.normal_weight)
@@ -1098,6 +1166,10 @@ std::string format_inspect_text(const InspectReport& rep) {
             ? ", friction " + format_number(1.0 / rep.impratio) + "× softer than the normal"
             : std::string())
     << "), gravity " << list_text(rep.gravity.data(), 3) << " m/s²\n";
+  if (rep.noslip_iterations > 0)
+    o << "noslip_iterations " << rep.noslip_iterations
+      << ": MuJoCo's noslip pass re-solves the friction forces after the main solver; the "
+         "creep is not estimated and the friction rows' advice below is the main solver's\n";
   if (rep.contacts.empty()) {
     o << "no contacts at " << state_name(rep) << ": " << no_contacts_hint(rep) << "\n";
   } else {

@@ -42,7 +42,8 @@
 //   clamped at zero (the contact lets go when k·x + c·ẋ = 0, before x = 0;
 //   benchmarks/impact.hpp);
 //   the creep speed on a slope of θ: inside the friction cone MuJoCo's
-//   tangential rows have no spring, aref = −B·v, and R_t = R/impratio, so at
+//   tangential rows have no spring, aref = −B·v (B of solreffriction where an
+//   elliptic contact's <pair> sets it, MuJoCo ≥ 2.3.6), and R_t = R/impratio, so at
 //   steady creep (qacc = 0) a contact carries impratio·B·d·v/((1 − d)·Â)
 //   (elliptic; the pyramidal cone's edge rows give the same divided by 1 + μ²);
 //   with the tangential load f·sinθ: v = f·sinθ·(1 − d)·Â·(1 + μ²)/(impratio·B·d)
@@ -50,6 +51,10 @@
 //   solver stays in its quadratic zone (where this holds) while tanθ < μ
 //   for the elliptic cone, and while no edge row unloads for the pyramidal
 //   one, each carrying f/(2(condim − 1)) ± f·sinθ/(2μ): tanθ < μ/(condim − 1).
+//   With noslip_iterations > 0 MuJoCo re-solves the friction forces after its
+//   main solver without their regulariser (mj_solNoSlip): the creep is not
+//   estimated then, and the advice that follows from the main solver's
+//   friction rows (the impratio cap, impratio < 1) says it does not include it.
 #pragma once
 
 #include <array>
@@ -93,7 +98,18 @@ struct InspectRow {
   double timeconst_used = 0.0;  // standard form: after refsafe; 0 for the direct form
   bool refsafe_changes = false;
   double K = 0.0, B = 0.0;
-  double dmax = 0.0;           // solimp[1] after MuJoCo's clamps
+  // MuJoCo ≥ 2.3.6's <pair solreffriction> (0 0: none): an elliptic
+  // contact's friction rows take their B from it (mj_makeImpedance: K = 0,
+  // B = 2/(d_max·tc) or −solreffriction[1]/d_max, refsafe on its
+  // timeconst); B_friction is the friction rows' B either way.
+  std::array<double, 2> solreffriction{};
+  bool friction_ref = false;  // the friction rows use solreffriction
+  double B_friction = 0.0;
+  double dmax = 0.0;  // solimp[1] after MuJoCo's clamps
+  // The stiffest impedance: k = d²K/(d·A + (1 − d)·Â) rises with d, and d
+  // runs from solimp[0] at first touch to solimp[1] at full width, so
+  // max(d0, d_max) (d0 > d_max: the impedance falls with depth).
+  double d_stiff = 0.0;
   double d_now = 0.0;          // impedance at dist
   double d_rest = 0.0;         // impedance at the static penetration
   double A = 0.0;              // true inverse mass at the contact, 1/kg
@@ -113,8 +129,8 @@ struct InspectRow {
   std::string depth_note;          // why there is no rest depth, or why MuJoCo is not at it now
   double k = 0.0, c = 0.0;         // N/m, N·s/m at d_rest
   double omega = 0.0, zeta = 0.0;  // at d_rest
-  double omega_max = 0.0, zeta_max = 0.0;  // at d_max
-  double omega_dt = 0.0, limit = 0.0;      // ω·Δt at d_max and the integrator's limit
+  double omega_max = 0.0, zeta_max = 0.0;  // at d_stiff
+  double omega_dt = 0.0, limit = 0.0;      // ω·Δt at d_stiff and the integrator's limit
   double restitution = 0.0;     // continuous time (Kelvin–Voigt, force clamped at zero)
   double restitution_dt = 0.0;  // as MuJoCo steps it at the model's Δt (bounce.hpp), at 1 m/s
   // Friction (condim ≥ 3): A_t, the larger tangent direction's inverse mass;
@@ -171,6 +187,7 @@ struct InspectReport {
   double dt = 0.0;
   std::string cone;  // pyramidal, elliptic
   double impratio = 1.0;
+  int noslip_iterations = 0;  // > 0: MuJoCo's noslip pass, which the creep does not model
   std::array<double, 3> gravity{};
   bool refsafe_enabled = true;
   std::optional<double> slope;

@@ -41,6 +41,7 @@ void read_option(const mjModel* m, ModelState& s) {
   s.integrator = integrator_name(m->opt.integrator);
   s.elliptic = m->opt.cone == mjCONE_ELLIPTIC;
   s.impratio = m->opt.impratio;
+  s.noslip_iterations = m->opt.noslip_iterations;
   for (int i = 0; i < 3; ++i) s.gravity[static_cast<size_t>(i)] = m->opt.gravity[i];
   s.refsafe = !(m->opt.disableflags & mjDSBL_REFSAFE);
   if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT))

@@ -103,6 +103,7 @@ struct StateContact {
   int condim = 1;
   std::array<double, 5> friction{};
   std::array<double, 2> solref{};
+  std::array<double, 2> solreffriction{};  // 0 0: none (always so in 2.2.2)
   std::array<double, 5> solimp{};
   // The margin and gap MuJoCo gave the geom pair (an explicit pair: its own;
   // else 2.2.2 takes the larger geom's, 3.x adds the two geoms'), m. 2.2.2
@@ -130,6 +131,9 @@ struct ModelState {
   std::string integrator;  // Euler, RK4, implicit, implicitfast
   bool elliptic = false;
   double impratio = 1.0;
+  // MuJoCo's noslip post-pass over the friction rows (0: none); inspect does
+  // not model it.
+  int noslip_iterations = 0;
   std::array<double, 3> gravity{};
   bool refsafe = true;
   std::string disabled;  // "contacts" or "constraints" when <flag> turns them off, else empty

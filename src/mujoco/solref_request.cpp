@@ -44,6 +44,8 @@ void read_body_into(const SolrefRequest& options, SolrefInput& in,
                    "), MuJoCo " + body.version;
   in.joint = body.joint.value_or(Joint::Free);
   if (in.keep_friction) in.user_friction = body.friction;
+  // The model's noslip pass stays whatever the snippets write (they leave it).
+  in.user_friction.noslip_iterations = body.friction.noslip_iterations;
   in.settled_contacts = body.contacts;
   in.model_version = body.version;
   if (!options.dt) {

@@ -82,6 +82,11 @@ void creep_on_slope(const SolrefInput& in, double inv_weight, MappingOutcome& o,
     o.creep_note = "tanθ ≥ μ = " + format_number(mu) + ": slides (Coulomb)";
   } else if (!elliptic && std::tan(th) >= mu / (condim - 1)) {
     o.creep_note = "tanθ ≥ μ/(condim − 1): an edge of the pyramidal cone unloads";
+  } else if (in.user_friction.noslip_iterations > 0) {
+    o.creep_note = "not estimated: the model's noslip_iterations = " +
+                   std::to_string(in.user_friction.noslip_iterations) +
+                   " (MuJoCo's noslip pass re-solves the friction forces after the main solver, "
+                   "which is not modelled)";
   } else if (th == 0.0) {
     o.creep = 0.0;
   } else {
@@ -162,7 +167,10 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
     const double mu = std::max(o.condim == 0 ? in.user_friction.mu : in.mu, 1e-5);  // mjMINMU
     o.normal_weight *= mu * mu * (1.0 + mu * mu) / ((condim - 1) * s.impratio);
   }
-  const double A = report.inv_mass, Ahat = o.normal_weight, d = dmax;
+  // The stiffest impedance (ω rises with d): d_max, or solimp's d0 when it is
+  // above d_max (the impedance then falls with depth).
+  const double A = report.inv_mass, Ahat = o.normal_weight,
+               d = std::max(std::clamp(s.solimp[0], kMinImp, kMaxImp), dmax);
   const double denominator = d * A + (1.0 - d) * Ahat;
   o.omega = std::sqrt(A * d * d * o.K / denominator);
   o.zeta = A * d * o.B / denominator / (2.0 * o.omega);
@@ -628,6 +636,7 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
   }
   out.friction.elliptic = state.elliptic;
   out.friction.impratio = state.impratio;
+  out.friction.noslip_iterations = state.noslip_iterations;
   out.friction.source += std::string(out.friction.elliptic ? ", elliptic" : ", pyramidal") +
                          " cone, impratio " + format_number(out.friction.impratio);
   // The body's contacts in the settled state, as MuJoCo has them: the

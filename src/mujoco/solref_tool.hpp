@@ -63,6 +63,7 @@ struct UserFriction {
   int condim = 3;   // MuJoCo's default
   double impratio = 1.0;
   bool elliptic = false;
+  int noslip_iterations = 0;  // the model's: > 0, no creep is estimated (inspect.hpp)
   std::string source = "MuJoCo's defaults: μ = 1, condim 3, pyramidal cone, impratio 1";
 };
 

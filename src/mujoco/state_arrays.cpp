@@ -120,6 +120,7 @@ StateContact contact_fields(const StateArrays& a, const ArrayContact& con) {
   c.condim = con.dim;
   c.friction = con.friction;
   c.solref = con.solref;
+  c.solreffriction = con.solreffriction;
   c.solimp = con.solimp;
   c.force = con.normal_force;
   c.rows = contact_rows(con.dim, a.elliptic);

@@ -35,6 +35,9 @@ struct ArrayContact {
   std::array<double, 9> frame{};  // normal, then the two tangents
   std::array<double, 5> friction{};
   std::array<double, 2> solref{};
+  // MuJoCo ≥ 2.3.6's own reference for an elliptic contact's friction rows
+  // (a <pair>'s solreffriction; 0 0: they use solref); 2.2.2 has none.
+  std::array<double, 2> solreffriction{};
   std::array<double, 5> solimp{};
   double normal_force = 0.0;  // mj_contactForce's first component, N
   // mj_jac's translational Jacobian of geom1's and geom2's bodies at pos:

@@ -45,7 +45,7 @@ import {createInterface} from 'node:readline';
 import {fileURLToPath} from 'node:url';
 
 // The version of this protocol; node_mujoco.hpp's kProtocol.
-const PROTOCOL = 3;
+const PROTOCOL = 5;
 
 const here = dirname(fileURLToPath(import.meta.url));
 const messages = [];
@@ -452,6 +452,7 @@ function readState(m, d, r, steps) {
     integrator: integrators[m.opt.integrator] ?? `integrator ${m.opt.integrator}`,
     elliptic: m.opt.cone === mj.mjtCone.mjCONE_ELLIPTIC.value,
     impratio: m.opt.impratio,
+    noslip_iterations: m.opt.noslip_iterations,
     gravity: Array.from(m.opt.gravity),
     refsafe: !(disable & bits.mjDSBL_REFSAFE.value),
     disabled: disable & bits.mjDSBL_CONTACT.value      ? 'contacts'
@@ -498,6 +499,7 @@ function readState(m, d, r, steps) {
         frame: Array.from(con.frame),
         friction: Array.from(con.friction),
         solref: Array.from(con.solref),
+        solreffriction: Array.from(con.solreffriction),
         solimp: Array.from(con.solimp),
         normal_force: force.GetView()[0],
         jac1: jacobian(pos, m.geom_bodyid[con.geom1]),

@@ -551,6 +551,7 @@ mujoco::ArrayContact contact_of(const json::Value& c) {
   fill(c, "frame", out.frame);
   fill(c, "friction", out.friction);
   fill(c, "solref", out.solref);
+  fill(c, "solreffriction", out.solreffriction);
   fill(c, "solimp", out.solimp);
   out.normal_force = need_number(c, "normal_force");
   for (const auto& [key, jac] : {std::pair{"jac1", &out.jac1}, std::pair{"jac2", &out.jac2}}) {
@@ -691,6 +692,7 @@ mujoco::ModelState Node::read_state(const std::string& id) {
     s.integrator = need_text(a.value, "integrator");
     s.elliptic = need_flag(a.value, "elliptic");
     s.impratio = need_number(a.value, "impratio");
+    s.noslip_iterations = static_cast<int>(need_integer(a.value, "noslip_iterations"));
     const std::vector<double> g = need_numbers(a.value, "gravity", 3);
     for (size_t i = 0; i < 3; ++i) s.gravity[i] = g[i];
     s.refsafe = need_flag(a.value, "refsafe");

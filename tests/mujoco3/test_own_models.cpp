@@ -418,5 +418,48 @@ TEST_F(OwnArticulated, ASettlePastTheStepCapIsSaidOnBothVersions) {
   }
 }
 
+// MuJoCo 3's <pair solreffriction> (from 2.3.6): an elliptic contact's
+// friction rows take K = 0 and B = −solreffriction[1]/d_max (direct form;
+// mj_makeImpedance), so the creep at --slope follows that B, not solref's
+// (here 5/0.95 against 2/(0.95·0.02): 20× slower damping, 20× faster
+// creep). A pyramidal contact's rows ignore it. Measured in MuJoCo 3
+// itself: the box's speed after 2 s on gravity tilted by 10° (steady: the
+// friction rows' time constant is m/Σc_t ≈ 5 ms). Printed against measured
+// while writing this: elliptic 0.00887819 / 0.00887471 m/s (3.9e-4
+// relative; before the fix 0.000443909 was printed), pyramidal 0.000561738
+// / 0.000561733 m/s. The downhill corners carry more load than the uphill
+// ones, which the per-contact formula does not see (the same 3.6e-4 as
+// tests/mujoco/test_inspect.cpp's box); bound 2e-3.
+TEST_F(OwnArticulated, SolreffrictionSetsTheCreepOfAnEllipticContact) {
+  CONTACT2D_NEEDS_MUJOCO3();
+  const double th = 10.0 * 3.14159265358979323846 / 180.0;
+  for (const std::string cone : {"elliptic", "pyramidal"}) {
+    SCOPED_TRACE(cone);
+    auto model = [&](const std::string& gravity) {
+      return "<mujoco><option cone=\"" + cone + "\" " + gravity +
+             "/><worldbody><geom name=\"floor\" type=\"plane\" size=\"2 2 0.1\"/>"
+             "<body name=\"box\" pos=\"0 0 0.0999\"><freejoint/>"
+             "<geom name=\"box\" type=\"box\" size=\"0.1 0.1 0.1\" mass=\"1\" friction=\"0.5\"/>"
+             "</body></worldbody><contact><pair geom1=\"floor\" geom2=\"box\" "
+             "friction=\"0.5 0.5\" solreffriction=\"-1 -5\"/></contact></mujoco>";
+    };
+    const std::string level = write(model(""));
+    mj::InspectOptions options;
+    options.path = level;
+    options.settle = 2.0;
+    options.slope = 10.0;
+    const mj::InspectReport rep =
+        mj::inspect_state(kVersions[1].read({level, "", 2.0, ""}), options);
+    ASSERT_EQ(rep.contacts.size(), 4u);
+    double printed = 0.0;
+    for (const mj::InspectRow& r : rep.contacts) printed += r.creep / 4.0;
+    const std::string tilted = write(model("gravity=\"" + std::to_string(9.81 * std::sin(th)) +
+                                           " 0 " + std::to_string(-9.81 * std::cos(th)) + "\""));
+    const mj::ModelState s = kVersions[1].read({tilted, "", 2.0, ""});
+    ASSERT_GT(printed, 0.0);
+    EXPECT_NEAR(s.qvel[0], printed, 2e-3 * printed);
+  }
+}
+
 }  // namespace
 }  // namespace contact2d
