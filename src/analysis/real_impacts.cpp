@@ -352,7 +352,10 @@ struct ImpactFitter {
             {"zeta", p.zeta},
             {"c", 2.0 * p.zeta * std::sqrt(k * m)},
             {"mu", p.mu},
-            {"mu_roll", p.mu_roll}};
+            // A body without rolling resistance (a box) has none to fit:
+            // its replays never read μ_roll (penalty_scene), so the search's
+            // value there is wherever BOBYQA left a flat direction.
+            {"mu_roll", shape_features(rec.body.shape).resists_rolling ? p.mu_roll : 0.0}};
   }
 };
 

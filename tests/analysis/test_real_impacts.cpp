@@ -140,7 +140,8 @@ TEST(ImpactFit, RecoversTheParametersOfImpactsMadeByItsOwnLaw) {
 // over 0.08 s, the fixed window the replays once followed (they then
 // returned the velocity in mid-contact, and the fit came back with ζ = 0.27
 // and 0.29, k = 6e4 and 1.1e5 N/m on these impacts).
-double disc_rebound_speed(double k, double zeta, double m, double g, double v) {
+// `contact`: set to the contact's duration t_s.
+double disc_rebound_speed(double k, double zeta, double m, double g, double v, double* contact) {
   const double w = std::sqrt(k / m), wd = w * std::sqrt(1.0 - zeta * zeta), d0 = m * g / k;
   const double b = (v - zeta * w * d0) / wd;
   auto depth = [&](double t) {
@@ -157,7 +158,7 @@ double disc_rebound_speed(double k, double zeta, double m, double g, double v) {
     hi += 1e-6;
   }
   for (int i = 0; i < 60; ++i) ((force(0.5 * (lo + hi)) > 0.0) ? lo : hi) = 0.5 * (lo + hi);
-  EXPECT_GT(lo, 0.08) << "the contact must outlast the old window";
+  *contact = lo;
   const double up = -rate(lo), d = depth(lo);
   return std::sqrt(up * up - 2.0 * g * d);
 }
@@ -180,7 +181,9 @@ TEST(ImpactFit, FollowsAContactLongerThanTheOldWindowToItsEnd) {
     impact.before.q = Vec3(0.0, radius, 0.0);
     impact.before.v = Vec3(0.0, -v, 0.0);
     impact.after.q = impact.before.q;
-    impact.after.v = Vec3(0.0, disc_rebound_speed(k, zeta, m, g, v), 0.0);
+    double contact = 0.0;
+    impact.after.v = Vec3(0.0, disc_rebound_speed(k, zeta, m, g, v, &contact), 0.0);
+    EXPECT_GT(contact, 0.08) << "the contact must outlast the old window";
     rec.impacts.push_back(impact);
   }
   analysis::ImpactFitOptions options;
@@ -210,6 +213,56 @@ TEST(ImpactFit, FollowsAContactLongerThanTheOldWindowToItsEnd) {
     EXPECT_NEAR(parameter("k"), k, 0.2 * k);
     EXPECT_EQ(penalty.unseparated_replays, 0);
     EXPECT_EQ(penalty.failed_replays, 0);
+  }
+}
+
+// A box has no rolling resistance: its replays never read μ_roll (the
+// scene refuses one), so the "penalty" fit's μ_roll was wherever BOBYQA left
+// a flat direction (its starts hold 0.003 and 0.01) and was reported as
+// fitted. Now 0. The impacts: a 1 kg box (0.4 × 0.2 m) dropped flat, both
+// bottom corners landing together, each a Kelvin–Voigt contact of k and
+// c = 2ζ·√(k·m) as the fit writes them; together one oscillator of 2k and
+// 2c, ζ_total = √2·ζ, whose rebound is disc_rebound_speed's (the same
+// closed form: nothing turns). Bounds as in the disc's test above.
+TEST(ImpactFit, ABoxHasNoRollingResistanceToFit) {
+  const double k = 1e4, zeta = 0.2, m = 1.0, g = 9.81;
+  Recording rec;
+  rec.path = rec.csv = "synthetic";
+  rec.kind = "impacts";
+  rec.frame_rate = 250.0;
+  rec.body = default_scene(Shape::Box);
+  rec.body.mass = m;
+  rec.body.sim.gravity = g;
+  for (int i = 0; i < 12; ++i) {
+    const double v = 1.0 + 0.2 * i;
+    RecordedImpact impact;
+    impact.id = i;
+    impact.line = i + 2;
+    impact.before.q = Vec3(0.0, 0.5 * rec.body.height, 0.0);
+    impact.before.v = Vec3(0.0, -v, 0.0);
+    impact.after.q = impact.before.q;
+    double contact = 0.0;
+    impact.after.v =
+        Vec3(0.0, disc_rebound_speed(2.0 * k, std::sqrt(2.0) * zeta, m, g, v, &contact), 0.0);
+    rec.impacts.push_back(impact);
+  }
+  analysis::ImpactFitOptions options;
+  options.bootstrap = 0;
+  options.k_profile = false;
+  options.threads = 1;
+  const analysis::ImpactFit fit = analysis::fit_impacts(rec, options);
+  for (const analysis::SplitFit& split : fit.splits) {
+    SCOPED_TRACE(split.split);
+    const analysis::ModelFit& penalty = split.models.front();
+    ASSERT_EQ(penalty.name, "penalty");
+    auto parameter = [&penalty](const std::string& name) {
+      for (const auto& [key, value] : penalty.parameters)
+        if (key == name) return value;
+      return std::nan("");
+    };
+    EXPECT_EQ(parameter("mu_roll"), 0.0);
+    EXPECT_LT(penalty.median, 0.01);
+    EXPECT_NEAR(parameter("zeta"), zeta, 0.05 * zeta);
   }
 }
 
