@@ -1,3 +1,4 @@
+#include <cmath>
 #include <sstream>
 
 #include "analysis/real_impacts.hpp"
@@ -103,9 +104,16 @@ std::string impact_fit_text(const ImpactFit& fit) {
         o << " " << d.a << "-" << d.b << " " << format_number("%.3g", d.median) << ";";
       o << "\n";
     }
-    o << "  held out, the spin changes by " << format_number("%.2f", s.spin_slope)
-      << " x what a point impulse at the lowest point would give with the measured dv, plus "
-      << format_number("%.3g", s.spin_intercept) << " rad/s (least squares)\n";
+    if (std::isfinite(s.spin_slope) && std::isfinite(s.spin_intercept)) {
+      o << "  held out, the spin changes by " << format_number("%.2f", s.spin_slope)
+        << " x what a point impulse at the lowest point would give with the measured dv, plus "
+        << format_number("%.3g", s.spin_intercept) << " rad/s (least squares)\n";
+    } else {
+      // Every held-out impact gives the same point impulse (vertical drops
+      // through the centre: none turns it): no line to fit, as the JSON's null.
+      o << "  held out, the spin's change is not fitted: the point impulses at the lowest "
+           "point are all alike (no spread to fit a line through)\n";
+    }
     if (!s.k_profile.empty()) {
       o << "  k profile (training median error, zeta, mu, mu_roll refitted):";
       for (const auto& [k, e] : s.k_profile)

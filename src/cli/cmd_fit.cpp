@@ -54,6 +54,16 @@ int fit(FitOptions o) {
   const Recording rec = read_recording(o.recording);
   if (!o.engines_given) o.engines = analysis::default_fit_engines();
   o.engines.erase(std::remove(o.engines.begin(), o.engines.end(), ""), o.engines.end());
+  // Each engine once: the reference replays the fit always (so "ref" adds
+  // nothing), and an engine named twice printed its rows twice.
+  for (size_t i = 0; i < o.engines.size(); ++i) {
+    if (o.engines[i] == "ref")
+      throw InputError(
+          "--engines ref: the reference always replays the fit; list the other engines");
+    for (size_t j = 0; j < i; ++j)
+      if (o.engines[j] == o.engines[i])
+        throw InputError("--engines: " + o.engines[i] + " is named twice; name each engine once");
+  }
   if (rec.kind == "trajectories") return fit_trajectories(o, rec);
   analysis::ImpactFitOptions options;
   options.seed = static_cast<std::uint64_t>(o.seed);
@@ -88,6 +98,13 @@ Command add_fit(CLI::App& app) {
                   "Refits on resampled training sets for the parameters' spread (default 8; 0: "
                   "none)")
       ->check(CLI::Range(0, 1000))
+      ->check(CLI::Validator(
+          [](const std::string& v) {
+            // One refit has no spread: 0 (none) or at least 2.
+            return v == "1" ? std::string("1 refit gives no spread: 0 (none) or 2 to 1000")
+                            : std::string();
+          },
+          "", "bootstrap"))
       ->each([o](const std::string&) { o->bootstrap_given = true; });
   cmd->add_option("--threads", o->threads, "Threads (default: one per core)")
       ->check(CLI::Range(0u, 256u));

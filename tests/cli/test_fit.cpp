@@ -208,3 +208,22 @@ TEST(FitCommand, TheRowsOrderDoesNotChangeTheFit) {
   ASSERT_EQ(b.status, 0) << b.err;
   EXPECT_EQ(without_time(a.out), without_time(b.out));
 }
+
+// Options that printed rows twice or nothing: an engine named twice (its
+// rows twice), "ref" among --engines (the reference's rows twice: it always
+// replays), --bootstrap 1 (no spread from one refit, silently). Each is
+// one line and exit 2 now, before any fitting.
+TEST(FitCommand, OptionsThatWouldRepeatOrSayNothingAreRefused) {
+  const std::string rows = real_rows(6);
+  for (const auto& [args, said] :
+       {std::pair<std::string, std::string>{"--engines mujoco,mujoco --bootstrap 0",
+                                            "--engines: mujoco is named twice"},
+        {"--engines ref --bootstrap 0", "--engines ref: the reference always replays the fit"},
+        {"--engines '' --bootstrap 1", "1 refit gives no spread: 0 (none) or 2 to 1000"}}) {
+    const FitRun r = run_fit("options", kManifest, rows, args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(said), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.out, "");
+  }
+}
