@@ -255,19 +255,52 @@ std::string option_text(const Override& o) {
   return o.option + " " + (quoted ? o.value.substr(1, o.value.size() - 2) : o.value);
 }
 
-// Inserts "a.b=value" into the document, creating tables as needed.
-void apply_override(toml::table& root, const Override& o) {
+// Inserts "a.b=value" into the document, creating tables as needed. A
+// part of the key that the document holds as a value, not a table, is the
+// document's fault (`origin`'s: "sim = 5"), named so.
+void apply_override(toml::table& root, const Override& o, const std::string& origin) {
   toml::table* table = &root;
   std::string_view path = o.key;
   size_t dot;
   while ((dot = path.find('.')) != std::string_view::npos) {
-    const std::string part(path.substr(0, dot));
+    std::string part(path.substr(0, dot));
+    // "obstacle[1]": the second [[obstacle]] table, as messages name it.
+    if (const size_t open = part.find('['); open != std::string::npos && part.back() == ']') {
+      const std::string name = part.substr(0, open),
+                        digits = part.substr(open + 1, part.size() - open - 2);
+      toml::array* list = table->get(name) ? table->get(name)->as_array() : nullptr;
+      const bool number = !digits.empty() && digits.size() < 7 &&
+                          digits.find_first_not_of("0123456789") == std::string::npos;
+      const size_t index = number ? std::stoul(digits) : 0;
+      if (list == nullptr || !number || index >= list->size() || !(*list)[index].is_table())
+        throw InputError(option_text(o) + ": " + origin + " has no " + part + " (" +
+                         (list == nullptr ? "no [[" + name + "]] table"
+                                          : std::to_string(list->size()) + " [[" + name +
+                                                "]] tables, numbered from 0") +
+                         ")");
+      table = (*list)[index].as_table();
+      path.remove_prefix(dot + 1);
+      continue;
+    }
     toml::node* node = table->get(part);
     if (!node) {
       table->insert(part, toml::table{});
       node = table->get(part);
     }
-    if (!node->is_table()) throw InputError(option_text(o) + ": '" + part + "' is not a table");
+    if (node->is_array()) {
+      // "obstacle.0.k" means obstacle[0].k; "obstacle.k" names none of them.
+      const std::string rest(path.substr(dot + 1));
+      const size_t digits = rest.find_first_not_of("0123456789");
+      const std::string example =
+          digits > 0 && digits != std::string::npos && rest[digits] == '.'
+              ? part + "[" + rest.substr(0, digits) + "]" + rest.substr(digits)
+              : part + "[0]." + rest;
+      throw InputError(option_text(o) + ": '" + part + "' is a list of tables: name one, as " +
+                       example);
+    }
+    if (!node->is_table())
+      throw InputError(origin + ": '" + part + "' is a value, not a table, so " + option_text(o) +
+                       " cannot set " + o.key + " (write [" + part + "] as a table)");
     table = node->as_table();
     path.remove_prefix(dot + 1);
   }
@@ -333,7 +366,7 @@ namespace {
 Scene read_scene(const std::string& toml_text, const std::string& origin,
                  const std::vector<Override>& overrides) {
   toml::table root = parse_toml(toml_text, origin);
-  for (const Override& o : overrides) apply_override(root, o);
+  for (const Override& o : overrides) apply_override(root, o, origin);
 
   TableReader top(&root, "", origin);
   std::string shape_text;

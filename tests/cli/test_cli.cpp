@@ -229,6 +229,37 @@ TEST(Cli, SetErrorsNameTheOptionNotTheSceneFile) {
   }
 }
 
+// --set reaches an obstacle's keys by the name messages give it,
+// obstacle[i] (it answered "unknown key 'obstacle[0]'"); obstacle.0.k is
+// pointed there. A scene whose [sim] is a value (sim = 5, a file of the
+// test's own) is the file's fault, named so: the message blamed --dt.
+TEST(Cli, SetReachesAnObstacleAndBlamesTheFileForItsOwnFault) {
+  const std::string pitch = CONTACT2D_SCENES_DIR "/game/pitch.toml";
+  Output o = capture("generate " + pitch + " --set 'obstacle[1].k=12345'");
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.out.find("12345"), std::string::npos) << "the override reached the MJCF's header";
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {"generate " + pitch + " --set 'obstacle[9].k=1'",
+            "contact2d: --set obstacle[9].k=1: " + pitch +
+                " has no obstacle[9] (4 [[obstacle]] tables, numbered from 0)"},
+           {"generate " + pitch + " --set obstacle.1.k=1",
+            "contact2d: --set obstacle.1.k=1: 'obstacle' is a list of tables: name one, as "
+            "obstacle[1].k"}}) {
+    const Output bad = capture(args);
+    EXPECT_EQ(bad.status, 2) << args;
+    EXPECT_EQ(bad.err, message + "\n") << args;
+  }
+  const fs::path scene =
+      fs::temp_directory_path() / ("contact2d_sim_value_" + std::to_string(::getpid()) + ".toml");
+  std::ofstream(scene) << "scene = \"point_mass\"\nsim = 5\n";
+  o = capture("simulate '" + scene.string() + "' --dt 1e-3");
+  EXPECT_EQ(o.status, 2);
+  EXPECT_EQ(o.err, "contact2d: " + scene.string() +
+                       ": 'sim' is a value, not a table, so --dt 1e-3 cannot set sim.dt (write "
+                       "[sim] as a table)\n");
+  fs::remove(scene);
+}
+
 // An unknown subcommand is named (not "A subcommand is required"), and a
 // MuJoCo model given as a scene is called one (not "malformed TOML"): one
 // line each, exit 2, nothing on stdout.
