@@ -88,25 +88,60 @@ StepStability reference_stability(const Model& model, Integrator integrator, dou
   return s;
 }
 
-FrictionStep friction_step(const Model& model, Integrator integrator, double dt) {
-  FrictionStep f;
+namespace {
+
+// The friction's rate (1/s) of one load `fn` at lever `lever` (the terms of
+// friction_step's λ; the lever counts only for a body that turns).
+double friction_rate(const Model& model, double fn, double lever) {
   const ContactParams& law = model.contact;
   const RigidBody& body = model.body;
-  if (law.friction != FrictionLaw::Tanh || !(model.gravity > 0.0)) return f;
   const ShapeFeatures features = shape_features(body.shape);
-  const double lever = features.turns && body.inertia > 0.0 ? body_extent(body) : 0.0;
-  const double m = body.mass, weight = m * model.gravity;
+  const bool turns = features.turns && body.inertia > 0.0;
   double rate =
-      law.mu * weight * law.alpha * (1.0 / m + (lever > 0.0 ? lever * lever / body.inertia : 0.0));
-  if (features.resists_rolling && law.mu_roll > 0.0 && body.inertia > 0.0)
-    rate += law.mu_roll * weight * law.alpha * body.roll_radius / body.inertia;
-  f.rate_dt = rate * dt;
+      law.mu * fn * law.alpha * (1.0 / body.mass + (turns ? lever * lever / body.inertia : 0.0));
+  if (turns && features.resists_rolling && law.mu_roll > 0.0)
+    rate += law.mu_roll * fn * law.alpha * body.roll_radius / body.inertia;
+  return rate;
+}
+
+FrictionStep friction_limit(Integrator integrator, double rate_dt) {
+  FrictionStep f;
+  f.rate_dt = rate_dt;
   switch (integrator) {
     case Integrator::ExplicitEuler:
     case Integrator::SemiImplicitEuler: f.limit = 2.0; break;
     case Integrator::RK4: f.limit = 2.785293563405282; break;  // z³ − 4z² + 12z − 24 = 0
     case Integrator::ImplicitEuler: break;                     // none
   }
+  return f;
+}
+
+bool tanh_with_gravity(const Model& model) {
+  return model.contact.friction == FrictionLaw::Tanh && model.gravity > 0.0;
+}
+
+}  // namespace
+
+FrictionStep friction_step(const Model& model, Integrator integrator, double dt) {
+  if (!tanh_with_gravity(model)) return {};
+  const double weight = model.body.mass * model.gravity;
+  return friction_limit(integrator, friction_rate(model, weight, body_extent(model.body)) * dt);
+}
+
+FrictionStep friction_step(const Model& model, Integrator integrator, double dt,
+                           const ContactSet& contacts) {
+  if (!tanh_with_gravity(model)) return {};
+  double rate = 0.0;
+  int loaded = 0;
+  const Contact* const list = contacts.begin();
+  for (size_t i = 0; i < contacts.ground_count(); ++i) {
+    if (!(list[i].depth > 0.0)) continue;
+    rate += friction_rate(model, model.contact.k * list[i].depth, list[i].ry);
+    ++loaded;
+  }
+  if (!(rate > 0.0)) return friction_step(model, integrator, dt);
+  FrictionStep f = friction_limit(integrator, rate * dt);
+  if (loaded > 1) f.onset = 0.8;
   return f;
 }
 

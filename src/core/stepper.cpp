@@ -51,18 +51,25 @@ std::string ReferenceStepper::describe() const {
 
 RunFacts ReferenceStepper::facts(const Scene& /*scene*/) const {
   RunFacts facts;
-  const FrictionStep f = friction_step(model_, integrator_, dt_);
+  // At the run's last state: where a body comes to rest (and a disc rolls),
+  // on the contacts it rests on.
+  const FrictionStep f = friction_step(model_, integrator_, dt_, ws_.contacts);
   if (!f.beyond()) return facts;
-  const double scale = f.limit / f.rate_dt;  // what Δt or α may be, as a fraction
+  // What Δt or α may be, as a fraction of theirs: below the cycle's onset.
+  const double scale = f.onset * f.limit / f.rate_dt;
+  const bool rolls =
+      shape_features(model_.body.shape).resists_rolling && model_.contact.mu_roll > 0.0;
   facts.warnings.push_back(
-      "friction stiffer than the step: its rate at rest times dt, (mu g alpha (1 + m l^2/I)" +
-      std::string(shape_features(model_.body.shape).resists_rolling && model_.contact.mu_roll > 0.0
-                      ? " + mu_roll m g alpha R/I"
-                      : "") +
-      ") dt = " + format_number("%.3g", f.rate_dt) + ", exceeds " +
+      std::string(kFrictionStepWarning) +
+      ": linearised at rest it is a damper whose rate times dt, (mu alpha Fn (1/m + r^2/I)" +
+      (rolls ? std::string(" + mu_roll alpha Fn R/I") : std::string()) +
+      ") dt = " + format_number("%.3g", f.rate_dt) + ", is past " +
+      (f.onset < 1.0 ? format_number("%.0f", 100.0 * f.onset) + " % of " : std::string()) +
       std::string(integrator_title(integrator_)) + "'s limit " + format_number("%.4g", f.limit) +
-      " on a damper: at rest the slip overshoots zero every step, a two-step cycle in place of "
-      "static friction (a rolling body creeps); dt <= " +
+      (f.onset < 1.0 ? std::string(" (on several contacts the cycle can begin below the limit)")
+                     : std::string()) +
+      ": at rest the slip overshoots zero every step, a two-step cycle in place of static "
+      "friction (a rolling body creeps); dt <= " +
       format_number("%.2g", dt_ * scale) +
       " s, contact.alpha <= " + format_number("%.2g", model_.contact.alpha * scale) +
       " s/m or --integrator implicit_euler holds it");

@@ -74,6 +74,11 @@ class Stepper {
 
 // The reference solver: core step() with the scene's integrator and Δt.
 // Allocation-free per step.
+// How the reference's warning of a friction stiffer than its step begins:
+// a limit of the friction law's own, apart from the contact's stability
+// (`stability` maps the contact's and leaves it out).
+constexpr const char* kFrictionStepWarning = "friction stiffer than the step";
+
 class ReferenceStepper final : public Stepper {
  public:
   explicit ReferenceStepper(const Scene& scene);
@@ -86,7 +91,8 @@ class ReferenceStepper final : public Stepper {
   const Model& model() const override { return model_; }
   StepStability stability() const override { return reference_stability(model_, integrator_, dt_); }
   std::string describe() const override;
-  // A warning when the tanh friction is stiffer than the step (friction_step).
+  // A warning, beginning kFrictionStepWarning, when the tanh friction is
+  // stiffer than the step (friction_step).
   RunFacts facts(const Scene& scene) const override;
 
  private:

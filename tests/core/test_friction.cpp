@@ -61,8 +61,8 @@
 #include <cstdio>
 
 #include "benchmarks/rolling.hpp"
-#include "core/stepper.hpp"
 #include "benchmarks/sliding.hpp"
+#include "core/stepper.hpp"
 #include "support/support.hpp"
 
 namespace contact2d {
@@ -249,6 +249,46 @@ TEST(FrictionStep, TheDiscChattersAtRestExactlyPastTheLimitAndIsWarned) {
   implicit.sim.integrator = Integrator::ImplicitEuler;
   implicit.contact.alpha = 1e6;
   EXPECT_FALSE(friction_step(make_model(implicit), Integrator::ImplicitEuler, 1e-4).beyond());
+}
+
+// On several contacts the slip couples with the body's pitch through the
+// contacts' compliance, which λ leaves out: a box (1 kg, 0.4 × 0.2 m, μ =
+// 0.5, α = 100 s/m, Kelvin–Voigt) sliding to rest on its two bottom corners,
+// λ = μ·α·g·(1 + m·(h/2)²/I) = 785 1/s (I = m(w² + h²)/12), cycles from
+// 0.85 of semi-implicit Euler's limit 2/λ (measured: Δt = 2.2e-3 s cycles,
+// 2.15e-3 s comes to rest). The warning comes from 0.8 of it: at 0.75 the
+// box comes to rest unwarned (|ω| < 1e-9 rad/s after 6 s), at 0.95 it
+// cycles and is warned.
+TEST(FrictionStep, ABoxOnTwoCornersIsWarnedBeforeItsCycleBegins) {
+  Scene scene = default_scene(Shape::Box);
+  scene.contact.mu = 0.5;
+  scene.contact.alpha = 100.0;
+  scene.contact.k = 1e4;
+  scene.contact.c = 50.0;
+  scene.contact.damping = DampingLaw::KelvinVoigt;
+  scene.sim.duration = 8.0;
+  const double g = scene.sim.gravity, h = scene.height, w = scene.width, m = scene.mass;
+  scene.initial.q = Vec3(0.0, 0.5 * h - 0.5 * m * g / scene.contact.k, 0.0);
+  scene.initial.v = Vec3(0.3, 0.0, 0.0);
+  const double inertia = m * (w * w + h * h) / 12.0;
+  const double lambda = 0.5 * 100.0 * g * (1.0 + m * 0.25 * h * h / inertia);
+  for (double fraction : {0.75, 0.95}) {
+    Scene s = scene;
+    s.sim.dt = fraction * 2.0 / lambda;
+    s.sim.output_dt = s.sim.dt;
+    ReferenceStepper stepper(s);
+    const Trajectory t = simulate(stepper, s.sim);
+    ASSERT_FALSE(t.divergence) << fraction;
+    EXPECT_EQ(stepper.facts(s).warnings.size(), fraction > 0.8 ? 1u : 0u) << fraction;
+    double largest = 0.0;
+    for (const Sample& sample : t.samples)
+      if (sample.t > 6.0) largest = std::max(largest, std::abs(sample.state.v.z()));
+    if (fraction < 0.8) {
+      EXPECT_LT(largest, 1e-9) << fraction;
+    } else {
+      EXPECT_GT(largest, 1e-4) << fraction;
+    }
+  }
 }
 
 // smooth_sign is contact2d's bounded tanh (core/vector_math.hpp; its
