@@ -28,6 +28,7 @@ import os, signal, sys, threading, time
 import contact2d
 signal.signal(signal.SIGINT, signal.default_int_handler)  # ctest may start us with it ignored
 scene = contact2d.Scene.load("validation/scenes/box.toml")
+scene.sim.output_dt = 1.0  # the long runs below keep 1e4 samples (at most 1e7 are kept)
 sent = []
 def ctrl_c():
     sent.append(time.monotonic())
@@ -75,6 +76,7 @@ import os, signal, threading, time
 import contact2d
 signal.signal(signal.SIGINT, signal.default_int_handler)
 scene = contact2d.Scene.load("validation/scenes/box.toml")
+scene.sim.output_dt = 1.0  # the long runs below keep 1e4 samples (at most 1e7 are kept)
 caught = []
 def other():
     try:
