@@ -11,6 +11,7 @@
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "io/read_file.hpp"
+#include "mujoco/model_files.hpp"
 #include "mujoco/state_arrays.hpp"
 
 namespace contact2d::mujoco {
@@ -163,6 +164,13 @@ void check_state_request(const StateRequest& r) {
 
 LoadedState load_model_state(const StateRequest& r) {
   check_state_request(r);
+  // The files 2.2.2 opens itself (includes, meshes, textures): a FIFO among
+  // them would block mj_loadXML for ever, a device be read without end.
+  try {
+    check_files_read_by_2_2_2(r.path);
+  } catch (const InputError& e) {
+    throw InputError((r.option.empty() ? "" : r.option + " ") + e.what());
+  }
   LoadedState out;
   ModelState& s = out.state;
   s.version = mj_versionString();
