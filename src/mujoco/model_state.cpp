@@ -96,6 +96,9 @@ StateArrays arrays_of(const mjModel* m, mjData* d) {
   a.geom_friction = copy_of(m->geom_friction, m->ngeom, 3);
   a.geom_margin = copy_of(m->geom_margin, m->ngeom);
   a.geom_gap = copy_of(m->geom_gap, m->ngeom);
+  a.geom_priority = copy_of(m->geom_priority, m->ngeom);
+  a.geom_solmix = copy_of(m->geom_solmix, m->ngeom);
+  a.geom_solref = copy_of(m->geom_solref, m->ngeom, mjNREF);
   a.pair_geom1 = copy_of(m->pair_geom1, m->npair);
   a.pair_geom2 = copy_of(m->pair_geom2, m->npair);
   a.pair_margin = copy_of(m->pair_margin, m->npair);

@@ -1,5 +1,7 @@
 #include "mujoco/solref_request.hpp"
 
+#include <tuple>
+
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "io/atomic_file.hpp"
@@ -47,6 +49,14 @@ void read_body_into(const SolrefRequest& options, SolrefInput& in,
   // The model's noslip pass stays whatever the snippets write (they leave it).
   in.user_friction.noslip_iterations = body.friction.noslip_iterations;
   in.settled_contacts = body.contacts;
+  // The class each contact's geom of the body has in the file, which the
+  // default class snippet would replace (solref_tool.hpp's ClassCaveat).
+  std::vector<GeomRef> own;
+  own.reserve(in.settled_contacts.size());
+  for (const SettledContact& c : in.settled_contacts) own.push_back(c.own == 0 ? c.ref1 : c.ref2);
+  const auto classes = geom_classes_in_file(options.model, own);
+  for (size_t i = 0; i < classes.size(); ++i)
+    std::tie(in.settled_contacts[i].own_class, in.settled_contacts[i].own_class_from) = classes[i];
   in.model_version = body.version;
   if (!options.dt) {
     in.dt = body.timestep;
