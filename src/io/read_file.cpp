@@ -90,6 +90,13 @@ std::string read_input_file(const std::string& path, const std::string& what, st
 }
 
 void check_input_file(const std::string& path, const std::string& what, std::size_t limit) {
+  check_input_file(path, what, limit,
+                   "larger than " + std::to_string(limit >> 20) +
+                       " MiB, where one is a few kB: is it the right file?");
+}
+
+void check_input_file(const std::string& path, const std::string& what, std::size_t limit,
+                      const std::string& why) {
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0)
     throw InputError(path + ": cannot read " + what + " (" + std::strerror(errno) + ")");
@@ -102,9 +109,7 @@ void check_input_file(const std::string& path, const std::string& what, std::siz
   if (S_ISFIFO(info.st_mode) || S_ISSOCK(info.st_mode))
     refuse("a pipe or socket, not a regular file: it could be read without end");
   if (!S_ISREG(info.st_mode)) refuse("not a regular file");
-  if (static_cast<unsigned long long>(info.st_size) > limit)
-    refuse("larger than " + std::to_string(limit >> 20) +
-           " MiB, where one is a few kB: is it the right file?");
+  if (static_cast<unsigned long long>(info.st_size) > limit) refuse(why);
   if (::access(path.c_str(), R_OK) != 0) refuse(std::strerror(errno));
 }
 

@@ -28,6 +28,9 @@ std::string read_input_file(const std::string& path, const std::string& what);
 // missing, a device, a FIFO, a folder, larger than the cap.
 void check_input_file(const std::string& path, const std::string& what,
                       std::size_t limit = kMaxInputBytes);
+// The same with the reason a file past `limit` is refused (named in the message).
+void check_input_file(const std::string& path, const std::string& what, std::size_t limit,
+                      const std::string& why);
 
 // A recording's data (io/recording.hpp): thousands of rows, so a larger cap.
 constexpr std::size_t kMaxRecordingBytes = 64u << 20;  // 64 MiB

@@ -11,10 +11,7 @@ namespace contact2d::mujoco {
 namespace {
 
 constexpr int kPhases = 8;
-// A bounce lasts a few ω⁻¹ (ms for MuJoCo's default contact); rows that
-// push against each other (a body between two walls, all its contacts
-// closing at once) never leave: give up after this many steps (NaN).
-constexpr long kMaxSteps = 20000;
+constexpr long kMaxSteps = kMaxBounceSteps;
 
 // The rows' accelerations at (x, v): MuJoCo's forces on the rows in contact.
 Eigen::VectorXd acceleration(const std::vector<BounceRow>& rows, const Eigen::MatrixXd& A,

@@ -42,8 +42,13 @@ struct BounceRow {
   double weight = 0.0;  // Â·φ, 1/kg
 };
 
-// `left` false: some row had not left after 20,000 steps (rows pushing
-// against each other, such as a body between two walls).
+// A bounce lasts a few ω⁻¹ (ms for MuJoCo's default contact); rows that
+// push against each other (a body between two walls, all its contacts
+// closing at once) never leave: the stepping gives up after this many steps.
+inline constexpr long kMaxBounceSteps = 20000;
+
+// `left` false: some row had not left after kMaxBounceSteps steps (rows
+// pushing against each other, or a contact so soft that it lasts longer).
 struct Bounce {
   double restitution = 0.0;   // mean outgoing / approach normal speed
   double spread = 0.0;        // largest minus smallest over the phases

@@ -120,7 +120,7 @@ void friction_and_creep(const Context& ctx, InspectRow& r) {
   const double mu = r.friction[0];
   // The friction rows (MuJoCo's effective law of a contact with friction).
   r.impratio_cap = r.push = r.lift_off = kNaN;
-  if (r.condim >= 3 && mu > 0.0 && r.A > 0.0) {
+  if (r.condim >= 3 && mu > 0.0 && moves_along_normal(r)) {
     // A friction row's step: its force f = (aref − J·a)/(A_t + R_t) with
     // aref = −B·v, R_t = R'/impratio, R' = (1 − d)/d·Â (·(1 + μ²) for the
     // pyramidal cone's edges), changes its slip by v·Δt·B·A_t/(A_t + R_t):
@@ -231,6 +231,12 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
   friction_reference(s, r, warnings, label);
   r.inv_weight = s.body_invweight0[2 * static_cast<size_t>(r.body1)] +
                  s.body_invweight0[2 * static_cast<size_t>(r.body2)];
+  r.motion_scale = r.inv_weight;
+  for (const int b : {r.body1, r.body2}) {
+    const double m = s.body_mass[static_cast<size_t>(b)];
+    if (s.body_weld[static_cast<size_t>(b)] != 0 && m > 0.0)
+      r.motion_scale = std::max(r.motion_scale, 1.0 / m);
+  }
   const double mu = r.friction[0];
   r.phi = 1.0;
   if (ctx.pyramidal && r.condim > 1)
@@ -287,12 +293,12 @@ void evaluate(const Context& ctx, InspectRow& r, std::vector<std::string>& warni
   r.limit = stability_limit(ctx.integrator, r.zeta_max);
   r.restitution = benchmarks::kelvin_voigt_restitution(r.zeta);
   r.restitution_dt = kNaN;
-  if (r.A > 0.0) {
+  if (moves_along_normal(r)) {
     const Bounce b = mujoco_bounce({bounce_row(r)}, Eigen::MatrixXd::Constant(1, 1, r.A),
                                    s.timestep, s.integrator == "RK4", kBounceSpeed);
     if (b.left) r.restitution_dt = b.restitution;
   }
-  if (!(r.A > 0.0)) {  // the joints cannot move the contact along its normal
+  if (!moves_along_normal(r)) {  // the joints cannot move the contact along its normal
     r.zeta = r.zeta_max = r.limit = r.restitution = kNaN;
     r.omega = r.omega_max = r.omega_dt = 0.0;
   }
@@ -560,7 +566,7 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
   auto warn_rows = [&](const std::vector<InspectRow>& list) {
     for (const InspectRow& r : list) {
       const std::string label = label_of(r);
-      if (r.A > 0.0 && !(r.omega_dt < r.limit))
+      if (moves_along_normal(r) && !(r.omega_dt < r.limit))
         rep.warnings.push_back(label + ": ω·Δt = " + format_number(r.omega_dt) + " at " +
                                stiffest(r) + " exceeds " + rep.integrator + "'s limit " +
                                format_number(r.limit) + " (ζ = " + format_number(r.zeta_max) +
@@ -607,7 +613,7 @@ void add_warnings(const ModelState& s, const InspectOptions& options, InspectRep
   std::map<int, std::pair<double, double>> masses;  // body → (min, max) of 1/A
   for (const InspectRow& r : rep.contacts) {
     for (int b : {r.body1, r.body2}) {
-      if (s.body_weld[static_cast<size_t>(b)] == 0 || !(r.A > 0.0)) continue;
+      if (s.body_weld[static_cast<size_t>(b)] == 0 || !moves_along_normal(r)) continue;
       auto [it, fresh] = masses.emplace(b, std::make_pair(1.0 / r.A, 1.0 / r.A));
       if (!fresh) {
         it->second.first = std::min(it->second.first, 1.0 / r.A);
@@ -676,7 +682,7 @@ std::vector<BodySummary> summarize(const ModelState& s, const std::vector<Inspec
       if (std::isfinite(r.penetration))
         sum.deepest =
             std::isfinite(sum.deepest) ? std::max(sum.deepest, r.penetration) : r.penetration;
-      if (r.A > 0.0) {
+      if (moves_along_normal(r)) {
         sum.mass_min = std::min(sum.mass_min, 1.0 / r.A);
         sum.mass_max = std::max(sum.mass_max, 1.0 / r.A);
         if (r.limit > 0.0) sum.stability = std::max(sum.stability, r.omega_dt / r.limit);
@@ -699,7 +705,8 @@ void add_bounces(const ModelState& s, InspectReport& rep) {
     body.bounce = body.bounce_spread = kNaN;
     std::vector<const InspectRow*> rows;
     for (const InspectRow& r : rep.contacts)
-      if ((r.body1_name == body.name || r.body2_name == body.name) && r.A > 0.0) rows.push_back(&r);
+      if ((r.body1_name == body.name || r.body2_name == body.name) && moves_along_normal(r))
+        rows.push_back(&r);
     if (rows.empty()) continue;
     const auto n = static_cast<Eigen::Index>(rows.size());
     Eigen::MatrixXd coupling(n, n);
@@ -1039,8 +1046,11 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
               ? std::string("not used (its two numbers differ in sign)")
               : std::string("not used (MuJoCo reads it in the elliptic cone's friction rows only)"))
       << "\n";
-  o << "  A = " << format_number(r.A) << " 1/kg (effective mass " << format_number(1.0 / r.A)
-    << " kg"
+  const bool moves = moves_along_normal(r);
+  o << "  A = " << format_number(r.A) << " 1/kg ("
+    << (moves       ? "effective mass " + format_number(1.0 / r.A) + " kg"
+        : r.A > 0.0 ? std::string("round-off of 0: below 1e-12 of Â or 1/m")
+                    : std::string("no effective mass"))
     << (r.closest      ? "; at the closest points, " + format_number(r.dist) + " m apart"
         : r.A_measured ? std::string()
                        : std::string("; no contact point: A = Â assumed"))
@@ -1049,13 +1059,19 @@ void text_row(std::ostringstream& o, const InspectReport& rep, const InspectRow&
     o << ", the normal sees Â·φ = " << format_number(r.normal_weight)
       << " (φ = " << format_number(r.phi) << ")";
   o << "\n";
-  if (!(r.A > 0.0)) {
-    o << "  the joints cannot move this contact along its normal (A = 0): no contact dynamics\n";
+  if (!moves) {
+    o << "  the joints cannot move this contact along its normal ("
+      << (r.A > 0.0 ? "A below 1e-12 of Â or 1/m" : "A = 0")
+      << "): it moves nothing, no contact dynamics\n";
   } else {
     o << "  k = " << format_number(r.k) << " N/m, c = " << format_number(r.c)
       << " N·s/m; ω = " << format_number(r.omega) << " rad/s, ζ = " << format_number(r.zeta)
       << "; restitution " << format_number(r.restitution) << " (continuous time), "
-      << format_number(r.restitution_dt) << " as MuJoCo steps it alone at Δt\n";
+      << (std::isfinite(r.restitution_dt)
+              ? format_number(r.restitution_dt) + " as MuJoCo steps it alone at Δt"
+              : "not stepped: it lasts past the " + std::to_string(kMaxBounceSteps) +
+                    " steps of Δt a bounce is stepped for")
+      << "\n";
     o << "  ω·Δt = " << format_number(r.omega_dt) << " at " << stiffest(r)
       << " (ω = " << format_number(r.omega_max) << ", ζ = " << format_number(r.zeta_max)
       << "): " << rep.integrator << "'s limit " << format_number(r.limit) << " ("

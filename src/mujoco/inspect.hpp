@@ -116,6 +116,7 @@ struct InspectRow {
   bool A_measured = false;     // false: no contact point found, A = Â assumed
   bool closest = false;        // a pair not in contact: A at its closest points (dist > 0)
   double inv_weight = 0.0;     // Â: body_invweight0 of both bodies
+  double motion_scale = 0.0;   // the larger of Â and the moving bodies' 1/m (kNoMotion)
   double normal_weight = 0.0;  // Â the normal row sees (pyramidal: ·φ)
   double phi = 1.0;            // normal_weight / inv_weight
   double force = 0.0;          // MuJoCo's normal force at this state (mj_contactForce), N
@@ -144,6 +145,19 @@ struct InspectRow {
   double creep = 0.0;      // m/s at --slope (NaN: not computed)
   std::string creep_note;  // why there is no creep number, or what it assumes
 };
+
+// A contact moves along its normal when A > kNoMotion·scale, the scale
+// (motion_scale) the larger of Â and 1/m of each moving body of the pair
+// (Â alone is 0 for a body that only turns: a sphere on a hinge through its
+// centre). n·J·M⁻¹·Jᵀ·n of a contact its joints cannot move (a wheel on an
+// axle through its centre, a geom pair on one hinge chain) sums terms of
+// that size that cancel, to round-off: on Debian's samples 5e-33 to
+// 1.1e-16 1/kg against Â of 0.14–7 1/kg, 3.3e-17·Â at most, about ε/7
+// (ε = 2.2e-16). The smallest A of a contact that moves there is
+// 1.1e-10·Â (active_adhesion's winch). 1e-12 sits between: an effective
+// mass 1e12 times the bodies' is no contact dynamics at any timestep.
+inline constexpr double kNoMotion = 1e-12;
+inline bool moves_along_normal(const InspectRow& r) { return r.A > kNoMotion * r.motion_scale; }
 
 // One body's contacts at a glance (the text's first table).
 struct BodySummary {

@@ -11,6 +11,7 @@
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "io/read_file.hpp"
+#include "mujoco/model_files.hpp"
 #include "mujoco/state_arrays.hpp"
 
 namespace contact2d::mujoco {
@@ -95,6 +96,9 @@ StateArrays arrays_of(const mjModel* m, mjData* d) {
   a.geom_friction = copy_of(m->geom_friction, m->ngeom, 3);
   a.geom_margin = copy_of(m->geom_margin, m->ngeom);
   a.geom_gap = copy_of(m->geom_gap, m->ngeom);
+  a.geom_priority = copy_of(m->geom_priority, m->ngeom);
+  a.geom_solmix = copy_of(m->geom_solmix, m->ngeom);
+  a.geom_solref = copy_of(m->geom_solref, m->ngeom, mjNREF);
   a.pair_geom1 = copy_of(m->pair_geom1, m->npair);
   a.pair_geom2 = copy_of(m->pair_geom2, m->npair);
   a.pair_margin = copy_of(m->pair_margin, m->npair);
@@ -163,6 +167,13 @@ void check_state_request(const StateRequest& r) {
 
 LoadedState load_model_state(const StateRequest& r) {
   check_state_request(r);
+  // The files 2.2.2 opens itself (includes, meshes, textures): a FIFO among
+  // them would block mj_loadXML for ever, a device be read without end.
+  try {
+    check_files_read_by_2_2_2(r.path);
+  } catch (const InputError& e) {
+    throw InputError((r.option.empty() ? "" : r.option + " ") + e.what());
+  }
   LoadedState out;
   ModelState& s = out.state;
   s.version = mj_versionString();

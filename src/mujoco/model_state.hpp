@@ -148,6 +148,12 @@ struct ModelState {
   std::vector<int> geom_body;
   std::vector<double> geom_mu;  // sliding friction (geom_friction[0])
   std::vector<int> geom_condim;
+  // How MuJoCo mixes a geom pair without a <pair> (inspect.hpp): the geom of
+  // higher priority wins; at equal priority solref and solimp mix by solmix,
+  // a direct-form solref takes the element-wise min.
+  std::vector<int> geom_priority;
+  std::vector<double> geom_solmix;
+  std::vector<double> geom_solref;  // 2 per geom
   std::vector<bool> geom_collides;  // contype or conaffinity non-zero
   // the state
   int nv = 0;

@@ -140,6 +140,40 @@ void rebase(tinyxml2::XMLElement* root, const fs::path& model_dir, const std::st
   }
 }
 
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> geom_classes_in_file(
+    const std::string& model, const std::vector<GeomRef>& geoms) {
+  std::vector<std::pair<std::string, std::string>> out(geoms.size());
+  tinyxml2::XMLDocument doc;
+  const std::string text = read_input_file(model, "--model");
+  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS || !doc.RootElement() ||
+      std::string(doc.RootElement()->Name()) != "mujoco")
+    return out;
+  for (size_t i = 0; i < geoms.size(); ++i) {
+    const GeomRef& g = geoms[i];
+    const tinyxml2::XMLElement* e =
+        g.named ? find_named(doc.RootElement(), "geom", g.name) : find_geom(doc.RootElement(), g);
+    if (!e) continue;
+    if (const char* own = e->Attribute("class")) {
+      out[i] = {own, ""};
+      continue;
+    }
+    for (const tinyxml2::XMLNode* up = e->Parent(); up && up->ToElement(); up = up->Parent()) {
+      const tinyxml2::XMLElement* a = up->ToElement();
+      if (const char* child = a->Attribute("childclass")) {
+        const char* name = a->Attribute("name");
+        out[i] = {child, "the childclass of " + std::string(a->Name()) +
+                             (name ? " '" + std::string(name) + "'" : std::string())};
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+namespace {
+
 // <option>: the mapping's cone and impratio; a model that ignores <pair>s
 // (collision="dynamic") is refused.
 void write_options(tinyxml2::XMLDocument& doc, tinyxml2::XMLElement* root, const MappingOutcome& o,

@@ -21,12 +21,21 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mujoco/model_state.hpp"
 #include "mujoco/solref_tool.hpp"
 
 namespace contact2d::mujoco {
+
+// The class each geom has in the model's own file (`model`): its class
+// attribute, else the childclass of the nearest element above it that sets
+// one (MuJoCo's rule): {name, ""} or {name, "the childclass of body 'B'"};
+// {"", ""} when it has none, or is not written in that file (an <include>)
+// or the file is not MJCF. What class="contact2d" would replace.
+std::vector<std::pair<std::string, std::string>> geom_classes_in_file(
+    const std::string& model, const std::vector<GeomRef>& geoms);
 
 // Throws InputError naming --apply (OUT is the model itself, the body rests
 // on nothing, an unnamed geom or a pair not in the model's own file, an

@@ -1,8 +1,12 @@
 #include "mujoco/solref_request.hpp"
 
+#include <algorithm>
+#include <tuple>
+
 #include "core/format.hpp"
 #include "core/input_error.hpp"
 #include "io/atomic_file.hpp"
+#include "mujoco/inspect.hpp"
 #include "mujoco/solref_apply.hpp"
 
 namespace contact2d::mujoco {
@@ -47,6 +51,14 @@ void read_body_into(const SolrefRequest& options, SolrefInput& in,
   // The model's noslip pass stays whatever the snippets write (they leave it).
   in.user_friction.noslip_iterations = body.friction.noslip_iterations;
   in.settled_contacts = body.contacts;
+  // The class each contact's geom of the body has in the file, which the
+  // default class snippet would replace (solref_tool.hpp's ClassCaveat).
+  std::vector<GeomRef> own;
+  own.reserve(in.settled_contacts.size());
+  for (const SettledContact& c : in.settled_contacts) own.push_back(c.own == 0 ? c.ref1 : c.ref2);
+  const auto classes = geom_classes_in_file(options.model, own);
+  for (size_t i = 0; i < classes.size(); ++i)
+    std::tie(in.settled_contacts[i].own_class, in.settled_contacts[i].own_class_from) = classes[i];
   in.model_version = body.version;
   if (!options.dt) {
     in.dt = body.timestep;
@@ -67,9 +79,11 @@ void read_body_into(const SolrefRequest& options, SolrefInput& in,
     in.measured_source = "measured in the model " + settled + ": contact " + most->geom1 + " – " +
                          most->geom2 + ", the most loaded of the body's " +
                          std::to_string(body.contacts.size());
-    if (!(most->A > 0.0))
-      throw InputError("--body " + printable_name(options.body) +
-                       ": its joints cannot move its contact along the normal (A = 0)");
+    if (!(most->A > kNoMotion * std::max(most->inv_weight, 1.0 / body.mass)))  // inspect.hpp
+      throw InputError(
+          "--body " + printable_name(options.body) +
+          ": its joints cannot move its contact along the normal (A = " +
+          (most->A > 0.0 ? "round-off of 0, below 1e-12 of Â or 1/m" : std::string("0")) + ")");
   } else if (!body.joint) {
     tell("body '" + printable_name(options.body) + "' has no contacts " + settled +
          " and is not on one of the joint sets free, planar, slide, hinge; A is taken as 1/m + "

@@ -99,6 +99,72 @@ void creep_on_slope(const SolrefInput& in, double inv_weight, MappingOutcome& o,
   }
 }
 
+// The body's settled contacts where the default class snippet does not
+// hold (solref_tool.hpp's ClassCaveat), each geom pair once, each of the
+// body's geoms' own class once. MuJoCo 2.2.2's mj_collideGeoms (and 3.x's
+// mj_contactParam, the same rules): the geom of higher priority gives
+// solref and solimp outright; at equal priority both solrefs in standard
+// form (> 0) mix by solmix, else each element is the smaller of the two.
+// The snippet gives the body's geom priority 1 with --mu, else leaves its
+// priority as it is.
+std::vector<ClassCaveat> class_caveats(const SolrefInput& in, const MappingOutcome& o) {
+  std::vector<ClassCaveat> out;
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<int> geoms;
+  const std::array<double, 2>& mine = o.settings.solref;
+  for (const SettledContact& c : in.settled_contacts) {
+    if (std::find(pairs.begin(), pairs.end(), std::make_pair(c.ref1.id, c.ref2.id)) != pairs.end())
+      continue;
+    pairs.emplace_back(c.ref1.id, c.ref2.id);
+    const std::string contact = c.geom1 + " – " + c.geom2;
+    const auto own = static_cast<size_t>(c.own), other = 1 - own;
+    const GeomRef& own_geom = own == 0 ? c.ref1 : c.ref2;
+    const std::string other_name = other == 0 ? c.geom1 : c.geom2;
+    if (!c.own_class.empty() && std::find(geoms.begin(), geoms.end(), own_geom.id) == geoms.end()) {
+      geoms.push_back(own_geom.id);
+      out.push_back({"class_replaced", contact,
+                     "geom " + own_geom.name + " has class \"" + c.own_class + "\"" +
+                         (c.own_class_from.empty() ? "" : " (" + c.own_class_from + ")") +
+                         ": class=\"contact2d\" replaces it, and whatever it sets (friction, "
+                         "condim, priority, contype, …) with it; nest the snippet's class in "
+                         "it, <default class=\"" +
+                         c.own_class + "\"><default class=\"contact2d\">…, to keep them"});
+    }
+    if (c.explicit_pair) {
+      out.push_back({"explicit_pair", contact,
+                     "the model's <pair> of these geoms makes this contact: MuJoCo uses the "
+                     "pair's solref and solimp, and the class changes nothing there"});
+      continue;
+    }
+    const int priority = o.condim != 0 ? 1 : c.priority[own], theirs = c.priority[other];
+    if (theirs > priority) {
+      out.push_back({"priority", contact,
+                     "geom " + other_name + " has priority " + std::to_string(theirs) +
+                         ", above the body's geom's " + std::to_string(priority) +
+                         ": MuJoCo takes its solref, solimp, friction and condim, not the "
+                         "class's"});
+    } else if (theirs == priority && o.condim != 0) {
+      out.push_back({"priority", contact,
+                     "geom " + other_name + " has priority " + std::to_string(theirs) +
+                         ", as the class's: at equal priority MuJoCo mixes the two geoms' "
+                         "solref and solimp by solmix, and takes the larger friction and "
+                         "condim"});
+    } else if (theirs == priority) {
+      const std::array<double, 2>& ref = c.geom_solref[other];
+      const std::array<double, 2> mixed{std::min(mine[0], ref[0]), std::min(mine[1], ref[1])};
+      if (!(mine[0] > 0.0 && ref[0] > 0.0) && mixed != mine)
+        out.push_back({"direct_solref", contact,
+                       "geom " + other_name + "'s solref " + join({ref[0], ref[1]}) +
+                           " and the class's " + join({mine[0], mine[1]}) +
+                           " are not both in standard form (> 0): MuJoCo takes the smaller "
+                           "of each element, " +
+                           join({mixed[0], mixed[1]}) +
+                           ", not the class's (solmix weighs standard forms only)"});
+    }
+  }
+  return out;
+}
+
 MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
   const SolrefInput& in = report.input;
   MappingOutcome o;
@@ -196,6 +262,7 @@ MappingOutcome outcome(const SolrefReport& report, Mapping mapping) {
       contact_attributes(in, o, false) +
       (o.condim == 0 ? " solmix=\"" + format_exact(kSolmixWins) + "\"" : " priority=\"1\"") +
       "/>\n  </default>\n</default>\n";
+  o.class_caveats = class_caveats(in, o);
   const std::vector<RestPair> pairs = rest_pairs(in, o);
   if (pairs.empty()) {
     o.pair_snippet = options + "<contact>\n  <pair geom1=\"BODY_GEOM\" geom2=\"ground\"" +
@@ -678,6 +745,12 @@ ModelBody read_model_body(const ModelState& state, const std::string& path,
     sc.penetration = -c.dist;
     sc.inv_weight = state.body_invweight0[2 * static_cast<size_t>(c.body1)] +
                     state.body_invweight0[2 * static_cast<size_t>(c.body2)];
+    sc.own = c.body1 == id ? 0 : 1;
+    for (size_t k = 0; k < 2; ++k) {
+      const auto g = static_cast<size_t>(k == 0 ? c.geom1 : c.geom2);
+      sc.priority[k] = state.geom_priority[g];
+      sc.geom_solref[k] = {state.geom_solref[2 * g], state.geom_solref[2 * g + 1]};
+    }
     out.contacts.push_back(sc);
   }
   out.rest_contacts = static_cast<int>(out.contacts.size());
@@ -807,6 +880,11 @@ void mapping_text(std::ostringstream& o, const SolrefReport& r, const MappingOut
     << "):\n";
   std::istringstream a(m.default_snippet);
   for (std::string line; std::getline(a, line);) o << "    " << line << "\n";
+  if (!m.class_caveats.empty()) {
+    o << "    NOT SO here (the pairs below hold, and --apply writes them):\n";
+    for (const ClassCaveat& c : m.class_caveats)
+      o << "      " << c.contact << ": " << c.why << "\n";
+  }
   if (in.settled_contacts.empty())
     o << "  or, for a contact with the ground, a pair (replace BODY_GEOM and ground; a pair "
          "takes no condim, friction, margin or gap from its geoms: without them it has "
@@ -950,6 +1028,14 @@ std::string format_report_json(const SolrefReport& r) {
       << ",\n      \"creep\": " << (std::isfinite(m.creep) ? json::number(m.creep) : "null")
       << ",\n      \"creep_note\": " << json::string(m.creep_note)
       << ",\n      \"default_snippet\": " << json::string(m.default_snippet)
+      << ",\n      \"default_snippet_fails\": [";
+    for (size_t i = 0; i < m.class_caveats.size(); ++i) {
+      const ClassCaveat& c = m.class_caveats[i];
+      o << (i ? ", " : "") << "{\"case\": " << json::string(c.kind)
+        << ", \"contact\": " << json::string(c.contact) << ", \"why\": " << json::string(c.why)
+        << "}";
+    }
+    o << "]"
       << ",\n      \"pair_snippet\": " << json::string(m.pair_snippet) << "\n    }";
   }
   o << "\n  ]";

@@ -99,6 +99,16 @@ struct SettledContact {
   double load = 0.0;         // MuJoCo's normal force, N
   double penetration = 0.0;  // −dist, m
   double inv_weight = 0.0;   // Â of the contact: both bodies' body_invweight0, 1/kg
+  // What the default class snippet meets (class_caveats): which geom is the
+  // body's (0: geom1), both geoms' priority and solref as compiled, and the
+  // class the body's geom has in the model's own file ("" none, or not
+  // written there), which class="contact2d" would replace: its name and
+  // where it comes from ("" its class attribute, or "the childclass of body
+  // 'B'").
+  int own = 0;
+  std::array<int, 2> priority{};
+  std::array<std::array<double, 2>, 2> geom_solref{};
+  std::string own_class, own_class_from;
 };
 
 struct SolrefInput {
@@ -166,6 +176,22 @@ struct SolrefTargets {
 // `k_given`, `c_given`: whether --k and --c were on the command line.
 void solve_targets(SolrefInput& input, const SolrefTargets& targets, bool k_given, bool c_given);
 
+// A contact of the body where the default class snippet does not give it the
+// mapping's solref and solimp (MuJoCo's mixing of a geom pair without a
+// <pair>, mj_collideGeoms in 2.2.2's engine_collision_driver.c): case
+// "priority" (the other geom's priority is higher, or equal to the --mu
+// snippet's 1: MuJoCo takes the higher one's values, or mixes them),
+// "direct_solref" (a solref in direct form, negative: MuJoCo takes the
+// element-wise min of the two, not the solmix weight), "explicit_pair" (a
+// <pair> makes the contact: its values are used), "class_replaced" (the
+// body's geom has a class of its own that class="contact2d" replaces, with
+// whatever else it sets). <pair>s (--apply) hold in every case.
+struct ClassCaveat {
+  std::string kind;     // "priority", "direct_solref", "explicit_pair", "class_replaced"
+  std::string contact;  // "floor – box"
+  std::string why;
+};
+
 struct MappingOutcome {
   Mapping mapping = kDefaultMapping;
   std::string unavailable;  // non-empty: why this mapping cannot express k, c (or is not offered)
@@ -187,9 +213,10 @@ struct MappingOutcome {
   // creep_note saying why when there is no such number.
   double creep = NAN;
   std::string creep_note;
-  double nominal_penetration = 0.0;  // f/k, m
-  std::string default_snippet;       // <option> + <default class>
-  std::string pair_snippet;          // <option> + <contact><pair>
+  double nominal_penetration = 0.0;        // f/k, m
+  std::string default_snippet;             // <option> + <default class>
+  std::string pair_snippet;                // <option> + <contact><pair>
+  std::vector<ClassCaveat> class_caveats;  // where default_snippet does not hold (--model)
 };
 
 // solref --model: one <pair> per geom pair among the body's contacts at

@@ -86,6 +86,9 @@ void read_bodies_and_geoms(const StateArrays& a, ModelState& s) {
   }
   s.geom_body = a.geom_bodyid;
   s.geom_condim = a.geom_condim;
+  s.geom_priority = a.geom_priority;
+  s.geom_solmix = a.geom_solmix;
+  s.geom_solref = a.geom_solref;
 }
 
 // A contact's fields other than its inverse masses (the rows' M⁻¹ come
@@ -145,7 +148,8 @@ std::string arrays_misfit(const StateArrays& a) {
   if (a.geom_bodyid.size() != ngeom || a.geom_condim.size() != ngeom ||
       a.geom_contype.size() != ngeom || a.geom_conaffinity.size() != ngeom ||
       a.geom_friction.size() != 3 * ngeom || a.geom_margin.size() != ngeom ||
-      a.geom_gap.size() != ngeom)
+      a.geom_gap.size() != ngeom || a.geom_priority.size() != ngeom ||
+      a.geom_solmix.size() != ngeom || a.geom_solref.size() != 2 * ngeom)
     return "the geom arrays differ in length";
   if (a.pair_geom2.size() != npair || a.pair_margin.size() != npair || a.pair_gap.size() != npair)
     return "the pair arrays differ in length";

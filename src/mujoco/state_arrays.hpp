@@ -54,6 +54,8 @@ struct StateArrays {
   std::vector<double> body_mass, body_inertia, body_invweight0;  // 1, 3, 2 per body
   std::vector<int> geom_bodyid, geom_condim, geom_contype, geom_conaffinity;
   std::vector<double> geom_friction, geom_margin, geom_gap;  // 3, 1, 1 per geom
+  std::vector<int> geom_priority;
+  std::vector<double> geom_solmix, geom_solref;  // 1, 2 per geom
   std::vector<int> pair_geom1, pair_geom2;
   std::vector<double> pair_margin, pair_gap;
   bool elliptic = false;  // opt.cone

@@ -45,7 +45,7 @@ import {createInterface} from 'node:readline';
 import {fileURLToPath} from 'node:url';
 
 // The version of this protocol; node_mujoco.hpp's kProtocol.
-const PROTOCOL = 5;
+const PROTOCOL = 6;
 
 const here = dirname(fileURLToPath(import.meta.url));
 const messages = [];
@@ -468,7 +468,7 @@ function readState(m, d, r, steps) {
   for (const key of ['body_weldid', 'body_parentid', 'body_mass', 'body_inertia',
                      'body_invweight0', 'jnt_bodyid', 'jnt_type', 'geom_bodyid', 'geom_condim',
                      'geom_contype', 'geom_conaffinity', 'geom_friction', 'geom_margin',
-                     'geom_gap', 'pair_geom1', 'pair_geom2', 'pair_margin', 'pair_gap']) {
+                     'geom_gap', 'geom_priority', 'geom_solmix', 'geom_solref', 'pair_geom1', 'pair_geom2', 'pair_margin', 'pair_gap']) {
     out[key] = Array.from(m[key]);
   }
   out.qvel = Array.from(d.qvel);

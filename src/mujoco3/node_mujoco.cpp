@@ -586,6 +586,9 @@ mujoco::StateArrays arrays_of(const json::Value& v) {
   a.geom_friction = need_numbers(v, "geom_friction");
   a.geom_margin = need_numbers(v, "geom_margin");
   a.geom_gap = need_numbers(v, "geom_gap");
+  a.geom_priority = need_integers(v, "geom_priority");
+  a.geom_solmix = need_numbers(v, "geom_solmix");
+  a.geom_solref = need_numbers(v, "geom_solref");
   a.pair_geom1 = need_integers(v, "pair_geom1");
   a.pair_geom2 = need_integers(v, "pair_geom2");
   a.pair_margin = need_numbers(v, "pair_margin");

@@ -42,7 +42,7 @@ namespace contact2d::mujoco3 {
 inline constexpr std::string_view kVersion = "3.14.0";
 // The version of the protocol spoken with driver.mjs (its PROTOCOL): hello
 // carries it both ways and either side refuses another.
-inline constexpr int kProtocol = 5;
+inline constexpr int kProtocol = 6;
 
 // Why another Node process should not start when `running` run already
 // and `available_bytes` of memory are available (negative: unknown), as

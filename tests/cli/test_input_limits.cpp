@@ -18,6 +18,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -40,10 +42,11 @@ class InputLimits : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  Outcome run(const std::string& args) const {
+  // `before`: a command the program runs under ("timeout 20").
+  Outcome run(const std::string& args, const std::string& before = "") const {
     const std::string out = (dir_ / "stdout").string(), err = (dir_ / "stderr").string();
-    const std::string command = "cd '" + dir_.string() + "' && '" CONTACT2D_EXE "' " + args +
-                                " >'" + out + "' 2>'" + err + "'";
+    const std::string command = "cd '" + dir_.string() + "' && " + before +
+                                " '" CONTACT2D_EXE "' " + args + " >'" + out + "' 2>'" + err + "'";
     const auto start = std::chrono::steady_clock::now();
     const int raw = std::system(command.c_str());
     Outcome r;
@@ -168,6 +171,57 @@ TEST_F(InputLimits, AModelThatIsAFifoIsRefusedUnopened) {
   const std::string said = slurp(err);
   EXPECT_NE(said.find("m.xml: cannot read the MJCF file (a pipe or socket"), std::string::npos)
       << said;
+}
+
+// MuJoCo 2.2.2 opens the files a model names itself: a FIFO among them
+// blocked inspect and solref --model for ever (exit 124 under timeout
+// here). Each is refused before the load with one line naming it,
+// resolved as 2.2.2 resolves it: an <include> against the model's folder
+// (an include's include too, not against the including file's folder), a
+// mesh under <compiler meshdir>. A mesh past the 256 MiB cap (sparse) is
+// refused by its size; a missing include stays MuJoCo's own error, and a
+// regular mesh under meshdir loads.
+TEST_F(InputLimits, AFileTheModelNamesThatIsAFifoIsRefusedUnopened) {
+  fs::create_directories(dir_ / "sub/assets");
+  fs::create_directories(dir_ / "sub/parts");
+  ASSERT_EQ(::mkfifo((dir_ / "sub/fifo.xml").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo((dir_ / "sub/assets/fifo.stl").c_str(), 0600), 0);
+  sparse("sub/assets/big.stl", std::uintmax_t{300} << 20);
+  std::ofstream(dir_ / "sub/assets/tetra.obj")
+      << "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string world = "<worldbody><geom type=\"plane\" size=\"1 1 1\"/></worldbody>";
+  const auto model = [&](const std::string& name, const std::string& inside) {
+    std::ofstream(dir_ / "sub" / name) << "<mujoco>" << inside << world << "</mujoco>\n";
+  };
+  const auto mesh = [](const std::string& file) {
+    return "<compiler meshdir=\"assets\"/><asset><mesh name=\"m\" file=\"" + file +
+           "\"/></asset><worldbody><body pos=\"0 0 1\"><freejoint/><geom type=\"mesh\" "
+           "mesh=\"m\"/></body></worldbody>";
+  };
+  model("inc.xml", "<include file=\"fifo.xml\"/>");
+  std::ofstream(dir_ / "sub/parts/outer.xml") << "<mujoco><include file=\"fifo.xml\"/></mujoco>\n";
+  model("nested.xml", "<include file=\"parts/outer.xml\"/>");
+  model("mesh.xml", mesh("fifo.stl"));
+  model("big.xml", mesh("big.stl"));
+  model("missing.xml", "<include file=\"nothere.xml\"/>");
+  model("tetra.xml", mesh("tetra.obj"));
+  const std::string include =
+      "sub/fifo.xml: cannot read an <include> of the model (a pipe or socket";
+  const std::string pipe_mesh =
+      "sub/assets/fifo.stl: cannot read the mesh file the model names (a pipe or socket";
+  for (const auto& [args, said] : std::vector<std::pair<std::string, std::string>>{
+           {"inspect sub/inc.xml --no-rest-search", include},
+           {"inspect sub/nested.xml --no-rest-search", include},
+           {"inspect sub/mesh.xml --no-rest-search", pipe_mesh},
+           {"solref --model sub/mesh.xml --body world --k 1e4 --c 10", "--model " + pipe_mesh},
+           {"inspect sub/big.xml --no-rest-search",
+            "sub/assets/big.stl: cannot read the mesh file the model names (larger than 256 MiB"},
+           {"inspect sub/missing.xml --no-rest-search", "MuJoCo cannot load the model"}}) {
+    SCOPED_TRACE(args);
+    expect_one_line(run(args, "timeout 20"), said);
+  }
+  const Outcome r = run("inspect sub/tetra.xml --no-rest-search", "timeout 20");
+  EXPECT_EQ(r.status, 0) << r.err;
 }
 
 // A model's names are anybody's: ESC and a newline in a body's and a

@@ -14,10 +14,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "benchmarks/impact.hpp"
 #include "mujoco/inspect.hpp"
@@ -960,6 +962,64 @@ TEST_F(Inspect, AContactItsJointsCannotMoveAlongTheNormalHasNoDynamics) {
   EXPECT_TRUE(std::isnan(rep.contacts[0].zeta));
   EXPECT_TRUE(rep.warnings.empty()) << rep.warnings[0];  // no ω·Δt warning from a NaN limit
   EXPECT_NE(mj::format_inspect_text(rep).find("no contact dynamics"), std::string::npos);
+}
+
+// A contact its joints cannot move gets an A of round-off rather than 0
+// when the arithmetic is not exact: 5e-33 to 1.1e-16 1/kg on Debian's
+// samples, where the text printed ω = 1e-14 rad/s and "nan as MuJoCo steps
+// it" (and "effective mass inf kg" where A is exactly 0). Two spheres on
+// hinges through their centres, one axis along z (A exactly 0) and one
+// tilted, and a wall, with --pairs (A at the closest points): MuJoCo moves
+// no contact point along its normal under a 1 N push there (|n·J·qacc|
+// within 1e-12 of the pushed body's Â or 1/m, inspect.hpp's kNoMotion: Â
+// is 0 for a body that only turns), and the
+// text says of each pair that it moves nothing, with no nan or inf
+// anywhere. Run time: one inspect (~20 ms).
+TEST_F(Inspect, AContactThatMovesNothingIsSaidSoWithoutNanOrInf) {
+  const char* xml = R"(<mujoco>
+  <worldbody>
+    <geom name="wall" type="plane" pos="1 0 0" zaxis="-1 0 0" size="2 2 0.1"/>
+    <body name="level" pos="0 0 0.5">
+      <joint type="hinge" axis="0 0 1"/>
+      <geom name="level" type="sphere" size="0.1" mass="1"/>
+    </body>
+    <body name="tilted" pos="0.1 0.7 0.5">
+      <joint type="hinge" axis="0.3 0.5 0.8"/>
+      <geom name="tilted" type="sphere" size="0.1" mass="1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+  const mj::InspectReport rep = report(xml, "", std::nullopt, true);
+  ASSERT_EQ(rep.pairs.size(), 3u);
+  Sim s(xml);
+  for (const mj::InspectRow& r : rep.pairs) {
+    SCOPED_TRACE(r.geom1_name + " – " + r.geom2_name);
+    for (const int body : {r.body1, r.body2}) {
+      if (s.m()->body_dofnum[body] == 0) continue;
+      mju_zero(s.d()->qfrc_applied, s.m()->nv);
+      double point[3] = {r.pos[0], r.pos[1], r.pos[2]};
+      double force[3] = {r.normal[0], r.normal[1], r.normal[2]}, torque[3] = {0, 0, 0};
+      mj_applyFT(s.m(), s.d(), force, torque, point, body, s.d()->qfrc_applied);
+      mj_forward(s.m(), s.d());
+      std::vector<double> jac(3 * static_cast<size_t>(s.m()->nv));
+      mj_jac(s.m(), s.d(), jac.data(), nullptr, point, body);
+      double accel = 0.0;
+      for (int k = 0; k < 3; ++k)
+        for (int v = 0; v < s.m()->nv; ++v)
+          accel += r.normal[static_cast<size_t>(k)] * jac[static_cast<size_t>(k * s.m()->nv + v)] *
+                   s.d()->qacc[v];
+      EXPECT_LE(std::abs(accel),
+                1e-12 * std::max(s.m()->body_invweight0[2 * body], 1.0 / s.m()->body_mass[body]));
+    }
+  }
+  const Run text = run("inspect model.xml --pairs --no-rest-search");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_FALSE(std::regex_search(text.out, std::regex(R"(\b(nan|inf)\b)"))) << text.out;
+  size_t said = 0;
+  for (size_t at = 0; (at = text.out.find("it moves nothing", at)) != std::string::npos; ++at)
+    ++said;
+  EXPECT_EQ(said, 3u) << text.out;
 }
 
 TEST_F(Inspect, CliPrintsMujocosMessageOnOneLineForAModelItCannotLoad) {

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "benchmarks/rest.hpp"
 #include "mj_test_util.hpp"
@@ -736,6 +737,85 @@ TEST(SolrefCli, ModelCountsContactsAndSaysSo) {
   expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --mass 1 --joint hinge --lever 0.1", "--pivot");
   expect_one_line_error("--k 1e4 --c 1 --dt 1e-4 --mass 1 --joint slide --inertia 1 --lever 0.1",
                         "--lever");
+}
+
+// The default class snippet (no --mu) says solmix 1e30 makes its solref
+// win on every contact of the geoms it is put on. MuJoCo's mixing
+// (mj_collideGeoms) says otherwise where the floor has a higher priority,
+// the floor's solref is in direct form, an explicit <pair> makes the
+// contact, or the box's own class (condim 4 here) is replaced. Each model
+// below gets the printed snippet pasted by hand and MuJoCo makes its contacts
+// at qpos0 (the box starts 0.1 mm deep): what MuJoCo uses there is the
+// expected value, and the program must name that case, in the text and in
+// the JSON's default_snippet_fails; on the plain box (the control) MuJoCo
+// takes the class's solref and nothing is named. Run time: ten solref runs
+// of 3 s of settling a box (~0.15 s).
+TEST(SolrefCli, TheDefaultClassSaysWhereItDoesNotHold) {
+  // calibrated for k = 2000 N/m, c = 5 N·s/m: solref -k -c (direct form).
+  const std::string klass =
+      "<geom solref=\"-2000 -5\" solimp=\"0.0001 0.0001 0.001 0.5 2\" "
+      "solmix=\"1e+30\"/>";
+  struct Case {
+    const char *kind, *classes, *floor, *box, *tail;
+  };
+  const Case cases[] = {
+      {"", "", "", "", ""},
+      {"priority", "", " priority=\"2\" solref=\"0.05 1\"", "", ""},
+      {"direct_solref", "", " solref=\"-5000 -10\"", "", ""},
+      {"explicit_pair", "", "", "",
+       "<contact><pair geom1=\"box\" geom2=\"floor\" solref=\"-10000 -20\"/></contact>"},
+      {"class_replaced", "<default class=\"boxc\"><geom condim=\"4\"/></default>", "",
+       " class=\"boxc\"", ""}};
+  const auto model = [](const std::string& classes, const std::string& floor,
+                        const std::string& box, const std::string& tail) {
+    return "<mujoco><default>" + classes +
+           "</default><worldbody><geom name=\"floor\" "
+           "type=\"plane\" size=\"2 2 0.1\"" +
+           floor +
+           "/><body name=\"box\" pos=\"0 0 0.0999\">"
+           "<freejoint/><geom name=\"box\" type=\"box\" size=\"0.1 0.1 0.1\" mass=\"1\"" +
+           box + "/></body></worldbody>" + tail + "</mujoco>";
+  };
+  // MuJoCo's first contact at qpos0: its solref and condim.
+  const auto contact = [](const std::string& xml) {
+    const mj::ModelPtr m = mj::load_model(xml, "test model");
+    const mj::DataPtr d = mj::make_data(m.get());
+    mj_forward(m.get(), d.get());
+    EXPECT_GT(d->ncon, 0);
+    return std::make_tuple(d->contact[0].solref[0], d->contact[0].solref[1], d->contact[0].dim);
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::string("case '") + c.kind + "'");
+    const std::string xml = model(c.classes, c.floor, c.box, c.tail);
+    const fs::path path = temp_file("class.xml", xml);
+    const std::string args =
+        "--k 2000 --c 5 --mapping calibrated --model '" + path.string() + "' --body box";
+    const CliResult text = run_cli(args), json = run_cli(args + " --json");
+    ASSERT_EQ(text.status, 0) << text.err;
+    ASSERT_NE(text.out.find("<default class=\"contact2d\">\n        " + klass), std::string::npos)
+        << text.out;
+    // The snippet pasted: the class added, the box's geom put in it.
+    const std::string pasted =
+        model(std::string(c.classes) + "<default class=\"contact2d\">" + klass + "</default>",
+              c.floor, " class=\"contact2d\"", c.tail);
+    // It holds where MuJoCo's contact has the class's solref and the condim
+    // it had before the class was put on.
+    const auto [ref0, ref1, dim] = contact(pasted);
+    const int before = std::get<2>(contact(xml));
+    const bool holds = ref0 == -2000.0 && ref1 == -5.0 && dim == before;
+    EXPECT_EQ(holds, std::string(c.kind).empty())
+        << "MuJoCo: solref " << ref0 << " " << ref1 << ", condim " << dim << " (was " << before
+        << ")";
+    const bool named = text.out.find("NOT SO here") != std::string::npos;
+    EXPECT_EQ(named, !std::string(c.kind).empty()) << text.out;
+    if (std::string(c.kind).empty()) {
+      EXPECT_NE(json.out.find("\"default_snippet_fails\": []"), std::string::npos) << json.out;
+    } else {
+      EXPECT_NE(json.out.find("\"case\": \"" + std::string(c.kind) + "\""), std::string::npos)
+          << json.out;
+    }
+    fs::remove(path);
+  }
 }
 
 // seed is marked "do not use" with its ω against the physical one (the

@@ -34,6 +34,9 @@ StateArrays two_bodies() {
   a.geom_friction = {1, 0.005, 0.0001, 0.5, 0.005, 0.0001};
   a.geom_margin = {0.01, 0.03};
   a.geom_gap = {0.002, 0.004};
+  a.geom_priority = {0, 0};
+  a.geom_solmix = {1, 1};
+  a.geom_solref = {0.02, 1, 0.02, 1};
   a.qvel = {0, 0, 0};
   a.qacc = {0, 0, 0};
   return a;
