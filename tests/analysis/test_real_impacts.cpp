@@ -37,6 +37,22 @@ TEST(ImpactMetric, QuartilesInterpolateBetweenOrderStatistics) {
   EXPECT_DOUBLE_EQ(analysis::quartiles({1, 2}).median, 1.5);
 }
 
+// A fitted model's parameter `name` (NaN when it has none).
+double parameter_of(const analysis::ModelFit& fit, const std::string& name) {
+  for (const auto& [key, value] : fit.parameters)
+    if (key == name) return value;
+  return std::nan("");
+}
+
+// The fit without bootstrap or k's profile, on one thread: the tests' own.
+analysis::ImpactFit quick_fit(const Recording& rec) {
+  analysis::ImpactFitOptions options;
+  options.bootstrap = 0;
+  options.k_profile = false;
+  options.threads = 1;
+  return analysis::fit_impacts(rec, options);
+}
+
 // The real ellipse's body, and impacts from the penalty law at `law`.
 Recording synthetic(const ContactParams& law, int n) {
   Recording rec;
@@ -92,21 +108,13 @@ TEST(ImpactFit, RecoversTheParametersOfImpactsMadeByItsOwnLaw) {
   law.mu = 0.2;
   law.mu_roll = 0.003;
   const Recording rec = synthetic(law, 24);
-  analysis::ImpactFitOptions options;
-  options.bootstrap = 0;
-  options.k_profile = false;
-  options.threads = 1;
-  const analysis::ImpactFit fit = analysis::fit_impacts(rec, options);
+  const analysis::ImpactFit fit = quick_fit(rec);
   ASSERT_EQ(fit.splits.size(), 2u);
   for (const analysis::SplitFit& split : fit.splits) {
     SCOPED_TRACE(split.split);
     const analysis::ModelFit& penalty = split.models.front();
     ASSERT_EQ(penalty.name, "penalty");
-    auto parameter = [&penalty](const std::string& name) {
-      for (const auto& [key, value] : penalty.parameters)
-        if (key == name) return value;
-      return std::nan("");
-    };
+    auto parameter = [&penalty](const std::string& name) { return parameter_of(penalty, name); };
     // Measured (24 impacts, 12 held out, ω·Δt = 0.02): held-out medians
     // 0.0045 (seeded) and 0.0076 (chronological) — BOBYQA stops at a relative step of 1e-4 in a
     // valley that is flat in k (k is not checked: any k above ~1e5 fits alike, as on the real
@@ -186,20 +194,12 @@ TEST(ImpactFit, FollowsAContactLongerThanTheOldWindowToItsEnd) {
     EXPECT_GT(contact, 0.08) << "the contact must outlast the old window";
     rec.impacts.push_back(impact);
   }
-  analysis::ImpactFitOptions options;
-  options.bootstrap = 0;
-  options.k_profile = false;
-  options.threads = 1;
-  const analysis::ImpactFit fit = analysis::fit_impacts(rec, options);
+  const analysis::ImpactFit fit = quick_fit(rec);
   for (const analysis::SplitFit& split : fit.splits) {
     SCOPED_TRACE(split.split);
     const analysis::ModelFit& penalty = split.models.front();
     ASSERT_EQ(penalty.name, "penalty");
-    auto parameter = [&penalty](const std::string& name) {
-      for (const auto& [key, value] : penalty.parameters)
-        if (key == name) return value;
-      return std::nan("");
-    };
+    auto parameter = [&penalty](const std::string& name) { return parameter_of(penalty, name); };
     // Semi-implicit Euler at ω·Δt = 0.02 is off the restitution by at most
     // 0.16·ω·Δt = 0.3 % relative (tests/core/test_ellipse.cpp), and the
     // replay stops at the first step above the ground (g·Δt = 6e-5 m/s):
@@ -246,20 +246,12 @@ TEST(ImpactFit, ABoxHasNoRollingResistanceToFit) {
         Vec3(0.0, disc_rebound_speed(2.0 * k, std::sqrt(2.0) * zeta, m, g, v, &contact), 0.0);
     rec.impacts.push_back(impact);
   }
-  analysis::ImpactFitOptions options;
-  options.bootstrap = 0;
-  options.k_profile = false;
-  options.threads = 1;
-  const analysis::ImpactFit fit = analysis::fit_impacts(rec, options);
+  const analysis::ImpactFit fit = quick_fit(rec);
   for (const analysis::SplitFit& split : fit.splits) {
     SCOPED_TRACE(split.split);
     const analysis::ModelFit& penalty = split.models.front();
     ASSERT_EQ(penalty.name, "penalty");
-    auto parameter = [&penalty](const std::string& name) {
-      for (const auto& [key, value] : penalty.parameters)
-        if (key == name) return value;
-      return std::nan("");
-    };
+    auto parameter = [&penalty](const std::string& name) { return parameter_of(penalty, name); };
     EXPECT_EQ(parameter("mu_roll"), 0.0);
     EXPECT_LT(penalty.median, 0.01);
     EXPECT_NEAR(parameter("zeta"), zeta, 0.05 * zeta);

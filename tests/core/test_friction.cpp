@@ -157,14 +157,21 @@ TEST(RollingFriction, DiscDeceleratesAtMuRollGOverOnePointFiveR) {
   EXPECT_NEAR(s, coulomb + slip_term + tanh_tail, 1e-4);
 }
 
-TEST(RollingFriction, DiscAtRestNeitherChattersNorCreeps) {
+// The default disc with μ = 0.5, μ_roll = 0.01 m, c = 200 N·s/m, at its rest
+// depth, rolling at 0.3 m/s without slip, for `duration` s.
+Scene rolling_disc(double duration) {
   Scene scene = default_scene(Shape::Circle);
   scene.contact.mu = 0.5;
   scene.contact.mu_roll = 0.01;
   scene.contact.c = 200.0;
-  scene.sim.duration = 10.0;
+  scene.sim.duration = duration;
   scene.initial.q = Vec3(0.0, scene.radius - scene.mass * scene.sim.gravity / scene.contact.k, 0.0);
   scene.initial.v = Vec3(0.3, 0.0, -0.3 / scene.radius);
+  return scene;
+}
+
+TEST(RollingFriction, DiscAtRestNeitherChattersNorCreeps) {
+  const Scene scene = rolling_disc(10.0);
   const Trajectory trajectory = simulate(scene);
   ASSERT_FALSE(trajectory.divergence);
   // After the stop (≈ 0.5 s), ω must not change sign step to step and x must
@@ -199,13 +206,7 @@ TEST(RollingFriction, DiscAtRestNeitherChattersNorCreeps) {
 // 1.08 of the limit), in RK4 it creeps (measured ω = −0.7 mrad/s, steady).
 // The warning comes with the second only; implicit Euler has no such limit.
 TEST(FrictionStep, TheDiscChattersAtRestExactlyPastTheLimitAndIsWarned) {
-  Scene scene = default_scene(Shape::Circle);
-  scene.contact.mu = 0.5;
-  scene.contact.mu_roll = 0.01;
-  scene.contact.c = 200.0;
-  scene.sim.duration = 4.0;
-  scene.initial.q = Vec3(0.0, scene.radius - scene.mass * scene.sim.gravity / scene.contact.k, 0.0);
-  scene.initial.v = Vec3(0.3, 0.0, -0.3 / scene.radius);
+  const Scene scene = rolling_disc(4.0);
   const double g = scene.sim.gravity, r = scene.radius;
   const double rate_per_alpha = 3.0 * 0.5 * g + 2.0 * 0.01 * g / r;  // 1/s per s/m
   for (const auto& [integrator, limit] :
