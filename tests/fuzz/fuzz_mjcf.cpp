@@ -128,6 +128,9 @@ void check_model(const Scene& scene, Mapping mapping, Geometry geometry, const m
   const int points = static_cast<int>(body.points.size());
   // Ground + contact geoms (+ the parts drawn when corner spheres carry the contacts).
   int geoms = 1 + 1;
+  // The point mass's contact sphere of kCornerRadius at (0, −h), and a
+  // visual sphere of radius h when h is larger (mujoco/mjcf.hpp).
+  if (scene.shape == Shape::PointMass && scene.half_height > kCornerRadius) geoms += 1;
   if (scene.shape == Shape::Box || scene.shape == Shape::TShape)
     geoms = 1 + points / 4 + (geometry == Geometry::CornerSpheres ? points : 0);
   // One static geom per obstacle, touched through one explicit pair per
