@@ -5,7 +5,6 @@
 #include <toml++/toml.h>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -200,9 +199,6 @@ Pitch parse_pitch(const std::string& toml_text, const std::string& origin) {
 }
 
 Pitch load_pitch(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(path + ": cannot read pitch file (it is a directory)");
   return parse_pitch(read_input_file(path, "pitch file"), path);
 }
 

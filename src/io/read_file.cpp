@@ -27,6 +27,14 @@ struct Descriptor {
   }
 };
 
+// The one form of every refusal here: "PATH: cannot read WHAT (BECAUSE)".
+[[noreturn]] void cannot_read(const std::string& path, const std::string& what,
+                              const std::string& because) {
+  throw InputError(path + ": cannot read " + what + " (" + because + ")");
+}
+
+constexpr const char* kDirectory = "a directory, not a file";
+
 }  // namespace
 
 std::string read_input_file(const std::string& path, const std::string& what) {
@@ -41,20 +49,17 @@ std::string read_input_file(const std::string& path, const std::string& what, st
 
 std::string read_input_file(const std::string& path, const std::string& what, std::size_t limit,
                             const std::string& why, double wait_seconds) {
-  const auto refuse = [&](const std::string& because) {
-    throw InputError(path + ": cannot read " + what + " (" + because + ")");
-  };
+  const auto refuse = [&](const std::string& because) { cannot_read(path, what, because); };
   // Opened without blocking: a FIFO nobody has opened for writing would
   // otherwise block open() itself until a writer came, without end.
   Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   if (file.fd < 0) refuse(errno == ENOENT ? "missing" : std::strerror(errno));
   struct stat info {};
   if (::fstat(file.fd, &info) != 0) refuse(std::strerror(errno));
-  if (S_ISDIR(info.st_mode)) refuse("a folder, not a file");
+  if (S_ISDIR(info.st_mode)) refuse(kDirectory);
   // A regular file's size is known before it is read: one past the cap is
   // refused at once (a sparse file of terabytes reads as zeros).
   if (S_ISREG(info.st_mode) && static_cast<unsigned long long>(info.st_size) > limit) refuse(why);
-  const bool stream = !S_ISREG(info.st_mode);  // a pipe, a socket, a device
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                             std::chrono::duration<double>(wait_seconds));
@@ -85,7 +90,7 @@ std::string read_input_file(const std::string& path, const std::string& what, st
   }
   // A FIFO no process had opened for writing reads as empty at once: say so
   // rather than let the caller call the file empty.
-  if (stream && S_ISFIFO(info.st_mode) && text.empty()) refuse("a pipe nobody was writing to");
+  if (S_ISFIFO(info.st_mode) && text.empty()) refuse("a pipe nobody was writing to");
   return text;
 }
 
@@ -97,13 +102,10 @@ void check_input_file(const std::string& path, const std::string& what, std::siz
 
 void check_input_file(const std::string& path, const std::string& what, std::size_t limit,
                       const std::string& why) {
+  const auto refuse = [&](const std::string& because) { cannot_read(path, what, because); };
   struct stat info {};
-  if (::stat(path.c_str(), &info) != 0)
-    throw InputError(path + ": cannot read " + what + " (" + std::strerror(errno) + ")");
-  const auto refuse = [&](const std::string& why) {
-    throw InputError(path + ": cannot read " + what + " (" + why + ")");
-  };
-  if (S_ISDIR(info.st_mode)) refuse("a folder, not a file");
+  if (::stat(path.c_str(), &info) != 0) refuse(std::strerror(errno));
+  if (S_ISDIR(info.st_mode)) refuse(kDirectory);
   if (S_ISCHR(info.st_mode) || S_ISBLK(info.st_mode))
     refuse("a device, not a regular file: it could be read without end");
   if (S_ISFIFO(info.st_mode) || S_ISSOCK(info.st_mode))

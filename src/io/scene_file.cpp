@@ -7,7 +7,6 @@
 #include <toml++/toml.h>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -404,10 +403,6 @@ Scene read_scene(const std::string& toml_text, const std::string& origin,
 }  // namespace
 
 Scene load_scene(const std::string& path, const std::vector<Override>& overrides) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(path + ": cannot read scene file (it is a directory)");
-  }
   // A MuJoCo model given where a scene belongs: say what it is, not that
   // the TOML is malformed. XML starts with '<' (after blanks); TOML cannot.
   const std::string content = read_input_file(path, "scene file");

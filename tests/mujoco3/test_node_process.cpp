@@ -233,7 +233,7 @@ TEST_F(NodeProcess, ModelFileIsCheckedBeforeNodeSeesIt) {
   expect_single_line(r.err, "big.xml: cannot read the model (larger than 4 MiB");
   r = run("inspect folder.xml --engine mujoco3");
   EXPECT_EQ(r.status, 2) << r.err;
-  expect_single_line(r.err, "folder.xml: cannot read the model (a folder, not a file)");
+  expect_single_line(r.err, "folder.xml: cannot read the model (a directory, not a file)");
 }
 
 // The folder copy checks sizes before it reads: a 300 MiB (sparse) sibling
